@@ -1,0 +1,195 @@
+//! Errors of the core: a bad scheme names where it is (file, line, column, field).
+
+use std::fmt;
+
+/// Any error of the core library.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The scheme (a file, a string or values built in code) is invalid.
+    #[error(transparent)]
+    Scheme(#[from] SchemeError),
+    /// A file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file that failed.
+        path: String,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// An image could not be encoded.
+    #[error("cannot encode the preview: {0}")]
+    Image(String),
+}
+
+/// A scheme that cannot be used, with the place of the fault.
+///
+/// Its `Display` reads `file:line:column: field: message`, leaving out the
+/// parts that are unknown (a scheme built in code has no file or line).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub struct SchemeError {
+    /// The file name as the user gave it, or `None` for a string or code.
+    pub file: Option<String>,
+    /// 1-based line in the file.
+    pub line: Option<u64>,
+    /// 1-based column (CSV field number) in that line.
+    pub column: Option<u64>,
+    /// The column header or global key concerned (`x1`, `block_size`, …).
+    pub field: Option<String>,
+    /// 0-based position of the obstacle in the table, when one is concerned.
+    pub obstacle: Option<usize>,
+    /// What is wrong.
+    pub kind: SchemeErrorKind,
+}
+
+impl SchemeError {
+    /// An error with no location yet.
+    pub(crate) fn new(kind: SchemeErrorKind) -> Self {
+        Self {
+            file: None,
+            line: None,
+            column: None,
+            field: None,
+            obstacle: None,
+            kind,
+        }
+    }
+
+    pub(crate) fn with_field(mut self, field: impl Into<String>) -> Self {
+        self.field = Some(field.into());
+        self
+    }
+
+    pub(crate) fn at_line(mut self, line: u64) -> Self {
+        self.line = Some(line);
+        self
+    }
+
+    pub(crate) fn at_column(mut self, column: u64) -> Self {
+        self.column = Some(column);
+        self
+    }
+}
+
+impl fmt::Display for SchemeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let file = self.file.as_deref().unwrap_or("<scheme>");
+        write!(f, "{file}")?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+            if let Some(column) = self.column {
+                write!(f, ":{column}")?;
+            }
+        } else if let Some(obstacle) = self.obstacle {
+            write!(f, ": obstacle {}", obstacle + 1)?;
+        }
+        write!(f, ": ")?;
+        if let Some(field) = &self.field {
+            write!(f, "{field}: ")?;
+        }
+        write!(f, "{}", self.kind)
+    }
+}
+
+/// What is wrong with a scheme.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SchemeErrorKind {
+    /// The file is not UTF-8 text.
+    #[error("the file is not UTF-8 text")]
+    NotUtf8,
+    /// The CSV itself is malformed (e.g. an unclosed quote).
+    #[error("malformed CSV: {0}")]
+    Csv(String),
+    /// A `# key: value` line names no known global parameter.
+    #[error("unknown global parameter `{0}` (known: {known})", known = crate::globals::GLOBAL_KEYS.join(", "))]
+    UnknownGlobal(String),
+    /// A global parameter is given twice.
+    #[error("given twice")]
+    DuplicateGlobal,
+    /// A global parameter has a value it cannot take.
+    #[error("invalid value `{value}`: {reason}")]
+    BadGlobal {
+        /// The text found.
+        value: String,
+        /// What is expected.
+        reason: String,
+    },
+    /// The header names a column that does not exist.
+    #[error("unknown column `{0}` (known: type, height, angle, x1, y1, x2, y2, sigma)")]
+    UnknownColumn(String),
+    /// The header names a column twice.
+    #[error("column given twice")]
+    DuplicateColumn,
+    /// The header has no `type` column.
+    #[error("the header has no `type` column")]
+    MissingTypeColumn,
+    /// A row has more fields than the header.
+    #[error("{found} fields, but the header has {expected}")]
+    TooManyFields {
+        /// Fields in the row.
+        found: usize,
+        /// Fields in the header.
+        expected: usize,
+    },
+    /// The `type` field names no obstacle.
+    #[error("unknown obstacle type `{0}` (known: random, gaussian, peak, pit, wall, long_pit)")]
+    UnknownType(String),
+    /// An obstacle lacks a field its type needs.
+    #[error("required by {0} but empty")]
+    MissingField(&'static str),
+    /// An obstacle has a value in a field its type does not use.
+    #[error("not used by {0}; leave it empty")]
+    UnusedField(&'static str),
+    /// A field is not a number of the expected kind.
+    #[error("`{value}` is not {expected}")]
+    NotANumber {
+        /// The text found.
+        value: String,
+        /// What is expected, e.g. "a whole number ≥ 0".
+        expected: &'static str,
+    },
+    /// A height below zero.
+    #[error("height {0} is negative; heights are whole steps ≥ 0")]
+    NegativeHeight(i64),
+    /// A height above what a cell can hold.
+    #[error("height {0} is above the largest supported height, {max} steps", max = crate::obstacle::MAX_HEIGHT)]
+    HeightTooLarge(u64),
+    /// An angle outside `[0, 90]` degrees.
+    #[error("angle {0} is outside 0..=90 degrees")]
+    AngleOutOfRange(f64),
+    /// A negative or non-finite standard deviation.
+    #[error("sigma {0} must be a finite number ≥ 0")]
+    BadSigma(f64),
+    /// A range `lo..hi` with `lo > hi`.
+    #[error("range {lo}..{hi} is reversed (lo > hi)")]
+    ReversedRange {
+        /// Lower end as written.
+        lo: String,
+        /// Upper end as written.
+        hi: String,
+    },
+    /// A coordinate outside the grid.
+    #[error("{value} is outside the grid: {axis} must be in 0..={max} for a {nx}x{ny} grid")]
+    PointOutsideGrid {
+        /// The offending coordinate (a range's end).
+        value: i64,
+        /// `x` or `y`.
+        axis: char,
+        /// Largest allowed value.
+        max: u32,
+        /// Grid width.
+        nx: u32,
+        /// Grid depth.
+        ny: u32,
+    },
+    /// The grid has more cells than the generator accepts.
+    #[error("a {nx}x{ny} grid has {cells} cells, more than the limit of {limit}", cells = u64::from(*nx) * u64::from(*ny), limit = crate::globals::MAX_CELLS)]
+    GridTooLarge {
+        /// Grid width.
+        nx: u32,
+        /// Grid depth.
+        ny: u32,
+    },
+}

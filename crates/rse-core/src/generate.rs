@@ -1,0 +1,158 @@
+//! Generating one world: draw the ranges, apply the obstacles in order, frame the pallets.
+
+use serde::Serialize;
+
+use crate::globals::Grid;
+use crate::heightmap::Heightmap;
+use crate::obstacle::{DrawnObstacle, Obstacle};
+use crate::param::Param;
+use crate::rng::WorldRng;
+use crate::scheme::Scheme;
+use crate::stamp::{self, Units};
+
+/// One generated RSE: the heightmap, its units, and what was drawn for it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Terrain {
+    grid: Grid,
+    #[serde(skip)]
+    heightmap: Heightmap,
+    block_size: f64,
+    step_height: f64,
+    base: f64,
+    seed: u64,
+    index: u64,
+    drawn: Vec<DrawnObstacle>,
+}
+
+/// Generates world `index` of a batch with base seed `seed` (SPEC §3–4).
+///
+/// The result depends on `(scheme, seed, index)` alone: not on how many worlds
+/// are generated, in which order, or on which thread.
+///
+/// ```
+/// let scheme = rse_core::Scheme::from_csv("# size: 5x5\ntype,height,angle,x1,y1\npeak,2,45,2,2\n", None)?;
+/// let terrain = rse_core::generate(&scheme, 0, 0);
+/// assert_eq!(terrain.heightmap().get(2, 2), 2);
+/// assert_eq!(terrain.heightmap().get(3, 2), 1);
+/// # Ok::<(), rse_core::SchemeError>(())
+/// ```
+pub fn generate(scheme: &Scheme, seed: u64, index: u64) -> Terrain {
+    let globals = scheme.globals();
+    let grid = scheme.grid();
+    let units = Units {
+        block_size: globals.block_size,
+        step_height: globals.step_height,
+    };
+    let mut rng = WorldRng::new(seed, index);
+    let mut heightmap = Heightmap::zeros(grid.nx, grid.ny);
+    let mut drawn = Vec::with_capacity(scheme.obstacles().len());
+    for obstacle in scheme.obstacles() {
+        let resolved = draw(obstacle, &mut rng);
+        stamp::apply(&resolved, &mut heightmap, &mut rng, units);
+        drawn.push(resolved);
+    }
+    if let Some(period) = grid.frame_period {
+        // Frames are exactly one step, whatever the obstacles did (SPEC §2).
+        for y in 0..grid.ny {
+            let row = heightmap.row_mut(y);
+            if y % period == 0 {
+                row.fill(1);
+            } else {
+                row.iter_mut().step_by(period as usize).for_each(|h| *h = 1);
+            }
+        }
+    }
+    Terrain {
+        grid,
+        heightmap,
+        block_size: globals.block_size,
+        step_height: globals.step_height,
+        base: globals.base,
+        seed,
+        index,
+        drawn,
+    }
+}
+
+/// Resolves an obstacle's ranges in the fixed order x1, y1, x2, y2, height,
+/// angle, sigma; fixed values draw nothing.
+fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
+    let f = obstacle.fields();
+    let mut int = |p: Option<Param<u32>>| {
+        p.map(|p| match p {
+            Param::Fixed(v) => v,
+            Param::Range(lo, hi) => rng.int_in(lo, hi),
+        })
+    };
+    let p1 = int(f.x1).zip(int(f.y1)).map(<[u32; 2]>::from);
+    let p2 = int(f.x2).zip(int(f.y2)).map(<[u32; 2]>::from);
+    let height = int(f.height).expect("a validated obstacle has a height");
+    let mut real = |p: Option<Param<f64>>| {
+        p.map(|p| match p {
+            Param::Fixed(v) => v,
+            Param::Range(lo, hi) => rng.real_in(lo, hi),
+        })
+    };
+    let angle = real(f.angle);
+    let sigma = real(f.sigma);
+    let kind = obstacle.kind();
+    let sigma = match kind {
+        crate::ObstacleKind::Gaussian => Some(sigma.unwrap_or(1.0)),
+        _ => sigma,
+    };
+    DrawnObstacle {
+        kind,
+        height,
+        angle,
+        p1,
+        p2,
+        sigma,
+    }
+}
+
+impl Terrain {
+    /// The grid, with where its pallet frames are.
+    pub fn grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// Heights in steps.
+    pub fn heightmap(&self) -> &Heightmap {
+        &self.heightmap
+    }
+
+    /// Cell side in metres.
+    pub fn block_size(&self) -> f64 {
+        self.block_size
+    }
+
+    /// Step height in metres.
+    pub fn step_height(&self) -> f64 {
+        self.step_height
+    }
+
+    /// Slab thickness under the grid, metres.
+    pub fn base(&self) -> f64 {
+        self.base
+    }
+
+    /// Top of cell `(x, y)` in metres: `base + h·step`.
+    pub fn elevation(&self, x: u32, y: u32) -> f64 {
+        self.base + f64::from(self.heightmap.get(x, y)) * self.step_height
+    }
+
+    /// The batch's base seed.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// The world's index in its batch.
+    pub fn index(&self) -> u64 {
+        self.index
+    }
+
+    /// The obstacles as drawn for this world, in table order.
+    pub fn drawn(&self) -> &[DrawnObstacle] {
+        &self.drawn
+    }
+}

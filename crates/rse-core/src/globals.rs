@@ -1,0 +1,184 @@
+//! Global parameters of a scheme (SPEC §2) and the grid they define.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{SchemeError, SchemeErrorKind};
+
+/// Largest grid the generator accepts, in cells (SPEC §5: "a grid too large
+/// for memory"). 10⁸ cells is a 1 km square at 10 cm blocks: 200 MB of
+/// heights, and several GB once meshed.
+pub const MAX_CELLS: u64 = 100_000_000;
+
+/// Pallet side in cells when a scheme turns pallets on without `pallet_size`:
+/// a NIST pallet holds 10×10 blocks inside its frame.
+pub const DEFAULT_PALLET_SIZE: u32 = 10;
+
+/// The `# key: value` names a scheme file may use, in the order they are written.
+pub const GLOBAL_KEYS: [&str; 9] = [
+    "size",
+    "pallets",
+    "pallet_size",
+    "pallet_boundary",
+    "block_size",
+    "step_height",
+    "base",
+    "amount",
+    "seed",
+];
+
+/// Pallet layout: `count[0] × count[1]` pallets of `size × size` cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Pallets {
+    /// Pallet side in cells (inside the frame).
+    pub size: u32,
+    /// Pallets along x and y.
+    pub count: [u32; 2],
+    /// A 1-cell frame, 1 step high, around every pallet.
+    pub boundary: bool,
+}
+
+/// The global parameters of SPEC §2. Lengths in metres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Globals {
+    /// `[nx, ny]` in cells, used when `pallets` is `None`.
+    pub size: [u32; 2],
+    /// Pallet layout; when set, it defines the grid and `size` is ignored.
+    pub pallets: Option<Pallets>,
+    /// Cell side `S` in metres.
+    pub block_size: f64,
+    /// Height of one step in metres.
+    pub step_height: f64,
+    /// Thickness of the slab under the whole grid, metres.
+    pub base: f64,
+    /// Worlds in a batch.
+    pub amount: u64,
+    /// Base seed of a batch.
+    pub seed: u64,
+}
+
+impl Default for Globals {
+    fn default() -> Self {
+        Globals {
+            size: [10, 10],
+            pallets: None,
+            block_size: 0.1,
+            step_height: 0.1,
+            base: 0.0,
+            amount: 1,
+            seed: 0,
+        }
+    }
+}
+
+impl Globals {
+    /// The grid these parameters define (frame included).
+    pub fn grid(&self) -> Grid {
+        match self.pallets {
+            None => Grid {
+                nx: self.size[0],
+                ny: self.size[1],
+                frame_period: None,
+            },
+            Some(p) if p.boundary => Grid {
+                nx: p.count[0].saturating_mul(p.size.saturating_add(1)).saturating_add(1),
+                ny: p.count[1].saturating_mul(p.size.saturating_add(1)).saturating_add(1),
+                frame_period: Some(p.size + 1),
+            },
+            Some(p) => Grid {
+                nx: p.count[0].saturating_mul(p.size),
+                ny: p.count[1].saturating_mul(p.size),
+                frame_period: None,
+            },
+        }
+    }
+
+    /// Checks every value's domain and the grid size. The error's `field`
+    /// names the global key.
+    pub fn validate(&self) -> Result<(), SchemeError> {
+        let bad = |key: &str, value: String, reason: &str| {
+            Err(SchemeError::new(SchemeErrorKind::BadGlobal {
+                value,
+                reason: reason.to_owned(),
+            })
+            .with_field(key))
+        };
+        for (key, value) in [
+            ("block_size", self.block_size),
+            ("step_height", self.step_height),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return bad(key, value.to_string(), "must be a length in metres > 0");
+            }
+        }
+        if !(self.base.is_finite() && self.base >= 0.0) {
+            return bad("base", self.base.to_string(), "must be a length in metres ≥ 0");
+        }
+        if self.size.contains(&0) {
+            return bad("size", format_dims(self.size), "needs at least one cell each way");
+        }
+        if let Some(p) = self.pallets {
+            if p.size == 0 {
+                return bad("pallet_size", "0".into(), "needs at least one cell");
+            }
+            if p.count.contains(&0) {
+                return bad("pallets", format_dims(p.count), "needs at least one pallet each way");
+            }
+        }
+        let grid = self.grid();
+        if u64::from(grid.nx) * u64::from(grid.ny) > MAX_CELLS
+            || grid.nx == u32::MAX
+            || grid.ny == u32::MAX
+        {
+            let key = if self.pallets.is_some() { "pallets" } else { "size" };
+            return Err(SchemeError::new(SchemeErrorKind::GridTooLarge {
+                nx: grid.nx,
+                ny: grid.ny,
+            })
+            .with_field(key));
+        }
+        Ok(())
+    }
+}
+
+/// The cell grid of an RSE: its size and where the pallet frames are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Grid {
+    /// Cells along x.
+    pub nx: u32,
+    /// Cells along y.
+    pub ny: u32,
+    /// With pallet frames: every `frame_period`-th row and column, from 0, is frame.
+    pub frame_period: Option<u32>,
+}
+
+impl Grid {
+    /// Number of cells.
+    pub fn cells(&self) -> usize {
+        self.nx as usize * self.ny as usize
+    }
+
+    /// `true` if cell `(x, y)` lies on a pallet frame line.
+    pub fn is_frame(&self, x: u32, y: u32) -> bool {
+        self.frame_period
+            .is_some_and(|period| x.is_multiple_of(period) || y.is_multiple_of(period))
+    }
+}
+
+/// Parses `NXxNY` (also `NX×NY`, `NX*NY`, spaces allowed) into `[nx, ny]`.
+pub fn parse_dims(text: &str) -> Result<[u32; 2], String> {
+    let text = text.trim();
+    let (a, b) = text
+        .split_once(['x', 'X', '×', '*'])
+        .ok_or_else(|| format!("`{text}` is not of the form NXxNY, e.g. 50x50"))?;
+    let one = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{}` is not a whole number ≥ 0", s.trim()))
+    };
+    Ok([one(a)?, one(b)?])
+}
+
+/// Writes `[nx, ny]` as `NXxNY`.
+pub fn format_dims(dims: [u32; 2]) -> String {
+    format!("{}x{}", dims[0], dims[1])
+}

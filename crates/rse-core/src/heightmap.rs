@@ -1,0 +1,147 @@
+//! A grid of cell heights in whole steps, and its CSV text (SPEC §1).
+
+use std::fmt::Write as _;
+
+/// Cell heights in steps, `nx × ny`, stored row by row from `y = 0`
+/// (`index = y·nx + x`), the layout of a numpy `(ny, nx)` array.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Heightmap {
+    nx: u32,
+    ny: u32,
+    cells: Vec<u16>,
+}
+
+impl Heightmap {
+    /// A flat map of height 0.
+    pub fn zeros(nx: u32, ny: u32) -> Self {
+        Heightmap {
+            nx,
+            ny,
+            cells: vec![0; nx as usize * ny as usize],
+        }
+    }
+
+    /// A map from row-major heights; `None` if `cells.len() != nx·ny`.
+    pub fn from_cells(nx: u32, ny: u32, cells: Vec<u16>) -> Option<Self> {
+        (cells.len() == nx as usize * ny as usize).then_some(Heightmap { nx, ny, cells })
+    }
+
+    /// Cells along x.
+    pub fn nx(&self) -> u32 {
+        self.nx
+    }
+
+    /// Cells along y.
+    pub fn ny(&self) -> u32 {
+        self.ny
+    }
+
+    /// Height of cell `(x, y)` in steps.
+    ///
+    /// # Panics
+    /// If the cell is outside the map.
+    pub fn get(&self, x: u32, y: u32) -> u16 {
+        assert!(x < self.nx && y < self.ny, "cell ({x}, {y}) outside the map");
+        self.cells[self.index(x, y)]
+    }
+
+    /// All heights, row by row from `y = 0`.
+    pub fn cells(&self) -> &[u16] {
+        &self.cells
+    }
+
+    pub(crate) fn cells_mut(&mut self) -> &mut [u16] {
+        &mut self.cells
+    }
+
+    /// Row `y`, from `x = 0`.
+    pub fn row(&self, y: u32) -> &[u16] {
+        let start = self.index(0, y);
+        &self.cells[start..start + self.nx as usize]
+    }
+
+    pub(crate) fn row_mut(&mut self, y: u32) -> &mut [u16] {
+        let start = self.index(0, y);
+        &mut self.cells[start..start + self.nx as usize]
+    }
+
+    /// The highest cell (0 for an empty map).
+    pub fn max(&self) -> u16 {
+        self.cells.iter().copied().max().unwrap_or(0)
+    }
+
+    /// The CSV text of SPEC §1: one line per `y` from 0, one column per `x`.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::with_capacity(self.cells.len() * 3);
+        for y in 0..self.ny {
+            for (x, h) in self.row(y).iter().enumerate() {
+                if x > 0 {
+                    out.push(',');
+                }
+                write!(out, "{h}").expect("writing to a String cannot fail");
+            }
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Parses the CSV text of [`Heightmap::to_csv`]. The error names the
+    /// 1-based line and column of the first bad value.
+    pub fn from_csv(text: &str) -> Result<Self, String> {
+        let mut cells = Vec::new();
+        let mut nx = None;
+        let mut ny = 0u32;
+        for (i, line) in text.lines().enumerate() {
+            let line_no = i + 1;
+            if line.trim().is_empty() {
+                continue;
+            }
+            let before = cells.len();
+            for (j, value) in line.split(',').enumerate() {
+                let h = value.trim().parse::<u16>().map_err(|_| {
+                    format!("line {line_no}, column {}: `{value}` is not a height", j + 1)
+                })?;
+                cells.push(h);
+            }
+            let width = (cells.len() - before) as u32;
+            if *nx.get_or_insert(width) != width {
+                return Err(format!(
+                    "line {line_no}: {width} values, but line 1 has {}",
+                    nx.unwrap_or(0)
+                ));
+            }
+            ny += 1;
+        }
+        Ok(Heightmap {
+            nx: nx.unwrap_or(0),
+            ny,
+            cells,
+        })
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.nx as usize + x as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_has_one_line_per_y_from_zero() {
+        let mut map = Heightmap::zeros(3, 2);
+        map.cells_mut()[1] = 4; // (1, 0)
+        map.cells_mut()[5] = 2; // (2, 1)
+        assert_eq!(map.to_csv(), "0,4,0\n0,0,2\n");
+        assert_eq!(map.get(1, 0), 4);
+        assert_eq!(Heightmap::from_csv(&map.to_csv()), Ok(map));
+    }
+
+    #[test]
+    fn from_csv_names_the_bad_value() {
+        let error = Heightmap::from_csv("1,2\n3,x\n").unwrap_err();
+        assert!(error.contains("line 2, column 2"), "{error}");
+        assert!(Heightmap::from_csv("1,2\n3\n").unwrap_err().contains("line 2"));
+    }
+}

@@ -1,0 +1,56 @@
+//! Deterministic generator of Random Step Environments (RSE): the NIST
+//! "stepfield" pallets of wooden blocks used to test rescue robots.
+//!
+//! A [`Scheme`] holds the global parameters (grid, block size, step height,
+//! pallets) and an ordered table of obstacles (random, gaussian, peak, pit,
+//! wall, long pit). [`generate`] turns a scheme and a seed pair `(seed, index)`
+//! into a [`Terrain`]: a [`Heightmap`] of whole steps plus what was drawn.
+//! The same inputs give the same heights on every machine.
+//!
+//! ```
+//! use rse_core::{generate, Scheme};
+//!
+//! let scheme = Scheme::from_csv(
+//!     "# size: 20x10\n\
+//!      type,height,angle,x1,y1,x2,y2\n\
+//!      random,1,,,,,\n\
+//!      wall,4,45,2,5,17,5\n",
+//!     None,
+//! )?;
+//! let terrain = generate(&scheme, 42, 7);
+//! assert_eq!(terrain.heightmap().get(10, 5), 4); // on the wall
+//! assert_eq!(generate(&scheme, 42, 7), terrain); // reproducible
+//! let png = rse_core::preview::encode_png(&rse_core::preview::render(&terrain, 8))?;
+//! assert!(png.starts_with(b"\x89PNG"));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The contract (grid, units, obstacle maths, seeding, scheme files) is the
+//! project's `SPEC.md`; `schemes/README.md` documents the file format.
+
+mod error;
+mod generate;
+mod globals;
+mod heightmap;
+mod obstacle;
+mod param;
+pub mod preview;
+mod rng;
+mod scheme;
+mod scheme_csv;
+mod stamp;
+
+pub use error::{Error, SchemeError, SchemeErrorKind};
+pub use generate::{Terrain, generate};
+pub use globals::{
+    DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, Pallets, format_dims, parse_dims,
+};
+pub use heightmap::Heightmap;
+pub use obstacle::{
+    DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
+};
+pub use param::Param;
+pub use scheme::Scheme;
+
+/// The generator's version, written into every world's manifest.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

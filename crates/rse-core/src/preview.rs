@@ -1,0 +1,104 @@
+//! The top-down preview of paper §3.1: blue (lowest) → green → red (highest).
+
+use crate::error::Error;
+use crate::generate::Terrain;
+
+/// Colour of pallet frame cells: wood, outside the blue–green–red palette so
+/// frames stand out from 1-step blocks.
+pub const FRAME_RGB: [u8; 3] = [150, 111, 71];
+
+/// An RGB image, rows from the top.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Preview {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width·height` pixels of 3 bytes, row by row from the top.
+    pub rgb: Vec<u8>,
+}
+
+/// Pixels per cell that make a preview about 512 pixels wide (1 to 32).
+pub fn auto_cell_pixels(nx: u32, ny: u32) -> u32 {
+    (512 / nx.max(ny).max(1)).clamp(1, 32)
+}
+
+/// Colour of height `h` where the map spans `lo..=hi` (integer maths, so the
+/// same on every machine).
+pub fn palette(h: u16, lo: u16, hi: u16) -> [u8; 3] {
+    let t = if hi > lo {
+        u32::from(h.saturating_sub(lo)) * 510 / u32::from(hi - lo)
+    } else {
+        0
+    };
+    if t <= 255 {
+        [0, t as u8, (255 - t) as u8]
+    } else {
+        [(t - 255) as u8, (510 - t) as u8, 0]
+    }
+}
+
+/// Draws `terrain` seen from above, +x to the right and +y up (north up), with
+/// `cell_pixels` pixels per cell. From 4 pixels per cell on, each cell's
+/// right and bottom pixel lines are darker so every block reads on its own.
+/// Colours span the lowest to the highest cell that is not frame.
+pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
+    let grid = terrain.grid();
+    let map = terrain.heightmap();
+    let cp = cell_pixels.max(1);
+    let (mut lo, mut hi) = (u16::MAX, 0u16);
+    for y in 0..grid.ny {
+        for (x, &h) in map.row(y).iter().enumerate() {
+            if !grid.is_frame(x as u32, y) {
+                lo = lo.min(h);
+                hi = hi.max(h);
+            }
+        }
+    }
+    let (width, height) = (grid.nx * cp, grid.ny * cp);
+    let mut rgb = Vec::with_capacity(width as usize * height as usize * 3);
+    for row in 0..height {
+        let y = grid.ny - 1 - row / cp;
+        let edge_row = cp >= 4 && row % cp == cp - 1;
+        for column in 0..width {
+            let x = column / cp;
+            let colour = if grid.is_frame(x, y) {
+                FRAME_RGB
+            } else {
+                palette(map.get(x, y), lo, hi)
+            };
+            let edge = edge_row || (cp >= 4 && column % cp == cp - 1);
+            rgb.extend(colour.map(|c| if edge { c - c / 4 } else { c }));
+        }
+    }
+    Preview { width, height, rgb }
+}
+
+/// Encodes a preview as PNG bytes.
+pub fn encode_png(preview: &Preview) -> Result<Vec<u8>, Error> {
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, preview.width, preview.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder
+        .write_header()
+        .map_err(|e| Error::Image(e.to_string()))?;
+    writer
+        .write_image_data(&preview.rgb)
+        .map_err(|e| Error::Image(e.to_string()))?;
+    writer.finish().map_err(|e| Error::Image(e.to_string()))?;
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn palette_runs_blue_green_red() {
+        assert_eq!(palette(0, 0, 4), [0, 0, 255]);
+        assert_eq!(palette(2, 0, 4), [0, 255, 0]);
+        assert_eq!(palette(4, 0, 4), [255, 0, 0]);
+        assert_eq!(palette(3, 3, 3), [0, 0, 255]);
+    }
+}

@@ -1,0 +1,204 @@
+//! A scheme: global parameters plus the ordered obstacle table, validated.
+
+use std::path::Path;
+
+use crate::error::{Error, SchemeError, SchemeErrorKind};
+use crate::globals::{Globals, Grid};
+use crate::obstacle::{Field, Obstacle};
+
+/// Where a scheme came from, kept so that errors found later (e.g. a point
+/// that leaves the grid after `--size` shrinks it) still name file and line.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Origin {
+    pub file: Option<String>,
+    /// Per obstacle: its line, and the 1-based column of each field present.
+    pub rows: Vec<RowOrigin>,
+    /// Per global key: the line it was set on.
+    pub global_lines: Vec<(&'static str, u64)>,
+}
+
+#[derive(Debug, Clone, Default)]
+pub(crate) struct RowOrigin {
+    pub line: u64,
+    pub columns: Vec<(Field, u64)>,
+}
+
+impl Origin {
+    /// Puts the file, line and column of `obstacle`'s `field` on `error`.
+    pub(crate) fn locate_obstacle(&self, mut error: SchemeError, obstacle: usize) -> SchemeError {
+        error.file.clone_from(&self.file);
+        error.obstacle = Some(obstacle);
+        if let Some(row) = self.rows.get(obstacle) {
+            error.line = Some(row.line);
+            let field = error.field.as_deref().and_then(Field::from_header);
+            error.column = row
+                .columns
+                .iter()
+                .find(|(f, _)| Some(*f) == field)
+                .map(|(_, column)| *column);
+        }
+        error
+    }
+
+    /// Puts the file and line of the global key in `error.field` on `error`.
+    pub(crate) fn locate_global(&self, mut error: SchemeError) -> SchemeError {
+        error.file.clone_from(&self.file);
+        let key = error.field.as_deref();
+        error.line = self
+            .global_lines
+            .iter()
+            .find(|(k, _)| Some(*k) == key)
+            .map(|(_, line)| *line);
+        error
+    }
+}
+
+/// Global parameters and an ordered obstacle table, checked to work together.
+///
+/// Every `Scheme` is valid: [`Scheme::new`], [`Scheme::from_csv`] and
+/// [`Scheme::with_globals`] refuse one that is not, so generating from it
+/// cannot fail.
+#[derive(Debug, Clone)]
+pub struct Scheme {
+    globals: Globals,
+    obstacles: Vec<Obstacle>,
+    notes: Vec<String>,
+    origin: Origin,
+}
+
+impl PartialEq for Scheme {
+    /// Two schemes are equal when their parameters, tables and notes are;
+    /// where they were read from does not matter.
+    fn eq(&self, other: &Self) -> bool {
+        self.globals == other.globals
+            && self.obstacles == other.obstacles
+            && self.notes == other.notes
+    }
+}
+
+impl Scheme {
+    /// Checks `globals` and that every obstacle's points lie inside the grid.
+    pub fn new(globals: Globals, obstacles: Vec<Obstacle>) -> Result<Self, SchemeError> {
+        Self::with_origin(globals, obstacles, Vec::new(), Origin::default())
+    }
+
+    pub(crate) fn with_origin(
+        globals: Globals,
+        obstacles: Vec<Obstacle>,
+        notes: Vec<String>,
+        origin: Origin,
+    ) -> Result<Self, SchemeError> {
+        globals.validate().map_err(|e| origin.locate_global(e))?;
+        let grid = globals.grid();
+        for (i, obstacle) in obstacles.iter().enumerate() {
+            check_inside(obstacle, grid).map_err(|e| origin.locate_obstacle(e, i))?;
+        }
+        Ok(Scheme {
+            globals,
+            obstacles,
+            notes,
+            origin,
+        })
+    }
+
+    /// Reads a scheme CSV file (SPEC §5). Errors name the path as given.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
+        let path = path.as_ref();
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|source| Error::Io {
+            path: name.clone(),
+            source,
+        })?;
+        Ok(Self::from_csv_bytes(&bytes, Some(&name))?)
+    }
+
+    /// Parses scheme CSV text; `file` is the name used in error messages.
+    pub fn from_csv(text: &str, file: Option<&str>) -> Result<Self, SchemeError> {
+        crate::scheme_csv::parse(text, file)
+    }
+
+    /// Parses scheme CSV bytes, refusing text that is not UTF-8.
+    pub fn from_csv_bytes(bytes: &[u8], file: Option<&str>) -> Result<Self, SchemeError> {
+        match std::str::from_utf8(bytes) {
+            Ok(text) => Self::from_csv(text, file),
+            Err(e) => {
+                #[allow(clippy::naive_bytecount)] // once per bad file: not worth a crate
+                let line = bytes[..e.valid_up_to()]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count() as u64
+                    + 1;
+                let mut error = SchemeError::new(SchemeErrorKind::NotUtf8).at_line(line);
+                error.file = file.map(str::to_owned);
+                Err(error)
+            }
+        }
+    }
+
+    /// The canonical CSV text of this scheme; reading it back gives an equal scheme.
+    pub fn to_csv(&self) -> String {
+        crate::scheme_csv::write(self)
+    }
+
+    /// The same table with other global parameters (e.g. command-line
+    /// overrides), checked again. Errors still name the original file and line.
+    pub fn with_globals(&self, globals: Globals) -> Result<Self, SchemeError> {
+        Self::with_origin(
+            globals,
+            self.obstacles.clone(),
+            self.notes.clone(),
+            self.origin.clone(),
+        )
+    }
+
+    /// The same scheme with other free-text notes (the comment lines written
+    /// above the table).
+    #[must_use]
+    pub fn with_notes(mut self, notes: Vec<String>) -> Self {
+        self.notes = notes;
+        self
+    }
+
+    /// The global parameters.
+    pub fn globals(&self) -> &Globals {
+        &self.globals
+    }
+
+    /// The obstacle table, in the order it is applied.
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.obstacles
+    }
+
+    /// Free-text comment lines of the file (without the leading `#`).
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// The grid (frame included).
+    pub fn grid(&self) -> Grid {
+        self.globals.grid()
+    }
+
+    /// The file this scheme was read from, as given.
+    pub fn file(&self) -> Option<&str> {
+        self.origin.file.as_deref()
+    }
+}
+
+fn check_inside(obstacle: &Obstacle, grid: Grid) -> Result<(), SchemeError> {
+    for (field, axis, coordinate) in obstacle.fields().coordinates() {
+        let Some(param) = coordinate else { continue };
+        let limit = if axis == 'x' { grid.nx } else { grid.ny };
+        if param.hi() >= limit {
+            return Err(SchemeError::new(SchemeErrorKind::PointOutsideGrid {
+                value: param.hi().into(),
+                axis,
+                max: limit - 1,
+                nx: grid.nx,
+                ny: grid.ny,
+            })
+            .with_field(field.name()));
+        }
+    }
+    Ok(())
+}
