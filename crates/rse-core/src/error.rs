@@ -151,16 +151,16 @@ pub enum SchemeErrorKind {
         expected: &'static str,
     },
     /// A height below zero.
-    #[error("height {0} is negative; heights are whole steps ≥ 0")]
+    #[error("{0} is negative; heights are whole steps ≥ 0")]
     NegativeHeight(i64),
     /// A height above what a cell can hold.
-    #[error("height {0} is above the largest supported height, {max} steps", max = crate::obstacle::MAX_HEIGHT)]
+    #[error("{0} is above the largest supported height, {max} steps", max = crate::obstacle::MAX_HEIGHT)]
     HeightTooLarge(u64),
     /// An angle outside `[0, 90]` degrees.
-    #[error("angle {0} is outside 0..=90 degrees")]
+    #[error("{0} is outside 0..=90 degrees")]
     AngleOutOfRange(f64),
     /// A negative or non-finite standard deviation.
-    #[error("sigma {0} must be a finite number ≥ 0")]
+    #[error("{0} is not a finite number ≥ 0")]
     BadSigma(f64),
     /// A range `lo..hi` with `lo > hi`.
     #[error("range {lo}..{hi} is reversed (lo > hi)")]

@@ -1,0 +1,146 @@
+//! Command-line arguments: every clap type of `rse-gen` lives here.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+/// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
+///
+/// A scheme CSV (see schemes/README.md) lists global parameters and an ordered
+/// table of obstacles; every world drawn from it is reproducible from the
+/// scheme and the seed pair (seed, index).
+#[derive(Debug, Parser)]
+#[command(name = "rse-gen", version, propagate_version = true, max_term_width = 100)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Print the heightmap of one world as CSV: one line per y from 0, one column per x, heights in steps.
+    Heightmap(HeightmapArgs),
+    /// Draw one world seen from above as a PNG (blue lowest, green, red highest; pallet frames brown).
+    Preview(PreviewArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct HeightmapArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    #[command(flatten)]
+    pub world: WorldArgs,
+}
+
+#[derive(Debug, Args)]
+pub struct PreviewArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    /// Where to write the PNG.
+    #[arg(short, long, value_name = "FILE.png")]
+    pub output: PathBuf,
+
+    /// Pixels per cell [default: about 512 pixels across, 1 to 32 per cell].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=256))]
+    pub cell_pixels: Option<u32>,
+
+    #[command(flatten)]
+    pub world: WorldArgs,
+}
+
+/// Which world of the batch: world `index` of base seed `seed`.
+#[derive(Debug, Args)]
+pub struct WorldArgs {
+    /// Base seed of the batch [default: the scheme's `seed`, else 0].
+    #[arg(long, value_name = "B")]
+    pub seed: Option<u64>,
+
+    /// Index of the world in the batch.
+    #[arg(long, value_name = "I", default_value_t = 0)]
+    pub index: u64,
+}
+
+/// Global parameters that override the scheme's (SPEC §2).
+#[derive(Debug, Args)]
+#[command(next_help_heading = "Scheme overrides")]
+pub struct SchemeOverrides {
+    /// Grid size in cells, used when pallets are off.
+    #[arg(long, global = true, value_name = "NXxNY", value_parser = parse_dims)]
+    pub size: Option<[u32; 2]>,
+
+    /// Pallets along x and y, or `off`.
+    #[arg(long, global = true, value_name = "PXxPY|off", value_parser = parse_pallets)]
+    pub pallets: Option<PalletsFlag>,
+
+    /// Pallet side in cells (needs pallets).
+    #[arg(long, global = true, value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))]
+    pub pallet_size: Option<u32>,
+
+    /// A 1-cell, 1-step frame around every pallet (needs pallets).
+    #[arg(long, global = true, value_name = "true|false", action = clap::ArgAction::Set)]
+    pub pallet_boundary: Option<bool>,
+
+    /// Cell side in metres.
+    #[arg(long, global = true, value_name = "M", value_parser = positive_metres)]
+    pub block_size: Option<f64>,
+
+    /// Height of one step in metres.
+    #[arg(long, global = true, value_name = "M", value_parser = positive_metres)]
+    pub step_height: Option<f64>,
+
+    /// Slab under the whole grid in metres (0 for none).
+    #[arg(long, global = true, value_name = "M", value_parser = non_negative_metres)]
+    pub base: Option<f64>,
+}
+
+/// `--pallets` is a layout or `off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PalletsFlag {
+    Off,
+    Count([u32; 2]),
+}
+
+fn parse_dims(text: &str) -> Result<[u32; 2], String> {
+    let dims = rse_core::parse_dims(text)?;
+    if dims.contains(&0) {
+        return Err("needs at least one each way".to_owned());
+    }
+    Ok(dims)
+}
+
+fn parse_pallets(text: &str) -> Result<PalletsFlag, String> {
+    if text.eq_ignore_ascii_case("off") {
+        Ok(PalletsFlag::Off)
+    } else {
+        parse_dims(text).map(PalletsFlag::Count)
+    }
+}
+
+fn positive_metres(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err("expected a length in metres > 0".to_owned()),
+    }
+}
+
+fn non_negative_metres(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err("expected a length in metres ≥ 0".to_owned()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory as _;
+
+    #[test]
+    fn the_command_line_is_well_formed() {
+        super::Cli::command().debug_assert();
+    }
+}

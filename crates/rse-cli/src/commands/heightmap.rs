@@ -1,0 +1,16 @@
+//! `rse-gen heightmap`: the CSV of one world's heights on stdout.
+
+use std::io::Write as _;
+
+use crate::ExitStatus;
+use crate::args::{HeightmapArgs, SchemeOverrides};
+
+pub fn run(args: &HeightmapArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
+    let scheme = super::load_scheme(&args.scheme, overrides)?;
+    let seed = args.world.seed.unwrap_or(scheme.globals().seed);
+    let terrain = rse_core::generate(&scheme, seed, args.world.index);
+    let mut stdout = std::io::stdout().lock();
+    stdout.write_all(terrain.heightmap().to_csv().as_bytes())?;
+    stdout.flush()?;
+    Ok(ExitStatus::Success)
+}

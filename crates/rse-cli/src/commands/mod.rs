@@ -1,0 +1,66 @@
+//! One module per subcommand, and what they share: loading a scheme with overrides.
+
+use std::path::Path;
+
+use anyhow::{Context as _, bail};
+use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme};
+
+use crate::ExitStatus;
+use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides};
+
+mod heightmap;
+mod preview;
+
+/// Runs the parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
+    match cli.command {
+        Command::Heightmap(args) => heightmap::run(&args, &cli.overrides),
+        Command::Preview(args) => preview::run(&args, &cli.overrides),
+    }
+}
+
+/// Reads the scheme at `path` and applies the command-line overrides.
+pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
+    let scheme = Scheme::load(path)?;
+    let mut globals = *scheme.globals();
+    let SchemeOverrides {
+        size,
+        pallets,
+        pallet_size,
+        pallet_boundary,
+        block_size,
+        step_height,
+        base,
+    } = *overrides;
+    if let Some(size) = size {
+        globals.size = size;
+    }
+    match pallets {
+        None => {}
+        Some(PalletsFlag::Off) => globals.pallets = None,
+        Some(PalletsFlag::Count(count)) => {
+            let old = globals.pallets;
+            globals.pallets = Some(Pallets {
+                size: old.map_or(DEFAULT_PALLET_SIZE, |p| p.size),
+                count,
+                boundary: old.is_none_or(|p| p.boundary),
+            });
+        }
+    }
+    if pallet_size.is_some() || pallet_boundary.is_some() {
+        let Some(layout) = globals.pallets.as_mut() else {
+            bail!("--pallet-size and --pallet-boundary need pallets: add --pallets PXxPY");
+        };
+        layout.size = pallet_size.unwrap_or(layout.size);
+        layout.boundary = pallet_boundary.unwrap_or(layout.boundary);
+    }
+    globals.block_size = block_size.unwrap_or(globals.block_size);
+    globals.step_height = step_height.unwrap_or(globals.step_height);
+    globals.base = base.unwrap_or(globals.base);
+    if globals == *scheme.globals() {
+        return Ok(scheme);
+    }
+    scheme
+        .with_globals(globals)
+        .context("the scheme does not fit the parameters given on the command line")
+}

@@ -1,0 +1,20 @@
+//! `rse-gen preview`: one world seen from above, as a PNG file.
+
+use rse_core::preview;
+
+use crate::ExitStatus;
+use crate::args::{PreviewArgs, SchemeOverrides};
+use crate::output;
+
+pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
+    let scheme = super::load_scheme(&args.scheme, overrides)?;
+    let seed = args.world.seed.unwrap_or(scheme.globals().seed);
+    let terrain = rse_core::generate(&scheme, seed, args.world.index);
+    let grid = terrain.grid();
+    let cell_pixels = args
+        .cell_pixels
+        .unwrap_or_else(|| preview::auto_cell_pixels(grid.nx, grid.ny));
+    let png = preview::encode_png(&preview::render(&terrain, cell_pixels))?;
+    output::write_atomically(&args.output, &png)?;
+    Ok(ExitStatus::Success)
+}
