@@ -347,7 +347,9 @@ const FMT: &str = "writing to a String cannot fail";
 pub(crate) fn write(scheme: &Scheme) -> String {
     let mut out = String::new();
     for note in scheme.notes() {
-        for line in note.lines() {
+        // `"".lines()` is empty, but a bare `#` line is a note too.
+        let lines = if note.is_empty() { vec![""] } else { note.lines().collect() };
+        for line in lines {
             if line.is_empty() {
                 out.push_str("#\n");
             } else {

@@ -1,0 +1,8 @@
+//! Integration tests of rse-core, one binary (see `STYLE.md`).
+
+mod golden;
+mod obstacles;
+mod properties;
+mod samples;
+mod scheme_files;
+mod util;
