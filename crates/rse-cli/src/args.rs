@@ -10,7 +10,12 @@ use clap::{Args, Parser, Subcommand};
 /// table of obstacles; every world drawn from it is reproducible from the
 /// scheme and the seed pair (seed, index).
 #[derive(Debug, Parser)]
-#[command(name = "rse-gen", version, propagate_version = true, max_term_width = 100)]
+#[command(
+    name = "rse-gen",
+    version,
+    propagate_version = true,
+    max_term_width = 100
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

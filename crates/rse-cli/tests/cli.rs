@@ -47,8 +47,17 @@ fn heightmap_matches_the_golden_table() {
             panic!("bad golden line {line}")
         };
         let path = format!("schemes/{scheme}");
-        let out = stdout(&rse_gen(&["heightmap", &path, "--seed", seed, "--index", index]));
-        let hex: String = Sha256::digest(out.as_bytes()).iter().map(|b| format!("{b:02x}")).collect();
+        let out = stdout(&rse_gen(&[
+            "heightmap",
+            &path,
+            "--seed",
+            seed,
+            "--index",
+            index,
+        ]));
+        let hex = Sha256::digest(out.as_bytes())
+            .iter()
+            .fold(String::new(), |hex, b| hex + &format!("{b:02x}"));
         assert_eq!(hex, hash, "{line}");
         rows += 1;
     }
@@ -68,7 +77,10 @@ fn heightmap_is_one_line_per_y_and_one_column_per_x() {
 #[test]
 fn seed_defaults_to_the_schemes_and_flags_override() {
     let dir = tempfile::tempdir().unwrap();
-    let with_seed = write_scheme(dir.path(), "# size: 8x8\n# seed: 77\ntype,height\nrandom,5\n");
+    let with_seed = write_scheme(
+        dir.path(),
+        "# size: 8x8\n# seed: 77\ntype,height\nrandom,5\n",
+    );
     let a = stdout(&rse_gen(&["heightmap", &with_seed]));
     let b = stdout(&rse_gen(&["heightmap", &with_seed, "--seed", "77"]));
     let c = stdout(&rse_gen(&["heightmap", &with_seed, "--seed", "78"]));
@@ -80,27 +92,50 @@ fn seed_defaults_to_the_schemes_and_flags_override() {
 
 #[test]
 fn global_flags_override_the_scheme() {
-    let out = stdout(&rse_gen(&["heightmap", "schemes/random.csv", "--size", "7x3"]));
+    let out = stdout(&rse_gen(&[
+        "heightmap",
+        "schemes/random.csv",
+        "--size",
+        "7x3",
+    ]));
     assert_eq!(out.lines().count(), 3);
     assert_eq!(out.lines().next().unwrap().split(',').count(), 7);
     // Flags may come before the subcommand too.
     let out = stdout(&rse_gen(&[
-        "--pallets", "2x3", "--pallet-size", "3", "heightmap", "schemes/random.csv",
+        "--pallets",
+        "2x3",
+        "--pallet-size",
+        "3",
+        "heightmap",
+        "schemes/random.csv",
     ]));
     assert_eq!(out.lines().count(), 13);
     assert_eq!(out.lines().next().unwrap(), "1,1,1,1,1,1,1,1,1");
     let out = stdout(&rse_gen(&[
-        "heightmap", "schemes/paper_pallets.csv", "--pallet-boundary", "false",
+        "heightmap",
+        "schemes/paper_pallets.csv",
+        "--pallet-boundary",
+        "false",
     ]));
     assert_eq!(out.lines().count(), 9);
-    let out = stdout(&rse_gen(&["heightmap", "schemes/paper_pallets.csv", "--pallets", "off"]));
+    let out = stdout(&rse_gen(&[
+        "heightmap",
+        "schemes/paper_pallets.csv",
+        "--pallets",
+        "off",
+    ]));
     assert_eq!(out.lines().count(), 10);
 }
 
 #[test]
 fn step_height_flag_changes_the_quantisation() {
     let coarse = stdout(&rse_gen(&["heightmap", "schemes/peak.csv"]));
-    let fine = stdout(&rse_gen(&["heightmap", "schemes/peak.csv", "--step-height", "0.05"]));
+    let fine = stdout(&rse_gen(&[
+        "heightmap",
+        "schemes/peak.csv",
+        "--step-height",
+        "0.05",
+    ]));
     let row = |text: &str| text.lines().nth(7).unwrap().to_owned();
     // H = 5 steps at 45°: 0.1 m per cell is one step of 0.1 m, or two of 0.05 m.
     assert_eq!(row(&coarse), "0,0,0,1,2,3,4,5,4,3,2,1,0,0,0");
@@ -115,10 +150,19 @@ fn preview_draws_one_block_per_cell_north_up() {
         "# size: 4x3\ntype,height,angle,x1,y1\npeak,2,90,0,2\n",
     );
     let png_path = dir.path().join("p.png");
-    let out = rse_gen(&["preview", &scheme, "-o", png_path.to_str().unwrap(), "--cell-pixels", "10"]);
+    let out = rse_gen(&[
+        "preview",
+        &scheme,
+        "-o",
+        png_path.to_str().unwrap(),
+        "--cell-pixels",
+        "10",
+    ]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(out.stdout.is_empty());
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png_path).unwrap()));
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&png_path).unwrap(),
+    ));
     let mut reader = decoder.read_info().unwrap();
     let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
     let info = reader.next_frame(&mut pixels).unwrap();
@@ -139,14 +183,27 @@ fn preview_marks_pallet_frames() {
     let dir = tempfile::tempdir().unwrap();
     let png_path = dir.path().join("p.png");
     let p = png_path.to_str().unwrap();
-    let out = rse_gen(&["preview", "schemes/paper_pallets.csv", "-o", p, "--cell-pixels", "2"]);
+    let out = rse_gen(&[
+        "preview",
+        "schemes/paper_pallets.csv",
+        "-o",
+        p,
+        "--cell-pixels",
+        "2",
+    ]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png_path).unwrap()));
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&png_path).unwrap(),
+    ));
     let mut reader = decoder.read_info().unwrap();
     let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
     let info = reader.next_frame(&mut pixels).unwrap();
     assert_eq!((info.width, info.height), (18, 26));
-    assert_eq!(pixels[..3], [150, 111, 71], "frame colour at the top-left corner");
+    assert_eq!(
+        pixels[..3],
+        [150, 111, 71],
+        "frame colour at the top-left corner"
+    );
 }
 
 #[test]
@@ -165,10 +222,17 @@ fn a_bad_scheme_names_file_line_and_column_exits_2_and_writes_nothing() {
         assert_eq!(out.status.code(), Some(2));
         assert!(out.stdout.is_empty());
         let err = stderr(&out);
-        assert!(err.contains(&format!("{scheme}:4:4: x1: 12 is outside the grid")), "{err}");
+        assert!(
+            err.contains(&format!("{scheme}:4:4: x1: 12 is outside the grid")),
+            "{err}"
+        );
     }
     assert!(!png_path.exists());
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "only the scheme is there");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "only the scheme is there"
+    );
 }
 
 #[test]

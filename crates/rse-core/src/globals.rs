@@ -80,8 +80,12 @@ impl Globals {
                 frame_period: None,
             },
             Some(p) if p.boundary => Grid {
-                nx: p.count[0].saturating_mul(p.size.saturating_add(1)).saturating_add(1),
-                ny: p.count[1].saturating_mul(p.size.saturating_add(1)).saturating_add(1),
+                nx: p.count[0]
+                    .saturating_mul(p.size.saturating_add(1))
+                    .saturating_add(1),
+                ny: p.count[1]
+                    .saturating_mul(p.size.saturating_add(1))
+                    .saturating_add(1),
                 frame_period: Some(p.size + 1),
             },
             Some(p) => Grid {
@@ -111,17 +115,29 @@ impl Globals {
             }
         }
         if !(self.base.is_finite() && self.base >= 0.0) {
-            return bad("base", self.base.to_string(), "must be a length in metres ≥ 0");
+            return bad(
+                "base",
+                self.base.to_string(),
+                "must be a length in metres ≥ 0",
+            );
         }
         if self.size.contains(&0) {
-            return bad("size", format_dims(self.size), "needs at least one cell each way");
+            return bad(
+                "size",
+                format_dims(self.size),
+                "needs at least one cell each way",
+            );
         }
         if let Some(p) = self.pallets {
             if p.size == 0 {
                 return bad("pallet_size", "0".into(), "needs at least one cell");
             }
             if p.count.contains(&0) {
-                return bad("pallets", format_dims(p.count), "needs at least one pallet each way");
+                return bad(
+                    "pallets",
+                    format_dims(p.count),
+                    "needs at least one pallet each way",
+                );
             }
         }
         let grid = self.grid();
@@ -129,7 +145,11 @@ impl Globals {
             || grid.nx == u32::MAX
             || grid.ny == u32::MAX
         {
-            let key = if self.pallets.is_some() { "pallets" } else { "size" };
+            let key = if self.pallets.is_some() {
+                "pallets"
+            } else {
+                "size"
+            };
             return Err(SchemeError::new(SchemeErrorKind::GridTooLarge {
                 nx: grid.nx,
                 ny: grid.ny,

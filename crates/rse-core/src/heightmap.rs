@@ -41,7 +41,10 @@ impl Heightmap {
     /// # Panics
     /// If the cell is outside the map.
     pub fn get(&self, x: u32, y: u32) -> u16 {
-        assert!(x < self.nx && y < self.ny, "cell ({x}, {y}) outside the map");
+        assert!(
+            x < self.nx && y < self.ny,
+            "cell ({x}, {y}) outside the map"
+        );
         self.cells[self.index(x, y)]
     }
 
@@ -99,7 +102,10 @@ impl Heightmap {
             let before = cells.len();
             for (j, value) in line.split(',').enumerate() {
                 let h = value.trim().parse::<u16>().map_err(|_| {
-                    format!("line {line_no}, column {}: `{value}` is not a height", j + 1)
+                    format!(
+                        "line {line_no}, column {}: `{value}` is not a height",
+                        j + 1
+                    )
                 })?;
                 cells.push(h);
             }
@@ -142,6 +148,10 @@ mod tests {
     fn from_csv_names_the_bad_value() {
         let error = Heightmap::from_csv("1,2\n3,x\n").unwrap_err();
         assert!(error.contains("line 2, column 2"), "{error}");
-        assert!(Heightmap::from_csv("1,2\n3\n").unwrap_err().contains("line 2"));
+        assert!(
+            Heightmap::from_csv("1,2\n3\n")
+                .unwrap_err()
+                .contains("line 2")
+        );
     }
 }

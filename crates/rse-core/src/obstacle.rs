@@ -238,7 +238,10 @@ impl Obstacle {
         if let Some(height) = fields.height {
             check_order(height, Field::Height)?;
             if height.hi() > MAX_HEIGHT {
-                return fail(Field::Height, SchemeErrorKind::HeightTooLarge(height.hi().into()));
+                return fail(
+                    Field::Height,
+                    SchemeErrorKind::HeightTooLarge(height.hi().into()),
+                );
             }
         }
         if let Some(angle) = fields.angle {

@@ -32,19 +32,67 @@ impl WorldRng {
         self.0.next_u64()
     }
 
-    /// Uniform in `0..=max`, by Lemire's multiply-and-reject method (unbiased;
-    /// one draw almost always).
+    /// The next 32 random bits (one `ChaCha` word; per-cell values need no more).
+    #[inline]
+    pub(crate) fn next_u32(&mut self) -> u32 {
+        self.0.next_u32()
+    }
+
+    /// Uniform in `0..=max` from 32-bit draws, by Lemire's multiply-and-reject
+    /// method (unbiased; one draw almost always).
     #[inline]
     pub(crate) fn up_to(&mut self, max: u32) -> u32 {
+        const WORD: u64 = 1 << 32;
         let span = u64::from(max) + 1;
-        let mut product = u128::from(self.next_u64()) * u128::from(span);
-        if (product as u64) < span {
-            let threshold = span.wrapping_neg() % span;
-            while (product as u64) < threshold {
-                product = u128::from(self.next_u64()) * u128::from(span);
+        let mut product = u64::from(self.next_u32()) * span;
+        if product % WORD < span {
+            let threshold = (WORD - span) % span;
+            while product % WORD < threshold {
+                product = u64::from(self.next_u32()) * span;
             }
         }
-        (product >> 64) as u32
+        (product >> 32) as u32
+    }
+
+    /// Fills `out` with the next `out.len()` 32-bit words of the stream, as
+    /// that many `next_u32` calls would, but in bulk (twice as fast).
+    pub(crate) fn fill_words(&mut self, out: &mut [u32]) {
+        let mut bytes = [0u8; 4 * 1024];
+        for chunk in out.chunks_mut(1024) {
+            let bytes = &mut bytes[..4 * chunk.len()];
+            self.0.fill_bytes(bytes);
+            for (word, le) in chunk.iter_mut().zip(bytes.chunks_exact(4)) {
+                *word = u32::from_le_bytes([le[0], le[1], le[2], le[3]]);
+            }
+        }
+    }
+
+    /// Fills `out` with `up_to(max)` values, drawing from the stream exactly
+    /// as successive `up_to` calls would: in bulk, and where a draw is
+    /// rejected (rare), rewinding to that word and going on one at a time.
+    pub(crate) fn fill_up_to(&mut self, max: u32, out: &mut [u32]) {
+        const WORD: u64 = 1 << 32;
+        let span = u64::from(max) + 1;
+        let threshold = (WORD - span) % span;
+        let mut done = 0;
+        while done < out.len() {
+            let rest = &mut out[done..];
+            let start = self.0.get_word_pos();
+            self.fill_words(rest);
+            let mut rejected = None;
+            for (i, value) in rest.iter_mut().enumerate() {
+                let product = u64::from(*value) * span;
+                if product % WORD < threshold {
+                    rejected = Some(i);
+                    break;
+                }
+                *value = (product >> 32) as u32;
+            }
+            let Some(i) = rejected else { return };
+            self.0.set_word_pos(start + i as u128);
+            rest[i] = self.up_to(max);
+            done += i + 1;
+        }
     }
 
     /// Uniform in `lo..=hi`; `lo ≤ hi`.
@@ -59,18 +107,24 @@ impl WorldRng {
     }
 }
 
-/// `round(N(mean, sigma))` clamped to `0..=max`, drawn with one `u64` by
+/// `round(N(mean, sigma))` clamped to `0..=max`, drawn with one `u32` by
 /// inverting the discrete distribution's cumulative table. It has exactly
 /// the distribution of drawing a normal, rounding and clamping, at the cost
 /// of one draw and a short search per cell.
 pub(crate) struct ClampedRoundedNormal {
-    /// `thresholds[k]` = P(value ≤ k) scaled to 2⁶⁴, for `k < max`.
+    /// `thresholds[k]` = P(value ≤ k) scaled to 2³², for `k < max`. Held in
+    /// `u64` so that a probability of 1 (2³²) is above every 32-bit draw.
     thresholds: Vec<u64>,
+    /// The value for each top byte of the word, or `MIXED` where a
+    /// threshold falls inside that byte's range and the full search decides.
+    by_top_byte: [u32; 256],
 }
+
+const MIXED: u32 = u32::MAX;
 
 impl ClampedRoundedNormal {
     pub(crate) fn new(mean: f64, sigma: f64, max: u32) -> Self {
-        let thresholds = (0..max)
+        let thresholds: Vec<u64> = (0..max)
             .map(|k| {
                 // value ≤ k  ⇔  the normal is below k + ½ (ties have probability 0).
                 let edge = f64::from(k) + 0.5;
@@ -81,17 +135,29 @@ impl ClampedRoundedNormal {
                 } else {
                     0.0
                 };
-                // `as` saturates: a probability of 1 maps to u64::MAX.
-                (cdf * 18_446_744_073_709_551_616.0) as u64
+                (cdf * 4_294_967_296.0) as u64
             })
             .collect();
-        ClampedRoundedNormal { thresholds }
+        let search = |u: u64| thresholds.partition_point(|&t| t <= u) as u32;
+        let by_top_byte = std::array::from_fn(|byte| {
+            let first = (byte as u64) << 24;
+            let last = first + (1 << 24) - 1;
+            let value = search(first);
+            if search(last) == value { value } else { MIXED }
+        });
+        ClampedRoundedNormal {
+            thresholds,
+            by_top_byte,
+        }
     }
 
+    /// The value for one 32-bit random word.
     #[inline]
-    pub(crate) fn sample(&self, rng: &mut WorldRng) -> u32 {
-        let u = rng.next_u64();
-        self.thresholds.partition_point(|&t| t <= u) as u32
+    pub(crate) fn value_of(&self, word: u32) -> u32 {
+        match self.by_top_byte[(word >> 24) as usize] {
+            MIXED => self.thresholds.partition_point(|&t| t <= u64::from(word)) as u32,
+            value => value,
+        }
     }
 }
 
@@ -125,6 +191,37 @@ mod tests {
     }
 
     #[test]
+    fn bulk_words_are_the_stream_in_order() {
+        let mut one = WorldRng::new(5, 2);
+        let mut bulk = WorldRng::new(5, 2);
+        // Start mid-block so that bulk filling must honour the position.
+        assert_eq!(one.next_u32(), bulk.next_u32());
+        let mut words = vec![0; 3000];
+        bulk.fill_words(&mut words);
+        let expected: Vec<u32> = (0..3000).map(|_| one.next_u32()).collect();
+        assert_eq!(words, expected);
+        assert_eq!(one.next_u64(), bulk.next_u64());
+    }
+
+    #[test]
+    fn bulk_up_to_draws_as_one_at_a_time_even_with_rejections() {
+        // A span of 2³¹ + 1 rejects about half of all draws.
+        for max in [0, 2, 4, 1 << 31, u32::MAX - 5] {
+            let mut one = WorldRng::new(6, 1);
+            let mut bulk = WorldRng::new(6, 1);
+            let mut values = vec![0; 2500];
+            bulk.fill_up_to(max, &mut values);
+            let expected: Vec<u32> = (0..2500).map(|_| one.up_to(max)).collect();
+            assert_eq!(values, expected, "max {max}");
+            assert_eq!(
+                one.next_u32(),
+                bulk.next_u32(),
+                "max {max}: same position after"
+            );
+        }
+    }
+
+    #[test]
     fn real_in_stays_in_range() {
         let mut rng = WorldRng::new(2, 0);
         for _ in 0..1000 {
@@ -142,7 +239,7 @@ mod tests {
         let n = 20_000;
         let mut counts = [0u32; 5];
         for _ in 0..n {
-            counts[normal.sample(&mut rng) as usize] += 1;
+            counts[normal.value_of(rng.next_u32()) as usize] += 1;
         }
         let p = |k: usize| f64::from(counts[k]) / f64::from(n);
         assert!((p(2) - 0.3829).abs() < 0.015, "{counts:?}");
@@ -152,9 +249,10 @@ mod tests {
 
     #[test]
     fn rounded_normal_with_zero_sigma_rounds_half_up() {
-        let mut rng = WorldRng::new(4, 0);
-        assert_eq!(ClampedRoundedNormal::new(1.5, 0.0, 3).sample(&mut rng), 2);
-        assert_eq!(ClampedRoundedNormal::new(2.0, 0.0, 4).sample(&mut rng), 2);
-        assert_eq!(ClampedRoundedNormal::new(0.0, 0.0, 0).sample(&mut rng), 0);
+        for word in [0, 1 << 31, u32::MAX] {
+            assert_eq!(ClampedRoundedNormal::new(1.5, 0.0, 3).value_of(word), 2);
+            assert_eq!(ClampedRoundedNormal::new(2.0, 0.0, 4).value_of(word), 2);
+            assert_eq!(ClampedRoundedNormal::new(0.0, 0.0, 0).value_of(word), 0);
+        }
     }
 }

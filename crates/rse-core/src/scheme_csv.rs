@@ -78,9 +78,11 @@ impl GlobalLines {
     fn set(&mut self, key: &str, value: &str, line: u64) -> Result<(), SchemeError> {
         let lower = key.to_ascii_lowercase();
         let Some(&key) = GLOBAL_KEYS.iter().find(|k| **k == lower) else {
-            return Err(SchemeError::new(SchemeErrorKind::UnknownGlobal(key.to_owned()))
-                .with_field(key)
-                .at_line(line));
+            return Err(
+                SchemeError::new(SchemeErrorKind::UnknownGlobal(key.to_owned()))
+                    .with_field(key)
+                    .at_line(line),
+            );
         };
         let fail = |kind| Err(SchemeError::new(kind).with_field(key).at_line(line));
         if self.lines.iter().any(|(k, _)| *k == key) {
@@ -97,8 +99,9 @@ impl GlobalLines {
         let parsed = match key {
             "size" => globals::parse_dims(value).map(|d| g.size = d),
             "pallets" => parse_pallets(value).map(|p| self.pallets = p),
-            "pallet_size" => parse_number(value, "a whole number of cells")
-                .map(|n| self.pallet_size = Some(n)),
+            "pallet_size" => {
+                parse_number(value, "a whole number of cells").map(|n| self.pallet_size = Some(n))
+            }
             "pallet_boundary" => parse_bool(value).map(|b| self.pallet_boundary = Some(b)),
             "block_size" => parse_number(value, "a length in metres").map(|v| g.block_size = v),
             "step_height" => parse_number(value, "a length in metres").map(|v| g.step_height = v),
@@ -200,7 +203,9 @@ fn parse_table(
         .from_reader(table.as_bytes());
     let mut records = reader.records();
     let csv_error = |e: csv::Error| {
-        let line = e.position().map_or(lines_before + 1, |p| lines_before + p.line());
+        let line = e
+            .position()
+            .map_or(lines_before + 1, |p| lines_before + p.line());
         SchemeError::new(SchemeErrorKind::Csv(e.to_string())).at_line(line)
     };
 
@@ -288,7 +293,11 @@ fn parse_row(
     }
     let column_of = |name: Option<&str>| {
         let field = name.and_then(Field::from_header)?;
-        origin.columns.iter().find(|(f, _)| *f == field).map(|(_, c)| *c)
+        origin
+            .columns
+            .iter()
+            .find(|(f, _)| *f == field)
+            .map(|(_, c)| *c)
     };
     let Some(kind) = kind else {
         let error = SchemeError::new(SchemeErrorKind::MissingField("every row"))
@@ -348,7 +357,11 @@ pub(crate) fn write(scheme: &Scheme) -> String {
     let mut out = String::new();
     for note in scheme.notes() {
         // `"".lines()` is empty, but a bare `#` line is a note too.
-        let lines = if note.is_empty() { vec![""] } else { note.lines().collect() };
+        let lines = if note.is_empty() {
+            vec![""]
+        } else {
+            note.lines().collect()
+        };
         for line in lines {
             if line.is_empty() {
                 out.push_str("#\n");
@@ -379,7 +392,10 @@ pub(crate) fn write(scheme: &Scheme) -> String {
         writeln!(out, "# seed: {}", g.seed).expect(FMT);
     }
 
-    let with_sigma = scheme.obstacles().iter().any(|o| o.fields().sigma.is_some());
+    let with_sigma = scheme
+        .obstacles()
+        .iter()
+        .any(|o| o.fields().sigma.is_some());
     let columns: Vec<Field> = Field::ALL
         .into_iter()
         .filter(|&f| f != Field::Sigma || with_sigma)

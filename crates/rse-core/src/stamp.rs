@@ -15,25 +15,47 @@ pub(crate) struct Units {
     pub step_height: f64,
 }
 
+/// Cells drawn per bulk request of random words.
+const CHUNK: usize = 1024;
+
 /// Applies one drawn obstacle to `map`. Per-cell random values are drawn row
 /// by row from `y = 0`, `x` fastest.
-pub(crate) fn apply(obstacle: &DrawnObstacle, map: &mut Heightmap, rng: &mut WorldRng, units: Units) {
+pub(crate) fn apply(
+    obstacle: &DrawnObstacle,
+    map: &mut Heightmap,
+    rng: &mut WorldRng,
+    units: Units,
+) {
     let height = obstacle.height;
     match obstacle.kind {
         ObstacleKind::Random => {
-            for cell in map.cells_mut() {
-                raise(cell, rng.up_to(height));
+            let mut values = [0u32; CHUNK];
+            for cells in map.cells_mut().chunks_mut(CHUNK) {
+                let values = &mut values[..cells.len()];
+                rng.fill_up_to(height, values);
+                cells
+                    .iter_mut()
+                    .zip(values.iter())
+                    .for_each(|(c, &v)| raise(c, v));
             }
         }
         ObstacleKind::Gaussian => {
             let sigma = obstacle.sigma.unwrap_or(1.0);
             let normal = ClampedRoundedNormal::new(f64::from(height) / 2.0, sigma, height);
-            for cell in map.cells_mut() {
-                raise(cell, normal.sample(rng));
+            let mut words = [0u32; CHUNK];
+            for cells in map.cells_mut().chunks_mut(CHUNK) {
+                let words = &mut words[..cells.len()];
+                rng.fill_words(words);
+                cells
+                    .iter_mut()
+                    .zip(words.iter())
+                    .for_each(|(c, &w)| raise(c, normal.value_of(w)));
             }
         }
         ObstacleKind::Peak | ObstacleKind::Pit | ObstacleKind::Wall | ObstacleKind::LongPit => {
-            let from = obstacle.p1.expect("a validated peak, pit, wall or long pit has p1");
+            let from = obstacle
+                .p1
+                .expect("a validated peak, pit, wall or long pit has p1");
             // A peak is a wall whose segment has no length (SPEC §3).
             let to = obstacle.p2.unwrap_or(from);
             let slope = Slope::new(height, obstacle.angle.unwrap_or(90.0), units);
@@ -90,6 +112,75 @@ impl Slope {
     }
 }
 
+/// Largest slope table worth building; past it, cells are computed directly.
+const TABLE_LIMIT: u64 = 4096;
+
+/// How far a cell is from the obstacle, as an exact integer key: the squared
+/// distance to a point, or `|v × w|` (the distance to a segment's line
+/// times its length).
+#[derive(Clone, Copy)]
+enum Metric {
+    Point,
+    Segment { len2: i64, len: f64 },
+}
+
+/// The steps of a cell by its distance key. Many cells share a key, so the
+/// steps of the keys that can be above 0 are computed once into a table; the
+/// formula per key is the same either way, so the result is too.
+struct Profile<'a> {
+    slope: &'a Slope,
+    metric: Metric,
+    /// `table[key]`; keys past its end are 0. `None` when too many keys can be
+    /// above 0 (gentle or unbounded slopes): then every cell is computed.
+    table: Option<Vec<u16>>,
+}
+
+impl<'a> Profile<'a> {
+    fn new(slope: &'a Slope, metric: Metric) -> Self {
+        // Past `last_key`, a cell is farther than both the flat top (√2/2) and
+        // `reach` (plus a margin far above rounding), so its surface is below 0.
+        let reach = slope.reach().max(1.0);
+        let last_key = match metric {
+            Metric::Point => (reach + 1.0) * (reach + 1.0),
+            Metric::Segment { len, .. } => reach * len + 1.0,
+        };
+        let mut profile = Profile {
+            slope,
+            metric,
+            table: None,
+        };
+        if last_key.is_finite() && last_key < TABLE_LIMIT as f64 {
+            let keys = last_key.ceil() as u64 + 1;
+            profile.table = Some((0..keys).map(|k| profile.compute(k) as u16).collect());
+        }
+        profile
+    }
+
+    #[inline]
+    fn steps(&self, key: u64) -> u32 {
+        match &self.table {
+            Some(table) => table.get(key as usize).map_or(0, |&s| u32::from(s)),
+            None => self.compute(key),
+        }
+    }
+
+    fn compute(&self, key: u64) -> u32 {
+        match self.metric {
+            // The cell itself is the top: d ≤ √2/2 only at distance 0.
+            Metric::Point if 2 * key <= 1 => self.slope.height,
+            Metric::Point => self.slope.steps_at((key as f64).sqrt()),
+            // d = |v × w| / |v| (eq. 2). `d ≤ √2/2` is tested exactly in
+            // integers: cells at exactly √2/2 (beside a 45° wall) are top.
+            Metric::Segment { len2, .. }
+                if 2 * u128::from(key) * u128::from(key) <= len2 as u128 =>
+            {
+                self.slope.height
+            }
+            Metric::Segment { len, .. } => self.slope.steps_at(key as f64 / len),
+        }
+    }
+}
+
 /// The wall of Algorithm 1 between `from` and `to` (a peak when they are equal):
 /// only cells whose centre projects onto the segment are touched.
 fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slope, lowers: bool) {
@@ -101,7 +192,15 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
     let [x1, y1] = to.map(i64::from);
     let (vx, vy) = (x1 - x0, y1 - y0);
     let len2 = vx * vx + vy * vy;
-    let len = (len2 as f64).sqrt();
+    let metric = if len2 == 0 {
+        Metric::Point
+    } else {
+        Metric::Segment {
+            len2,
+            len: (len2 as f64).sqrt(),
+        }
+    };
+    let profile = Profile::new(slope, metric);
 
     // Cells farther than `reach` from the segment get 0, which changes nothing;
     // visiting only the box around the segment keeps big maps fast.
@@ -114,33 +213,62 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
         let wy = y - y0;
         for x in x_range.clone() {
             let wx = x - x0;
-            let steps = if len2 == 0 {
-                // Peak: d = |s − p| (eq. 3); the cell itself is the top.
-                let d2 = wx * wx + wy * wy;
-                if 2 * d2 <= 1 {
-                    slope.height
-                } else {
-                    slope.steps_at((d2 as f64).sqrt())
-                }
+            let key = if len2 == 0 {
+                (wx * wx + wy * wy) as u64
             } else {
                 let dot = wx * vx + wy * vy;
                 if dot < 0 || dot > len2 {
                     continue; // does not project onto the segment
                 }
-                // d = |v × w| / |v| (eq. 2). `d ≤ √2/2` is tested exactly in
-                // integers: cells at exactly √2/2 (beside a 45° wall) are top.
-                let cross = vx * wy - vy * wx;
-                if 2 * i128::from(cross) * i128::from(cross) <= i128::from(len2) {
-                    slope.height
-                } else {
-                    slope.steps_at(cross.abs() as f64 / len)
-                }
+                (vx * wy - vy * wx).unsigned_abs()
             };
+            let steps = profile.steps(key);
             let cell = &mut row[x as usize];
             if lowers {
                 lower(cell, steps);
             } else {
                 raise(cell, steps);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_table_gives_what_the_formula_gives_for_every_key() {
+        let units = [(0.1, 0.1), (0.1, 0.05), (0.2, 0.025), (0.05, 0.1)];
+        let segments = [(0, 0), (1, 0), (4, 4), (3, 7), (40, 1), (25, 25)];
+        for (block_size, step_height) in units {
+            let units = Units {
+                block_size,
+                step_height,
+            };
+            for angle in [0.0, 1.0, 10.0, 30.0, 45.0, 60.0, 89.0, 90.0] {
+                for height in [1, 3, 9] {
+                    let slope = Slope::new(height, angle, units);
+                    for (vx, vy) in segments {
+                        let len2: i64 = vx * vx + vy * vy;
+                        let metric = if len2 == 0 {
+                            Metric::Point
+                        } else {
+                            Metric::Segment {
+                                len2,
+                                len: (len2 as f64).sqrt(),
+                            }
+                        };
+                        let profile = Profile::new(&slope, metric);
+                        for key in 0..20_000 {
+                            assert_eq!(
+                                profile.steps(key),
+                                profile.compute(key),
+                                "key {key}, angle {angle}, H {height}, v ({vx}, {vy}), {units:?}"
+                            );
+                        }
+                    }
+                }
             }
         }
     }

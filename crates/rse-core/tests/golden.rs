@@ -23,8 +23,9 @@ fn table() -> String {
         for (seed, index) in WORLDS {
             let csv = generate(&scheme, seed, index).heightmap().to_csv();
             let hash = Sha256::digest(csv.as_bytes());
-            let hex: String = hash.iter().map(|b| format!("{b:02x}")).collect();
-            writeln!(out, "{name},{seed},{index},{hex}").unwrap();
+            write!(out, "{name},{seed},{index},").unwrap();
+            hash.iter().for_each(|b| write!(out, "{b:02x}").unwrap());
+            out.push('\n');
         }
     }
     out

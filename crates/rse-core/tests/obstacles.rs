@@ -105,7 +105,11 @@ fn degenerate_wall_is_a_peak() {
 
 #[test]
 fn pits_subtract_and_never_go_below_zero() {
-    let map = heights(&grid(5, 5, "peak,2,90,2,2,,\npit,5,90,2,2,,\npit,1,90,0,0,,\n"));
+    let map = heights(&grid(
+        5,
+        5,
+        "peak,2,90,2,2,,\npit,5,90,2,2,,\npit,1,90,0,0,,\n",
+    ));
     assert!(map.cells().iter().all(|&h| h == 0));
     // Lift to 3, then a 45° pit of 2: centre 1, neighbours 3 − 1 = 2, beyond 3.
     let map = heights(&grid(5, 1, "peak,3,0,0,0,,\npit,2,45,2,0,,\n"));
@@ -143,13 +147,15 @@ fn random_fills_every_value_from_zero_to_h() {
         counts[usize::from(h)] += 1;
     }
     // 3600 cells, 720 expected each.
-    assert!(counts.iter().all(|&c| (600..840).contains(&c)), "{counts:?}");
+    assert!(
+        counts.iter().all(|&c| (600..840).contains(&c)),
+        "{counts:?}"
+    );
 }
 
 #[test]
 fn gaussian_centres_on_half_the_height() {
-    let text = format!("# size: 60x60\ntype,height,sigma\ngaussian,4,1\n");
-    let map = heights(&text);
+    let map = heights("# size: 60x60\ntype,height,sigma\ngaussian,4,1\n");
     let mean = map.cells().iter().map(|&h| f64::from(h)).sum::<f64>() / 3600.0;
     assert!((mean - 2.0).abs() < 0.05, "mean {mean}");
     assert!(map.cells().iter().all(|&h| h <= 4));
@@ -160,9 +166,8 @@ fn gaussian_centres_on_half_the_height() {
 
 #[test]
 fn pallets_3_with_2x3_give_9x13_and_frames_of_one_step() {
-    let text = format!(
-        "# pallets: 2x3\n# pallet_size: 3\n{HEADER}peak,4,0,1,1,,\npit,2,90,4,4,,\n"
-    );
+    let text =
+        format!("# pallets: 2x3\n# pallet_size: 3\n{HEADER}peak,4,0,1,1,,\npit,2,90,4,4,,\n");
     let terrain = generate(&scheme(&text), 0, 0);
     let map = terrain.heightmap();
     assert_eq!((map.nx(), map.ny()), (9, 13));
@@ -201,7 +206,11 @@ fn ranges_are_drawn_per_world_within_bounds() {
         assert_eq!(terrain.heightmap().get(x, y), drawn.height as u16);
         points.insert((x, y));
     }
-    assert!(points.len() > 20, "only {} distinct points in 50 worlds", points.len());
+    assert!(
+        points.len() > 20,
+        "only {} distinct points in 50 worlds",
+        points.len()
+    );
 }
 
 #[test]

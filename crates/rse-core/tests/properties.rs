@@ -2,9 +2,7 @@
 //! that never panics on any input.
 
 use proptest::prelude::*;
-use rse_core::{
-    Globals, Obstacle, ObstacleFields, ObstacleKind, Pallets, Param, Scheme, generate,
-};
+use rse_core::{Globals, Obstacle, ObstacleFields, ObstacleKind, Pallets, Param, Scheme, generate};
 
 fn int_param(max: u32) -> impl Strategy<Value = Param<u32>> {
     prop_oneof![
@@ -27,7 +25,12 @@ fn obstacle(nx: u32, ny: u32) -> impl Strategy<Value = Obstacle> {
         prop::sample::select(ObstacleKind::ALL.to_vec()),
         int_param(6),
         real_param(0.0, 90.0),
-        (int_param(nx - 1), int_param(ny - 1), int_param(nx - 1), int_param(ny - 1)),
+        (
+            int_param(nx - 1),
+            int_param(ny - 1),
+            int_param(nx - 1),
+            int_param(ny - 1),
+        ),
         prop::option::of(real_param(0.0, 3.0)),
     )
         .prop_map(|(kind, height, angle, (x1, y1, x2, y2), sigma)| {
@@ -54,18 +57,20 @@ fn globals() -> impl Strategy<Value = Globals> {
         prop::sample::select(vec![0.025, 0.05, 0.1]),
         prop::sample::select(vec![0.0, 0.02]),
     )
-        .prop_map(|((nx, ny), pallets, block_size, step_height, base)| Globals {
-            size: [nx, ny],
-            pallets: pallets.map(|(size, px, py, boundary)| Pallets {
-                size,
-                count: [px, py],
-                boundary,
-            }),
-            block_size,
-            step_height,
-            base,
-            ..Globals::default()
-        })
+        .prop_map(
+            |((nx, ny), pallets, block_size, step_height, base)| Globals {
+                size: [nx, ny],
+                pallets: pallets.map(|(size, px, py, boundary)| Pallets {
+                    size,
+                    count: [px, py],
+                    boundary,
+                }),
+                block_size,
+                step_height,
+                base,
+                ..Globals::default()
+            },
+        )
 }
 
 fn scheme() -> impl Strategy<Value = Scheme> {

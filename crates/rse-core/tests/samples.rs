@@ -17,7 +17,11 @@ pub fn sample_paths() -> Vec<std::path::PathBuf> {
 #[test]
 fn every_sample_loads_generates_and_round_trips() {
     let paths = sample_paths();
-    assert!(paths.len() >= 12, "expected the 12 samples, found {}", paths.len());
+    assert!(
+        paths.len() >= 12,
+        "expected the 12 samples, found {}",
+        paths.len()
+    );
     for path in paths {
         let scheme = Scheme::load(&path).unwrap_or_else(|e| panic!("{e}"));
         assert!(!scheme.obstacles().is_empty(), "{}", path.display());
@@ -26,7 +30,12 @@ fn every_sample_loads_generates_and_round_trips() {
         let png = preview::encode_png(&preview::render(&terrain, 2)).unwrap();
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
         let text = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(scheme.to_csv(), text, "{} is not in canonical form", path.display());
+        assert_eq!(
+            scheme.to_csv(),
+            text,
+            "{} is not in canonical form",
+            path.display()
+        );
     }
 }
 

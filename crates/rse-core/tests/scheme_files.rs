@@ -24,7 +24,10 @@ fn assert_at(error: &SchemeError, line: u64, column: Option<u64>, field: &str) {
         Some(c) => format!("bad.csv:{line}:{c}: {field}: "),
         None => format!("bad.csv:{line}: {field}: "),
     };
-    assert!(text.starts_with(&place), "{text:?} should start with {place:?}");
+    assert!(
+        text.starts_with(&place),
+        "{text:?} should start with {place:?}"
+    );
 }
 
 const HEAD: &str = "# size: 20x10\ntype,height,angle,x1,y1,x2,y2\n";
@@ -38,8 +41,13 @@ fn reads_the_spec_example() {
     );
     assert_eq!(s.globals().size, [50, 50]);
     let kinds: Vec<_> = s.obstacles().iter().map(Obstacle::kind).collect();
-    use ObstacleKind::*;
-    assert_eq!(kinds, [Random, Wall, Peak, LongPit]);
+    let expected = [
+        ObstacleKind::Random,
+        ObstacleKind::Wall,
+        ObstacleKind::Peak,
+        ObstacleKind::LongPit,
+    ];
+    assert_eq!(kinds, expected);
     assert_eq!(s.obstacles()[2].fields().x1, Some(Param::Range(10, 40)));
     assert_eq!(s.obstacles()[1].fields().angle, Some(Param::Fixed(45.0)));
 }
@@ -47,14 +55,18 @@ fn reads_the_spec_example() {
 #[test]
 fn columns_by_name_in_any_order_with_aliases_and_case() {
     let a = scheme(&format!("{HEAD}Long Pit,2,90,1,1,5,1\nNORMAL,3,,,,,\n"));
-    let b = scheme("# size: 20x10\ny2,X2,y1,x1,Angle,Height,TYPE\n1,5,1,1,90,2,long_pit\n,,,,,3,gaussian\n");
+    let b = scheme(
+        "# size: 20x10\ny2,X2,y1,x1,Angle,Height,TYPE\n1,5,1,1,90,2,long_pit\n,,,,,3,gaussian\n",
+    );
     assert_eq!(a, b);
     assert_eq!(a.obstacles()[1].kind(), ObstacleKind::Gaussian);
 }
 
 #[test]
 fn missing_trailing_fields_blank_rows_and_table_comments_are_fine() {
-    let s = scheme("# size: 20x10\ntype,height,angle,x1,y1,x2,y2\nrandom,2\n,,,,,,\n# a comment\n\npeak,1,45,3,3\n");
+    let s = scheme(
+        "# size: 20x10\ntype,height,angle,x1,y1,x2,y2\nrandom,2\n,,,,,,\n# a comment\n\npeak,1,45,3,3\n",
+    );
     assert_eq!(s.obstacles().len(), 2);
 }
 
@@ -80,7 +92,9 @@ fn canonical_text_round_trips_exactly() {
 
 #[test]
 fn saving_writes_canonical_spelling_of_the_same_table() {
-    let s = scheme("# size: 20x10\nTYPE, height ,x1,y1,angle,x2,y2\nLONG PIT,2,1,1,90,5,1\nNormal,3,,,,,\n");
+    let s = scheme(
+        "# size: 20x10\nTYPE, height ,x1,y1,angle,x2,y2\nLONG PIT,2,1,1,90,5,1\nNormal,3,,,,,\n",
+    );
     assert_eq!(
         s.to_csv(),
         "# size: 20x10\n# block_size: 0.1\n# step_height: 0.1\ntype,height,angle,x1,y1,x2,y2\n\
@@ -102,7 +116,11 @@ fn obstacles_built_in_code_match_the_file() {
         size: [20, 10],
         ..Globals::default()
     };
-    let built = Scheme::new(globals, vec![Obstacle::new(ObstacleKind::Peak, fields).unwrap()]).unwrap();
+    let built = Scheme::new(
+        globals,
+        vec![Obstacle::new(ObstacleKind::Peak, fields).unwrap()],
+    )
+    .unwrap();
     let read = scheme("# size: 20x10\ntype,height,angle,x1,y1\npeak,3,30..60,4,2..6\n");
     assert_eq!(built, read);
     assert_eq!(scheme(&built.to_csv()), built);
@@ -192,7 +210,15 @@ fn angle_outside_0_to_90() {
 fn point_outside_the_grid() {
     let e = refuse(&format!("{HEAD}peak,3,45,20,1,,\n"));
     assert_at(&e, 3, Some(4), "x1");
-    assert!(matches!(e.kind, SchemeErrorKind::PointOutsideGrid { value: 20, axis: 'x', max: 19, .. }));
+    assert!(matches!(
+        e.kind,
+        SchemeErrorKind::PointOutsideGrid {
+            value: 20,
+            axis: 'x',
+            max: 19,
+            ..
+        }
+    ));
     let e = refuse(&format!("{HEAD}wall,3,45,1,1,5,3..10\n"));
     assert_at(&e, 3, Some(7), "y2");
     let e = refuse(&format!("{HEAD}peak,3,45,-1,1,,\n"));
@@ -238,7 +264,11 @@ fn bad_globals() {
         ("# step_height: inf\n", 1, "step_height"),
         ("# base: -1\n", 1, "base"),
         ("# pallet_size: 3\n", 1, "pallet_size"),
-        ("# pallets: 2x2\n# pallet_boundary: maybe\n", 2, "pallet_boundary"),
+        (
+            "# pallets: 2x2\n# pallet_boundary: maybe\n",
+            2,
+            "pallet_boundary",
+        ),
         ("# seed: -4\n", 1, "seed"),
         ("# size: 5x5\n# size: 6x6\n", 2, "size"),
         ("# step_hieght: 0.05\n", 1, "step_hieght"),
@@ -252,7 +282,13 @@ fn bad_globals() {
 fn too_many_fields_in_a_row() {
     let e = refuse("type,height\nrandom,1,7\n");
     assert_eq!(e.line, Some(2));
-    assert!(matches!(e.kind, SchemeErrorKind::TooManyFields { found: 3, expected: 2 }));
+    assert!(matches!(
+        e.kind,
+        SchemeErrorKind::TooManyFields {
+            found: 3,
+            expected: 2
+        }
+    ));
 }
 
 #[test]
