@@ -142,6 +142,16 @@ fn step_height_flag_changes_the_quantisation() {
     assert_eq!(row(&fine), "0,0,0,0,0,1,3,5,3,1,0,0,0,0,0");
 }
 
+/// Width, height and RGB bytes of a PNG file.
+fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut reader = png::Decoder::new(file).read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut pixels).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    (info.width, info.height, pixels)
+}
+
 #[test]
 fn preview_draws_one_block_per_cell_north_up() {
     let dir = tempfile::tempdir().unwrap();
@@ -160,13 +170,8 @@ fn preview_draws_one_block_per_cell_north_up() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(out.stdout.is_empty());
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(&png_path).unwrap(),
-    ));
-    let mut reader = decoder.read_info().unwrap();
-    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut pixels).unwrap();
-    assert_eq!((info.width, info.height), (40, 30));
+    let (width, height, pixels) = read_png(&png_path);
+    assert_eq!((width, height), (40, 30));
     let at = |px: usize, py: usize| {
         let i = (py * 40 + px) * 3;
         [pixels[i], pixels[i + 1], pixels[i + 2]]
@@ -192,13 +197,8 @@ fn preview_marks_pallet_frames() {
         "2",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(&png_path).unwrap(),
-    ));
-    let mut reader = decoder.read_info().unwrap();
-    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut pixels).unwrap();
-    assert_eq!((info.width, info.height), (18, 26));
+    let (width, height, pixels) = read_png(&png_path);
+    assert_eq!((width, height), (18, 26));
     assert_eq!(
         pixels[..3],
         [150, 111, 71],

@@ -124,6 +124,21 @@ enum Metric {
     Segment { len2: i64, len: f64 },
 }
 
+impl Metric {
+    /// The metric of a segment with direction `(vx, vy)`; a point when it is 0.
+    fn of(vx: i64, vy: i64) -> Self {
+        let len2 = vx * vx + vy * vy;
+        if len2 == 0 {
+            Metric::Point
+        } else {
+            Metric::Segment {
+                len2,
+                len: (len2 as f64).sqrt(),
+            }
+        }
+    }
+}
+
 /// The steps of a cell by its distance key. Many cells share a key, so the
 /// steps of the keys that can be above 0 are computed once into a table; the
 /// formula per key is the same either way, so the result is too.
@@ -192,14 +207,7 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
     let [x1, y1] = to.map(i64::from);
     let (vx, vy) = (x1 - x0, y1 - y0);
     let len2 = vx * vx + vy * vy;
-    let metric = if len2 == 0 {
-        Metric::Point
-    } else {
-        Metric::Segment {
-            len2,
-            len: (len2 as f64).sqrt(),
-        }
-    };
+    let metric = Metric::of(vx, vy);
     let profile = Profile::new(slope, metric);
 
     // Cells farther than `reach` from the segment get 0, which changes nothing;
@@ -250,16 +258,7 @@ mod tests {
                 for height in [1, 3, 9] {
                     let slope = Slope::new(height, angle, units);
                     for (vx, vy) in segments {
-                        let len2: i64 = vx * vx + vy * vy;
-                        let metric = if len2 == 0 {
-                            Metric::Point
-                        } else {
-                            Metric::Segment {
-                                len2,
-                                len: (len2 as f64).sqrt(),
-                            }
-                        };
-                        let profile = Profile::new(&slope, metric);
+                        let profile = Profile::new(&slope, Metric::of(vx, vy));
                         for key in 0..20_000 {
                             assert_eq!(
                                 profile.steps(key),
