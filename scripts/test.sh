@@ -24,10 +24,15 @@ say "docs (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
 say "Rust tests: unit, property, golden, samples, CLI"
-cargo test --workspace --locked
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+cargo test --workspace --locked 2>&1 | tee "$log"
 
 say "the README's main command"
 make --no-print-directory demo OUT=target/readme-demo AMOUNT=2
 for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_0001/preview.png; do
     [ -s "$f" ] || { echo "make demo did not write $f" >&2; exit 1; }
 done
+
+# One closing line for the whole run, summed over every test binary.
+awk '/^test result:/ { p += $4; f += $6; s += $8 } END { printf "all tests: %d passed, %d failed, %d skipped\n", p, f, s }' "$log"
