@@ -32,6 +32,7 @@ mod error;
 mod generate;
 mod globals;
 mod heightmap;
+pub mod mesh;
 mod obstacle;
 mod param;
 pub mod preview;

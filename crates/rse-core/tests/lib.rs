@@ -1,6 +1,7 @@
 //! Integration tests of rse-core, one binary (see `STYLE.md`).
 
 mod golden;
+mod mesh;
 mod obstacles;
 mod properties;
 mod samples;

@@ -1,0 +1,290 @@
+//! Checking a triangle mesh against the invariants of SPEC §6: closed and
+//! consistently oriented, no zero-area triangle, no T-junction; and measuring
+//! its volume and bounding box. Works on any mesh, ours or one read from disk.
+
+use std::collections::HashMap;
+
+/// A way in which a mesh breaks the invariants.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshFault {
+    /// The directed edge `a → b` has no twin `b → a`, or is used more than once.
+    UnpairedEdge {
+        /// Start vertex.
+        a: u32,
+        /// End vertex.
+        b: u32,
+        /// How many triangles use `a → b`.
+        uses: usize,
+        /// How many use `b → a`.
+        reverse_uses: usize,
+    },
+    /// A triangle of (nearly) zero area.
+    Degenerate {
+        /// The triangle's index.
+        triangle: usize,
+    },
+    /// A vertex lies inside an edge without being one of its ends.
+    TJunction {
+        /// The vertex.
+        vertex: u32,
+        /// The edge's ends.
+        edge: [u32; 2],
+    },
+    /// A triangle refers to a vertex that does not exist.
+    BadIndex {
+        /// The triangle's index.
+        triangle: usize,
+    },
+}
+
+/// Every fault of `vertices`/`triangles`, in a stable order (empty: the mesh
+/// is a closed, oriented, T-junction-free surface of triangles with area).
+pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
+    let mut faults = Vec::new();
+    let n = vertices.len() as u32;
+    for (i, t) in triangles.iter().enumerate() {
+        if t.iter().any(|&v| v >= n) {
+            faults.push(MeshFault::BadIndex { triangle: i });
+        }
+    }
+    if !faults.is_empty() {
+        return faults;
+    }
+
+    let mut directed: Vec<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    directed.sort_unstable();
+    let count = |edge: (u32, u32)| {
+        let first = directed.partition_point(|&e| e < edge);
+        directed[first..].iter().take_while(|&&e| e == edge).count()
+    };
+    let mut start = 0;
+    while start < directed.len() {
+        let edge = directed[start];
+        let uses = directed[start..].iter().take_while(|&&e| e == edge).count();
+        let reverse_uses = count((edge.1, edge.0));
+        if uses != 1 || reverse_uses != 1 {
+            faults.push(MeshFault::UnpairedEdge {
+                a: edge.0,
+                b: edge.1,
+                uses,
+                reverse_uses,
+            });
+        }
+        start += uses;
+    }
+
+    let scale = extent(vertices).max(f64::MIN_POSITIVE);
+    for (i, t) in triangles.iter().enumerate() {
+        let [p, q, r] = t.map(|v| point(vertices[v as usize]));
+        let c = cross(sub(q, p), sub(r, p));
+        if dot(c, c).sqrt() <= 1e-10 * scale * scale {
+            faults.push(MeshFault::Degenerate { triangle: i });
+        }
+    }
+    faults.extend(t_junctions(vertices, &directed, scale));
+    faults
+}
+
+/// Vertices lying strictly inside an edge, found through a grid of buckets.
+fn t_junctions(vertices: &[[f32; 3]], directed: &[(u32, u32)], scale: f64) -> Vec<MeshFault> {
+    let shortest = directed
+        .iter()
+        .map(|&(a, b)| {
+            length(sub(
+                point(vertices[b as usize]),
+                point(vertices[a as usize]),
+            ))
+        })
+        .filter(|&l| l > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    if !shortest.is_finite() {
+        return Vec::new();
+    }
+    let bucket = |p: [f64; 3]| p.map(|c| (c / shortest).floor() as i64);
+    let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (v, &p) in vertices.iter().enumerate() {
+        buckets.entry(bucket(point(p))).or_default().push(v as u32);
+    }
+    let tolerance = 1e-6 * scale;
+    let mut found = Vec::new();
+    let mut undirected: Vec<(u32, u32)> = directed
+        .iter()
+        .map(|&(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    undirected.sort_unstable();
+    undirected.dedup();
+    for &(a, b) in &undirected {
+        let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
+        let d = sub(q, p);
+        let len2 = dot(d, d);
+        let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    for &v in buckets.get(&[x, y, z]).into_iter().flatten() {
+                        if v == a || v == b {
+                            continue;
+                        }
+                        let w = sub(point(vertices[v as usize]), p);
+                        let t = dot(w, d) / len2;
+                        let off = sub(w, d.map(|c| c * t));
+                        if t > 1e-9 && t < 1.0 - 1e-9 && length(off) < tolerance {
+                            found.push(MeshFault::TJunction {
+                                vertex: v,
+                                edge: [a, b],
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    found.sort_by_key(|f| match f {
+        MeshFault::TJunction { vertex, edge } => (*vertex, *edge),
+        _ => (0, [0, 0]),
+    });
+    found
+}
+
+/// The enclosed volume (divergence theorem; positive for outward normals).
+pub fn volume(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> f64 {
+    triangles
+        .iter()
+        .map(|t| {
+            let [p, q, r] = t.map(|v| point(vertices[v as usize]));
+            dot(p, cross(q, r)) / 6.0
+        })
+        .sum()
+}
+
+/// `(min, max)` corners of the vertices' bounding box (`None` when empty).
+pub fn bounding_box(vertices: &[[f32; 3]]) -> Option<([f64; 3], [f64; 3])> {
+    let first = point(*vertices.first()?);
+    Some(vertices.iter().fold((first, first), |(lo, hi), &v| {
+        (min3(lo, point(v)), max3(hi, point(v)))
+    }))
+}
+
+fn extent(vertices: &[[f32; 3]]) -> f64 {
+    bounding_box(vertices).map_or(0.0, |(lo, hi)| length(sub(hi, lo)))
+}
+
+fn point(p: [f32; 3]) -> [f64; 3] {
+    p.map(f64::from)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn length(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+fn min3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
+}
+
+fn max3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube: 8 vertices, 12 outward triangles.
+    fn cube() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        let v = (0..8)
+            .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
+            .collect();
+        let t = vec![
+            [0, 2, 1],
+            [1, 2, 3], // bottom (z = 0), facing down
+            [4, 5, 6],
+            [5, 7, 6], // top
+            [0, 1, 4],
+            [1, 5, 4], // y = 0
+            [2, 6, 3],
+            [3, 6, 7], // y = 1
+            [0, 4, 2],
+            [2, 4, 6], // x = 0
+            [1, 3, 5],
+            [3, 7, 5], // x = 1
+        ];
+        (v, t)
+    }
+
+    #[test]
+    fn a_cube_is_sound_with_volume_one() {
+        let (v, t) = cube();
+        assert_eq!(faults(&v, &t), []);
+        assert!((volume(&v, &t) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_hole_is_found() {
+        let (v, mut t) = cube();
+        t.pop();
+        assert!(
+            faults(&v, &t)
+                .iter()
+                .any(|f| matches!(f, MeshFault::UnpairedEdge { .. }))
+        );
+    }
+
+    #[test]
+    fn a_flipped_triangle_is_found() {
+        let (v, mut t) = cube();
+        t[3].swap(0, 1);
+        assert!(faults(&v, &t).iter().any(|f| matches!(
+            f,
+            MeshFault::UnpairedEdge { uses: 2, .. }
+                | MeshFault::UnpairedEdge {
+                    reverse_uses: 2,
+                    ..
+                }
+        )));
+    }
+
+    #[test]
+    fn a_t_junction_is_found() {
+        // Split the top's edge 4–5 at its midpoint on one side only.
+        let (mut v, mut t) = cube();
+        v.push([0.5, 0.0, 1.0]);
+        let mid = 8;
+        t.retain(|&tri| tri != [4, 5, 6]);
+        t.extend([[4, mid, 6], [mid, 5, 6]]);
+        let found = faults(&v, &t);
+        assert!(
+            found.contains(&MeshFault::TJunction {
+                vertex: mid,
+                edge: [4, 5]
+            }),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn a_degenerate_triangle_is_found() {
+        let (mut v, mut t) = cube();
+        v.push([0.5, 0.0, 0.0]);
+        t.push([0, 8, 1]);
+        assert!(faults(&v, &t).contains(&MeshFault::Degenerate { triangle: 12 }));
+    }
+}

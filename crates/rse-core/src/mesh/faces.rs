@@ -1,0 +1,221 @@
+//! The boundary of the solid `{0 ≤ z ≤ base + h·step}` as axis-aligned
+//! rectangles on an integer lattice.
+//!
+//! A lattice point ([`Key`]) is `[x, y, level]`: `x`, `y` count cell corners
+//! and `level` codes a height: 0 is the ground `z = 0`, and `h + 1` is the top
+//! of a cell of `h` steps, `z = base + h·step` (with no slab, `h = 0` is the
+//! ground itself and codes 0). Levels grow with `z`, so order and collinearity
+//! along the lattice are those of space.
+
+use crate::heightmap::Heightmap;
+
+/// A lattice point `[x, y, level]`.
+pub(crate) type Key = [u32; 3];
+
+/// The outward normal of a face; all faces are axis-aligned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Normal {
+    /// +x
+    PosX,
+    /// −x
+    NegX,
+    /// +y
+    PosY,
+    /// −y
+    NegY,
+    /// +z (tops)
+    PosZ,
+    /// −z (the bottom)
+    NegZ,
+}
+
+impl Normal {
+    /// All six, in the order writers number them.
+    pub const ALL: [Normal; 6] = [
+        Normal::PosX,
+        Normal::NegX,
+        Normal::PosY,
+        Normal::NegY,
+        Normal::PosZ,
+        Normal::NegZ,
+    ];
+
+    /// The unit vector.
+    pub fn vector(self) -> [f32; 3] {
+        match self {
+            Normal::PosX => [1.0, 0.0, 0.0],
+            Normal::NegX => [-1.0, 0.0, 0.0],
+            Normal::PosY => [0.0, 1.0, 0.0],
+            Normal::NegY => [0.0, -1.0, 0.0],
+            Normal::PosZ => [0.0, 0.0, 1.0],
+            Normal::NegZ => [0.0, 0.0, -1.0],
+        }
+    }
+}
+
+/// A rectangle of the boundary: corners counter-clockwise seen from outside.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Rect {
+    pub corners: [Key; 4],
+    pub normal: Normal,
+}
+
+/// The level code of every cell's top (0: no solid there).
+pub(crate) fn levels(map: &Heightmap, has_base: bool) -> Vec<u32> {
+    map.cells()
+        .iter()
+        .map(|&h| {
+            if h == 0 && !has_base {
+                0
+            } else {
+                u32::from(h) + 1
+            }
+        })
+        .collect()
+}
+
+/// Every rectangle of the boundary: tops, the bottom, and the walls.
+pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
+    let level = |x: u32, y: u32| levels[y as usize * nx as usize + x as usize];
+    let mut rects = Vec::new();
+
+    // Tops: cells of equal level merged into rectangles.
+    greedy_rectangles(
+        nx,
+        ny,
+        |x, y| Some(level(x, y)).filter(|&l| l > 0),
+        |[x0, y0, x1, y1], l| {
+            rects.push(Rect {
+                corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
+                normal: Normal::PosZ,
+            });
+        },
+    );
+    // The bottom: every cell with solid, at level 0, facing down.
+    greedy_rectangles(
+        nx,
+        ny,
+        |x, y| (level(x, y) > 0).then_some(0),
+        |[x0, y0, x1, y1], _| {
+            rects.push(Rect {
+                corners: [[x0, y0, 0], [x0, y1, 0], [x1, y1, 0], [x1, y0, 0]],
+                normal: Normal::NegZ,
+            });
+        },
+    );
+
+    // Walls on the line x = i between cells (i−1, j) and (i, j); outside is level 0.
+    for i in 0..=nx {
+        let side = |j: u32| {
+            let west = if i > 0 { level(i - 1, j) } else { 0 };
+            let east = if i < nx { level(i, j) } else { 0 };
+            (west, east)
+        };
+        wall_runs(ny, side, |[j0, j1], [lo, hi], faces_positive| {
+            let (a, b, c, d) = ([i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]);
+            rects.push(if faces_positive {
+                Rect {
+                    corners: [a, b, c, d],
+                    normal: Normal::PosX,
+                }
+            } else {
+                Rect {
+                    corners: [a, d, c, b],
+                    normal: Normal::NegX,
+                }
+            });
+        });
+    }
+    // Walls on the line y = j between cells (i, j−1) and (i, j).
+    for j in 0..=ny {
+        let side = |i: u32| {
+            let south = if j > 0 { level(i, j - 1) } else { 0 };
+            let north = if j < ny { level(i, j) } else { 0 };
+            (south, north)
+        };
+        wall_runs(nx, side, |[i0, i1], [lo, hi], faces_positive| {
+            let (a, b, c, d) = ([i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]);
+            rects.push(if faces_positive {
+                Rect {
+                    corners: [a, b, c, d],
+                    normal: Normal::PosY,
+                }
+            } else {
+                Rect {
+                    corners: [a, d, c, b],
+                    normal: Normal::NegY,
+                }
+            });
+        });
+    }
+    rects
+}
+
+/// Along one grid line, the walls between the cells on its two sides
+/// (`side(k)` gives the levels behind and in front of segment `k`): runs of
+/// segments with the same span and facing become one rectangle.
+/// `emit([k0, k1], [lo, hi], faces_positive)`.
+fn wall_runs(
+    segments: u32,
+    side: impl Fn(u32) -> (u32, u32),
+    mut emit: impl FnMut([u32; 2], [u32; 2], bool),
+) {
+    let wall = |k: u32| {
+        let (behind, front) = side(k);
+        // The wall faces the lower side: positive when the cell behind is higher.
+        (behind != front).then(|| ([behind.min(front), behind.max(front)], behind > front))
+    };
+    let mut k = 0;
+    while k < segments {
+        let Some(this) = wall(k) else {
+            k += 1;
+            continue;
+        };
+        let mut end = k + 1;
+        while end < segments && wall(end) == Some(this) {
+            end += 1;
+        }
+        emit([k, end], this.0, this.1);
+        k = end;
+    }
+}
+
+/// Greedy meshing: covers the cells where `value` is `Some` with rectangles
+/// of equal value, each grown along x first, then along y.
+/// `emit([x0, y0, x1, y1], value)` with `x1`, `y1` exclusive.
+fn greedy_rectangles(
+    nx: u32,
+    ny: u32,
+    value: impl Fn(u32, u32) -> Option<u32>,
+    mut emit: impl FnMut([u32; 4], u32),
+) {
+    let width = nx as usize;
+    let mut used = vec![false; width * ny as usize];
+    for y in 0..ny {
+        let mut x = 0;
+        while x < nx {
+            let start = y as usize * width + x as usize;
+            let Some(v) = value(x, y).filter(|_| !used[start]) else {
+                x += 1;
+                continue;
+            };
+            let free = |x: u32, y: u32, used: &[bool]| {
+                !used[y as usize * width + x as usize] && value(x, y) == Some(v)
+            };
+            let mut x1 = x + 1;
+            while x1 < nx && free(x1, y, &used) {
+                x1 += 1;
+            }
+            let mut y1 = y + 1;
+            while y1 < ny && (x..x1).all(|xx| free(xx, y1, &used)) {
+                y1 += 1;
+            }
+            for yy in y..y1 {
+                let row = yy as usize * width;
+                used[row + x as usize..row + x1 as usize].fill(true);
+            }
+            emit([x, y, x1, y1], v);
+            x = x1;
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! The single mesh of a world (SPEC §6): the closed solid under the heightmap.
+
+pub mod check;
+mod faces;
+mod stitch;
+mod weld;
+
+pub use faces::Normal;
+
+use crate::generate::Terrain;
+use crate::heightmap::Heightmap;
+
+/// A triangle mesh as plain buffers, in the grid frame (metres, Z up, origin
+/// at the outer corner of cell (0, 0)). Triangles are counter-clockwise seen
+/// from outside; every edge is used by exactly two triangles, in opposite
+/// directions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TriMesh {
+    vertices: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    normals: Vec<Normal>,
+}
+
+impl TriMesh {
+    /// Vertex positions in metres.
+    pub fn vertices(&self) -> &[[f32; 3]] {
+        &self.vertices
+    }
+
+    /// Vertex indices of each triangle.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The outward normal of each triangle (all faces are axis-aligned).
+    pub fn face_normals(&self) -> &[Normal] {
+        &self.normals
+    }
+
+    /// `true` for the mesh of an empty solid.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+}
+
+/// Lengths that place the lattice in space, metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshUnits {
+    /// Cell side.
+    pub block_size: f64,
+    /// Step height.
+    pub step_height: f64,
+    /// Slab under the grid (0: none).
+    pub base: f64,
+}
+
+impl Terrain {
+    /// The single mesh of this terrain (SPEC §6).
+    pub fn mesh(&self) -> TriMesh {
+        build_mesh(
+            self.heightmap(),
+            MeshUnits {
+                block_size: self.block_size(),
+                step_height: self.step_height(),
+                base: self.base(),
+            },
+        )
+    }
+}
+
+/// The closed mesh of the solid `{0 ≤ z ≤ base + h·step}` over every cell.
+pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
+    let levels = faces::levels(heights, units.base > 0.0);
+    let rects = faces::rectangles(&levels, heights.nx(), heights.ny());
+    let triangles = stitch::triangulate(&rects);
+    weld::weld(&triangles, |[x, y, level]| {
+        let z = if level == 0 {
+            0.0
+        } else {
+            units.base + f64::from(level - 1) * units.step_height
+        };
+        [
+            (f64::from(x) * units.block_size) as f32,
+            (f64::from(y) * units.block_size) as f32,
+            z as f32,
+        ]
+    })
+}

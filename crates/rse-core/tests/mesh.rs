@@ -1,0 +1,188 @@
+//! The single mesh against every invariant of SPEC §6, on samples and on
+//! property-test heightmaps (checkerboards, single cells, all-zero, base > 0).
+
+use proptest::prelude::*;
+use rse_core::mesh::{MeshUnits, TriMesh, build_mesh, check};
+use rse_core::{Heightmap, Scheme, generate};
+
+use crate::util::repo;
+
+/// Asserts closedness, orientation, area, no T-junction, exact volume and box.
+fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
+    let faults = check::faults(mesh.vertices(), mesh.triangles());
+    assert!(
+        faults.is_empty(),
+        "{} faults, first {:?}",
+        faults.len(),
+        &faults[..faults.len().min(5)]
+    );
+    let cell_area = units.block_size * units.block_size;
+    let tops = map
+        .cells()
+        .iter()
+        .map(|&h| units.base + f64::from(h) * units.step_height);
+    let expected: f64 = tops.clone().map(|z| z * cell_area).sum();
+    let volume = check::volume(mesh.vertices(), mesh.triangles());
+    assert!(
+        (volume - expected).abs() <= 1e-5 * expected.max(1e-9),
+        "volume {volume}, expected {expected}"
+    );
+    // The exact box: around the cells with solid, from z = 0 to the highest top.
+    let solid: Vec<(u32, u32, f64)> = (0..map.ny())
+        .flat_map(|y| (0..map.nx()).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            (
+                x,
+                y,
+                units.base + f64::from(map.get(x, y)) * units.step_height,
+            )
+        })
+        .filter(|&(_, _, z)| z > 0.0)
+        .collect();
+    let found = check::bounding_box(mesh.vertices());
+    if solid.is_empty() {
+        assert_eq!(found, None, "an empty solid has an empty mesh");
+        return;
+    }
+    let s = units.block_size;
+    let lo = [
+        solid.iter().map(|c| c.0).min().unwrap(),
+        solid.iter().map(|c| c.1).min().unwrap(),
+    ];
+    let hi = [
+        solid.iter().map(|c| c.0).max().unwrap() + 1,
+        solid.iter().map(|c| c.1).max().unwrap() + 1,
+    ];
+    let top = solid.iter().map(|c| c.2).fold(0.0, f64::max);
+    let expected = (
+        [f64::from(lo[0]) * s, f64::from(lo[1]) * s, 0.0],
+        [f64::from(hi[0]) * s, f64::from(hi[1]) * s, top],
+    );
+    let (min, max) = found.expect("a solid has a mesh");
+    for k in 0..3 {
+        assert!(
+            (min[k] - expected.0[k]).abs() < 1e-6,
+            "box {min:?}..{max:?}, expected {expected:?}"
+        );
+        assert!(
+            (max[k] - expected.1[k]).abs() < 1e-6,
+            "box {min:?}..{max:?}, expected {expected:?}"
+        );
+    }
+}
+
+const UNITS: MeshUnits = MeshUnits {
+    block_size: 0.1,
+    step_height: 0.1,
+    base: 0.0,
+};
+
+fn map(nx: u32, ny: u32, cells: Vec<u16>) -> Heightmap {
+    Heightmap::from_cells(nx, ny, cells).unwrap()
+}
+
+#[test]
+fn single_cell() {
+    let m = map(1, 1, vec![3]);
+    let mesh = build_mesh(&m, UNITS);
+    assert_exact(&m, UNITS, &mesh);
+    assert_eq!(mesh.triangles().len(), 12);
+    assert_eq!(mesh.vertices().len(), 8);
+}
+
+#[test]
+fn all_zero_is_empty_and_base_makes_a_slab() {
+    let m = map(4, 3, vec![0; 12]);
+    assert!(build_mesh(&m, UNITS).is_empty());
+    let slab = MeshUnits {
+        base: 0.05,
+        ..UNITS
+    };
+    let mesh = build_mesh(&m, slab);
+    assert_exact(&m, slab, &mesh);
+    assert_eq!(mesh.triangles().len(), 12);
+}
+
+#[test]
+fn checkerboard_has_saddles_everywhere() {
+    let cells = (0..64)
+        .map(|i| u16::from((i % 8 + i / 8) % 2 == 0) * 2)
+        .collect();
+    let m = map(8, 8, cells);
+    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+    let slab = MeshUnits {
+        base: 0.02,
+        ..UNITS
+    };
+    assert_exact(&m, slab, &build_mesh(&m, slab));
+}
+
+#[test]
+fn saddle_with_different_diagonal_heights() {
+    let m = map(2, 2, vec![1, 3, 4, 0]);
+    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+    let m = map(3, 3, vec![2, 0, 5, 0, 3, 0, 1, 0, 4]);
+    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+}
+
+#[test]
+fn flat_1000_by_1000_is_12_triangles() {
+    let m = map(1000, 1000, vec![2; 1_000_000]);
+    let mesh = build_mesh(&m, UNITS);
+    assert_eq!(mesh.triangles().len(), 12);
+    assert_exact(&m, UNITS, &mesh);
+}
+
+#[test]
+fn every_sample_meshes_exactly() {
+    for entry in std::fs::read_dir(repo().join("schemes")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "csv") {
+            continue;
+        }
+        let scheme = Scheme::load(&path).unwrap();
+        for index in 0..3 {
+            let terrain = generate(&scheme, 0, index);
+            let units = MeshUnits {
+                block_size: terrain.block_size(),
+                step_height: terrain.step_height(),
+                base: terrain.base(),
+            };
+            assert_exact(terrain.heightmap(), units, &terrain.mesh());
+        }
+    }
+}
+
+fn heightmaps() -> impl Strategy<Value = (Heightmap, MeshUnits)> {
+    (
+        1u32..=9,
+        1u32..=9,
+        0u16..=4,
+        prop::sample::select(vec![0.0, 0.03]),
+        prop::sample::select(vec![0.05, 0.1, 0.2]),
+    )
+        .prop_flat_map(|(nx, ny, top, base, block_size)| {
+            let cells = prop::collection::vec(0..=top, (nx * ny) as usize);
+            (
+                Just((nx, ny)),
+                cells,
+                Just(MeshUnits {
+                    block_size,
+                    step_height: 0.05,
+                    base,
+                }),
+            )
+        })
+        .prop_map(|((nx, ny), cells, units)| (map(nx, ny, cells), units))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn random_heightmaps_mesh_exactly((m, units) in heightmaps()) {
+        let mesh = build_mesh(&m, units);
+        assert_exact(&m, units, &mesh);
+        prop_assert_eq!(build_mesh(&m, units), mesh, "deterministic");
+    }
+}
