@@ -7,6 +7,8 @@ mod weld;
 
 pub use faces::Normal;
 
+use faces::Key;
+
 use crate::generate::Terrain;
 use crate::heightmap::Heightmap;
 
@@ -70,10 +72,12 @@ impl Terrain {
 
 /// The closed mesh of the solid `{0 ≤ z ≤ base + h·step}` over every cell.
 pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
+    let (nx, ny) = (heights.nx(), heights.ny());
     let levels = faces::levels(heights, units.base > 0.0);
-    let rects = faces::rectangles(&levels, heights.nx(), heights.ny());
-    let triangles = stitch::triangulate(&rects);
-    weld::weld(&triangles, |[x, y, level]| {
+    let rects = faces::rectangles(&levels, nx, ny);
+    let triangles = stitch::triangulate(&rects, &levels, nx, ny);
+    let (keys, ids, normals) = weld::split_saddles(triangles, &levels, nx, ny);
+    let position = |[x, y, level]: Key| {
         let z = if level == 0 {
             0.0
         } else {
@@ -84,5 +88,10 @@ pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
             (f64::from(y) * units.block_size) as f32,
             z as f32,
         ]
-    })
+    };
+    TriMesh {
+        vertices: keys.into_iter().map(position).collect(),
+        triangles: ids,
+        normals,
+    }
 }

@@ -8,89 +8,160 @@
 
 use super::faces::{Key, Normal, Rect};
 
-/// A triangle of lattice points, counter-clockwise seen from outside.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Triangle {
-    pub corners: [Key; 3],
-    pub normal: Normal,
+/// The lattice points that are corners of the boundary's rectangles, with
+/// ids in order of first use. Every point at grid corner `(x, y)` lies at the
+/// ground or at the top of one of the four cells around it, so each grid
+/// corner has at most five slots: lookups are array indexing, not hashing.
+pub(crate) struct Corners {
+    width: usize,
+    /// Per grid corner: its candidate levels, ascending (padded with `NONE`),
+    /// each with its point's id, or `NONE` while it is no corner. One array
+    /// so that a lookup reads one cache line.
+    slots: Vec<[(u32, u32); 5]>,
+    /// Per id: the point.
+    pub keys: Vec<Key>,
 }
 
-/// The corners of all rectangles, sorted by the axis-aligned line they are on.
-struct Lines {
-    /// One list per axis `a`: `(the other two coordinates, coordinate a)`, sorted.
-    by_axis: [Vec<([u32; 2], u32)>; 3],
-}
+const NONE: u32 = u32::MAX;
 
-impl Lines {
-    fn new(rects: &[Rect]) -> Self {
-        let by_axis = std::array::from_fn(|axis| {
-            let mut points: Vec<([u32; 2], u32)> = rects
-                .iter()
-                .flat_map(|r| r.corners)
-                .map(|p| (others(p, axis), p[axis]))
-                .collect();
-            points.sort_unstable();
-            points.dedup();
-            points
-        });
-        Lines { by_axis }
+impl Corners {
+    fn new(cell_levels: &[u32], nx: u32, ny: u32) -> Self {
+        let width = nx as usize + 1;
+        let level = |x: i64, y: i64| {
+            let inside = (0..i64::from(nx)).contains(&x) && (0..i64::from(ny)).contains(&y);
+            if inside {
+                cell_levels[y as usize * nx as usize + x as usize]
+            } else {
+                0
+            }
+        };
+        let mut all = Vec::with_capacity(width * (ny as usize + 1));
+        for y in 0..=i64::from(ny) {
+            for x in 0..=i64::from(nx) {
+                let mut candidates = [
+                    0,
+                    level(x - 1, y - 1),
+                    level(x, y - 1),
+                    level(x - 1, y),
+                    level(x, y),
+                ];
+                candidates.sort_unstable();
+                let mut slots = [(NONE, NONE); 5];
+                let mut n = 0;
+                for c in candidates {
+                    if n == 0 || slots[n - 1].0 != c {
+                        slots[n].0 = c;
+                        n += 1;
+                    }
+                }
+                all.push(slots);
+            }
+        }
+        Corners {
+            width,
+            slots: all,
+            keys: Vec::new(),
+        }
     }
 
-    /// The corners strictly between `p` and `q` (which differ in one
+    fn slot(&self, key: Key) -> (usize, usize) {
+        let corner = key[1] as usize * self.width + key[0] as usize;
+        let slot = self.slots[corner]
+            .iter()
+            .position(|&(l, _)| l == key[2])
+            .expect("a corner's level is the ground or a neighbouring top");
+        (corner, slot)
+    }
+
+    /// The id of `key`, numbering it if it is new.
+    fn insert(&mut self, key: Key) -> u32 {
+        let (corner, slot) = self.slot(key);
+        let id = &mut self.slots[corner][slot].1;
+        if *id == NONE {
+            *id = self.keys.len() as u32;
+            self.keys.push(key);
+        }
+        *id
+    }
+
+    fn get(&self, key: Key) -> Option<u32> {
+        let corner = key[1] as usize * self.width + key[0] as usize;
+        let &(_, id) = self.slots[corner].iter().find(|&&(l, _)| l == key[2])?;
+        (id != NONE).then_some(id)
+    }
+
+    /// Pushes the corners strictly between `p` and `q` (which differ in one
     /// coordinate), in order from `p` to `q`.
-    fn between(&self, p: Key, q: Key, out: &mut Vec<Key>) {
+    fn between(&self, p: Key, q: Key, out: &mut Vec<(u32, Key)>) {
         let axis = (0..3).find(|&a| p[a] != q[a]).expect("an edge has length");
-        let line = others(p, axis);
         let (lo, hi) = (p[axis].min(q[axis]), p[axis].max(q[axis]));
-        let list = &self.by_axis[axis];
-        let first = list.partition_point(|&(l, c)| (l, c) <= (line, lo));
-        let last = list.partition_point(|&(l, c)| (l, c) < (line, hi));
         let start = out.len();
-        out.extend(list[first..last].iter().map(|&(_, c)| with(p, axis, c)));
+        if axis == 2 {
+            let corner = p[1] as usize * self.width + p[0] as usize;
+            for &(level, id) in &self.slots[corner] {
+                if level > lo && level < hi && id != NONE {
+                    out.push((id, [p[0], p[1], level]));
+                }
+            }
+        } else {
+            for c in lo + 1..hi {
+                let mut k = p;
+                k[axis] = c;
+                if let Some(id) = self.get(k) {
+                    out.push((id, k));
+                }
+            }
+        }
         if p[axis] > q[axis] {
             out[start..].reverse();
         }
     }
 }
 
-/// The two coordinates of `p` other than `axis`.
-fn others(p: Key, axis: usize) -> [u32; 2] {
-    match axis {
-        0 => [p[1], p[2]],
-        1 => [p[0], p[2]],
-        _ => [p[0], p[1]],
-    }
-}
-
-fn with(mut p: Key, axis: usize, value: u32) -> Key {
-    p[axis] = value;
-    p
+/// Triangles of lattice point ids, counter-clockwise seen from outside, with
+/// the outward normal of each.
+pub(crate) struct Triangles {
+    pub corners: Corners,
+    pub ids: Vec<[u32; 3]>,
+    pub normals: Vec<Normal>,
 }
 
 /// Triangulates every rectangle, in order.
-pub(crate) fn triangulate(rects: &[Rect]) -> Vec<Triangle> {
-    let lines = Lines::new(rects);
+pub(crate) fn triangulate(rects: &[Rect], cell_levels: &[u32], nx: u32, ny: u32) -> Triangles {
+    let mut corners = Corners::new(cell_levels, nx, ny);
+    for rect in rects {
+        for key in rect.corners {
+            corners.insert(key);
+        }
+    }
     let mut triangles = Vec::with_capacity(rects.len() * 3);
+    let mut normals = Vec::with_capacity(rects.len() * 3);
     let (mut ab, mut ad) = (Vec::new(), Vec::new());
     for rect in rects {
         let [a, b, c, d] = rect.corners;
+        let id = |k| corners.get(k).expect("rectangle corners are numbered");
         // Two chains from corner a to the opposite corner c: through b and
         // through d, each with the points on its sides.
         ab.clear();
-        ab.push(a);
-        lines.between(a, b, &mut ab);
-        ab.push(b);
-        lines.between(b, c, &mut ab);
-        ab.push(c);
+        ab.push((id(a), a));
+        corners.between(a, b, &mut ab);
+        ab.push((id(b), b));
+        corners.between(b, c, &mut ab);
+        ab.push((id(c), c));
         ad.clear();
-        ad.push(a);
-        lines.between(a, d, &mut ad);
-        ad.push(d);
-        lines.between(d, c, &mut ad);
-        ad.push(c);
-        zip(&ab, &ad, rect.normal, &mut triangles);
+        ad.push((id(a), a));
+        corners.between(a, d, &mut ad);
+        ad.push((id(d), d));
+        corners.between(d, c, &mut ad);
+        ad.push((id(c), c));
+        zip(&ab, &ad, &mut triangles);
+        normals.resize(triangles.len(), rect.normal);
     }
-    triangles
+    Triangles {
+        corners,
+        ids: triangles,
+        normals,
+    }
 }
 
 /// Triangulates the convex polygon `a … c` (chain `ab`, counter-clockwise)
@@ -100,35 +171,32 @@ pub(crate) fn triangulate(rects: &[Rect]) -> Vec<Triangle> {
 /// none of them `a` or `c`, always has area. The first triangle is
 /// `(a, ab[1], ad[1])`, the last `(ab[n−2], c, ad[m−2])`; between, the chain
 /// whose next point is nearer to `a` advances.
-fn zip(ab: &[Key], ad: &[Key], normal: Normal, out: &mut Vec<Triangle>) {
+fn zip(ab: &[(u32, Key)], ad: &[(u32, Key)], out: &mut Vec<[u32; 3]>) {
     let (n, m) = (ab.len(), ad.len());
-    let tri = |corners| Triangle { corners, normal };
-    let progress = |p: Key| {
-        let a = ab[0];
-        (0..3).map(|k| p[k].abs_diff(a[k])).sum::<u32>()
-    };
-    out.push(tri([ab[0], ab[1], ad[1]]));
+    let a = ab[0].1;
+    let progress = |p: Key| (0..3).map(|k| p[k].abs_diff(a[k])).sum::<u32>();
+    out.push([ab[0].0, ab[1].0, ad[1].0]);
     let (mut i, mut j) = (1, 1);
     while i < n - 2 || j < m - 2 {
-        let advance_ab = j == m - 2 || (i < n - 2 && progress(ab[i + 1]) <= progress(ad[j + 1]));
+        let advance_ab =
+            j == m - 2 || (i < n - 2 && progress(ab[i + 1].1) <= progress(ad[j + 1].1));
         if advance_ab {
-            out.push(tri([ab[i], ab[i + 1], ad[j]]));
+            out.push([ab[i].0, ab[i + 1].0, ad[j].0]);
             i += 1;
         } else {
-            out.push(tri([ab[i], ad[j + 1], ad[j]]));
+            out.push([ab[i].0, ad[j + 1].0, ad[j].0]);
             j += 1;
         }
     }
-    out.push(tri([ab[n - 2], ab[n - 1], ad[m - 2]]));
+    out.push([ab[n - 2].0, ab[n - 1].0, ad[m - 2].0]);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn area2(t: &Triangle) -> i64 {
-        // twice the area in the lattice, via the cross product's length²
-        let [p, q, r] = t.corners.map(|k| k.map(i64::from));
+    fn area2(keys: &[Key], t: [u32; 3]) -> i64 {
+        let [p, q, r] = t.map(|id| keys[id as usize].map(i64::from));
         let u = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
         let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
         let c = [
@@ -139,33 +207,36 @@ mod tests {
         c[0] * c[0] + c[1] * c[1] + c[2] * c[2]
     }
 
+    fn top(x0: u32, y0: u32, x1: u32, y1: u32) -> Rect {
+        Rect {
+            corners: [[x0, y0, 1], [x1, y0, 1], [x1, y1, 1], [x0, y1, 1]],
+            normal: Normal::PosZ,
+        }
+    }
+
     #[test]
     fn a_bare_rectangle_is_two_triangles() {
-        let rect = Rect {
-            corners: [[0, 0, 1], [5, 0, 1], [5, 3, 1], [0, 3, 1]],
-            normal: Normal::PosZ,
-        };
-        let t = triangulate(&[rect]);
-        assert_eq!(t.len(), 2);
-        assert!(t.iter().all(|t| area2(t) > 0));
+        let levels = vec![1; 15];
+        let t = triangulate(&[top(0, 0, 5, 3)], &levels, 5, 3);
+        assert_eq!(t.ids.len(), 2);
+        assert!(t.ids.iter().all(|&id| area2(&t.corners.keys, id) > 0));
     }
 
     #[test]
     fn points_on_every_side_give_k_minus_2_triangles_with_area() {
-        // A big top with four small neighbours whose corners land on its sides.
-        let big = Rect {
-            corners: [[0, 0, 1], [6, 0, 1], [6, 6, 1], [0, 6, 1]],
-            normal: Normal::PosZ,
-        };
-        let small = |x0, y0, x1, y1| Rect {
-            corners: [[x0, y0, 1], [x1, y0, 1], [x1, y1, 1], [x0, y1, 1]],
-            normal: Normal::PosZ,
-        };
-        let rects = [big, small(2, 6, 3, 7), small(6, 1, 7, 4)];
-        let t = triangulate(&rects);
+        // A big top with small neighbours whose corners land on its sides.
+        let levels = vec![1; 64];
+        let rects = [top(0, 0, 6, 6), top(2, 6, 3, 7), top(6, 1, 7, 4)];
+        let Triangles {
+            corners, ids: t, ..
+        } = triangulate(&rects, &levels, 8, 8);
         // big: 4 corners + (2,6), (3,6) + (6,1), (6,4) = 8 points → 6 triangles
-        let inside = |t: &&Triangle| t.corners.iter().all(|c| c[0] <= 6 && c[1] <= 6);
+        let keys = &corners.keys;
+        let inside = |t: &&[u32; 3]| {
+            t.iter()
+                .all(|&id| keys[id as usize][0] <= 6 && keys[id as usize][1] <= 6)
+        };
         assert_eq!(t.iter().filter(inside).count(), 6);
-        assert!(t.iter().all(|t| area2(t) > 0), "{t:?}");
+        assert!(t.iter().all(|&t| area2(keys, t) > 0), "{t:?}");
     }
 }

@@ -1,158 +1,152 @@
-//! From triangles of lattice points to an index mesh in which every edge is
-//! used by exactly two faces, in opposite directions.
+//! Splitting vertices where the solid touches itself only along a line.
 //!
-//! Where two cells touch only along a vertical corner line (a saddle: the
-//! diagonal cells higher than the other two), four walls meet at that line.
-//! Their triangles are paired by the solid quadrant they bound, and the
-//! corners of triangles that are joined across an edge are welded into one
-//! vertex (union–find); so the line is there twice, once for each cell.
+//! Where two diagonal cells are higher than the other two around a grid
+//! corner (a saddle), four walls meet along one vertical line: as points the
+//! line is shared, but the surface must pass it twice, once per cell, for
+//! every edge to be used by exactly two faces. Around a lattice point the
+//! solid is made of up to eight octants (four cells, below and above the
+//! point), joined where they share a face. Each group of joined octants gets
+//! its own copy of the point, and each triangle corner takes the copy of the
+//! group on its inner side. Groups are found from the four cells' tops alone.
 
-use super::TriMesh;
 use super::faces::{Key, Normal};
-use super::stitch::Triangle;
+use super::stitch::Triangles;
 
-/// Welds `triangles` into a mesh; `position` places a lattice point in metres.
-pub(crate) fn weld(triangles: &[Triangle], position: impl Fn(Key) -> [f32; 3]) -> TriMesh {
-    // Number the distinct lattice points.
-    let mut keys: Vec<Key> = triangles.iter().flat_map(|t| t.corners).collect();
-    keys.sort_unstable();
-    keys.dedup();
-    let id = |k: &Key| keys.binary_search(k).expect("every corner is a key") as u32;
-    let faces: Vec<[u32; 3]> = triangles
+/// Gives saddle points one copy per piece of solid; returns the point of
+/// every vertex, the triangles' vertex ids and their normals.
+pub(crate) fn split_saddles(
+    triangles: Triangles,
+    cell_levels: &[u32],
+    nx: u32,
+    ny: u32,
+) -> (Vec<Key>, Vec<[u32; 3]>, Vec<Normal>) {
+    let level = |x: i64, y: i64| {
+        let inside = (0..i64::from(nx)).contains(&x) && (0..i64::from(ny)).contains(&y);
+        if inside {
+            cell_levels[y as usize * nx as usize + x as usize]
+        } else {
+            0
+        }
+    };
+    let Triangles {
+        corners,
+        mut ids,
+        normals,
+    } = triangles;
+    let mut keys = corners.keys;
+    let pieces: Vec<Option<Pieces>> = keys
         .iter()
-        .map(|t| t.corners.map(|k| id(&k)))
+        .map(|&[x, y, z]| {
+            let (x, y) = (i64::from(x), i64::from(y));
+            let tops = [
+                level(x - 1, y - 1),
+                level(x, y - 1),
+                level(x - 1, y),
+                level(x, y),
+            ];
+            solid_pieces(tops, z)
+        })
         .collect();
 
-    // Every edge, undirected, with the triangle and slot that use it.
-    let mut edges: Vec<EdgeUse> = Vec::with_capacity(faces.len() * 3);
-    for (f, face) in faces.iter().enumerate() {
-        for slot in 0..3 {
-            let (a, b) = (face[slot], face[(slot + 1) % 3]);
-            edges.push(EdgeUse {
-                lo: a.min(b),
-                hi: a.max(b),
-                forward: a < b,
-                face: f as u32,
-                slot: slot as u8,
-            });
+    // A saddle has two pieces: the second one's copy, per point.
+    let mut copy_of = vec![NONE; keys.len()];
+    for (face, &normal) in ids.iter_mut().zip(&normals) {
+        if face.iter().all(|&id| pieces[id as usize].is_none()) {
+            continue;
         }
-    }
-    edges.sort_unstable_by_key(|e| (e.lo, e.hi, e.face, e.slot));
-
-    let mut corners = UnionFind::new(faces.len() * 3);
-    let mut start = 0;
-    while start < edges.len() {
-        let mut end = start + 1;
-        while end < edges.len()
-            && (edges[end].lo, edges[end].hi) == (edges[start].lo, edges[start].hi)
-        {
-            end += 1;
-        }
-        let group = &edges[start..end];
-        let (forward, backward): (Vec<&EdgeUse>, Vec<&EdgeUse>) =
-            group.iter().partition(|e| e.forward);
-        assert!(
-            forward.len() == backward.len() && (forward.len() == 1 || forward.len() == 2),
-            "mesh builder bug: an edge used {} times forward and {} backward",
-            forward.len(),
-            backward.len()
-        );
-        for f in &forward {
-            let g = if forward.len() == 1 {
-                backward[0]
-            } else {
-                let quadrant = quadrant(triangles, &keys, f);
-                *backward
-                    .iter()
-                    .find(|g| super::weld::quadrant(triangles, &keys, g) == quadrant)
-                    .expect("mesh builder bug: saddle walls do not pair by quadrant")
+        let points = face.map(|id| keys[id as usize]);
+        for (c, id) in face.iter_mut().enumerate() {
+            let Some(piece) = pieces[*id as usize] else {
+                continue;
             };
-            // f runs a→b at its slot, g runs b→a: weld the a's and the b's.
-            let fc = |k: u8| f.face as usize * 3 + usize::from(k % 3);
-            let gc = |k: u8| g.face as usize * 3 + usize::from(k % 3);
-            corners.union(fc(f.slot), gc(g.slot + 1));
-            corners.union(fc(f.slot + 1), gc(g.slot));
-        }
-        start = end;
-    }
-
-    // One vertex per class of welded corners, numbered in order of first use.
-    let mut vertex_of_class = vec![u32::MAX; faces.len() * 3];
-    let mut vertices = Vec::new();
-    let mut out_faces = Vec::with_capacity(faces.len());
-    for (f, face) in faces.iter().enumerate() {
-        let mut out = [0u32; 3];
-        for slot in 0..3 {
-            let class = corners.find(f * 3 + slot);
-            if vertex_of_class[class] == u32::MAX {
-                vertex_of_class[class] = vertices.len() as u32;
-                vertices.push(position(keys[face[slot] as usize]));
+            let group = piece.group[inner_octant(points, c, normal)];
+            // The first piece keeps the original id; the other gets a new
+            // point, numbered in order of first use.
+            if group == piece.first {
+                continue;
             }
-            out[slot] = vertex_of_class[class];
+            let original = *id as usize;
+            if copy_of[original] == NONE {
+                copy_of[original] = keys.len() as u32;
+                keys.push(keys[original]);
+            }
+            *id = copy_of[original];
         }
-        out_faces.push(out);
     }
-    TriMesh {
-        vertices,
-        triangles: out_faces,
-        normals: triangles.iter().map(|t| t.normal).collect(),
-    }
+    (keys, ids, normals)
 }
 
+const NONE: u32 = u32::MAX;
+
+/// Octant index: cell quadrant (0 south-west, 1 south-east, 2 north-west,
+/// 3 north-east) plus 4 above the point.
+fn octant(east: bool, north: bool, above: bool) -> usize {
+    usize::from(east) + 2 * usize::from(north) + 4 * usize::from(above)
+}
+
+/// The two pieces of solid around a saddle point.
 #[derive(Clone, Copy)]
-struct EdgeUse {
-    lo: u32,
-    hi: u32,
-    forward: bool,
-    face: u32,
-    slot: u8,
+struct Pieces {
+    /// Per octant, its piece, labelled by the piece's smaller cell quadrant.
+    group: [u8; 8],
+    /// The label of the piece of the smaller quadrant.
+    first: u8,
 }
 
-/// For a wall triangle at a vertical corner line: the quadrant (signs of x
-/// and y around the line) of the solid it bounds.
-fn quadrant(triangles: &[Triangle], keys: &[Key], edge: &EdgeUse) -> (i8, i8) {
-    let t = &triangles[edge.face as usize];
-    let line = keys[edge.lo as usize];
-    let third = t.corners[(usize::from(edge.slot) + 2) % 3];
-    let side = |a: u32, b: u32| if a > b { 1 } else { -1 };
-    match t.normal {
-        // Solid lies behind the outward normal.
-        Normal::PosX => (-1, side(third[1], line[1])),
-        Normal::NegX => (1, side(third[1], line[1])),
-        Normal::PosY => (side(third[0], line[0]), -1),
-        Normal::NegY => (side(third[0], line[0]), 1),
-        Normal::PosZ | Normal::NegZ => unreachable!("horizontal faces never meet at a saddle"),
-    }
+/// The pieces of solid around a point at `level`, with the four cells'
+/// `tops`, when there are two; `None` when there is one or none.
+///
+/// The octants below the point form a ring of four quadrants (south-west,
+/// south-east, north-east, north-west), and a subset of a ring of four falls
+/// apart only when it is a diagonal pair. Above the point, a cell is solid
+/// only if it is below too, and joins its own lower octant. So the solid
+/// splits exactly when the cells solid just below form a diagonal pair — or,
+/// at the ground, where nothing is below, the cells solid just above do.
+fn solid_pieces(tops: [u32; 4], level: u32) -> Option<Pieces> {
+    let mask = |solid: &dyn Fn(u32) -> bool| {
+        tops.iter()
+            .enumerate()
+            .fold(0u8, |m, (q, &top)| m | (u8::from(solid(top)) << q))
+    };
+    let cells = if level > 0 {
+        mask(&|top| top >= level)
+    } else {
+        mask(&|top| top > 0)
+    };
+    let (a, b) = match cells {
+        0b1001 => (0u8, 3u8),
+        0b0110 => (1, 2),
+        _ => return None,
+    };
+    Some(Pieces {
+        group: std::array::from_fn(|o| if o as u8 % 4 == b { b } else { a }),
+        first: a,
+    })
 }
 
-/// Disjoint sets over `0..n`, with path halving.
-struct UnionFind {
-    parent: Vec<u32>,
-}
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind {
-            parent: (0..n as u32).collect(),
-        }
-    }
-
-    fn find(&mut self, mut x: usize) -> usize {
-        while self.parent[x] as usize != x {
-            let grand = self.parent[self.parent[x] as usize];
-            self.parent[x] = grand;
-            x = grand as usize;
-        }
-        x
-    }
-
-    fn union(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.find(a), self.find(b));
-        // The smaller root wins, so the result does not depend on call order.
-        if a < b {
-            self.parent[b] = a as u32;
-        } else {
-            self.parent[a] = b as u32;
-        }
-    }
+/// The octant on the inner (solid) side of a triangle, next to its corner `c`.
+/// Where the triangle spans both sides of an axis at the point, both octants
+/// lie behind the same face and are joined, so either is right.
+fn inner_octant(corners: [Key; 3], c: usize, normal: Normal) -> usize {
+    let p = corners[c];
+    let side = |axis: usize| {
+        let sum: u32 = corners.iter().map(|k| k[axis]).sum();
+        sum >= 3 * p[axis]
+    };
+    let east = match normal {
+        Normal::PosX => false,
+        Normal::NegX => true,
+        _ => side(0),
+    };
+    let north = match normal {
+        Normal::PosY => false,
+        Normal::NegY => true,
+        _ => side(1),
+    };
+    let above = match normal {
+        Normal::PosZ => false,
+        Normal::NegZ => true,
+        _ => side(2),
+    };
+    octant(east, north, above)
 }

@@ -1,0 +1,138 @@
+//! Mesh size and build time, beside a naive mesh of one closed box per cell
+//! built from the same heightmaps. Prints a table; run with
+//! `cargo bench -p rse-core --bench mesh`.
+//!
+//! Targets (issue "Meshes"): 50×50 `random` of height 4 ≤ 20,000 triangles
+//! (aim 15,000; Isaac Lab's random grid: 30,060); wall and peak samples ≥ 5×
+//! fewer than naive; flat 1000×1000 ≤ 12; meshing 1000×1000 random < 0.5 s.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use rse_core::{Scheme, generate};
+
+/// Triangles of the naive mesh: 12 per cell with solid (a closed box each).
+fn naive_triangles(terrain: &rse_core::Terrain) -> usize {
+    let base = terrain.base() > 0.0;
+    12 * terrain
+        .heightmap()
+        .cells()
+        .iter()
+        .filter(|&&h| h > 0 || base)
+        .count()
+}
+
+/// The naive mesh itself, built as the RL terrain tools do (per-cell boxes
+/// concatenated), so its build time is comparable.
+fn naive_mesh(terrain: &rse_core::Terrain) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let map = terrain.heightmap();
+    let s = terrain.block_size() as f32;
+    let (mut v, mut t) = (Vec::new(), Vec::new());
+    const BOX: [[u32; 3]; 12] = [
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    for y in 0..map.ny() {
+        for x in 0..map.nx() {
+            let z = terrain.elevation(x, y) as f32;
+            if z <= 0.0 {
+                continue;
+            }
+            let first = v.len() as u32;
+            for i in 0..8u32 {
+                let corner = [
+                    (x + (i & 1)) as f32 * s,
+                    (y + ((i >> 1) & 1)) as f32 * s,
+                    if i >= 4 { z } else { 0.0 },
+                ];
+                v.push(corner);
+            }
+            t.extend(BOX.iter().map(|tri| tri.map(|k| first + k)));
+        }
+    }
+    (v, t)
+}
+
+fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
+    let mut times = Vec::new();
+    let start = Instant::now();
+    while times.len() < 5 || (start.elapsed() < budget && times.len() < 200) {
+        let t = Instant::now();
+        run();
+        times.push(t.elapsed());
+    }
+    times.sort();
+    times[times.len() / 2]
+}
+
+fn row(name: &str, terrain: &rse_core::Terrain) {
+    let mesh = terrain.mesh();
+    let cells = terrain.heightmap().cells().len();
+    let naive = naive_triangles(terrain);
+    let ours = mesh.triangles().len();
+    let build = median_time(|| drop(black_box(terrain.mesh())), Duration::from_secs(2));
+    let naive_build = median_time(
+        || drop(black_box(naive_mesh(terrain))),
+        Duration::from_secs(2),
+    );
+    println!(
+        "{name:<28} {cells:>9} {ours:>10} {:>8.2} {naive:>10} {:>7.1}x {:>11.3} {:>11.3}",
+        ours as f64 / cells as f64,
+        naive as f64 / ours.max(1) as f64,
+        build.as_secs_f64() * 1e3,
+        naive_build.as_secs_f64() * 1e3,
+    );
+}
+
+fn scheme(text: &str) -> Scheme {
+    Scheme::from_csv(text, None).expect("bench schemes are valid")
+}
+
+fn main() {
+    let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
+    println!(
+        "{:<28} {:>9} {:>10} {:>8} {:>10} {:>8} {:>11} {:>11}",
+        "heightmap", "cells", "triangles", "per cell", "naive", "fewer", "build ms", "naive ms"
+    );
+    let random50 = scheme("# size: 50x50\ntype,height\nrandom,4\n");
+    for index in 0..3 {
+        row(
+            &format!("random 50x50 H4 (world {index})"),
+            &generate(&random50, 0, index),
+        );
+    }
+    for name in [
+        "wall",
+        "peak",
+        "wall_long_pit",
+        "nist_hill",
+        "nist_diagonal_hill",
+        "six_obstacles",
+        "curriculum",
+    ] {
+        let s = Scheme::load(format!("{samples}{name}.csv")).expect("sample loads");
+        row(name, &generate(&s, 0, 0));
+    }
+    row(
+        "flat 1000x1000",
+        &generate(
+            &scheme("# size: 1000x1000\ntype,height,angle,x1,y1\npeak,2,0,0,0\n"),
+            0,
+            0,
+        ),
+    );
+    row(
+        "random 1000x1000 H4",
+        &generate(&scheme("# size: 1000x1000\ntype,height\nrandom,4\n"), 0, 0),
+    );
+}
