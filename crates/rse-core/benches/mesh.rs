@@ -22,26 +22,28 @@ fn naive_triangles(terrain: &rse_core::Terrain) -> usize {
         .count()
 }
 
+/// The 12 triangles of a closed box whose corner `i` is `(i & 1, i >> 1 & 1, i >> 2 & 1)`.
+const BOX: [[u32; 3]; 12] = [
+    [0, 2, 1],
+    [1, 2, 3],
+    [4, 5, 6],
+    [5, 7, 6],
+    [0, 1, 4],
+    [1, 5, 4],
+    [2, 6, 3],
+    [3, 6, 7],
+    [0, 4, 2],
+    [2, 4, 6],
+    [1, 3, 5],
+    [3, 7, 5],
+];
+
 /// The naive mesh itself, built as the RL terrain tools do (per-cell boxes
 /// concatenated), so its build time is comparable.
 fn naive_mesh(terrain: &rse_core::Terrain) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     let map = terrain.heightmap();
     let s = terrain.block_size() as f32;
     let (mut v, mut t) = (Vec::new(), Vec::new());
-    const BOX: [[u32; 3]; 12] = [
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
     for y in 0..map.ny() {
         for x in 0..map.nx() {
             let z = terrain.elevation(x, y) as f32;
