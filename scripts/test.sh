@@ -28,11 +28,28 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --workspace --locked 2>&1 | tee "$log"
 
+say "third-party readers (Python: trimesh, manifold3d, pygltflib, PyBullet)"
+if [ ! -x .venv/bin/python ]; then
+    python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
+RSE_GEN="$PWD/target/debug/rse-gen" .venv/bin/python -m pytest 2>&1 | tee -a "$log"
+
 say "the README's main command"
 make --no-print-directory demo OUT=target/readme-demo AMOUNT=2
 for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_0001/preview.png; do
     [ -s "$f" ] || { echo "make demo did not write $f" >&2; exit 1; }
 done
 
-# One closing line for the whole run, summed over every test binary.
-awk '/^test result:/ { p += $4; f += $6; s += $8 } END { printf "all tests: %d passed, %d failed, %d skipped\n", p, f, s }' "$log"
+# One closing line for the whole run: cargo's test binaries and pytest.
+awk '
+    /^test result:/ { p += $4; f += $6; s += $8; next }
+    / in [0-9.]+s/ && /passed|failed/ {
+        for (i = 1; i < NF; i++) {
+            if ($(i + 1) ~ /^passed/) p += $i
+            if ($(i + 1) ~ /^failed/) f += $i
+            if ($(i + 1) ~ /^skipped/) s += $i
+        }
+    }
+    END { printf "all tests: %d passed, %d failed, %d skipped\n", p, f, s }
+' "$log"

@@ -30,6 +30,21 @@ pub enum Command {
     Heightmap(HeightmapArgs),
     /// Draw one world seen from above as a PNG (blue lowest, green, red highest; pallet frames brown).
     Preview(PreviewArgs),
+    /// Write one world's closed terrain mesh as OBJ (with its .mtl), binary STL or GLB, by suffix.
+    Mesh(MeshArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MeshArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    /// Where to write the mesh: `.obj` (and its `.mtl` beside it), `.stl` or `.glb`.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+
+    #[command(flatten)]
+    pub world: WorldArgs,
 }
 
 #[derive(Debug, Args)]

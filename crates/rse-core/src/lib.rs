@@ -29,6 +29,7 @@
 //! project's `SPEC.md`; `schemes/README.md` documents the file format.
 
 mod error;
+pub mod export;
 mod generate;
 mod globals;
 mod heightmap;

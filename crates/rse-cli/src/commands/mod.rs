@@ -9,6 +9,7 @@ use crate::ExitStatus;
 use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides};
 
 mod heightmap;
+mod mesh;
 mod preview;
 
 /// Runs the parsed command line.
@@ -16,6 +17,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
     match cli.command {
         Command::Heightmap(args) => heightmap::run(&args, &cli.overrides),
         Command::Preview(args) => preview::run(&args, &cli.overrides),
+        Command::Mesh(args) => mesh::run(&args, &cli.overrides),
     }
 }
 

@@ -1,0 +1,60 @@
+//! Wavefront OBJ: `v` positions, the six axis normals as `vn`, faces as
+//! `f v//vn` (Gazebo's loader drops a mesh without normals), and a material.
+
+use std::fmt::Write as _;
+
+use crate::mesh::{Normal, TriMesh};
+
+/// The material name used by [`obj`] and defined by [`mtl`].
+pub const MATERIAL: &str = "rse_terrain";
+
+const FMT: &str = "writing to a String cannot fail";
+
+/// The OBJ text of `mesh`; `mtl_file` is the material library it names
+/// (written beside it by the caller), or `None` for no material.
+///
+/// # Panics
+/// Never: formatting into a `String` cannot fail.
+pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
+    let mut out = String::with_capacity(mesh.vertices().len() * 24 + mesh.triangles().len() * 24);
+    writeln!(
+        out,
+        "# rse {} terrain: {} vertices, {} triangles, metres, Z up",
+        crate::VERSION,
+        mesh.vertices().len(),
+        mesh.triangles().len()
+    )
+    .expect(FMT);
+    if let Some(file) = mtl_file {
+        writeln!(out, "mtllib {file}").expect(FMT);
+    }
+    out.push_str("o terrain\n");
+    for [x, y, z] in mesh.vertices() {
+        writeln!(out, "v {x} {y} {z}").expect(FMT);
+    }
+    for normal in Normal::ALL {
+        let [x, y, z] = normal.vector();
+        writeln!(out, "vn {x} {y} {z}").expect(FMT);
+    }
+    if mtl_file.is_some() {
+        writeln!(out, "usemtl {MATERIAL}").expect(FMT);
+    }
+    for (t, normal) in mesh.triangles().iter().zip(mesh.face_normals()) {
+        let n = Normal::ALL
+            .iter()
+            .position(|m| m == normal)
+            .expect("one of six")
+            + 1;
+        let [a, b, c] = t.map(|v| v + 1);
+        writeln!(out, "f {a}//{n} {b}//{n} {c}//{n}").expect(FMT);
+    }
+    out
+}
+
+/// The MTL text defining [`MATERIAL`]: matte light wood.
+pub fn mtl() -> String {
+    format!(
+        "# rse {}\nnewmtl {MATERIAL}\nKa 0.2 0.2 0.2\nKd 0.72 0.58 0.42\nKs 0.05 0.05 0.05\nNs 10\nd 1\nillum 2\n",
+        crate::VERSION
+    )
+}

@@ -1,0 +1,47 @@
+"""Shared fixtures: the real rse-gen binary and the sample schemes."""
+
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+SCHEMES = REPO / "schemes"
+
+
+def rse_gen_path() -> Path:
+    """The binary under test: $RSE_GEN, else the workspace's debug build."""
+    path = Path(os.environ.get("RSE_GEN", REPO / "target" / "debug" / "rse-gen"))
+    if not path.exists():
+        pytest.fail(f"{path} does not exist: run `cargo build -p rse-cli` (make test does)")
+    return path
+
+
+def run(*args: str) -> str:
+    """Runs rse-gen, failing the test with its stderr when it fails."""
+    done = subprocess.run([str(rse_gen_path()), *args], capture_output=True, text=True, cwd=REPO)
+    assert done.returncode == 0, f"rse-gen {' '.join(args)}: {done.stderr}"
+    return done.stdout
+
+
+def heights(scheme: Path, seed: int = 0, index: int = 0) -> np.ndarray:
+    """The heightmap in steps, shape (ny, nx), a[y, x]."""
+    text = run("heightmap", str(scheme), "--seed", str(seed), "--index", str(index))
+    return np.array([[int(v) for v in line.split(",")] for line in text.splitlines()])
+
+
+@pytest.fixture
+def out(tmp_path: Path) -> Path:
+    return tmp_path
+
+
+def units(scheme: Path) -> dict:
+    """The scheme's block_size, step_height and base (metres), with defaults."""
+    found = {"block_size": 0.1, "step_height": 0.1, "base": 0.0}
+    for line in scheme.read_text().splitlines():
+        key, _, value = line.lstrip("# ").partition(":")
+        if line.startswith("#") and key.strip() in found:
+            found[key.strip()] = float(value)
+    return found
