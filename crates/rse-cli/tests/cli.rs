@@ -278,3 +278,84 @@ fn a_closed_pipe_is_not_an_error() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(out.stderr.is_empty(), "{}", stderr(&out));
 }
+
+#[test]
+fn mesh_writes_obj_with_its_mtl_stl_and_glb() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
+    for name in ["t.obj", "t.stl", "t.glb"] {
+        let out = rse_gen(&["mesh", "schemes/peak.csv", "-o", &path(name)]);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        assert!(out.stdout.is_empty());
+    }
+    let obj = std::fs::read_to_string(path("t.obj")).unwrap();
+    assert!(obj.contains("mtllib t.mtl\n"));
+    assert_eq!(obj.lines().filter(|l| l.starts_with("vn ")).count(), 6);
+    let faces = obj.lines().filter(|l| l.starts_with("f ")).count();
+    assert!(
+        obj.lines()
+            .filter(|l| l.starts_with("f "))
+            .all(|l| l.split(' ').skip(1).all(|c| c.contains("//")))
+    );
+    assert!(
+        std::fs::read_to_string(path("t.mtl"))
+            .unwrap()
+            .contains("newmtl rse_terrain")
+    );
+    let stl = std::fs::read(path("t.stl")).unwrap();
+    assert_eq!(
+        u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize,
+        faces
+    );
+    assert_eq!(stl.len(), 84 + 50 * faces);
+    let glb = std::fs::read(path("t.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    assert_eq!(
+        u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize,
+        glb.len()
+    );
+}
+
+#[test]
+fn mesh_of_an_unknown_format_exits_2_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("t.ply");
+    let out = rse_gen(&["mesh", "schemes/peak.csv", "-o", target.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("name the file .obj, .stl or .glb"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn mesh_is_deterministic_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut seen = Vec::new();
+    for run in 0..2 {
+        let folder = dir.path().join(format!("run{run}"));
+        std::fs::create_dir(&folder).unwrap();
+        let mut files = Vec::new();
+        for name in ["t.obj", "t.mtl", "t.stl", "t.glb"] {
+            let p = folder.join(name);
+            if name == "t.mtl" {
+                files.push(std::fs::read(p).unwrap_or_default());
+                continue;
+            }
+            let out = rse_gen(&[
+                "mesh",
+                "schemes/six_obstacles.csv",
+                "-o",
+                p.to_str().unwrap(),
+                "--index",
+                "3",
+            ]);
+            assert!(out.status.success());
+            files.push(std::fs::read(p).unwrap());
+        }
+        seen.push(files);
+    }
+    assert_eq!(seen[0], seen[1]);
+}

@@ -186,3 +186,74 @@ proptest! {
         prop_assert_eq!(build_mesh(&m, units), mesh, "deterministic");
     }
 }
+
+/// Every cell is covered by exactly one box, of that cell's height.
+fn assert_boxes_fill(map: &Heightmap, units: MeshUnits) {
+    let blocks = rse_core::mesh::boxes(map, units);
+    let mut covered = vec![0u8; map.cells().len()];
+    for b in &blocks {
+        let [x0, y0, x1, y1] = b.cells;
+        assert!(
+            x0 < x1 && y0 < y1 && x1 <= map.nx() && y1 <= map.ny(),
+            "{b:?}"
+        );
+        for y in y0..y1 {
+            for x in x0..x1 {
+                covered[(y * map.nx() + x) as usize] += 1;
+                let top = units.base + f64::from(map.get(x, y)) * units.step_height;
+                assert!(
+                    (b.center[2] + b.half_size[2] - top).abs() < 1e-9,
+                    "cell ({x}, {y})"
+                );
+                assert!(
+                    (b.center[2] - b.half_size[2]).abs() < 1e-9,
+                    "boxes stand on z = 0"
+                );
+            }
+        }
+        let s = units.block_size;
+        assert!((b.center[0] - b.half_size[0] - f64::from(x0) * s).abs() < 1e-9);
+        assert!((b.center[1] + b.half_size[1] - f64::from(y1) * s).abs() < 1e-9);
+    }
+    for (i, &n) in covered.iter().enumerate() {
+        let solid = map.cells()[i] > 0 || units.base > 0.0;
+        assert_eq!(n, u8::from(solid), "cell {i}");
+    }
+}
+
+#[test]
+fn boxes_merge_equal_heights_and_fill_the_solid() {
+    let flat = map(1000, 1000, vec![2; 1_000_000]);
+    assert_eq!(rse_core::mesh::boxes(&flat, UNITS).len(), 1);
+    assert!(rse_core::mesh::boxes(&map(3, 3, vec![0; 9]), UNITS).is_empty());
+    let cells = (0..64)
+        .map(|i| u16::from((i % 8 + i / 8) % 2 == 0) * 2)
+        .collect();
+    assert_boxes_fill(
+        &map(8, 8, cells),
+        MeshUnits {
+            base: 0.02,
+            ..UNITS
+        },
+    );
+    let wall = generate(
+        &Scheme::load(repo().join("schemes/wall.csv")).unwrap(),
+        0,
+        0,
+    );
+    let blocks = wall.boxes();
+    let solid = wall.heightmap().cells().iter().filter(|&&h| h > 0).count();
+    assert!(
+        blocks.len() < solid,
+        "{} boxes for {solid} cells: nothing merged",
+        blocks.len()
+    );
+    assert_boxes_fill(wall.heightmap(), wall.mesh_units());
+}
+
+proptest! {
+    #[test]
+    fn boxes_fill_random_heightmaps((m, units) in heightmaps()) {
+        assert_boxes_fill(&m, units);
+    }
+}

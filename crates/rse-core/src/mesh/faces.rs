@@ -183,7 +183,7 @@ fn wall_runs(
 /// Greedy meshing: covers the cells where `value` is `Some` with rectangles
 /// of equal value, each grown along x first, then along y.
 /// `emit([x0, y0, x1, y1], value)` with `x1`, `y1` exclusive.
-fn greedy_rectangles(
+pub(crate) fn greedy_rectangles(
     nx: u32,
     ny: u32,
     value: impl Fn(u32, u32) -> Option<u32>,

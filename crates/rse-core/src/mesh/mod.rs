@@ -1,10 +1,12 @@
 //! The single mesh of a world (SPEC §6): the closed solid under the heightmap.
 
+mod boxes;
 pub mod check;
 mod faces;
 mod stitch;
 mod weld;
 
+pub use boxes::{Block, boxes};
 pub use faces::Normal;
 
 use faces::Key;
@@ -57,16 +59,23 @@ pub struct MeshUnits {
 }
 
 impl Terrain {
+    /// The lengths of this terrain's lattice.
+    pub fn mesh_units(&self) -> MeshUnits {
+        MeshUnits {
+            block_size: self.block_size(),
+            step_height: self.step_height(),
+            base: self.base(),
+        }
+    }
+
     /// The single mesh of this terrain (SPEC §6).
     pub fn mesh(&self) -> TriMesh {
-        build_mesh(
-            self.heightmap(),
-            MeshUnits {
-                block_size: self.block_size(),
-                step_height: self.step_height(),
-                base: self.base(),
-            },
-        )
+        build_mesh(self.heightmap(), self.mesh_units())
+    }
+
+    /// The block model of this terrain: merged boxes filling the solid.
+    pub fn boxes(&self) -> Vec<Block> {
+        boxes(self.heightmap(), self.mesh_units())
     }
 }
 
