@@ -104,11 +104,21 @@ pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
         },
     );
 
-    // Walls on the line x = i between cells (i−1, j) and (i, j); outside is level 0.
+    // Walls on the line x = i between cells (i−1, j) and (i, j); outside is
+    // level 0. Read from a transposed copy, so that walking along a line
+    // x = i reads memory in order.
+    let mut columns = vec![0u32; levels.len()];
+    for y in 0..ny as usize {
+        for x in 0..nx as usize {
+            columns[x * ny as usize + y] = levels[y * nx as usize + x];
+        }
+    }
+    let column_level = |x: u32, y: u32| columns[x as usize * ny as usize + y as usize];
+    let x_walls = rects.len();
     for i in 0..=nx {
         let side = |j: u32| {
-            let west = if i > 0 { level(i - 1, j) } else { 0 };
-            let east = if i < nx { level(i, j) } else { 0 };
+            let west = if i > 0 { column_level(i - 1, j) } else { 0 };
+            let east = if i < nx { column_level(i, j) } else { 0 };
             (west, east)
         };
         wall_runs(ny, side, |[j0, j1], [lo, hi], faces_positive| {
@@ -126,6 +136,10 @@ pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
             });
         });
     }
+    // Number the points of x-walls row by row like everything else, so that
+    // later lookups walk memory in order instead of striding down columns.
+    rects[x_walls..].sort_by_key(|r| (r.corners[0][1], r.corners[0][0]));
+
     // Walls on the line y = j between cells (i, j−1) and (i, j).
     for j in 0..=ny {
         let side = |i: u32| {

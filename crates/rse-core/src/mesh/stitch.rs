@@ -14,7 +14,7 @@ use super::faces::{Key, Normal, Rect};
 /// corner has at most five slots: lookups are array indexing, not hashing.
 pub(crate) struct Corners {
     width: usize,
-    /// Per grid corner: its candidate levels, ascending (padded with `NONE`),
+    /// Per grid corner: its candidate levels, distinct (padded with `NONE`),
     /// each with its point's id, or `NONE` while it is no corner. One array
     /// so that a lookup reads one cache line.
     slots: Vec<[(u32, u32); 5]>,
@@ -38,18 +38,17 @@ impl Corners {
         let mut all = Vec::with_capacity(width * (ny as usize + 1));
         for y in 0..=i64::from(ny) {
             for x in 0..=i64::from(nx) {
-                let mut candidates = [
+                let candidates = [
                     0,
                     level(x - 1, y - 1),
                     level(x, y - 1),
                     level(x - 1, y),
                     level(x, y),
                 ];
-                candidates.sort_unstable();
                 let mut slots = [(NONE, NONE); 5];
                 let mut n = 0;
                 for c in candidates {
-                    if n == 0 || slots[n - 1].0 != c {
+                    if !slots[..n].iter().any(|&(l, _)| l == c) {
                         slots[n].0 = c;
                         n += 1;
                     }
@@ -103,6 +102,8 @@ impl Corners {
                     out.push((id, [p[0], p[1], level]));
                 }
             }
+            // Slots are not in level order; at most three points lie between.
+            out[start..].sort_unstable_by_key(|&(_, k)| k[2]);
         } else {
             for c in lo + 1..hi {
                 let mut k = p;
@@ -129,31 +130,29 @@ pub(crate) struct Triangles {
 /// Triangulates every rectangle, in order.
 pub(crate) fn triangulate(rects: &[Rect], cell_levels: &[u32], nx: u32, ny: u32) -> Triangles {
     let mut corners = Corners::new(cell_levels, nx, ny);
-    for rect in rects {
-        for key in rect.corners {
-            corners.insert(key);
-        }
-    }
+    let rect_ids: Vec<[u32; 4]> = rects
+        .iter()
+        .map(|r| r.corners.map(|k| corners.insert(k)))
+        .collect();
     let mut triangles = Vec::with_capacity(rects.len() * 3);
     let mut normals = Vec::with_capacity(rects.len() * 3);
     let (mut ab, mut ad) = (Vec::new(), Vec::new());
-    for rect in rects {
+    for (rect, &[ia, ib, ic, id]) in rects.iter().zip(&rect_ids) {
         let [a, b, c, d] = rect.corners;
-        let id = |k| corners.get(k).expect("rectangle corners are numbered");
         // Two chains from corner a to the opposite corner c: through b and
         // through d, each with the points on its sides.
         ab.clear();
-        ab.push((id(a), a));
+        ab.push((ia, a));
         corners.between(a, b, &mut ab);
-        ab.push((id(b), b));
+        ab.push((ib, b));
         corners.between(b, c, &mut ab);
-        ab.push((id(c), c));
+        ab.push((ic, c));
         ad.clear();
-        ad.push((id(a), a));
+        ad.push((ia, a));
         corners.between(a, d, &mut ad);
-        ad.push((id(d), d));
+        ad.push((id, d));
         corners.between(d, c, &mut ad);
-        ad.push((id(c), c));
+        ad.push((ic, c));
         zip(&ab, &ad, &mut triangles);
         normals.resize(triangles.len(), rect.normal);
     }
