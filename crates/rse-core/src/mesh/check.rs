@@ -30,6 +30,14 @@ pub enum MeshFault {
         /// The edge's ends.
         edge: [u32; 2],
     },
+    /// Two or more sheets of surface meet at one vertex (it should be one
+    /// vertex per sheet, as at a saddle).
+    PinchedVertex {
+        /// The vertex.
+        vertex: u32,
+        /// How many separate fans of triangles meet there.
+        fans: usize,
+    },
     /// A triangle refers to a vertex that does not exist.
     BadIndex {
         /// The triangle's index.
@@ -76,6 +84,9 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
         start += uses;
     }
 
+    if faults.is_empty() {
+        faults.extend(pinched_vertices(vertices.len(), triangles, &directed));
+    }
     let scale = extent(vertices).max(f64::MIN_POSITIVE);
     for (i, t) in triangles.iter().enumerate() {
         let [p, q, r] = t.map(|v| point(vertices[v as usize]));
@@ -86,6 +97,58 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
     }
     faults.extend(t_junctions(vertices, &directed, scale));
     faults
+}
+
+/// Vertices around which the triangles form more than one fan. Needs every
+/// directed edge paired (no `UnpairedEdge`): corners of the two triangles on
+/// an edge are joined, and each vertex must end up with one group.
+fn pinched_vertices(
+    count: usize,
+    triangles: &[[u32; 3]],
+    directed: &[(u32, u32)],
+) -> Vec<MeshFault> {
+    // The triangle and slot of each directed edge, sorted like `directed`.
+    let mut slots: Vec<((u32, u32), usize)> = triangles
+        .iter()
+        .enumerate()
+        .flat_map(|(f, t)| (0..3).map(move |k| ((t[k], t[(k + 1) % 3]), f * 3 + k)))
+        .collect();
+    slots.sort_unstable();
+    debug_assert_eq!(slots.len(), directed.len());
+    let mut parent: Vec<usize> = (0..triangles.len() * 3).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    let next = |corner: usize| corner - corner % 3 + (corner % 3 + 1) % 3;
+    for &((a, b), corner) in &slots {
+        let twin = slots[slots.partition_point(|&(e, _)| e < (b, a))].1;
+        // corner holds a (and next(corner) holds b); twin holds b, next(twin) a.
+        for (x, y) in [(corner, next(twin)), (next(corner), twin)] {
+            let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+            parent[rx.max(ry)] = rx.min(ry);
+        }
+    }
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for corner in 0..triangles.len() * 3 {
+        let root = find(&mut parent, corner);
+        let vertex = triangles[corner / 3][corner % 3] as usize;
+        if !groups[vertex].contains(&root) {
+            groups[vertex].push(root);
+        }
+    }
+    groups
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| g.len() > 1)
+        .map(|(v, g)| MeshFault::PinchedVertex {
+            vertex: v as u32,
+            fans: g.len(),
+        })
+        .collect()
 }
 
 /// Vertices lying strictly inside an edge, found through a grid of buckets.
@@ -278,6 +341,28 @@ mod tests {
             }),
             "{found:?}"
         );
+    }
+
+    #[test]
+    fn two_cubes_sharing_a_corner_vertex_are_pinched() {
+        // A second cube at (1,1,1)..(2,2,2) whose corner 0 is the first's corner 7.
+        let (mut v, mut t) = cube();
+        let (v2, t2) = cube();
+        let offset = v.len() as u32;
+        v.extend(v2.iter().map(|p| p.map(|c| c + 1.0)));
+        t.extend(
+            t2.iter()
+                .map(|tri| tri.map(|i| if i == 0 { 7 } else { i + offset })),
+        );
+        assert_eq!(
+            faults(&v, &t),
+            [MeshFault::PinchedVertex { vertex: 7, fans: 2 }]
+        );
+        // With its own copy of that corner it is two sound cubes.
+        let (mut v, mut t) = cube();
+        v.extend(v2.iter().map(|p| p.map(|c| c + 1.0)));
+        t.extend(t2.iter().map(|tri| tri.map(|i| i + offset)));
+        assert_eq!(faults(&v, &t), []);
     }
 
     #[test]
