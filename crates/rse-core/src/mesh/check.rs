@@ -116,13 +116,6 @@ fn pinched_vertices(
     slots.sort_unstable();
     debug_assert_eq!(slots.len(), directed.len());
     let mut parent: Vec<usize> = (0..triangles.len() * 3).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
     let next = |corner: usize| corner - corner % 3 + (corner % 3 + 1) % 3;
     for &((a, b), corner) in &slots {
         let twin = slots[slots.partition_point(|&(e, _)| e < (b, a))].1;
@@ -149,6 +142,15 @@ fn pinched_vertices(
             fans: g.len(),
         })
         .collect()
+}
+
+/// The root of `x` in a union–find forest, halving paths on the way.
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
 }
 
 /// Vertices lying strictly inside an edge, found through a grid of buckets.
