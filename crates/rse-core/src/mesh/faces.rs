@@ -122,18 +122,8 @@ pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
             (west, east)
         };
         wall_runs(ny, side, |[j0, j1], [lo, hi], faces_positive| {
-            let (a, b, c, d) = ([i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]);
-            rects.push(if faces_positive {
-                Rect {
-                    corners: [a, b, c, d],
-                    normal: Normal::PosX,
-                }
-            } else {
-                Rect {
-                    corners: [a, d, c, b],
-                    normal: Normal::NegX,
-                }
-            });
+            let corners = [[i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]];
+            rects.push(wall(corners, faces_positive, [Normal::PosX, Normal::NegX]));
         });
     }
     // Number the points of x-walls row by row like everything else, so that
@@ -148,21 +138,29 @@ pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
             (south, north)
         };
         wall_runs(nx, side, |[i0, i1], [lo, hi], faces_positive| {
-            let (a, b, c, d) = ([i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]);
-            rects.push(if faces_positive {
-                Rect {
-                    corners: [a, b, c, d],
-                    normal: Normal::PosY,
-                }
-            } else {
-                Rect {
-                    corners: [a, d, c, b],
-                    normal: Normal::NegY,
-                }
-            });
+            let corners = [[i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]];
+            rects.push(wall(corners, faces_positive, [Normal::PosY, Normal::NegY]));
         });
     }
     rects
+}
+
+/// A wall with `corners` counter-clockwise seen from the positive side: as
+/// given when it faces that way (`normals[0]`), reversed when it faces the
+/// other (`normals[1]`).
+fn wall(corners: [Key; 4], faces_positive: bool, normals: [Normal; 2]) -> Rect {
+    let [a, b, c, d] = corners;
+    if faces_positive {
+        Rect {
+            corners,
+            normal: normals[0],
+        }
+    } else {
+        Rect {
+            corners: [a, d, c, b],
+            normal: normals[1],
+        }
+    }
 }
 
 /// Along one grid line, the walls between the cells on its two sides
