@@ -130,6 +130,9 @@ pub(crate) struct Triangles {
 /// Triangulates every rectangle, in order.
 pub(crate) fn triangulate(rects: &[Rect], cell_levels: &[u32], nx: u32, ny: u32) -> Triangles {
     let mut corners = Corners::new(cell_levels, nx, ny);
+    // About two new points per rectangle; growing a large buffer by doubling
+    // would copy it again and again.
+    corners.keys.reserve(rects.len() * 2);
     let rect_ids: Vec<[u32; 4]> = rects
         .iter()
         .map(|r| r.corners.map(|k| corners.insert(k)))
