@@ -22,32 +22,24 @@ pub struct Block {
 /// height are merged into rectangles greedily (along x, then y); cells with
 /// nothing on them get no box.
 pub fn boxes(heights: &Heightmap, units: MeshUnits) -> Vec<Block> {
-    let (nx, ny) = (heights.nx(), heights.ny());
-    let levels = faces::levels(heights, units.base > 0.0);
-    let level = |x: u32, y: u32| levels[y as usize * nx as usize + x as usize];
     let mut out = Vec::new();
-    faces::greedy_rectangles(
-        nx,
-        ny,
-        |x, y| Some(level(x, y)).filter(|&l| l > 0),
-        |cells, l| {
-            let [x0, y0, x1, y1] = cells;
-            let top = units.base + f64::from(l - 1) * units.step_height;
-            let s = units.block_size;
-            out.push(Block {
-                center: [
-                    f64::from(x0 + x1) * s / 2.0,
-                    f64::from(y0 + y1) * s / 2.0,
-                    top / 2.0,
-                ],
-                half_size: [
-                    f64::from(x1 - x0) * s / 2.0,
-                    f64::from(y1 - y0) * s / 2.0,
-                    top / 2.0,
-                ],
-                cells,
-            });
-        },
-    );
+    let s = units.block_size;
+    faces::Levels::new(heights, units.base > 0.0).top_rectangles(|cells, level| {
+        let [x0, y0, x1, y1] = cells;
+        let top = units.z(level);
+        out.push(Block {
+            center: [
+                f64::from(x0 + x1) * s / 2.0,
+                f64::from(y0 + y1) * s / 2.0,
+                top / 2.0,
+            ],
+            half_size: [
+                f64::from(x1 - x0) * s / 2.0,
+                f64::from(y1 - y0) * s / 2.0,
+                top / 2.0,
+            ],
+            cells,
+        });
+    });
     out
 }

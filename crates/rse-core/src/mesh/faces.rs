@@ -60,37 +60,94 @@ pub(crate) struct Rect {
     pub normal: Normal,
 }
 
-/// The level code of every cell's top (0: no solid there).
-pub(crate) fn levels(map: &Heightmap, has_base: bool) -> Vec<u32> {
-    map.cells()
-        .iter()
-        .map(|&h| {
-            if h == 0 && !has_base {
-                0
-            } else {
-                u32::from(h) + 1
-            }
-        })
-        .collect()
+/// The level code of every cell's top (0: no solid there), with the grid size.
+pub(crate) struct Levels {
+    nx: u32,
+    ny: u32,
+    cells: Vec<u32>,
+}
+
+impl Levels {
+    pub(crate) fn new(map: &Heightmap, has_base: bool) -> Self {
+        let cells = map
+            .cells()
+            .iter()
+            .map(|&h| {
+                if h == 0 && !has_base {
+                    0
+                } else {
+                    u32::from(h) + 1
+                }
+            })
+            .collect();
+        Levels {
+            nx: map.nx(),
+            ny: map.ny(),
+            cells,
+        }
+    }
+
+    pub(crate) fn nx(&self) -> u32 {
+        self.nx
+    }
+
+    pub(crate) fn ny(&self) -> u32 {
+        self.ny
+    }
+
+    /// The level of cell `(x, y)`, which is inside the grid.
+    pub(crate) fn get(&self, x: u32, y: u32) -> u32 {
+        self.cells[y as usize * self.nx as usize + x as usize]
+    }
+
+    /// The level of cell `(x, y)`, or 0 (nothing) outside the grid.
+    pub(crate) fn at(&self, x: i64, y: i64) -> u32 {
+        let inside = (0..i64::from(self.nx)).contains(&x) && (0..i64::from(self.ny)).contains(&y);
+        if inside {
+            self.get(x as u32, y as u32)
+        } else {
+            0
+        }
+    }
+
+    /// The four cells around grid corner `(x, y)`: south-west, south-east,
+    /// north-west, north-east.
+    pub(crate) fn around(&self, x: u32, y: u32) -> [u32; 4] {
+        let (x, y) = (i64::from(x), i64::from(y));
+        [
+            self.at(x - 1, y - 1),
+            self.at(x, y - 1),
+            self.at(x - 1, y),
+            self.at(x, y),
+        ]
+    }
+
+    /// Cells of equal level with solid on them, merged into rectangles:
+    /// `emit([x0, y0, x1, y1], level)`. The tops of the mesh, and the boxes
+    /// of the block model.
+    pub(crate) fn top_rectangles(&self, emit: impl FnMut([u32; 4], u32)) {
+        greedy_rectangles(
+            self.nx,
+            self.ny,
+            |x, y| Some(self.get(x, y)).filter(|&l| l > 0),
+            emit,
+        );
+    }
 }
 
 /// Every rectangle of the boundary: tops, the bottom, and the walls.
-pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
-    let level = |x: u32, y: u32| levels[y as usize * nx as usize + x as usize];
+pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
+    let (nx, ny) = (levels.nx, levels.ny);
+    let level = |x: u32, y: u32| levels.get(x, y);
     let mut rects = Vec::new();
 
     // Tops: cells of equal level merged into rectangles.
-    greedy_rectangles(
-        nx,
-        ny,
-        |x, y| Some(level(x, y)).filter(|&l| l > 0),
-        |[x0, y0, x1, y1], l| {
-            rects.push(Rect {
-                corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
-                normal: Normal::PosZ,
-            });
-        },
-    );
+    levels.top_rectangles(|[x0, y0, x1, y1], l| {
+        rects.push(Rect {
+            corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
+            normal: Normal::PosZ,
+        });
+    });
     // The bottom: every cell with solid, at level 0, facing down.
     greedy_rectangles(
         nx,
@@ -107,10 +164,10 @@ pub(crate) fn rectangles(levels: &[u32], nx: u32, ny: u32) -> Vec<Rect> {
     // Walls on the line x = i between cells (i−1, j) and (i, j); outside is
     // level 0. Read from a transposed copy, so that walking along a line
     // x = i reads memory in order.
-    let mut columns = vec![0u32; levels.len()];
+    let mut columns = vec![0u32; levels.cells.len()];
     for y in 0..ny as usize {
         for x in 0..nx as usize {
-            columns[x * ny as usize + y] = levels[y * nx as usize + x];
+            columns[x * ny as usize + y] = levels.cells[y * nx as usize + x];
         }
     }
     let column_level = |x: u32, y: u32| columns[x as usize * ny as usize + y as usize];
@@ -195,7 +252,7 @@ fn wall_runs(
 /// Greedy meshing: covers the cells where `value` is `Some` with rectangles
 /// of equal value, each grown along x first, then along y.
 /// `emit([x0, y0, x1, y1], value)` with `x1`, `y1` exclusive.
-pub(crate) fn greedy_rectangles(
+fn greedy_rectangles(
     nx: u32,
     ny: u32,
     value: impl Fn(u32, u32) -> Option<u32>,

@@ -58,6 +58,18 @@ pub struct MeshUnits {
     pub base: f64,
 }
 
+impl MeshUnits {
+    /// The height in metres of a lattice level: 0 is the ground, `h + 1`
+    /// the top of a cell of `h` steps.
+    pub(crate) fn z(self, level: u32) -> f64 {
+        if level == 0 {
+            0.0
+        } else {
+            self.base + f64::from(level - 1) * self.step_height
+        }
+    }
+}
+
 impl Terrain {
     /// The lengths of this terrain's lattice.
     pub fn mesh_units(&self) -> MeshUnits {
@@ -81,21 +93,15 @@ impl Terrain {
 
 /// The closed mesh of the solid `{0 ≤ z ≤ base + h·step}` over every cell.
 pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
-    let (nx, ny) = (heights.nx(), heights.ny());
-    let levels = faces::levels(heights, units.base > 0.0);
-    let rects = faces::rectangles(&levels, nx, ny);
-    let triangles = stitch::triangulate(&rects, &levels, nx, ny);
-    let (keys, ids, normals) = weld::split_saddles(triangles, &levels, nx, ny);
+    let levels = faces::Levels::new(heights, units.base > 0.0);
+    let rects = faces::rectangles(&levels);
+    let triangles = stitch::triangulate(&rects, &levels);
+    let (keys, ids, normals) = weld::split_saddles(triangles, &levels);
     let position = |[x, y, level]: Key| {
-        let z = if level == 0 {
-            0.0
-        } else {
-            units.base + f64::from(level - 1) * units.step_height
-        };
         [
             (f64::from(x) * units.block_size) as f32,
             (f64::from(y) * units.block_size) as f32,
-            z as f32,
+            units.z(level) as f32,
         ]
     };
     TriMesh {

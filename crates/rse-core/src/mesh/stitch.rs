@@ -6,7 +6,7 @@
 //! extra points lie on its sides, is triangulated by a zipper that never
 //! makes a zero-area triangle and adds no point.
 
-use super::faces::{Key, Normal, Rect};
+use super::faces::{Key, Levels, Normal, Rect};
 
 /// The lattice points that are corners of the boundary's rectangles, with
 /// ids in order of first use. Every point at grid corner `(x, y)` lies at the
@@ -25,29 +25,15 @@ pub(crate) struct Corners {
 const NONE: u32 = u32::MAX;
 
 impl Corners {
-    fn new(cell_levels: &[u32], nx: u32, ny: u32) -> Self {
-        let width = nx as usize + 1;
-        let level = |x: i64, y: i64| {
-            let inside = (0..i64::from(nx)).contains(&x) && (0..i64::from(ny)).contains(&y);
-            if inside {
-                cell_levels[y as usize * nx as usize + x as usize]
-            } else {
-                0
-            }
-        };
-        let mut all = Vec::with_capacity(width * (ny as usize + 1));
-        for y in 0..=i64::from(ny) {
-            for x in 0..=i64::from(nx) {
-                let candidates = [
-                    0,
-                    level(x - 1, y - 1),
-                    level(x, y - 1),
-                    level(x - 1, y),
-                    level(x, y),
-                ];
+    fn new(levels: &Levels) -> Self {
+        let width = levels.nx() as usize + 1;
+        let mut all = Vec::with_capacity(width * (levels.ny() as usize + 1));
+        for y in 0..=levels.ny() {
+            for x in 0..=levels.nx() {
+                let [sw, se, nw, ne] = levels.around(x, y);
                 let mut slots = [(NONE, NONE); 5];
                 let mut n = 0;
-                for c in candidates {
+                for c in [0, sw, se, nw, ne] {
                     if !slots[..n].iter().any(|&(l, _)| l == c) {
                         slots[n].0 = c;
                         n += 1;
@@ -63,18 +49,18 @@ impl Corners {
         }
     }
 
-    fn slot(&self, key: Key) -> (usize, usize) {
+    /// The grid corner and slot of `key`, if its level is one of the corner's.
+    fn find(&self, key: Key) -> Option<(usize, usize)> {
         let corner = key[1] as usize * self.width + key[0] as usize;
-        let slot = self.slots[corner]
-            .iter()
-            .position(|&(l, _)| l == key[2])
-            .expect("a corner's level is the ground or a neighbouring top");
-        (corner, slot)
+        let slot = self.slots[corner].iter().position(|&(l, _)| l == key[2])?;
+        Some((corner, slot))
     }
 
     /// The id of `key`, numbering it if it is new.
     fn insert(&mut self, key: Key) -> u32 {
-        let (corner, slot) = self.slot(key);
+        let (corner, slot) = self
+            .find(key)
+            .expect("a corner's level is the ground or a neighbouring top");
         let id = &mut self.slots[corner][slot].1;
         if *id == NONE {
             *id = self.keys.len() as u32;
@@ -84,9 +70,20 @@ impl Corners {
     }
 
     fn get(&self, key: Key) -> Option<u32> {
-        let corner = key[1] as usize * self.width + key[0] as usize;
-        let &(_, id) = self.slots[corner].iter().find(|&&(l, _)| l == key[2])?;
+        let (corner, slot) = self.find(key)?;
+        let id = self.slots[corner][slot].1;
         (id != NONE).then_some(id)
+    }
+
+    /// Clears `out`, then pushes the chain `p`, the corners between `p` and
+    /// `q`, `q`, the corners between `q` and `r`, and `r`.
+    fn chain(&self, [p, q, r]: [(u32, Key); 3], out: &mut Vec<(u32, Key)>) {
+        out.clear();
+        out.push(p);
+        self.between(p.1, q.1, out);
+        out.push(q);
+        self.between(q.1, r.1, out);
+        out.push(r);
     }
 
     /// Pushes the corners strictly between `p` and `q` (which differ in one
@@ -128,8 +125,8 @@ pub(crate) struct Triangles {
 }
 
 /// Triangulates every rectangle, in order.
-pub(crate) fn triangulate(rects: &[Rect], cell_levels: &[u32], nx: u32, ny: u32) -> Triangles {
-    let mut corners = Corners::new(cell_levels, nx, ny);
+pub(crate) fn triangulate(rects: &[Rect], levels: &Levels) -> Triangles {
+    let mut corners = Corners::new(levels);
     // About two new points per rectangle; growing a large buffer by doubling
     // would copy it again and again.
     corners.keys.reserve(rects.len() * 2);
@@ -144,18 +141,8 @@ pub(crate) fn triangulate(rects: &[Rect], cell_levels: &[u32], nx: u32, ny: u32)
         let [a, b, c, d] = rect.corners;
         // Two chains from corner a to the opposite corner c: through b and
         // through d, each with the points on its sides.
-        ab.clear();
-        ab.push((ia, a));
-        corners.between(a, b, &mut ab);
-        ab.push((ib, b));
-        corners.between(b, c, &mut ab);
-        ab.push((ic, c));
-        ad.clear();
-        ad.push((ia, a));
-        corners.between(a, d, &mut ad);
-        ad.push((id, d));
-        corners.between(d, c, &mut ad);
-        ad.push((ic, c));
+        corners.chain([(ia, a), (ib, b), (ic, c)], &mut ab);
+        corners.chain([(ia, a), (id, d), (ic, c)], &mut ad);
         zip(&ab, &ad, &mut triangles);
         normals.resize(triangles.len(), rect.normal);
     }
@@ -196,6 +183,7 @@ fn zip(ab: &[(u32, Key)], ad: &[(u32, Key)], out: &mut Vec<[u32; 3]>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::heightmap::Heightmap;
 
     fn area2(keys: &[Key], t: [u32; 3]) -> i64 {
         let [p, q, r] = t.map(|id| keys[id as usize].map(i64::from));
@@ -218,8 +206,8 @@ mod tests {
 
     #[test]
     fn a_bare_rectangle_is_two_triangles() {
-        let levels = vec![1; 15];
-        let t = triangulate(&[top(0, 0, 5, 3)], &levels, 5, 3);
+        let levels = Levels::new(&Heightmap::from_cells(5, 3, vec![0; 15]).unwrap(), true);
+        let t = triangulate(&[top(0, 0, 5, 3)], &levels);
         assert_eq!(t.ids.len(), 2);
         assert!(t.ids.iter().all(|&id| area2(&t.corners.keys, id) > 0));
     }
@@ -227,11 +215,11 @@ mod tests {
     #[test]
     fn points_on_every_side_give_k_minus_2_triangles_with_area() {
         // A big top with small neighbours whose corners land on its sides.
-        let levels = vec![1; 64];
+        let levels = Levels::new(&Heightmap::from_cells(8, 8, vec![0; 64]).unwrap(), true);
         let rects = [top(0, 0, 6, 6), top(2, 6, 3, 7), top(6, 1, 7, 4)];
         let Triangles {
             corners, ids: t, ..
-        } = triangulate(&rects, &levels, 8, 8);
+        } = triangulate(&rects, &levels);
         // big: 4 corners + (2,6), (3,6) + (6,1), (6,4) = 8 points → 6 triangles
         let keys = &corners.keys;
         let inside = |t: &&[u32; 3]| {

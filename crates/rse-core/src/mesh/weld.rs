@@ -9,25 +9,15 @@
 //! its own copy of the point, and each triangle corner takes the copy of the
 //! group on its inner side. Groups are found from the four cells' tops alone.
 
-use super::faces::{Key, Normal};
+use super::faces::{Key, Levels, Normal};
 use super::stitch::Triangles;
 
 /// Gives saddle points one copy per piece of solid; returns the point of
 /// every vertex, the triangles' vertex ids and their normals.
 pub(crate) fn split_saddles(
     triangles: Triangles,
-    cell_levels: &[u32],
-    nx: u32,
-    ny: u32,
+    levels: &Levels,
 ) -> (Vec<Key>, Vec<[u32; 3]>, Vec<Normal>) {
-    let level = |x: i64, y: i64| {
-        let inside = (0..i64::from(nx)).contains(&x) && (0..i64::from(ny)).contains(&y);
-        if inside {
-            cell_levels[y as usize * nx as usize + x as usize]
-        } else {
-            0
-        }
-    };
     let Triangles {
         corners,
         mut ids,
@@ -36,16 +26,7 @@ pub(crate) fn split_saddles(
     let mut keys = corners.keys;
     let pieces: Vec<Option<Pieces>> = keys
         .iter()
-        .map(|&[x, y, z]| {
-            let (x, y) = (i64::from(x), i64::from(y));
-            let tops = [
-                level(x - 1, y - 1),
-                level(x, y - 1),
-                level(x - 1, y),
-                level(x, y),
-            ];
-            solid_pieces(tops, z)
-        })
+        .map(|&[x, y, z]| solid_pieces(levels.around(x, y), z))
         .collect();
 
     // A saddle has two pieces: the second one's copy, per point.
