@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
-use crate::obstacle::{DrawnObstacle, Obstacle};
+use crate::obstacle::{DEFAULT_SIGMA, DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
 use crate::rng::WorldRng;
 use crate::scheme::Scheme;
@@ -94,12 +94,9 @@ fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
         })
     };
     let angle = real(f.angle);
-    let sigma = real(f.sigma);
     let kind = obstacle.kind();
-    let sigma = match kind {
-        crate::ObstacleKind::Gaussian => Some(sigma.unwrap_or(1.0)),
-        _ => sigma,
-    };
+    // Only a gaussian may have a sigma (validated); it always gets one here.
+    let sigma = real(f.sigma).or((kind == ObstacleKind::Gaussian).then_some(DEFAULT_SIGMA));
     DrawnObstacle {
         kind,
         height,

@@ -49,7 +49,7 @@ pub use globals::{
 };
 pub use heightmap::Heightmap;
 pub use obstacle::{
-    DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
+    DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
 };
 pub use param::Param;
 pub use scheme::Scheme;

@@ -8,6 +8,10 @@ use serde::{Deserialize, Serialize};
 use crate::error::{SchemeError, SchemeErrorKind};
 use crate::param::Param;
 
+/// Standard deviation in steps of a gaussian obstacle that sets no `sigma`
+/// (the paper's value).
+pub const DEFAULT_SIGMA: f64 = 1.0;
+
 /// Largest obstacle height in steps; cells are stored as `u16`.
 pub const MAX_HEIGHT: u32 = u16::MAX as u32;
 
@@ -182,7 +186,7 @@ pub struct ObstacleFields {
     pub x2: Option<Param<u32>>,
     /// Second point, y cell.
     pub y2: Option<Param<u32>>,
-    /// Standard deviation in steps (gaussian; default 1).
+    /// Standard deviation in steps (gaussian; default [`DEFAULT_SIGMA`]).
     pub sigma: Option<Param<f64>>,
 }
 

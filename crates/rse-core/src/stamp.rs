@@ -40,7 +40,7 @@ pub(crate) fn apply(
             }
         }
         ObstacleKind::Gaussian => {
-            let sigma = obstacle.sigma.unwrap_or(1.0);
+            let sigma = obstacle.sigma.expect("a drawn gaussian has its sigma");
             let normal = ClampedRoundedNormal::new(f64::from(height) / 2.0, sigma, height);
             let mut words = [0u32; CHUNK];
             for cells in map.cells_mut().chunks_mut(CHUNK) {
@@ -58,7 +58,10 @@ pub(crate) fn apply(
                 .expect("a validated peak, pit, wall or long pit has p1");
             // A peak is a wall whose segment has no length (SPEC §3).
             let to = obstacle.p2.unwrap_or(from);
-            let slope = Slope::new(height, obstacle.angle.unwrap_or(90.0), units);
+            let angle = obstacle
+                .angle
+                .expect("a validated peak, pit, wall or long pit has an angle");
+            let slope = Slope::new(height, angle, units);
             apply_segment(map, from, to, &slope, obstacle.kind.lowers());
         }
     }
