@@ -59,19 +59,28 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
         return faults;
     }
 
-    let mut directed: Vec<(u32, u32)> = triangles
+    // Every directed edge `a → b` with the corner (3·triangle + slot) that
+    // holds `a`, sorted: the one list all checks below read.
+    let mut edges: Vec<Edge> = triangles
         .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .enumerate()
+        .flat_map(|(f, t)| (0..3).map(move |k| ((t[k], t[(k + 1) % 3]), f * 3 + k)))
         .collect();
-    directed.sort_unstable();
+    edges.sort_unstable();
     let count = |edge: (u32, u32)| {
-        let first = directed.partition_point(|&e| e < edge);
-        directed[first..].iter().take_while(|&&e| e == edge).count()
+        let first = edges.partition_point(|&(e, _)| e < edge);
+        edges[first..]
+            .iter()
+            .take_while(|&&(e, _)| e == edge)
+            .count()
     };
     let mut start = 0;
-    while start < directed.len() {
-        let edge = directed[start];
-        let uses = directed[start..].iter().take_while(|&&e| e == edge).count();
+    while start < edges.len() {
+        let edge = edges[start].0;
+        let uses = edges[start..]
+            .iter()
+            .take_while(|&&(e, _)| e == edge)
+            .count();
         let reverse_uses = count((edge.1, edge.0));
         if uses != 1 || reverse_uses != 1 {
             faults.push(MeshFault::UnpairedEdge {
@@ -85,7 +94,7 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
     }
 
     if faults.is_empty() {
-        faults.extend(pinched_vertices(vertices.len(), triangles, &directed));
+        faults.extend(pinched_vertices(vertices.len(), triangles, &edges));
     }
     let scale = extent(vertices).max(f64::MIN_POSITIVE);
     for (i, t) in triangles.iter().enumerate() {
@@ -95,30 +104,21 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
             faults.push(MeshFault::Degenerate { triangle: i });
         }
     }
-    faults.extend(t_junctions(vertices, &directed, scale));
+    faults.extend(t_junctions(vertices, &edges, scale));
     faults
 }
+
+/// A directed edge `(a, b)` and the corner (3·triangle + slot) holding `a`.
+type Edge = ((u32, u32), usize);
 
 /// Vertices around which the triangles form more than one fan. Needs every
 /// directed edge paired (no `UnpairedEdge`): corners of the two triangles on
 /// an edge are joined, and each vertex must end up with one group.
-fn pinched_vertices(
-    count: usize,
-    triangles: &[[u32; 3]],
-    directed: &[(u32, u32)],
-) -> Vec<MeshFault> {
-    // The triangle and slot of each directed edge, sorted like `directed`.
-    let mut slots: Vec<((u32, u32), usize)> = triangles
-        .iter()
-        .enumerate()
-        .flat_map(|(f, t)| (0..3).map(move |k| ((t[k], t[(k + 1) % 3]), f * 3 + k)))
-        .collect();
-    slots.sort_unstable();
-    debug_assert_eq!(slots.len(), directed.len());
+fn pinched_vertices(count: usize, triangles: &[[u32; 3]], edges: &[Edge]) -> Vec<MeshFault> {
     let mut parent: Vec<usize> = (0..triangles.len() * 3).collect();
     let next = |corner: usize| corner - corner % 3 + (corner % 3 + 1) % 3;
-    for &((a, b), corner) in &slots {
-        let twin = slots[slots.partition_point(|&(e, _)| e < (b, a))].1;
+    for &((a, b), corner) in edges {
+        let twin = edges[edges.partition_point(|&(e, _)| e < (b, a))].1;
         // corner holds a (and next(corner) holds b); twin holds b, next(twin) a.
         for (x, y) in [(corner, next(twin)), (next(corner), twin)] {
             let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
@@ -154,8 +154,14 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 }
 
 /// Vertices lying strictly inside an edge, found through a grid of buckets.
-fn t_junctions(vertices: &[[f32; 3]], directed: &[(u32, u32)], scale: f64) -> Vec<MeshFault> {
-    let shortest = directed
+fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFault> {
+    let mut undirected: Vec<(u32, u32)> = edges
+        .iter()
+        .map(|&((a, b), _)| (a.min(b), a.max(b)))
+        .collect();
+    undirected.sort_unstable();
+    undirected.dedup();
+    let shortest = undirected
         .iter()
         .map(|&(a, b)| {
             length(sub(
@@ -175,12 +181,6 @@ fn t_junctions(vertices: &[[f32; 3]], directed: &[(u32, u32)], scale: f64) -> Ve
     }
     let tolerance = 1e-6 * scale;
     let mut found = Vec::new();
-    let mut undirected: Vec<(u32, u32)> = directed
-        .iter()
-        .map(|&(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    undirected.sort_unstable();
-    undirected.dedup();
     for &(a, b) in &undirected {
         let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
         let d = sub(q, p);
