@@ -138,7 +138,6 @@ impl Levels {
 /// Every rectangle of the boundary: tops, the bottom, and the walls.
 pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
     let (nx, ny) = (levels.nx, levels.ny);
-    let level = |x: u32, y: u32| levels.get(x, y);
     let mut rects = Vec::new();
 
     // Tops: cells of equal level merged into rectangles.
@@ -152,7 +151,7 @@ pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
     greedy_rectangles(
         nx,
         ny,
-        |x, y| (level(x, y) > 0).then_some(0),
+        |x, y| (levels.get(x, y) > 0).then_some(0),
         |[x0, y0, x1, y1], _| {
             rects.push(Rect {
                 corners: [[x0, y0, 0], [x0, y1, 0], [x1, y1, 0], [x1, y0, 0]],
@@ -189,11 +188,8 @@ pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
 
     // Walls on the line y = j between cells (i, j−1) and (i, j).
     for j in 0..=ny {
-        let side = |i: u32| {
-            let south = if j > 0 { level(i, j - 1) } else { 0 };
-            let north = if j < ny { level(i, j) } else { 0 };
-            (south, north)
-        };
+        let (south, north) = (i64::from(j) - 1, i64::from(j));
+        let side = |i: u32| (levels.at(i.into(), south), levels.at(i.into(), north));
         wall_runs(nx, side, |[i0, i1], [lo, hi], faces_positive| {
             let corners = [[i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]];
             rects.push(wall(corners, faces_positive, [Normal::PosY, Normal::NegY]));
