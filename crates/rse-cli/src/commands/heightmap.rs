@@ -6,9 +6,7 @@ use crate::ExitStatus;
 use crate::args::{HeightmapArgs, SchemeOverrides};
 
 pub fn run(args: &HeightmapArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    let scheme = super::load_scheme(&args.scheme, overrides)?;
-    let seed = args.world.seed.unwrap_or(scheme.globals().seed);
-    let terrain = rse_core::generate(&scheme, seed, args.world.index);
+    let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
     let mut stdout = std::io::stdout().lock();
     stdout.write_all(terrain.heightmap().to_csv().as_bytes())?;
     stdout.flush()?;

@@ -14,9 +14,7 @@ pub fn run(args: &MeshArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
             args.output.display()
         )
     })?;
-    let scheme = super::load_scheme(&args.scheme, overrides)?;
-    let seed = args.world.seed.unwrap_or(scheme.globals().seed);
-    let mesh = rse_core::generate(&scheme, seed, args.world.index).mesh();
+    let mesh = super::load_world(&args.scheme, overrides, &args.world)?.mesh();
     match format {
         MeshFormat::Obj => {
             // The material library sits beside the OBJ, named after it.

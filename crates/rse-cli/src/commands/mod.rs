@@ -3,10 +3,10 @@
 use std::path::Path;
 
 use anyhow::{Context as _, bail};
-use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme};
+use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme, Terrain};
 
 use crate::ExitStatus;
-use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides};
+use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
 mod heightmap;
 mod mesh;
@@ -21,8 +21,20 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
     }
 }
 
+/// Reads the scheme at `path` with the overrides and generates the world the
+/// flags name: index `--index` of seed `--seed`, else of the scheme's seed.
+pub fn load_world(
+    path: &Path,
+    overrides: &SchemeOverrides,
+    world: &WorldArgs,
+) -> anyhow::Result<Terrain> {
+    let scheme = load_scheme(path, overrides)?;
+    let seed = world.seed.unwrap_or(scheme.globals().seed);
+    Ok(rse_core::generate(&scheme, seed, world.index))
+}
+
 /// Reads the scheme at `path` and applies the command-line overrides.
-pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
+fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
     let scheme = Scheme::load(path)?;
     let mut globals = *scheme.globals();
     let SchemeOverrides {

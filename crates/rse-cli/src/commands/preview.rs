@@ -7,9 +7,7 @@ use crate::args::{PreviewArgs, SchemeOverrides};
 use crate::output;
 
 pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    let scheme = super::load_scheme(&args.scheme, overrides)?;
-    let seed = args.world.seed.unwrap_or(scheme.globals().seed);
-    let terrain = rse_core::generate(&scheme, seed, args.world.index);
+    let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
     let grid = terrain.grid();
     let cell_pixels = args
         .cell_pixels
