@@ -135,14 +135,15 @@ impl Levels {
     }
 }
 
-/// Every rectangle of the boundary: tops, the bottom, and the walls.
-pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
+/// Every rectangle of the boundary, `emit`ted in order: tops, the bottom,
+/// and the walls. Streamed rather than collected: on a large random field
+/// a list of them would be the biggest buffer of the whole build.
+pub(crate) fn rectangles(levels: &Levels, emit: &mut dyn FnMut(Rect)) {
     let (nx, ny) = (levels.nx, levels.ny);
-    let mut rects = Vec::new();
 
     // Tops: cells of equal level merged into rectangles.
     levels.top_rectangles(|[x0, y0, x1, y1], l| {
-        rects.push(Rect {
+        emit(Rect {
             corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
             normal: Normal::PosZ,
         });
@@ -153,7 +154,7 @@ pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
         ny,
         |x, y| (levels.get(x, y) > 0).then_some(0),
         |[x0, y0, x1, y1], _| {
-            rects.push(Rect {
+            emit(Rect {
                 corners: [[x0, y0, 0], [x0, y1, 0], [x1, y1, 0], [x1, y0, 0]],
                 normal: Normal::NegZ,
             });
@@ -161,30 +162,32 @@ pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
     );
 
     // Walls on the line x = i between cells (i−1, j) and (i, j); outside is
-    // level 0. Read from a transposed copy, so that walking along a line
-    // x = i reads memory in order.
-    let mut columns = vec![0u32; levels.cells.len()];
-    for y in 0..ny as usize {
-        for x in 0..nx as usize {
-            columns[x * ny as usize + y] = levels.cells[y * nx as usize + x];
+    // level 0. Emitted row by row like everything else, so that later
+    // lookups walk memory in order instead of striding down columns: a run
+    // is found when its first segment is reached, and the line skips the
+    // rows it covers.
+    let x_segment = |i: u32, j: u32| {
+        let west = if i > 0 { levels.get(i - 1, j) } else { 0 };
+        let east = if i < nx { levels.get(i, j) } else { 0 };
+        wall_between(west, east)
+    };
+    let mut covered_until = vec![0u32; nx as usize + 1];
+    for j in 0..ny {
+        for i in 0..=nx {
+            if j < covered_until[i as usize] {
+                continue;
+            }
+            let Some(this) = x_segment(i, j) else {
+                continue;
+            };
+            let mut j1 = j + 1;
+            while j1 < ny && x_segment(i, j1) == Some(this) {
+                j1 += 1;
+            }
+            covered_until[i as usize] = j1;
+            emit(x_wall(i, [j, j1], this));
         }
     }
-    let column_level = |x: u32, y: u32| columns[x as usize * ny as usize + y as usize];
-    let x_walls = rects.len();
-    for i in 0..=nx {
-        let side = |j: u32| {
-            let west = if i > 0 { column_level(i - 1, j) } else { 0 };
-            let east = if i < nx { column_level(i, j) } else { 0 };
-            (west, east)
-        };
-        wall_runs(ny, side, |[j0, j1], [lo, hi], faces_positive| {
-            let corners = [[i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]];
-            rects.push(wall(corners, faces_positive, [Normal::PosX, Normal::NegX]));
-        });
-    }
-    // Number the points of x-walls row by row like everything else, so that
-    // later lookups walk memory in order instead of striding down columns.
-    rects[x_walls..].sort_by_key(|r| (r.corners[0][1], r.corners[0][0]));
 
     // Walls on the line y = j between cells (i, j−1) and (i, j).
     for j in 0..=ny {
@@ -192,10 +195,25 @@ pub(crate) fn rectangles(levels: &Levels) -> Vec<Rect> {
         let side = |i: u32| (levels.at(i.into(), south), levels.at(i.into(), north));
         wall_runs(nx, side, |[i0, i1], [lo, hi], faces_positive| {
             let corners = [[i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]];
-            rects.push(wall(corners, faces_positive, [Normal::PosY, Normal::NegY]));
+            emit(wall(corners, faces_positive, [Normal::PosY, Normal::NegY]));
         });
     }
-    rects
+}
+
+/// A wall segment between two cells: its `[lo, hi]` span of levels and
+/// whether it faces the positive axis.
+type Wall = ([u32; 2], bool);
+
+/// The wall between a cell `behind` and the cell `front` of it (levels), if
+/// they differ. It faces the lower side: positive when `behind` is higher.
+fn wall_between(behind: u32, front: u32) -> Option<Wall> {
+    (behind != front).then(|| ([behind.min(front), behind.max(front)], behind > front))
+}
+
+/// The wall on the line x = `i` over rows `j0..j1`.
+fn x_wall(i: u32, [j0, j1]: [u32; 2], ([lo, hi], faces_positive): Wall) -> Rect {
+    let corners = [[i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]];
+    wall(corners, faces_positive, [Normal::PosX, Normal::NegX])
 }
 
 /// A wall with `corners` counter-clockwise seen from the positive side: as
@@ -227,8 +245,7 @@ fn wall_runs(
 ) {
     let wall = |k: u32| {
         let (behind, front) = side(k);
-        // The wall faces the lower side: positive when the cell behind is higher.
-        (behind != front).then(|| ([behind.min(front), behind.max(front)], behind > front))
+        wall_between(behind, front)
     };
     let mut k = 0;
     while k < segments {

@@ -124,27 +124,29 @@ pub(crate) struct Triangles {
     pub normals: Vec<Normal>,
 }
 
-/// Triangulates every rectangle, in order.
-pub(crate) fn triangulate(rects: &[Rect], levels: &Levels) -> Triangles {
+/// Triangulates every rectangle that `rectangles` emits, in order.
+pub(crate) fn triangulate(
+    levels: &Levels,
+    rectangles: impl FnOnce(&mut dyn FnMut(Rect)),
+) -> Triangles {
     let mut corners = Corners::new(levels);
-    // About two new points per rectangle; growing a large buffer by doubling
-    // would copy it again and again.
-    corners.keys.reserve(rects.len() * 2);
-    let rect_ids: Vec<[u32; 4]> = rects
-        .iter()
-        .map(|r| r.corners.map(|k| corners.insert(k)))
-        .collect();
-    let mut triangles = Vec::with_capacity(rects.len() * 3);
-    let mut normals = Vec::with_capacity(rects.len() * 3);
+    // Numbering every corner before any rectangle is split, so that the
+    // splitting sees all of them; each rectangle keeps only its corners' ids.
+    let mut quads = Vec::new();
+    rectangles(&mut |rect: Rect| {
+        quads.push((rect.corners.map(|k| corners.insert(k)), rect.normal));
+    });
+    let mut triangles = Vec::with_capacity(quads.len() * 3);
+    let mut normals = Vec::with_capacity(quads.len() * 3);
     let (mut ab, mut ad) = (Vec::new(), Vec::new());
-    for (rect, &[ia, ib, ic, id]) in rects.iter().zip(&rect_ids) {
-        let [a, b, c, d] = rect.corners;
+    for &(ids, normal) in &quads {
+        let [a, b, c, d] = ids.map(|id| (id, corners.keys[id as usize]));
         // Two chains from corner a to the opposite corner c: through b and
         // through d, each with the points on its sides.
-        corners.chain([(ia, a), (ib, b), (ic, c)], &mut ab);
-        corners.chain([(ia, a), (id, d), (ic, c)], &mut ad);
+        corners.chain([a, b, c], &mut ab);
+        corners.chain([a, d, c], &mut ad);
         zip(&ab, &ad, &mut triangles);
-        normals.resize(triangles.len(), rect.normal);
+        normals.resize(triangles.len(), normal);
     }
     Triangles {
         corners,
@@ -207,7 +209,7 @@ mod tests {
     #[test]
     fn a_bare_rectangle_is_two_triangles() {
         let levels = Levels::new(&Heightmap::from_cells(5, 3, vec![0; 15]).unwrap(), true);
-        let t = triangulate(&[top(0, 0, 5, 3)], &levels);
+        let t = triangulate(&levels, |emit| emit(top(0, 0, 5, 3)));
         assert_eq!(t.ids.len(), 2);
         assert!(t.ids.iter().all(|&id| area2(&t.corners.keys, id) > 0));
     }
@@ -219,7 +221,7 @@ mod tests {
         let rects = [top(0, 0, 6, 6), top(2, 6, 3, 7), top(6, 1, 7, 4)];
         let Triangles {
             corners, ids: t, ..
-        } = triangulate(&rects, &levels);
+        } = triangulate(&levels, |emit| rects.into_iter().for_each(emit));
         // big: 4 corners + (2,6), (3,6) + (6,1), (6,4) = 8 points → 6 triangles
         let keys = &corners.keys;
         let inside = |t: &&[u32; 3]| {

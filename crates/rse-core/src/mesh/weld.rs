@@ -24,26 +24,28 @@ pub(crate) fn split_saddles(
         normals,
     } = triangles;
     let mut keys = corners.keys;
-    let pieces: Vec<Option<Pieces>> = keys
+    // One byte per point keeps this table in cache while the faces are read.
+    let saddles: Vec<Saddle> = keys
         .iter()
-        .map(|&[x, y, z]| solid_pieces(levels.around(x, y), z))
+        .map(|&[x, y, z]| saddle(levels.around(x, y), z))
         .collect();
 
-    // A saddle has two pieces: the second one's copy, per point.
+    // The second piece's copy, per point.
     let mut copy_of = vec![NONE; keys.len()];
     for (face, &normal) in ids.iter_mut().zip(&normals) {
-        if face.iter().all(|&id| pieces[id as usize].is_none()) {
+        if face.iter().all(|&id| saddles[id as usize] == Saddle::None) {
             continue;
         }
         let points = face.map(|id| keys[id as usize]);
         for (c, id) in face.iter_mut().enumerate() {
-            let Some(piece) = pieces[*id as usize] else {
-                continue;
+            // The piece of the smaller quadrant keeps the original id; the
+            // other gets a new point, numbered in order of first use.
+            let second = match saddles[*id as usize] {
+                Saddle::None => continue,
+                Saddle::SouthWestNorthEast => 3,
+                Saddle::SouthEastNorthWest => 2,
             };
-            let group = piece.group[inner_octant(points, c, normal)];
-            // The first piece keeps the original id; the other gets a new
-            // point, numbered in order of first use.
-            if group == piece.first {
+            if inner_quadrant(points, c, normal) != second {
                 continue;
             }
             let original = *id as usize;
@@ -59,56 +61,48 @@ pub(crate) fn split_saddles(
 
 const NONE: u32 = u32::MAX;
 
-/// Octant index: cell quadrant (0 south-west, 1 south-east, 2 north-west,
-/// 3 north-east) plus 4 above the point.
-fn octant(east: bool, north: bool, above: bool) -> usize {
-    usize::from(east) + 2 * usize::from(north) + 4 * usize::from(above)
-}
-
-/// The two pieces of solid around a saddle point.
-#[derive(Clone, Copy)]
-struct Pieces {
-    /// Per octant, its piece, labelled by the piece's smaller cell quadrant.
-    group: [u8; 8],
-    /// The label of the piece of the smaller quadrant.
-    first: u8,
+/// How the solid around a point falls apart, if it does: the diagonal pair
+/// of cell quadrants that hold its two pieces.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Saddle {
+    /// One piece, or none.
+    None,
+    /// South-west (0) and north-east (3).
+    SouthWestNorthEast,
+    /// South-east (1) and north-west (2).
+    SouthEastNorthWest,
 }
 
 /// The pieces of solid around a point at `level`, with the four cells'
-/// `tops`, when there are two; `None` when there is one or none.
+/// `tops` (quadrants 0 south-west, 1 south-east, 2 north-west, 3 north-east).
 ///
-/// The octants below the point form a ring of four quadrants (south-west,
-/// south-east, north-east, north-west), and a subset of a ring of four falls
-/// apart only when it is a diagonal pair. Above the point, a cell is solid
-/// only if it is below too, and joins its own lower octant. So the solid
-/// splits exactly when the cells solid just below form a diagonal pair — or,
-/// at the ground, where nothing is below, the cells solid just above do.
-fn solid_pieces(tops: [u32; 4], level: u32) -> Option<Pieces> {
-    let mask = |solid: &dyn Fn(u32) -> bool| {
-        tops.iter()
-            .enumerate()
-            .fold(0u8, |m, (q, &top)| m | (u8::from(solid(top)) << q))
+/// Around a point the solid is made of up to eight octants: four quadrants,
+/// below and above the point. The octants below form a ring of four, and a
+/// subset of a ring of four falls apart only when it is a diagonal pair.
+/// Above the point, a cell is solid only if it is below too, and joins its
+/// own lower octant. So the solid splits exactly when the cells solid just
+/// below form a diagonal pair — or, at the ground, where nothing is below,
+/// the cells solid just above do — and each piece is one quadrant's column.
+fn saddle(tops: [u32; 4], level: u32) -> Saddle {
+    let solid = |top: u32| {
+        if level > 0 {
+            top >= level
+        } else {
+            top > 0
+        }
     };
-    let cells = if level > 0 {
-        mask(&|top| top >= level)
-    } else {
-        mask(&|top| top > 0)
-    };
-    let (a, b) = match cells {
-        0b1001 => (0u8, 3u8),
-        0b0110 => (1, 2),
-        _ => return None,
-    };
-    Some(Pieces {
-        group: std::array::from_fn(|o| if o as u8 % 4 == b { b } else { a }),
-        first: a,
-    })
+    match tops.map(solid) {
+        [true, false, false, true] => Saddle::SouthWestNorthEast,
+        [false, true, true, false] => Saddle::SouthEastNorthWest,
+        _ => Saddle::None,
+    }
 }
 
-/// The octant on the inner (solid) side of a triangle, next to its corner `c`.
-/// Where the triangle spans both sides of an axis at the point, both octants
-/// lie behind the same face and are joined, so either is right.
-fn inner_octant(corners: [Key; 3], c: usize, normal: Normal) -> usize {
+/// The cell quadrant on the inner (solid) side of a triangle, next to its
+/// corner `c`. Where the triangle spans both sides of an axis at the point,
+/// both quadrants lie behind the same face and are joined, so either is
+/// right.
+fn inner_quadrant(corners: [Key; 3], c: usize, normal: Normal) -> u8 {
     let p = corners[c];
     let side = |axis: usize| {
         let sum: u32 = corners.iter().map(|k| k[axis]).sum();
@@ -124,10 +118,5 @@ fn inner_octant(corners: [Key; 3], c: usize, normal: Normal) -> usize {
         Normal::NegY => true,
         _ => side(1),
     };
-    let above = match normal {
-        Normal::PosZ => false,
-        Normal::NegZ => true,
-        _ => side(2),
-    };
-    octant(east, north, above)
+    u8::from(east) + 2 * u8::from(north)
 }
