@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use rse_world::{MeshMode, Shard, Targets};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
@@ -32,6 +33,50 @@ pub enum Command {
     Preview(PreviewArgs),
     /// Write one world's closed terrain mesh as OBJ (with its .mtl), binary STL or GLB, by suffix.
     Mesh(MeshArgs),
+    /// Write a batch of simulator worlds, one folder each (OUT/world_0000, …); a rerun resumes.
+    Batch(BatchArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    /// The output folder; worlds go in OUT/world_NNNN/.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+
+    /// Worlds in the batch [default: the scheme's `amount`, else 1].
+    #[arg(long, value_name = "N")]
+    pub amount: Option<u64>,
+
+    /// Base seed [default: the scheme's `seed`, else 0].
+    #[arg(long, value_name = "B")]
+    pub seed: Option<u64>,
+
+    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
+    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
+    pub target: Targets,
+
+    /// Terrain model in the simulator files: the single mesh, or merged boxes.
+    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
+    pub mesh: MeshMode,
+
+    /// Worker threads [default: one per core].
+    #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
+    pub jobs: Option<u16>,
+
+    /// Write only the worlds with index ≡ K (mod N), for N machines or processes (K from 0).
+    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    pub shard: Option<Shard>,
+
+    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
+
+    /// Replace world folders that hold a different world.
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[derive(Debug, Args)]
@@ -131,6 +176,18 @@ fn parse_dims(text: &str) -> Result<[u32; 2], String> {
         return Err("needs at least one each way".to_owned());
     }
     Ok(dims)
+}
+
+fn parse_targets(text: &str) -> Result<Targets, String> {
+    Targets::parse(text).map_err(|e| e.to_string())
+}
+
+fn parse_mesh_mode(text: &str) -> Result<MeshMode, String> {
+    text.parse().map_err(|e: rse_world::Error| e.to_string())
+}
+
+fn parse_shard(text: &str) -> Result<Shard, String> {
+    text.parse().map_err(|e: rse_world::Error| e.to_string())
 }
 
 fn parse_pallets(text: &str) -> Result<PalletsFlag, String> {

@@ -8,6 +8,7 @@ use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme, Terrain};
 use crate::ExitStatus;
 use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
+mod batch;
 mod heightmap;
 mod mesh;
 mod preview;
@@ -18,6 +19,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Heightmap(args) => heightmap::run(&args, &cli.overrides),
         Command::Preview(args) => preview::run(&args, &cli.overrides),
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
+        Command::Batch(args) => batch::run(&args, &cli.overrides),
     }
 }
 
@@ -34,7 +36,7 @@ pub fn load_world(
 }
 
 /// Reads the scheme at `path` and applies the command-line overrides.
-fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
+pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
     let scheme = Scheme::load(path)?;
     let mut globals = *scheme.globals();
     let SchemeOverrides {

@@ -1,14 +1,17 @@
-//! Writing meshes to the files simulators load: OBJ (+ MTL), binary STL, GLB.
+//! Writing meshes to the files simulators load: OBJ (+ MTL), binary STL,
+//! GLB, and USD ASCII.
 //!
 //! Writers build bytes in memory; where they go is the caller's business.
 
 mod glb;
 mod obj;
 mod stl;
+mod usda;
 
 pub use glb::glb;
 pub use obj::{MATERIAL, mtl, obj};
 pub use stl::stl;
+pub use usda::usda;
 
 /// A mesh file format, chosen by file suffix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

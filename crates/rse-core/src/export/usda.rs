@@ -1,0 +1,58 @@
+//! USD ASCII (`.usda`): one layer whose default prim is the terrain mesh,
+//! Z up, metres, for stages to reference (physics APIs go on the
+//! referencing prim, where the stage's author wants them).
+
+use std::fmt::Write as _;
+
+use crate::mesh::TriMesh;
+use crate::mesh::check::bounding_box;
+
+const FMT: &str = "writing to a String cannot fail";
+
+/// The `.usda` text of a layer holding `mesh` as the `Mesh` prim `terrain`.
+///
+/// # Panics
+/// Never: formatting into a `String` cannot fail.
+pub fn usda(mesh: &TriMesh) -> String {
+    let mut out = String::with_capacity(mesh.vertices().len() * 32 + mesh.triangles().len() * 24);
+    writeln!(
+        out,
+        "#usda 1.0\n(\n    defaultPrim = \"terrain\"\n    doc = \"rse {} terrain: {} vertices, {} triangles\"\n    metersPerUnit = 1\n    upAxis = \"Z\"\n)\n",
+        crate::VERSION,
+        mesh.vertices().len(),
+        mesh.triangles().len()
+    )
+    .expect(FMT);
+    out.push_str("def Mesh \"terrain\"\n{\n");
+    if let Some((lo, hi)) = bounding_box(mesh.vertices()) {
+        // The box of f32 points, exactly: back to f32 before printing.
+        let [lo, hi] = [lo, hi].map(|p| p.map(|c| c as f32));
+        writeln!(
+            out,
+            "    float3[] extent = [({}, {}, {}), ({}, {}, {})]",
+            lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+        )
+        .expect(FMT);
+    }
+    out.push_str("    int[] faceVertexCounts = [");
+    for i in 0..mesh.triangles().len() {
+        out.push_str(if i == 0 { "3" } else { ", 3" });
+    }
+    out.push_str("]\n    int[] faceVertexIndices = [");
+    for (i, v) in mesh.triangles().iter().flatten().enumerate() {
+        write!(out, "{}{v}", separator(i)).expect(FMT);
+    }
+    out.push_str("]\n    uniform token orientation = \"rightHanded\"\n    point3f[] points = [");
+    for (i, [x, y, z]) in mesh.vertices().iter().enumerate() {
+        write!(out, "{}({x}, {y}, {z})", separator(i)).expect(FMT);
+    }
+    out.push_str(
+        "]\n    color3f[] primvars:displayColor = [(0.72, 0.58, 0.42)]\n    uniform token subdivisionScheme = \"none\"\n}\n",
+    );
+    out
+}
+
+/// What goes before item `i` of a list.
+fn separator(i: usize) -> &'static str {
+    if i == 0 { "" } else { ", " }
+}

@@ -1,0 +1,92 @@
+//! The values a template can use (documented in `templates/README.md`).
+
+use rse_core::Terrain;
+use rse_core::mesh::Block;
+use serde::Serialize;
+
+use crate::target::MeshMode;
+
+/// The name of the terrain model in every target.
+pub(crate) const MODEL: &str = "rse_terrain";
+
+/// Everything a world's templates see.
+#[derive(Debug, Serialize)]
+pub(crate) struct WorldContext {
+    /// Generator version.
+    pub version: &'static str,
+    /// The world's folder name, e.g. `world_0007`.
+    pub world: String,
+    /// The terrain model's name.
+    pub model: &'static str,
+    /// Seed pair.
+    pub seed: u64,
+    pub index: u64,
+    /// `single` or `blocks`.
+    pub mesh: &'static str,
+    /// `false` when the terrain is empty (no mesh, no boxes).
+    pub solid: bool,
+    /// `[nx, ny]`.
+    pub cells: [u32; 2],
+    pub block_size: f64,
+    pub step_height: f64,
+    pub base: f64,
+    /// Size of the terrain in metres: `[nx·S, ny·S, highest top]`.
+    pub extent: [f64; 3],
+    /// Centre of its footprint at the ground, metres.
+    pub center: [f64; 3],
+    /// The merged box set (always present: `MuJoCo` collides with it in
+    /// both modes).
+    pub boxes: Vec<BoxContext>,
+}
+
+/// One box of the block model, metres.
+#[derive(Debug, Serialize)]
+pub(crate) struct BoxContext {
+    pub center: [f64; 3],
+    pub size: [f64; 3],
+    pub half_size: [f64; 3],
+    /// Cells covered: `[x0, y0, x1, y1]`, ends exclusive.
+    pub cells: [u32; 4],
+}
+
+impl WorldContext {
+    pub(crate) fn new(world: String, terrain: &Terrain, mesh: MeshMode, boxes: &[Block]) -> Self {
+        let s = terrain.block_size();
+        let grid = terrain.grid();
+        let top = boxes
+            .iter()
+            .map(|b| 2.0 * b.half_size[2])
+            .fold(0.0, f64::max);
+        let extent = [f64::from(grid.nx) * s, f64::from(grid.ny) * s, top].map(tidy);
+        WorldContext {
+            version: rse_core::VERSION,
+            world,
+            model: MODEL,
+            seed: terrain.seed(),
+            index: terrain.index(),
+            mesh: mesh.name(),
+            solid: !boxes.is_empty(),
+            cells: [grid.nx, grid.ny],
+            block_size: terrain.block_size(),
+            step_height: terrain.step_height(),
+            base: terrain.base(),
+            center: [extent[0] / 2.0, extent[1] / 2.0, 0.0].map(tidy),
+            extent,
+            boxes: boxes
+                .iter()
+                .map(|b| BoxContext {
+                    center: b.center.map(tidy),
+                    size: b.half_size.map(|h| tidy(2.0 * h)),
+                    half_size: b.half_size.map(tidy),
+                    cells: b.cells,
+                })
+                .collect(),
+        }
+    }
+}
+
+/// `v` rounded to the nanometre, so files read `0.15`, not
+/// `0.15000000000000002`. Exact IEEE arithmetic: the same on every machine.
+fn tidy(v: f64) -> f64 {
+    (v * 1e9).round() / 1e9
+}

@@ -1,0 +1,54 @@
+//! What can go wrong while building or writing worlds.
+
+use std::path::PathBuf;
+
+/// An error of world building or batch writing.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A bad option value.
+    #[error("{0}")]
+    Usage(String),
+    /// A template that does not parse or render.
+    #[error("{file}:{line}: {message}")]
+    Template {
+        /// The template file, as its folder names it.
+        file: String,
+        /// 1-based line of the fault.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("cannot {action} {}: {source}", path.display())]
+    Io {
+        /// What was being done: "write", "read", "rename"…
+        action: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// The system's error.
+        source: std::io::Error,
+    },
+    /// A world folder already holds something else.
+    #[error("{} holds a different world ({reason}); rerun with --force to replace it", path.display())]
+    Conflict {
+        /// The world folder.
+        path: PathBuf,
+        /// The first difference found.
+        reason: String,
+    },
+    /// Encoding a world file failed.
+    #[error(transparent)]
+    Core(#[from] rse_core::Error),
+}
+
+impl Error {
+    /// An I/O error with what was being done and where.
+    pub(crate) fn io(action: &'static str, path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Error {
+        let path = path.into();
+        move |source| Error::Io {
+            action,
+            path,
+            source,
+        }
+    }
+}

@@ -1,0 +1,27 @@
+//! Simulator worlds from Random Step Environments (SPEC §7): the files of a
+//! world folder built in memory from templates, the `rse.json` manifest, and
+//! batches written in parallel, atomically and resumably.
+//!
+//! ```no_run
+//! use rse_world::{BatchOptions, Targets, Templates, write_batch};
+//! let scheme = rse_core::Scheme::load("schemes/wall.csv")?;
+//! let options = BatchOptions::new("out", 10, 0, Targets::parse("gazebo,mujoco")?);
+//! let summary = write_batch(&scheme, &Templates::builtin(), &options, &|_| {})?;
+//! println!("{} worlds written", summary.written);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod batch;
+mod context;
+mod error;
+mod manifest;
+mod target;
+mod templates;
+mod world;
+
+pub use batch::{BatchOptions, Outcome, Shard, Summary, world_name, write_batch};
+pub use error::Error;
+pub use manifest::{MANIFEST, Manifest, sha256_hex};
+pub use target::{MeshMode, Target, Targets};
+pub use templates::Templates;
+pub use world::{WorldFiles, WorldOptions, build_world};

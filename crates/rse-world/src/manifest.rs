@@ -1,0 +1,75 @@
+//! `rse.json`: what a world is (generator, parameters, seed pair, drawn
+//! obstacles) and the SHA-256 of every other file in its folder.
+
+use std::collections::BTreeMap;
+
+use rse_core::{DrawnObstacle, Globals, Grid};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::target::{MeshMode, Targets};
+
+/// The manifest's file name in a world folder.
+pub const MANIFEST: &str = "rse.json";
+
+/// The contents of `rse.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    /// Always `"rse"`.
+    pub generator: String,
+    /// The generator version that wrote the world.
+    pub version: String,
+    /// The world folder's name.
+    pub world: String,
+    /// Base seed of the batch.
+    pub seed: u64,
+    /// Index of the world in the batch.
+    pub index: u64,
+    /// The targets written.
+    pub targets: Targets,
+    /// The terrain model of the simulator files.
+    pub mesh: MeshMode,
+    /// `"builtin"` or `"custom"`.
+    pub templates: String,
+    /// SHA-256 of the template files used.
+    pub templates_sha256: String,
+    /// The grid.
+    pub grid: Grid,
+    /// The resolved global parameters (command-line overrides applied).
+    pub globals: Globals,
+    /// The obstacle table: the whole resolved scheme as canonical CSV,
+    /// enough to regenerate the heightmap with `seed` and `index`.
+    pub scheme: String,
+    /// Every obstacle as drawn for this world.
+    pub drawn: Vec<DrawnObstacle>,
+    /// SHA-256 (hex) of every other file of the folder, by `/`-separated
+    /// relative path.
+    pub files: BTreeMap<String, String>,
+}
+
+impl Manifest {
+    /// The JSON text of the manifest: pretty, keys in a fixed order, a final
+    /// newline.
+    ///
+    /// # Panics
+    /// Never: every field serialises.
+    pub fn to_json(&self) -> String {
+        let mut text = serde_json::to_string_pretty(self).expect("a manifest serialises");
+        text.push('\n');
+        text
+    }
+
+    /// Parses `rse.json` text.
+    pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+}
+
+/// The SHA-256 of `bytes` as lower-case hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().fold(String::with_capacity(64), |mut s, b| {
+        use std::fmt::Write as _;
+        write!(s, "{b:02x}").expect("writing to a String cannot fail");
+        s
+    })
+}

@@ -1,0 +1,160 @@
+//! What a batch writes: the simulator targets and the kind of terrain model.
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+
+/// A simulator (or file) a world is written for (SPEC §7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Target {
+    /// `meshes/terrain.obj` (+ `.mtl`) alone.
+    Obj,
+    /// A Gazebo model folder and a `.world` including it.
+    Gazebo,
+    /// A Webots `.wbt` world.
+    Webots,
+    /// A `MuJoCo` MJCF file.
+    Mujoco,
+    /// A URDF robot description of the terrain (`PyBullet` and others).
+    Urdf,
+    /// A USD stage (Isaac Sim).
+    Usd,
+}
+
+impl Target {
+    /// Every target, in the order worlds list them.
+    pub const ALL: [Target; 6] = [
+        Target::Obj,
+        Target::Gazebo,
+        Target::Webots,
+        Target::Mujoco,
+        Target::Urdf,
+        Target::Usd,
+    ];
+
+    /// The name on the command line, and the world's folder for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Obj => "obj",
+            Target::Gazebo => "gazebo",
+            Target::Webots => "webots",
+            Target::Mujoco => "mujoco",
+            Target::Urdf => "urdf",
+            Target::Usd => "usd",
+        }
+    }
+}
+
+impl fmt::Display for Target {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Target {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Target::ALL
+            .into_iter()
+            .find(|t| t.name() == s)
+            .ok_or_else(|| Error::Usage(format!("unknown target {s:?}: expected one of {}", names())))
+    }
+}
+
+fn names() -> String {
+    Target::ALL.map(Target::name).join(", ")
+}
+
+/// A set of targets, without repeats, in [`Target::ALL`] order.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Targets(Vec<Target>);
+
+impl Targets {
+    /// Parses a comma-separated list such as `gazebo,mujoco`.
+    pub fn parse(list: &str) -> Result<Self, Error> {
+        let mut targets = list
+            .split(',')
+            .map(|s| s.trim().parse())
+            .collect::<Result<Vec<Target>, _>>()?;
+        targets.sort_unstable();
+        targets.dedup();
+        Ok(Targets(targets))
+    }
+
+    /// The targets, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Target> + '_ {
+        self.0.iter().copied()
+    }
+
+    /// Whether `target` is one of them.
+    pub fn contains(&self, target: Target) -> bool {
+        self.0.contains(&target)
+    }
+}
+
+impl Default for Targets {
+    /// Gazebo alone, as `rse-gen batch` without `--target`.
+    fn default() -> Self {
+        Targets(vec![Target::Gazebo])
+    }
+}
+
+/// How the terrain is modelled in the simulator files (paper §3.1 "Mesh type").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MeshMode {
+    /// The single closed mesh of SPEC §6.
+    #[default]
+    Single,
+    /// Merged axis-aligned boxes, for engines that collide boxes better.
+    Blocks,
+}
+
+impl MeshMode {
+    /// The name on the command line and in templates.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshMode::Single => "single",
+            MeshMode::Blocks => "blocks",
+        }
+    }
+}
+
+impl FromStr for MeshMode {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Self, Error> {
+        match s {
+            "single" => Ok(MeshMode::Single),
+            "blocks" => Ok(MeshMode::Blocks),
+            _ => Err(Error::Usage(format!(
+                "unknown mesh mode {s:?}: expected single or blocks"
+            ))),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lists_parse_sorted_without_repeats() {
+        let t = Targets::parse("usd, gazebo,usd,obj").unwrap();
+        assert_eq!(
+            t.iter().collect::<Vec<_>>(),
+            [Target::Obj, Target::Gazebo, Target::Usd]
+        );
+    }
+
+    #[test]
+    fn unknown_targets_are_named() {
+        let err = Targets::parse("gazebo,isaac").unwrap_err().to_string();
+        assert!(err.contains("\"isaac\"") && err.contains("mujoco"), "{err}");
+    }
+}

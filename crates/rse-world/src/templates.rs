@@ -1,0 +1,264 @@
+//! The static part of each target's world (paper §3.5): files copied into
+//! every world as they are, and `.j2` files rendered with minijinja (the
+//! suffix dropped) with the world's values.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use minijinja::{AutoEscape, Environment, UndefinedBehavior};
+use sha2::{Digest, Sha256};
+
+use crate::context::WorldContext;
+use crate::error::Error;
+use crate::target::Target;
+
+/// Suffix of the files that are rendered rather than copied.
+const TEMPLATE_SUFFIX: &str = ".j2";
+
+/// Our templates, built into the binary so that an installed `rse-gen`
+/// needs no data files. `builtin_templates_match_the_folder` keeps this list
+/// equal to `templates/`.
+const BUILTIN: &[(Target, &str, &str)] = &[
+    (
+        Target::Gazebo,
+        "rse.world.j2",
+        include_str!("../../../templates/gazebo/rse.world.j2"),
+    ),
+    (
+        Target::Gazebo,
+        "rse_terrain/model.config.j2",
+        include_str!("../../../templates/gazebo/rse_terrain/model.config.j2"),
+    ),
+    (
+        Target::Gazebo,
+        "rse_terrain/model.sdf.j2",
+        include_str!("../../../templates/gazebo/rse_terrain/model.sdf.j2"),
+    ),
+    (
+        Target::Webots,
+        "rse.wbt.j2",
+        include_str!("../../../templates/webots/rse.wbt.j2"),
+    ),
+    (
+        Target::Mujoco,
+        "rse.xml.j2",
+        include_str!("../../../templates/mujoco/rse.xml.j2"),
+    ),
+    (
+        Target::Urdf,
+        "rse.urdf.j2",
+        include_str!("../../../templates/urdf/rse.urdf.j2"),
+    ),
+    (
+        Target::Usd,
+        "rse.usda.j2",
+        include_str!("../../../templates/usd/rse.usda.j2"),
+    ),
+];
+
+/// One file of a target's template folder.
+#[derive(Debug, Clone)]
+struct TemplateFile {
+    /// Path inside the target's folder, `/`-separated.
+    path: String,
+    /// Contents, for a file that is copied.
+    bytes: Vec<u8>,
+    /// The name errors give: where the file came from.
+    origin: String,
+}
+
+/// The template folders of every target, parsed once for a whole batch.
+pub struct Templates {
+    files: BTreeMap<Target, Vec<TemplateFile>>,
+    env: Environment<'static>,
+    custom: bool,
+    digest: String,
+}
+
+impl Templates {
+    /// Our own templates (`templates/` of the repository).
+    pub fn builtin() -> Self {
+        let mut files: BTreeMap<Target, Vec<TemplateFile>> = BTreeMap::new();
+        for &(target, path, source) in BUILTIN {
+            files.entry(target).or_default().push(TemplateFile {
+                path: path.to_owned(),
+                bytes: source.as_bytes().to_vec(),
+                origin: format!("templates/{target}/{path}"),
+            });
+        }
+        Self::new(files, false).expect("the built-in templates parse")
+    }
+
+    /// Ours, with every target folder present in `dir` (`dir/gazebo/`, …)
+    /// replacing ours whole: a user can override one simulator and add
+    /// their own files (a robot model, say) to every world.
+    pub fn with_overrides(dir: &Path) -> Result<Self, Error> {
+        let mut files = Self::builtin().files;
+        let mut any = false;
+        for target in Target::ALL {
+            let folder = dir.join(target.name());
+            if !folder.is_dir() {
+                continue;
+            }
+            any = true;
+            let mut found = Vec::new();
+            read_tree(&folder, "", &mut found)?;
+            files.insert(target, found);
+        }
+        if !any {
+            return Err(Error::Usage(format!(
+                "template folder {} has no target folder (expected one of {})",
+                dir.display(),
+                Target::ALL.map(Target::name).join(", ")
+            )));
+        }
+        Self::new(files, true)
+    }
+
+    fn new(files: BTreeMap<Target, Vec<TemplateFile>>, custom: bool) -> Result<Self, Error> {
+        let mut env = Environment::new();
+        env.set_undefined_behavior(UndefinedBehavior::Strict);
+        // World files are XML, VRML and USD with values we compute: numbers
+        // and plain names. Nothing needs escaping, and HTML escaping would
+        // be wrong in the non-XML ones.
+        env.set_auto_escape_callback(|_| AutoEscape::None);
+        env.set_syntax(
+            minijinja::syntax::SyntaxConfig::builder()
+                .trim_blocks(true)
+                .lstrip_blocks(true)
+                .keep_trailing_newline(true)
+                .build()
+                .expect("default delimiters"),
+        );
+        let mut hasher = Sha256::new();
+        for (target, list) in &files {
+            for file in list {
+                hasher.update(format!("{target}/{}\0{}\0", file.path, file.bytes.len()));
+                hasher.update(&file.bytes);
+                if !file.path.ends_with(TEMPLATE_SUFFIX) {
+                    continue;
+                }
+                let source = String::from_utf8(file.bytes.clone()).map_err(|e| Error::Template {
+                    file: file.origin.clone(),
+                    line: 1 + file.bytes[..e.utf8_error().valid_up_to()]
+                        .iter()
+                        .filter(|&&b| b == b'\n')
+                        .count(),
+                    message: "not UTF-8 text".to_owned(),
+                })?;
+                env.add_template_owned(file.origin.clone(), source)
+                    .map_err(|e| template_error(&file.origin, &e))?;
+            }
+        }
+        let digest = hasher.finalize().iter().map(|b| format!("{b:02x}")).collect();
+        Ok(Templates {
+            files,
+            env,
+            custom,
+            digest,
+        })
+    }
+
+    /// `true` when a user's folder replaced some of ours.
+    pub fn is_custom(&self) -> bool {
+        self.custom
+    }
+
+    /// SHA-256 over every template file (paths and bytes): what the
+    /// manifest records instead of a path.
+    pub fn digest(&self) -> &str {
+        &self.digest
+    }
+
+    /// The files of `target`'s folder for one world: `(path inside the
+    /// target folder, bytes)`.
+    pub(crate) fn render(
+        &self,
+        target: Target,
+        context: &WorldContext,
+    ) -> Result<Vec<(String, Vec<u8>)>, Error> {
+        let Some(list) = self.files.get(&target) else {
+            return Ok(Vec::new());
+        };
+        let value = minijinja::Value::from(minijinja::value::Serde(context));
+        list.iter()
+            .map(|file| {
+                let Some(path) = file.path.strip_suffix(TEMPLATE_SUFFIX) else {
+                    return Ok((file.path.clone(), file.bytes.clone()));
+                };
+                let template = self
+                    .env
+                    .get_template(&file.origin)
+                    .map_err(|e| template_error(&file.origin, &e))?;
+                let text = template
+                    .render(&value)
+                    .map_err(|e| template_error(&file.origin, &e))?;
+                Ok((path.to_owned(), text.into_bytes()))
+            })
+            .collect()
+    }
+}
+
+/// Our error for a minijinja error in `file`, with its line.
+fn template_error(file: &str, e: &minijinja::Error) -> Error {
+    Error::Template {
+        file: file.to_owned(),
+        line: e.line().unwrap_or(1),
+        message: match e.detail() {
+            Some(detail) => format!("{}: {detail}", e.kind()),
+            None => e.kind().to_string(),
+        },
+    }
+}
+
+/// Every file under `dir`, with paths relative to the target folder.
+fn read_tree(dir: &Path, prefix: &str, out: &mut Vec<TemplateFile>) -> Result<(), Error> {
+    let mut entries = std::fs::read_dir(dir)
+        .map_err(Error::io("read", dir))?
+        .map(|e| e.map(|e| e.path()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(Error::io("read", dir))?;
+    // Directory order differs between machines; worlds must not.
+    entries.sort();
+    for path in entries {
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .ok_or_else(|| Error::Usage(format!("{}: file names must be UTF-8", path.display())))?;
+        let relative = format!("{prefix}{name}");
+        if path.is_dir() {
+            read_tree(&path, &format!("{relative}/"), out)?;
+        } else {
+            out.push(TemplateFile {
+                bytes: std::fs::read(&path).map_err(Error::io("read", &path))?,
+                origin: path.display().to_string(),
+                path: relative,
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_templates_match_the_folder() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../templates");
+        let mut on_disk = Vec::new();
+        for target in Target::ALL {
+            let folder = root.join(target.name());
+            if folder.is_dir() {
+                let mut found = Vec::new();
+                read_tree(&folder, "", &mut found).unwrap();
+                on_disk.extend(found.into_iter().map(|f| (target, f.path, f.bytes)));
+            }
+        }
+        let built_in: Vec<_> = BUILTIN
+            .iter()
+            .map(|&(t, p, s)| (t, p.to_owned(), s.as_bytes().to_vec()))
+            .collect();
+        assert_eq!(on_disk, built_in, "list every file of templates/ in BUILTIN");
+    }
+}

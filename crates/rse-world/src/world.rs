@@ -1,0 +1,124 @@
+//! One world folder, built in memory: heightmap, preview, meshes, each
+//! target's files from its templates, and the manifest over them all.
+
+use std::collections::BTreeMap;
+
+use rse_core::export::{mtl, obj, usda};
+use rse_core::{Scheme, generate, preview};
+
+use crate::context::{MODEL, WorldContext};
+use crate::error::Error;
+use crate::manifest::{MANIFEST, Manifest, sha256_hex};
+use crate::target::{MeshMode, Target, Targets};
+use crate::templates::Templates;
+
+/// What to put in a world folder.
+#[derive(Debug, Clone, Default)]
+pub struct WorldOptions {
+    /// The simulators to write files for.
+    pub targets: Targets,
+    /// Single mesh or boxes in the simulator files.
+    pub mesh: MeshMode,
+}
+
+/// The files of one world folder, by `/`-separated relative path, with the
+/// folder's name. Deterministic: the same inputs give the same bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldFiles {
+    /// The folder name, `world_0007`.
+    pub name: String,
+    /// Every file, `rse.json` included.
+    pub files: BTreeMap<String, Vec<u8>>,
+}
+
+impl WorldFiles {
+    /// Total size of the files.
+    pub fn bytes(&self) -> u64 {
+        self.files.values().map(|b| b.len() as u64).sum()
+    }
+}
+
+/// Builds world `index` of the batch with base seed `seed`, named `name`.
+pub fn build_world(
+    scheme: &Scheme,
+    seed: u64,
+    index: u64,
+    name: String,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> Result<WorldFiles, Error> {
+    let terrain = generate(scheme, seed, index);
+    let grid = terrain.grid();
+    let mut files = BTreeMap::new();
+    files.insert(
+        "heightmap.csv".to_owned(),
+        terrain.heightmap().to_csv().into_bytes(),
+    );
+    let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);
+    files.insert(
+        "preview.png".to_owned(),
+        preview::encode_png(&preview::render(&terrain, cell_pixels))?,
+    );
+
+    let boxes = terrain.boxes();
+    let targets = &options.targets;
+    let single = options.mesh == MeshMode::Single && !boxes.is_empty();
+    let shared_mesh = targets.contains(Target::Obj)
+        || (single && [Target::Webots, Target::Mujoco, Target::Urdf].into_iter().any(|t| targets.contains(t)));
+    let gazebo_mesh = single && targets.contains(Target::Gazebo);
+    let usd_mesh = single && targets.contains(Target::Usd);
+    if shared_mesh || gazebo_mesh || usd_mesh {
+        let mesh = terrain.mesh();
+        let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
+        let mtl_bytes = mtl().into_bytes();
+        let mut mesh_folders = Vec::new();
+        if shared_mesh {
+            mesh_folders.push("meshes".to_owned());
+        }
+        if gazebo_mesh {
+            mesh_folders.push(format!("gazebo/{MODEL}/meshes"));
+        }
+        for folder in mesh_folders {
+            files.insert(format!("{folder}/terrain.obj"), obj_bytes.clone());
+            files.insert(format!("{folder}/terrain.mtl"), mtl_bytes.clone());
+        }
+        if usd_mesh {
+            files.insert("usd/terrain.usda".to_owned(), usda(&mesh).into_bytes());
+        }
+    }
+
+    let context = WorldContext::new(name.clone(), &terrain, options.mesh, &boxes);
+    for target in targets.iter() {
+        for (path, bytes) in templates.render(target, &context)? {
+            let path = format!("{target}/{path}");
+            if files.contains_key(&path) {
+                return Err(Error::Usage(format!(
+                    "the {target} template has a file {path} that the generator writes itself"
+                )));
+            }
+            files.insert(path, bytes);
+        }
+    }
+
+    let manifest = Manifest {
+        generator: "rse".to_owned(),
+        version: rse_core::VERSION.to_owned(),
+        world: name.clone(),
+        seed,
+        index,
+        targets: targets.clone(),
+        mesh: options.mesh,
+        templates: if templates.is_custom() { "custom" } else { "builtin" }.to_owned(),
+        templates_sha256: templates.digest().to_owned(),
+        grid,
+        globals: *scheme.globals(),
+        scheme: scheme.to_csv(),
+        drawn: terrain.drawn().to_vec(),
+        files: files
+            .iter()
+            .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
+            .collect(),
+    };
+    files.insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
+    Ok(WorldFiles { name, files })
+}
