@@ -14,6 +14,20 @@ if [ "${CI:-}" = "true" ]; then
     export CARGO_INCREMENTAL=0  # CI builds once from clean: incremental state is waste
 fi
 
+# Debian packages the tests load our worlds in: libsdformat (`ign sdf -k`,
+# and tests/sdf_check built against it). Installed only when missing.
+apt_packages=()
+command -v ign >/dev/null || apt_packages+=(ignition-tools)
+pkg-config --exists sdformat12 2>/dev/null || apt_packages+=(libsdformat-dev pkg-config)
+command -v g++ >/dev/null || apt_packages+=(g++)
+if [ ${#apt_packages[@]} -gt 0 ]; then
+    say "installing ${apt_packages[*]} (Debian)"
+    sudo=""
+    [ "$(id -u)" = 0 ] || sudo="sudo"
+    $sudo apt-get update -q
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q "${apt_packages[@]}"
+fi
+
 say "format"
 cargo fmt --all --check
 
@@ -28,7 +42,7 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --workspace --locked 2>&1 | tee "$log"
 
-say "third-party readers (Python: trimesh, manifold3d, pygltflib, PyBullet)"
+say "third-party readers (Python: trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi

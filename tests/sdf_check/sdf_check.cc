@@ -70,7 +70,8 @@ bool checkFile(const std::string &file) {
   // Root::Version() is the version after conversion; read the file's own.
   sdf::SDFPtr raw(new sdf::SDF());
   sdf::init(raw);
-  if (!sdf::readFile(file, raw)) {
+  sdf::Errors rawErrors;
+  if (!sdf::readFile(file, config, raw, rawErrors) || !rawErrors.empty()) {
     std::cerr << file << ": cannot read\n";
     return false;
   }

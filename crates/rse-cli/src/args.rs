@@ -33,7 +33,7 @@ pub enum Command {
     Preview(PreviewArgs),
     /// Write one world's closed terrain mesh as OBJ (with its .mtl), binary STL or GLB, by suffix.
     Mesh(MeshArgs),
-    /// Write a batch of simulator worlds, one folder each (OUT/world_0000, …); a rerun resumes.
+    /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
     Batch(BatchArgs),
 }
 
@@ -42,7 +42,7 @@ pub struct BatchArgs {
     /// The scheme CSV file.
     pub scheme: PathBuf,
 
-    /// The output folder; worlds go in OUT/world_NNNN/.
+    /// The output folder; worlds go in `OUT/world_NNNN/`.
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
 

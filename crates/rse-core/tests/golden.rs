@@ -18,10 +18,12 @@ use crate::util::repo;
 const WORLDS: [(u64, u64); 3] = [(0, 0), (0, 1), (12_345, 7)];
 
 fn hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().fold(String::new(), |mut s, b| {
-        write!(s, "{b:02x}").unwrap();
-        s
-    })
+    Sha256::digest(bytes)
+        .iter()
+        .fold(String::new(), |mut s, b| {
+            write!(s, "{b:02x}").unwrap();
+            s
+        })
 }
 
 fn heightmap_table() -> String {

@@ -36,9 +36,16 @@ impl FromStr for Shard {
 
     /// Parses `K/N`, `0 ≤ K < N`.
     fn from_str(s: &str) -> Result<Self, Error> {
-        let bad = || Error::Usage(format!("bad shard {s:?}: expected K/N with 0 <= K < N, e.g. 0/4"));
+        let bad = || {
+            Error::Usage(format!(
+                "bad shard {s:?}: expected K/N with 0 <= K < N, e.g. 0/4"
+            ))
+        };
         let (k, n) = s.split_once('/').ok_or_else(bad)?;
-        let (k, n): (u64, u64) = (k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+        let (k, n): (u64, u64) = (
+            k.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
         if k >= n {
             return Err(bad());
         }
@@ -130,7 +137,12 @@ pub fn write_batch(
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.unwrap_or(0))
         .build()
-        .map_err(|e| Error::Usage(format!("cannot start {:?} worker threads: {e}", options.jobs)))?;
+        .map_err(|e| {
+            Error::Usage(format!(
+                "cannot start {:?} worker threads: {e}",
+                options.jobs
+            ))
+        })?;
     let Shard { k, n } = options.shard;
     let count = options.amount.saturating_sub(k).div_ceil(n);
     let [written, skipped, replaced, bytes] = [(); 4].map(|()| AtomicU64::new(0));
@@ -209,11 +221,12 @@ fn write_tree(root: &Path, world: &WorldFiles) -> Result<(), Error> {
     let mut made = BTreeSet::new();
     for (relative, bytes) in &world.files {
         let path = root.join(relative);
-        if let Some(parent) = Path::new(relative).parent().filter(|p| !p.as_os_str().is_empty()) {
-            if made.insert(parent.to_owned()) {
-                let dir = root.join(parent);
-                std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
-            }
+        if let Some(parent) = Path::new(relative).parent()
+            && !parent.as_os_str().is_empty()
+            && made.insert(parent.to_owned())
+        {
+            let dir = root.join(parent);
+            std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
         }
         std::fs::write(&path, bytes).map_err(Error::io("write", &path))?;
     }
@@ -238,7 +251,9 @@ fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> 
         match std::fs::read(&file) {
             Ok(on_disk) if on_disk == *bytes => {}
             Ok(_) => return Ok(Some(format!("{path} differs"))),
-            Err(e) if e.kind() == ErrorKind::NotFound => return Ok(Some(format!("{path} is missing"))),
+            Err(e) if e.kind() == ErrorKind::NotFound => {
+                return Ok(Some(format!("{path} is missing")));
+            }
             Err(e) => return Err(Error::io("read", file)(e)),
         }
     }
@@ -251,7 +266,11 @@ fn list_files(dir: &Path, prefix: &str, out: &mut Vec<String>) -> Result<(), Err
         let entry = entry.map_err(Error::io("read", dir))?;
         let name = entry.file_name().to_string_lossy().into_owned();
         let relative = format!("{prefix}{name}");
-        if entry.file_type().map_err(Error::io("read", entry.path()))?.is_dir() {
+        if entry
+            .file_type()
+            .map_err(Error::io("read", entry.path()))?
+            .is_dir()
+        {
             list_files(&entry.path(), &format!("{relative}/"), out)?;
         } else {
             out.push(relative);

@@ -62,7 +62,9 @@ impl FromStr for Target {
         Target::ALL
             .into_iter()
             .find(|t| t.name() == s)
-            .ok_or_else(|| Error::Usage(format!("unknown target {s:?}: expected one of {}", names())))
+            .ok_or_else(|| {
+                Error::Usage(format!("unknown target {s:?}: expected one of {}", names()))
+            })
     }
 }
 

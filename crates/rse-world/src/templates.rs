@@ -6,10 +6,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use minijinja::{AutoEscape, Environment, UndefinedBehavior};
-use sha2::{Digest, Sha256};
 
 use crate::context::WorldContext;
 use crate::error::Error;
+use crate::manifest::sha256_hex;
 use crate::target::Target;
 
 /// Suffix of the files that are rendered rather than copied.
@@ -77,6 +77,9 @@ pub struct Templates {
 
 impl Templates {
     /// Our own templates (`templates/` of the repository).
+    ///
+    /// # Panics
+    /// Never: the tests render every built-in template.
     pub fn builtin() -> Self {
         let mut files: BTreeMap<Target, Vec<TemplateFile>> = BTreeMap::new();
         for &(target, path, source) in BUILTIN {
@@ -130,27 +133,27 @@ impl Templates {
                 .build()
                 .expect("default delimiters"),
         );
-        let mut hasher = Sha256::new();
+        let mut all = Vec::new();
         for (target, list) in &files {
             for file in list {
-                hasher.update(format!("{target}/{}\0{}\0", file.path, file.bytes.len()));
-                hasher.update(&file.bytes);
+                all.extend(format!("{target}/{}\0{}\0", file.path, file.bytes.len()).bytes());
+                all.extend(&file.bytes);
                 if !file.path.ends_with(TEMPLATE_SUFFIX) {
                     continue;
                 }
-                let source = String::from_utf8(file.bytes.clone()).map_err(|e| Error::Template {
-                    file: file.origin.clone(),
-                    line: 1 + file.bytes[..e.utf8_error().valid_up_to()]
-                        .iter()
-                        .filter(|&&b| b == b'\n')
-                        .count(),
-                    message: "not UTF-8 text".to_owned(),
-                })?;
+                let source =
+                    String::from_utf8(file.bytes.clone()).map_err(|e| Error::Template {
+                        file: file.origin.clone(),
+                        line: file.bytes[..e.utf8_error().valid_up_to()]
+                            .split(|&b| b == b'\n')
+                            .count(),
+                        message: "not UTF-8 text".to_owned(),
+                    })?;
                 env.add_template_owned(file.origin.clone(), source)
                     .map_err(|e| template_error(&file.origin, &e))?;
             }
         }
-        let digest = hasher.finalize().iter().map(|b| format!("{b:02x}")).collect();
+        let digest = sha256_hex(&all);
         Ok(Templates {
             files,
             env,
@@ -259,6 +262,9 @@ mod tests {
             .iter()
             .map(|&(t, p, s)| (t, p.to_owned(), s.as_bytes().to_vec()))
             .collect();
-        assert_eq!(on_disk, built_in, "list every file of templates/ in BUILTIN");
+        assert_eq!(
+            on_disk, built_in,
+            "list every file of templates/ in BUILTIN"
+        );
     }
 }

@@ -64,7 +64,10 @@ pub fn build_world(
     let targets = &options.targets;
     let single = options.mesh == MeshMode::Single && !boxes.is_empty();
     let shared_mesh = targets.contains(Target::Obj)
-        || (single && [Target::Webots, Target::Mujoco, Target::Urdf].into_iter().any(|t| targets.contains(t)));
+        || (single
+            && [Target::Webots, Target::Mujoco, Target::Urdf]
+                .into_iter()
+                .any(|t| targets.contains(t)));
     let gazebo_mesh = single && targets.contains(Target::Gazebo);
     let usd_mesh = single && targets.contains(Target::Usd);
     if shared_mesh || gazebo_mesh || usd_mesh {
@@ -108,7 +111,12 @@ pub fn build_world(
         index,
         targets: targets.clone(),
         mesh: options.mesh,
-        templates: if templates.is_custom() { "custom" } else { "builtin" }.to_owned(),
+        templates: if templates.is_custom() {
+            "custom"
+        } else {
+            "builtin"
+        }
+        .to_owned(),
         templates_sha256: templates.digest().to_owned(),
         grid,
         globals: *scheme.globals(),
@@ -121,4 +129,109 @@ pub fn build_world(
     };
     files.insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
     Ok(WorldFiles { name, files })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn files(scheme: &str, mesh: MeshMode, targets: &str) -> Vec<String> {
+        let scheme = Scheme::from_csv(scheme, None).unwrap();
+        let options = WorldOptions {
+            targets: Targets::parse(targets).unwrap(),
+            mesh,
+        };
+        let world = build_world(
+            &scheme,
+            0,
+            3,
+            "world_0003".into(),
+            &options,
+            &Templates::builtin(),
+        )
+        .unwrap();
+        world.files.into_keys().collect()
+    }
+
+    const WALL: &str = "# size: 12x8\ntype,height,angle,x1,y1,x2,y2\nwall,3,45,2,2,9,5\n";
+    const ALL: &str = "obj,gazebo,webots,mujoco,urdf,usd";
+
+    #[test]
+    fn a_single_mesh_world_has_the_layout_of_the_spec() {
+        assert_eq!(
+            files(WALL, MeshMode::Single, ALL),
+            [
+                "gazebo/rse.world",
+                "gazebo/rse_terrain/meshes/terrain.mtl",
+                "gazebo/rse_terrain/meshes/terrain.obj",
+                "gazebo/rse_terrain/model.config",
+                "gazebo/rse_terrain/model.sdf",
+                "heightmap.csv",
+                "meshes/terrain.mtl",
+                "meshes/terrain.obj",
+                "mujoco/rse.xml",
+                "preview.png",
+                "rse.json",
+                "urdf/rse.urdf",
+                "usd/rse.usda",
+                "usd/terrain.usda",
+                "webots/rse.wbt",
+            ]
+        );
+    }
+
+    #[test]
+    fn block_worlds_carry_no_mesh_but_the_obj_target() {
+        let listed = files(WALL, MeshMode::Blocks, "gazebo,webots,mujoco,urdf,usd");
+        assert!(
+            !listed
+                .iter()
+                .any(|f| f.ends_with(".obj") || f == "usd/terrain.usda"),
+            "{listed:?}"
+        );
+        let with_obj = files(WALL, MeshMode::Blocks, "obj,mujoco");
+        assert!(with_obj.contains(&"meshes/terrain.obj".to_owned()));
+    }
+
+    #[test]
+    fn an_empty_terrain_has_no_meshes_but_for_the_obj_target() {
+        let empty = "# size: 4x4\ntype,height\n";
+        let listed = files(empty, MeshMode::Single, ALL);
+        assert!(listed.contains(&"meshes/terrain.obj".to_owned()));
+        assert!(
+            !listed
+                .iter()
+                .any(|f| f.starts_with("gazebo/rse_terrain/meshes") || f == "usd/terrain.usda")
+        );
+    }
+
+    #[test]
+    fn the_manifest_hashes_every_other_file() {
+        let scheme = Scheme::from_csv(WALL, None).unwrap();
+        let options = WorldOptions {
+            targets: Targets::parse(ALL).unwrap(),
+            mesh: MeshMode::Blocks,
+        };
+        let world = build_world(
+            &scheme,
+            7,
+            1,
+            "world_0001".into(),
+            &options,
+            &Templates::builtin(),
+        )
+        .unwrap();
+        let manifest =
+            Manifest::from_json(std::str::from_utf8(&world.files[MANIFEST]).unwrap()).unwrap();
+        assert_eq!((manifest.seed, manifest.index), (7, 1));
+        assert_eq!(manifest.files.len(), world.files.len() - 1);
+        for (path, digest) in &manifest.files {
+            assert_eq!(*digest, sha256_hex(&world.files[path]), "{path}");
+        }
+        let again = Scheme::from_csv(&manifest.scheme, None).unwrap();
+        assert_eq!(
+            generate(&again, manifest.seed, manifest.index).heightmap(),
+            generate(&scheme, 7, 1).heightmap()
+        );
+    }
 }

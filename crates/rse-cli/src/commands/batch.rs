@@ -43,7 +43,8 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
     let start = Instant::now();
     let result = write_batch(&scheme, &templates, &options, &|_| bar.inc(1));
     bar.finish_and_clear();
-    let summary = result.with_context(|| format!("batch into {} stopped", options.out.display()))?;
+    let summary =
+        result.with_context(|| format!("batch into {} stopped", options.out.display()))?;
     let seconds = start.elapsed().as_secs_f64();
     let done = summary.written + summary.replaced;
     eprintln!(

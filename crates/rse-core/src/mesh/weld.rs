@@ -85,11 +85,7 @@ enum Saddle {
 /// the cells solid just above do — and each piece is one quadrant's column.
 fn saddle(tops: [u32; 4], level: u32) -> Saddle {
     let solid = |top: u32| {
-        if level > 0 {
-            top >= level
-        } else {
-            top > 0
-        }
+        if level > 0 { top >= level } else { top > 0 }
     };
     match tops.map(solid) {
         [true, false, false, true] => Saddle::SouthWestNorthEast,

@@ -1,0 +1,286 @@
+//! `rse-gen batch`: identical trees whatever the jobs and shards, resuming
+//! after SIGKILL, never overwriting a different world, template errors.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+use super::{repo, rse_gen, stderr, stdout};
+
+const ALL_TARGETS: &str = "obj,gazebo,webots,mujoco,urdf,usd";
+
+/// Every file under `dir` by relative path, hidden leftovers included.
+fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    fn walk(dir: &Path, prefix: &str, out: &mut BTreeMap<String, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let entry = entry.unwrap();
+            let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
+            if entry.file_type().unwrap().is_dir() {
+                walk(&entry.path(), &format!("{name}/"), out);
+            } else {
+                out.insert(name, std::fs::read(entry.path()).unwrap());
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(dir, "", &mut out);
+    out
+}
+
+fn batch(out: &Path, extra: &[&str]) -> Output {
+    let out = out.to_str().unwrap();
+    let mut args = vec!["batch", "schemes/six_obstacles.csv", "-o", out];
+    args.extend_from_slice(extra);
+    rse_gen(&args)
+}
+
+fn assert_same_tree(a: &Path, b: &Path) {
+    let (ta, tb) = (tree(a), tree(b));
+    assert_eq!(
+        ta.keys().collect::<Vec<_>>(),
+        tb.keys().collect::<Vec<_>>(),
+        "same files"
+    );
+    for (path, bytes) in &ta {
+        assert!(tb[path] == *bytes, "{path} differs");
+    }
+}
+
+#[test]
+fn jobs_and_shards_give_identical_trees() {
+    let dir = tempfile::tempdir().unwrap();
+    let [one, two, shards] = ["one", "two", "shards"].map(|n| dir.path().join(n));
+    let common = ["--amount", "9", "--target", ALL_TARGETS];
+    stdout(&batch(&one, &[&common[..], &["--jobs", "1"]].concat()));
+    stdout(&batch(&two, &[&common[..], &["--jobs", "2"]].concat()));
+    for k in 0..4 {
+        let shard = format!("{k}/4");
+        stdout(&batch(
+            &shards,
+            &[&common[..], &["--shard", &shard]].concat(),
+        ));
+    }
+    assert_eq!(
+        tree(&one)
+            .keys()
+            .filter(|p| p.ends_with("rse.json"))
+            .count(),
+        9
+    );
+    assert_same_tree(&one, &two);
+    assert_same_tree(&one, &shards);
+}
+
+#[test]
+fn a_shard_writes_exactly_its_worlds() {
+    let dir = tempfile::tempdir().unwrap();
+    stdout(&batch(dir.path(), &["--amount", "10", "--shard", "1/4"]));
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["world_0001", "world_0005", "world_0009"]);
+}
+
+#[test]
+fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (clean, killed) = (dir.path().join("clean"), dir.path().join("killed"));
+    let common = ["--amount", "24", "--target", ALL_TARGETS, "--jobs", "2"];
+    stdout(&batch(&clean, &common));
+    // Kill at spread-out moments: before anything, among the first worlds,
+    // midway; each run resumes what the last one left.
+    for millis in [0, 3, 10, 25, 60, 120, 200] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_rse-gen"))
+            .args(["batch", "schemes/six_obstacles.csv", "-o"])
+            .arg(&killed)
+            .args(common)
+            .current_dir(repo())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(millis));
+        child.kill().unwrap(); // SIGKILL
+        child.wait().unwrap();
+    }
+    let worlds = |dir: &Path| {
+        tree(dir)
+            .keys()
+            .filter(|p| p.ends_with("/rse.json"))
+            .count()
+    };
+    let interrupted = worlds(&killed);
+    assert!(
+        interrupted < 24,
+        "the kills came too late to interrupt anything"
+    );
+    let last = batch(&killed, &common);
+    stdout(&last);
+    assert!(
+        stderr(&last).contains(&format!("{interrupted} already there")),
+        "{}",
+        stderr(&last)
+    );
+    assert_same_tree(&clean, &killed);
+}
+
+#[test]
+fn a_rerun_skips_whole_worlds_and_changes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    stdout(&batch(dir.path(), &["--amount", "3"]));
+    let before = tree(dir.path());
+    let again = batch(dir.path(), &["--amount", "3"]);
+    stdout(&again);
+    assert!(
+        stderr(&again).contains("0 written, 3 already there"),
+        "{}",
+        stderr(&again)
+    );
+    assert_eq!(before, tree(dir.path()));
+}
+
+#[test]
+fn a_different_world_is_replaced_only_with_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let (reference, out) = (dir.path().join("ref"), dir.path().join("out"));
+    stdout(&batch(&reference, &["--amount", "3"]));
+    stdout(&batch(&out, &["--amount", "3"]));
+    let damaged = out.join("world_0001/heightmap.csv");
+    std::fs::write(&damaged, "0\n").unwrap();
+
+    let refused = batch(&out, &["--amount", "3"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let message = stderr(&refused);
+    assert!(
+        message.contains("world_0001")
+            && message.contains("heightmap.csv differs")
+            && message.contains("--force"),
+        "{message}"
+    );
+    assert_eq!(std::fs::read_to_string(&damaged).unwrap(), "0\n");
+
+    // Another seed is another batch: refused too.
+    let other_seed = batch(&out, &["--amount", "3", "--seed", "5"]);
+    assert_eq!(other_seed.status.code(), Some(2), "{}", stderr(&other_seed));
+
+    let forced = batch(&out, &["--amount", "3", "--force"]);
+    assert!(
+        stderr(&forced).contains("1 replaced"),
+        "{}",
+        stderr(&forced)
+    );
+    assert_same_tree(&reference, &out);
+}
+
+#[test]
+fn user_templates_replace_ours_and_their_files_reach_every_world() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    let gazebo = templates.join("gazebo");
+    std::fs::create_dir_all(gazebo.join("robot")).unwrap();
+    std::fs::write(
+        gazebo.join("robot/model.sdf"),
+        "<robot model, copied as is {{ x }}>",
+    )
+    .unwrap();
+    std::fs::write(
+        gazebo.join("rse.world.j2"),
+        "world {{ world }} of {{ cells[0] }}x{{ cells[1] }} cells, {{ boxes|length }} boxes\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let template = templates.to_str().unwrap();
+    stdout(&batch(&out, &["--amount", "2", "--template", template]));
+    for world in ["world_0000", "world_0001"] {
+        let robot =
+            std::fs::read_to_string(out.join(world).join("gazebo/robot/model.sdf")).unwrap();
+        assert_eq!(robot, "<robot model, copied as is {{ x }}>");
+        let text = std::fs::read_to_string(out.join(world).join("gazebo/rse.world")).unwrap();
+        assert!(
+            text.starts_with(&format!("world {world} of 50x50 cells, ")),
+            "{text}"
+        );
+        // Our model templates are replaced with the whole gazebo folder.
+        assert!(
+            !out.join(world)
+                .join("gazebo/rse_terrain/model.sdf")
+                .exists()
+        );
+    }
+}
+
+#[test]
+fn a_template_error_names_file_and_line_and_writes_no_world() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    std::fs::create_dir_all(templates.join("mujoco")).unwrap();
+    std::fs::write(
+        templates.join("mujoco/rse.xml.j2"),
+        "<mujoco>\n  {{ world }}\n  {{ no_such_value }}\n</mujoco>\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let failed = batch(
+        &out,
+        &[
+            "--target",
+            "mujoco",
+            "--template",
+            templates.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(failed.status.code(), Some(2));
+    let message = stderr(&failed);
+    assert!(message.contains("mujoco/rse.xml.j2:3:"), "{message}");
+    assert!(message.contains("undefined"), "{message}");
+    assert!(!out.join("world_0000").exists());
+
+    std::fs::write(templates.join("mujoco/rse.xml.j2"), "ok\n{% if %}\n").unwrap();
+    let syntax = batch(
+        &out,
+        &[
+            "--target",
+            "mujoco",
+            "--template",
+            templates.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(syntax.status.code(), Some(2));
+    assert!(
+        stderr(&syntax).contains("rse.xml.j2:2:"),
+        "{}",
+        stderr(&syntax)
+    );
+}
+
+#[test]
+fn bad_batch_options_exit_2_with_a_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a_file");
+    std::fs::write(&file, "").unwrap();
+    for (args, expected) in [
+        (vec!["--shard", "4/4"], "bad shard"),
+        (vec!["--target", "gazebo,isaac"], "unknown target"),
+        (vec!["--mesh", "voxels"], "unknown mesh mode"),
+        (vec!["--jobs", "0"], "--jobs"),
+    ] {
+        let out = dir.path().join("out");
+        let failed = batch(&out, &args);
+        assert_eq!(failed.status.code(), Some(2), "{args:?}");
+        assert!(
+            stderr(&failed).contains(expected),
+            "{args:?}: {}",
+            stderr(&failed)
+        );
+    }
+    let into_file = batch(&file, &[]);
+    assert_eq!(into_file.status.code(), Some(2));
+    assert!(
+        stderr(&into_file).contains("a_file"),
+        "{}",
+        stderr(&into_file)
+    );
+}

@@ -1,0 +1,316 @@
+"""Worlds of `rse-gen batch` loaded by the simulators' own parsers (issue
+"Mass generation of simulator worlds"): libsdformat (`ign sdf -k` and a
+strict checker linked against it), MuJoCo, PyBullet and usd-core; Webots,
+which has no installable checker, parsed structurally."""
+
+import hashlib
+import json
+import re
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pybullet as p
+import pytest
+from conftest import REPO, SCHEMES, heights, run, units
+from pxr import Usd, UsdGeom, UsdPhysics
+
+ALL_TARGETS = "obj,gazebo,webots,mujoco,urdf,usd"
+MODES = ["single", "blocks"]
+WORLD_SCHEMES = ["six_obstacles", "wall", "paper_pallets", "gaussian", "nist_diagonal_hill"]
+AMOUNT = 2
+
+
+@pytest.fixture(scope="session")
+def batches(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str], Path]:
+    """Two worlds of each scheme in each mesh mode, every target; plus an
+    empty terrain (no obstacles)."""
+    root = tmp_path_factory.mktemp("batches")
+    empty = root / "empty.csv"
+    empty.write_text("# size: 6x4\ntype,height\n")
+    found = {}
+    for scheme in [*(SCHEMES / f"{s}.csv" for s in WORLD_SCHEMES), empty]:
+        for mode in MODES:
+            out = root / f"{scheme.stem}-{mode}"
+            run("batch", str(scheme), "-o", str(out), "--amount", str(AMOUNT), "--target", ALL_TARGETS, "--mesh", mode)
+            found[(scheme.stem, mode)] = out
+    return found
+
+
+def worlds(batches: dict[tuple[str, str], Path]) -> list[Path]:
+    return sorted(w for out in batches.values() for w in out.glob("world_*"))
+
+
+
+def manifest(world: Path) -> dict:
+    return json.loads((world / "rse.json").read_text())
+
+
+def sdf_files(world: Path) -> list[Path]:
+    return [world / "gazebo/rse.world", world / "gazebo/rse_terrain/model.sdf"]
+
+
+# --- the folder itself -------------------------------------------------------
+
+
+def test_every_file_is_in_the_manifest_with_its_hash(batches) -> None:
+    for world in worlds(batches):
+        files = {str(f.relative_to(world)) for f in world.rglob("*") if f.is_file()}
+        listed = manifest(world)["files"]
+        assert files == set(listed) | {"rse.json"}, world
+        for path, digest in listed.items():
+            assert hashlib.sha256((world / path).read_bytes()).hexdigest() == digest, f"{world}/{path}"
+
+
+def test_no_file_holds_an_absolute_path(batches) -> None:
+    for world in worlds(batches):
+        for f in world.rglob("*"):
+            if f.is_file() and f.suffix != ".png":
+                text = f.read_text()
+                assert str(world.parent) not in text and str(REPO) not in text, f
+                assert not re.search(r'(uri>|url \[\s*"|filename="|file=")/', text), f
+
+
+def test_heightmap_is_the_one_rse_gen_heightmap_prints(batches) -> None:
+    for stem in WORLD_SCHEMES:
+        for world in sorted(batches[(stem, "single")].glob("world_*")):
+            m = manifest(world)
+            expected = run("heightmap", str(SCHEMES / f"{stem}.csv"), "--seed", str(m["seed"]), "--index", str(m["index"]))
+            assert (world / "heightmap.csv").read_text() == expected
+
+
+# --- Gazebo: libsdformat ------------------------------------------------------
+
+
+def test_every_sdf_passes_ign_sdf_check(batches) -> None:
+    ign = shutil.which("ign")
+    assert ign, "ign (Debian ignition-tools) is installed by the test command"
+    for world in worlds(batches):
+        for f in sdf_files(world):
+            done = subprocess.run([ign, "sdf", "-k", str(f)], capture_output=True, text=True, cwd=f.parent)
+            assert done.returncode == 0 and "Valid" in done.stdout, f"{f}: {done.stdout}{done.stderr}"
+
+
+@pytest.fixture(scope="session")
+def sdf_check() -> Path:
+    """tests/sdf_check: libsdformat with unknown elements and warnings as errors."""
+    source = REPO / "tests/sdf_check/sdf_check.cc"
+    binary = REPO / "target/sdf_check"
+    if not binary.exists() or binary.stat().st_mtime < source.stat().st_mtime:
+        flags = subprocess.run(
+            ["pkg-config", "--cflags", "--libs", "sdformat12"], capture_output=True, text=True, check=True
+        ).stdout.split()
+        subprocess.run(["g++", "-O1", str(source), *flags, "-o", str(binary)], check=True)
+    return binary
+
+
+def test_every_sdf_passes_the_strict_libsdformat_check(batches, sdf_check: Path) -> None:
+    files = [str(f) for world in worlds(batches) for f in sdf_files(world)]
+    done = subprocess.run([str(sdf_check), *files], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
+def test_the_strict_check_fails_on_what_ign_lets_pass(batches, sdf_check: Path, tmp_path: Path) -> None:
+    world = next(iter(sorted(batches[("wall", "single")].glob("world_*"))))
+    copy = tmp_path / "gazebo"
+    shutil.copytree(world / "gazebo", copy)
+    model = copy / "rse_terrain/model.sdf"
+    model.write_text(model.read_text().replace("<static>true</static>", "<statik>true</statik>"))
+    assert subprocess.run([str(sdf_check), str(model)], capture_output=True).returncode == 1
+    (copy / "rse_terrain/meshes/terrain.obj").unlink()
+    done = subprocess.run([str(sdf_check), str(copy / "rse.world")], capture_output=True, text=True)
+    assert done.returncode == 1 and "not found" in done.stderr
+
+
+def test_sdf_version_is_at_most_1_9(batches) -> None:
+    for world in worlds(batches):
+        for f in sdf_files(world):
+            version = ET.parse(f).getroot().get("version")
+            assert float(version) <= 1.9, f
+
+
+# --- dropping bodies on chosen cells ----------------------------------------
+
+
+def drop_cells(h: np.ndarray) -> list[tuple[int, int]]:
+    """Cells in the middle of flat 3x3 patches, so a body cannot slide off:
+    the highest, the lowest, and some between."""
+    flat = [
+        (x, y)
+        for y in range(1, h.shape[0] - 1)
+        for x in range(1, h.shape[1] - 1)
+        if (h[y - 1 : y + 2, x - 1 : x + 2] == h[y, x]).all()
+    ]
+    flat.sort(key=lambda c: (h[c[1], c[0]], c))
+    assert len(flat) >= 3
+    return sorted({flat[0], flat[-1], *flat[:: max(1, len(flat) // 4)]})
+
+
+RADIUS, HALF_BOX = 0.02, 0.015
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_mujoco_bodies_rest_at_their_cells_height(batches, mode: str) -> None:
+    scheme = SCHEMES / "six_obstacles.csv"
+    u = units(scheme)
+    for world in sorted(batches[("six_obstacles", mode)].glob("world_*")):
+        h = heights(scheme, index=manifest(world)["index"])
+        spec = mujoco.MjSpec.from_file(str(world / "mujoco/rse.xml"))
+        dropped = []
+        for i, (x, y) in enumerate(drop_cells(h)):
+            top = h[y, x] * u["step_height"]
+            centre = [(x + 0.5) * u["block_size"], (y + 0.5) * u["block_size"]]
+            body = spec.worldbody.add_body(pos=[*centre, top + 0.05])
+            body.add_freejoint()
+            if i % 2:
+                body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[HALF_BOX] * 3, mass=0.1)
+                dropped.append((body.name, top + HALF_BOX))
+            else:
+                body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[RADIUS, 0, 0], mass=0.1)
+                dropped.append((body.name, top + RADIUS))
+            body.name = f"drop_{i}"
+            dropped[-1] = (body.name, dropped[-1][1])
+        model = spec.compile()
+        data = mujoco.MjData(model)
+        for _ in range(1000):
+            mujoco.mj_step(model, data)
+        for name, rest in dropped:
+            z = data.body(name).xpos[2]
+            assert z == pytest.approx(rest, abs=0.002), f"{world.name} {mode} {name}"
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_mujoco_loads_every_world_with_one_box_geom_per_box(batches, mode: str) -> None:
+    for (stem, m), out in batches.items():
+        if m != mode:
+            continue
+        for world in sorted(out.glob("world_*")):
+            model = mujoco.MjModel.from_xml_path(str(world / "mujoco/rse.xml"))
+            boxes = sum(model.geom(i).type[0] == mujoco.mjtGeom.mjGEOM_BOX for i in range(model.ngeom))
+            expected = len(re.findall(r'type="box"', (world / "mujoco/rse.xml").read_text()))
+            assert boxes == expected
+            solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
+            assert (boxes > 0) == solid
+            assert model.nmesh == (1 if mode == "single" and solid else 0)
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_pybullet_urdf_bodies_rest_at_their_cells_height(batches, mode: str) -> None:
+    scheme = SCHEMES / "six_obstacles.csv"
+    u = units(scheme)
+    world = sorted(batches[("six_obstacles", mode)].glob("world_*"))[0]
+    h = heights(scheme, index=manifest(world)["index"])
+    client = p.connect(p.DIRECT)
+    try:
+        p.setGravity(0, 0, -9.81, physicsClientId=client)
+        terrain = p.loadURDF(str(world / "urdf/rse.urdf"), useFixedBase=True, physicsClientId=client)
+        assert terrain >= 0
+        bodies = []
+        for x, y in drop_cells(h):
+            top = h[y, x] * u["step_height"]
+            shape = p.createCollisionShape(p.GEOM_SPHERE, radius=RADIUS, physicsClientId=client)
+            body = p.createMultiBody(
+                0.1,
+                shape,
+                basePosition=[(x + 0.5) * u["block_size"], (y + 0.5) * u["block_size"], top + 0.05],
+                physicsClientId=client,
+            )
+            bodies.append((body, top + RADIUS))
+        for _ in range(1000):
+            p.stepSimulation(physicsClientId=client)
+        for body, rest in bodies:
+            z = p.getBasePositionAndOrientation(body, physicsClientId=client)[0][2]
+            assert z == pytest.approx(rest, abs=0.002), mode
+    finally:
+        p.disconnect(client)
+
+
+def test_urdf_collision_is_a_concave_mesh_in_single_mode(batches) -> None:
+    for world in sorted(batches[("wall", "single")].glob("world_*")):
+        collisions = ET.parse(world / "urdf/rse.urdf").getroot().findall("link/collision")
+        assert len(collisions) == 1 and collisions[0].get("concave") == "yes"
+        mesh = collisions[0].find("geometry/mesh").get("filename")
+        assert (world / "urdf" / mesh).resolve().is_file()
+
+
+# --- USD: usd-core -------------------------------------------------------------
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_usd_stage_opens_with_valid_meshes_and_collision(batches, mode: str) -> None:
+    for (stem, m), out in batches.items():
+        if m != mode:
+            continue
+        for world in sorted(out.glob("world_*")):
+            stage = Usd.Stage.Open(str(world / "usd/rse.usda"))
+            assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
+            assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
+            colliders = [prim for prim in stage.Traverse() if prim.HasAPI(UsdPhysics.CollisionAPI)]
+            h = np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2)
+            if not (h > 0).any():
+                assert colliders == []
+                continue
+            if mode == "blocks":
+                cubes = [prim for prim in colliders if prim.IsA(UsdGeom.Cube)]
+                assert len(cubes) == len(colliders) == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
+                continue
+            (terrain,) = colliders
+            assert terrain.IsA(UsdGeom.Mesh) and terrain.HasAPI(UsdPhysics.MeshCollisionAPI)
+            mesh = UsdGeom.Mesh(terrain)
+            points = np.array(mesh.GetPointsAttr().Get())
+            ok, why = UsdGeom.Mesh.ValidateTopology(
+                mesh.GetFaceVertexIndicesAttr().Get(), mesh.GetFaceVertexCountsAttr().Get(), len(points)
+            )
+            assert ok, why
+            step = manifest(world)["globals"]["step_height"]
+            assert points[:, 2].max() == pytest.approx(h.max() * step, abs=1e-6)
+
+
+# --- Webots: structure --------------------------------------------------------
+
+TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|#[^\n]*|[{}\[\]]|[^\s{}\[\]"]+')
+
+
+def parse_wbt(text: str) -> list[str]:
+    """Tokens of a .wbt (VRML-like) world, braces and brackets checked balanced."""
+    tokens = [t for t in TOKEN.findall(text) if not t.startswith("#")]
+    stack = []
+    for t in tokens:
+        if t in "{[":
+            stack.append(t)
+        elif t in "}]":
+            assert stack and stack.pop() == {"}": "{", "]": "["}[t], "unbalanced"
+    assert not stack, "unclosed node"
+    return tokens
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_webots_world_is_well_formed_and_its_meshes_exist(batches, mode: str) -> None:
+    for (stem, m), out in batches.items():
+        if m != mode:
+            continue
+        for world in sorted(out.glob("world_*")):
+            wbt = world / "webots/rse.wbt"
+            text = wbt.read_text()
+            assert text.startswith("#VRML_SIM R2023b utf8\n")
+            tokens = parse_wbt(text)
+            nodes = [tokens[i - 1] for i, t in enumerate(tokens) if t == "{"]
+            for node in ["WorldInfo", "Viewpoint", "Solid"]:
+                assert node in nodes
+            urls = [tokens[i + 2].strip('"') for i, t in enumerate(tokens) if t == "url"]
+            for url in urls:
+                assert (wbt.parent / url).resolve().is_file(), url
+            solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
+            boxes = nodes.count("Box")
+            if mode == "single":
+                assert len(urls) == (1 if solid else 0) and boxes == 0
+            else:
+                assert urls == [] and boxes == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
+
+
+def test_the_webots_parser_catches_unbalanced_nodes() -> None:
+    with pytest.raises(AssertionError):
+        parse_wbt("#VRML_SIM R2023b utf8\nSolid {\n children [\n Shape {\n }\n}\n")
