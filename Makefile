@@ -4,6 +4,7 @@ SCHEME ?= schemes/nist_hill.csv
 AMOUNT ?= 5
 SEED ?= 0
 OUT ?= out
+TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
 .PHONY: test lint bench demo build
@@ -18,19 +19,15 @@ lint:
 	cargo clippy --workspace --all-targets --locked -- -D warnings
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
-## Criterion benchmarks of the generator (figures in target/criterion).
+## Benchmarks: generator (criterion), meshes (table), batch throughput beside cp -r.
 bench:
 	cargo bench -p rse-core --bench generate
+	cargo bench -p rse-core --bench mesh
+	bench/batch.sh
 
 build:
 	cargo build --release --locked -p rse-cli
 
-## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ (heightmap.csv, preview.png).
+## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ for TARGETS (rse-gen batch; a rerun resumes).
 demo: build
-	@for i in $$(seq 0 $$(( $(AMOUNT) - 1 ))); do \
-		dir=$(OUT)/$$(printf 'world_%04d' $$i); mkdir -p $$dir; \
-		$(RSE_GEN) heightmap $(SCHEME) --seed $(SEED) --index $$i > $$dir/heightmap.csv.tmp && \
-		mv $$dir/heightmap.csv.tmp $$dir/heightmap.csv && \
-		$(RSE_GEN) preview $(SCHEME) --seed $(SEED) --index $$i -o $$dir/preview.png || exit $$?; \
-	done
-	@echo "wrote $(AMOUNT) worlds of $(SCHEME) to $(OUT)/"
+	$(RSE_GEN) batch $(SCHEME) -o $(OUT) --amount $(AMOUNT) --seed $(SEED) --target $(TARGETS)

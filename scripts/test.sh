@@ -50,8 +50,10 @@ fi
 RSE_GEN="$PWD/target/debug/rse-gen" .venv/bin/python -m pytest 2>&1 | tee -a "$log"
 
 say "the README's main command"
+rm -rf target/readme-demo
 make --no-print-directory demo OUT=target/readme-demo AMOUNT=2
-for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_0001/preview.png; do
+for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_0001/preview.png \
+    target/readme-demo/world_0001/gazebo/rse.world target/readme-demo/world_0001/mujoco/rse.xml; do
     [ -s "$f" ] || { echo "make demo did not write $f" >&2; exit 1; }
 done
 
