@@ -130,7 +130,14 @@ fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
 #[test]
 fn a_rerun_skips_whole_worlds_and_changes_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    stdout(&batch(dir.path(), &["--amount", "3"]));
+    let first = batch(dir.path(), &["--amount", "3"]);
+    // On a pipe: no progress bar, no data on stdout, one summary line.
+    assert_eq!(stdout(&first), "");
+    let message = stderr(&first);
+    assert!(
+        message.lines().count() == 1 && message.starts_with("rse-gen: 3 worlds in "),
+        "{message}"
+    );
     let before = tree(dir.path());
     let again = batch(dir.path(), &["--amount", "3"]);
     stdout(&again);
