@@ -18,8 +18,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
-    /// Reading or writing a file failed.
-    #[error("cannot {action} {}: {source}", path.display())]
+    /// Reading or writing a file failed. The message names the path; the
+    /// system's reason is the error's source (printed after it by `{:#}`).
+    #[error("cannot {action} {}", path.display())]
     Io {
         /// What was being done: "write", "read", "rename"…
         action: &'static str,
