@@ -35,6 +35,19 @@ pub enum Command {
     Mesh(MeshArgs),
     /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
     Batch(BatchArgs),
+    /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes.
+    Check(CheckArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// World folders, or batch folders whose sub-folders are worlds.
+    #[arg(required = true, value_name = "PATH")]
+    pub paths: Vec<PathBuf>,
+
+    /// Print a JSON report (one object per world) on stdout instead of one line per failed world.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(Debug, Args)]

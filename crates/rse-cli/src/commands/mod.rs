@@ -9,6 +9,7 @@ use crate::ExitStatus;
 use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
 mod batch;
+mod check;
 mod heightmap;
 mod mesh;
 mod preview;
@@ -20,6 +21,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Preview(args) => preview::run(&args, &cli.overrides),
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
         Command::Batch(args) => batch::run(&args, &cli.overrides),
+        Command::Check(args) => check::run(&args),
     }
 }
 

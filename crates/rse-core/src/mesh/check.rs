@@ -45,6 +45,37 @@ pub enum MeshFault {
     },
 }
 
+impl std::fmt::Display for MeshFault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            MeshFault::UnpairedEdge {
+                a,
+                b,
+                uses,
+                reverse_uses,
+            } => write!(
+                f,
+                "edge {a}->{b} is used {uses} times and {b}->{a} {reverse_uses} times (want once each: a hole or a flipped face)"
+            ),
+            MeshFault::Degenerate { triangle } => write!(f, "triangle {triangle} has no area"),
+            MeshFault::TJunction { vertex, edge } => write!(
+                f,
+                "vertex {vertex} lies inside edge {}-{} (a T-junction)",
+                edge[0], edge[1]
+            ),
+            MeshFault::PinchedVertex { vertex, fans } => {
+                write!(f, "{fans} sheets of surface meet at vertex {vertex}")
+            }
+            MeshFault::BadIndex { triangle } => {
+                write!(
+                    f,
+                    "triangle {triangle} refers to a vertex that does not exist"
+                )
+            }
+        }
+    }
+}
+
 /// Every fault of `vertices`/`triangles`, in a stable order (empty: the mesh
 /// is a closed, oriented, T-junction-free surface of triangles with area).
 pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {

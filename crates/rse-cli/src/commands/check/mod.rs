@@ -1,0 +1,144 @@
+//! `rse-gen check`: are these worlds whole, reproducible and physically
+//! sound? Static checks always; a rapier physics smoke test with `--physics`.
+
+mod files;
+mod terrain;
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget};
+use rayon::prelude::*;
+use rse_world::{MANIFEST, Manifest};
+use serde::Serialize;
+
+use crate::ExitStatus;
+use crate::args::CheckArgs;
+
+/// What was found in one world.
+#[derive(Debug, Serialize)]
+struct WorldReport {
+    /// The world folder, as given or found.
+    world: String,
+    ok: bool,
+    /// One line per fault: `file: what is wrong`.
+    faults: Vec<String>,
+}
+
+/// The whole run, for `--json`.
+#[derive(Debug, Serialize)]
+struct Report<'a> {
+    worlds: &'a [WorldReport],
+    checked: usize,
+    failed: usize,
+}
+
+pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
+    let worlds = discover(&args.paths)?;
+    let bar =
+        ProgressBar::with_draw_target(Some(worlds.len() as u64), ProgressDrawTarget::stderr());
+    let reports: Vec<WorldReport> = worlds
+        .par_iter()
+        .map(|world| {
+            let report = check_world(world);
+            bar.inc(1);
+            report
+        })
+        .collect();
+    bar.finish_and_clear();
+    let failed = reports.iter().filter(|r| !r.ok).count();
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        let report = Report {
+            worlds: &reports,
+            checked: reports.len(),
+            failed,
+        };
+        serde_json::to_writer_pretty(&mut out, &report)?;
+        writeln!(out)?;
+    } else {
+        for report in reports.iter().filter(|r| !r.ok) {
+            writeln!(out, "FAIL {}: {}", report.world, report.faults.join("; "))?;
+        }
+    }
+    out.flush()?;
+    eprintln!(
+        "rse-gen: checked {} worlds: {} good, {failed} failed",
+        reports.len(),
+        reports.len() - failed
+    );
+    Ok(if failed == 0 {
+        ExitStatus::Success
+    } else {
+        ExitStatus::Failure
+    })
+}
+
+/// The world folders named: a folder holding `rse.json` is a world; any
+/// other folder is a batch, and its sub-folders holding one are its worlds.
+fn discover(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
+    let mut worlds = Vec::new();
+    for path in paths {
+        if !path.is_dir() {
+            bail!("{} is not a folder", path.display());
+        }
+        if path.join(MANIFEST).exists() {
+            worlds.push(path.clone());
+            continue;
+        }
+        let mut found: Vec<PathBuf> = std::fs::read_dir(path)
+            .with_context(|| format!("cannot read {}", path.display()))?
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.join(MANIFEST).exists())
+            .collect();
+        if found.is_empty() {
+            bail!(
+                "{} holds no world (no rse.json in it or in its sub-folders)",
+                path.display()
+            );
+        }
+        found.sort();
+        worlds.extend(found);
+    }
+    Ok(worlds)
+}
+
+/// Every static fault of one world.
+fn check_world(world: &Path) -> WorldReport {
+    let mut faults = Vec::new();
+    let present = match files::list(world) {
+        Ok(present) => present,
+        Err(e) => {
+            faults.push(format!("cannot be read: {e}"));
+            Vec::new()
+        }
+    };
+    let manifest = std::fs::read_to_string(world.join(MANIFEST))
+        .map_err(|e| e.to_string())
+        .and_then(|text| Manifest::from_json(&text).map_err(|e| e.to_string()));
+    match manifest {
+        Err(e) => faults.push(format!("{MANIFEST}: {e}")),
+        Ok(manifest) => {
+            files::check_hashes(world, &manifest, &present, &mut faults);
+            if let Some(terrain) = terrain::regenerate(world, &manifest, &mut faults) {
+                for obj in present
+                    .iter()
+                    .filter(|p| Path::new(p).extension().is_some_and(|e| e == "obj"))
+                {
+                    terrain::check_obj(world, obj, &terrain, &mut faults);
+                }
+            }
+        }
+    }
+    files::check_files(world, &present, &mut faults);
+    // A file named twice (a mesh as collision and visual) is one fault.
+    let mut seen = std::collections::HashSet::new();
+    faults.retain(|f| seen.insert(f.clone()));
+    WorldReport {
+        world: world.display().to_string(),
+        ok: faults.is_empty(),
+        faults,
+    }
+}

@@ -1,0 +1,194 @@
+//! `rse-gen check`: a good batch passes; each way of damaging a world is
+//! found, named with its world and file, with exit status 1.
+
+use std::path::{Path, PathBuf};
+
+use super::{rse_gen, stderr};
+
+const ALL_TARGETS: &str = "obj,gazebo,webots,mujoco,urdf,usd";
+
+/// A fresh batch of three worlds of every target.
+fn good_batch(dir: &Path) -> PathBuf {
+    let out = dir.join("batch");
+    let done = rse_gen(&[
+        "batch",
+        "schemes/six_obstacles.csv",
+        "-o",
+        out.to_str().unwrap(),
+        "--amount",
+        "3",
+        "--target",
+        ALL_TARGETS,
+    ]);
+    assert!(done.status.success(), "{}", stderr(&done));
+    out
+}
+
+fn check(path: &Path) -> (Option<i32>, String) {
+    let done = rse_gen(&["check", path.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&done.stdout).into_owned() + &stderr(&done);
+    (done.status.code(), text)
+}
+
+#[test]
+fn an_untouched_batch_passes() {
+    let dir = tempfile::tempdir().unwrap();
+    let batch = good_batch(dir.path());
+    let (code, text) = check(&batch);
+    assert_eq!(code, Some(0), "{text}");
+    assert!(
+        text.contains("checked 3 worlds: 3 good, 0 failed"),
+        "{text}"
+    );
+    // One world alone, too.
+    let (code, text) = check(&batch.join("world_0001"));
+    assert_eq!(code, Some(0), "{text}");
+}
+
+/// Damages world 1 of a good batch with `damage`, then expects `check` to
+/// fail naming it and saying each of `expected`.
+fn damaged(damage: impl FnOnce(&Path), expected: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let batch = good_batch(dir.path());
+    let world = batch.join("world_0001");
+    damage(&world);
+    let (code, text) = check(&batch);
+    assert_eq!(code, Some(1), "{text}");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("FAIL "))
+        .unwrap_or_else(|| panic!("no FAIL line in {text}"));
+    assert!(line.contains("world_0001"), "{text}");
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("FAIL ")).count(),
+        1,
+        "{text}"
+    );
+    for e in expected {
+        assert!(line.contains(e), "want {e:?} in {line}");
+    }
+    assert!(text.contains("3 worlds: 2 good, 1 failed"), "{text}");
+}
+
+#[test]
+fn a_truncated_obj_is_found() {
+    damaged(
+        |w| {
+            let path = w.join("meshes/terrain.obj");
+            let bytes = std::fs::read(&path).unwrap();
+            std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
+        },
+        &[
+            "meshes/terrain.obj: SHA-256 differs",
+            "meshes/terrain.obj: not a closed",
+        ],
+    );
+}
+
+#[test]
+fn one_flipped_byte_is_found() {
+    damaged(
+        |w| {
+            let path = w.join("preview.png");
+            let mut bytes = std::fs::read(&path).unwrap();
+            let middle = bytes.len() / 2;
+            bytes[middle] ^= 0x01;
+            std::fs::write(&path, bytes).unwrap();
+        },
+        &["preview.png: SHA-256 differs"],
+    );
+}
+
+#[test]
+fn a_deleted_mesh_is_found_where_it_is_named() {
+    damaged(
+        |w| std::fs::remove_file(w.join("gazebo/rse_terrain/meshes/terrain.obj")).unwrap(),
+        &[
+            "gazebo/rse_terrain/meshes/terrain.obj: listed in rse.json but cannot be read",
+            "gazebo/rse_terrain/model.sdf: names model://rse_terrain/meshes/terrain.obj, which does not exist",
+        ],
+    );
+}
+
+#[test]
+fn an_edited_heightmap_cell_is_found_even_with_its_hash_updated() {
+    damaged(
+        |w| {
+            let path = w.join("heightmap.csv");
+            let text = std::fs::read_to_string(&path).unwrap();
+            let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+            let mut cells: Vec<u32> = lines[2].split(',').map(|c| c.parse().unwrap()).collect();
+            cells[4] += 1;
+            lines[2] = cells
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(",");
+            let edited = lines.join("\n") + "\n";
+            std::fs::write(&path, &edited).unwrap();
+            // A careful forger updates the manifest too: regeneration still tells.
+            let manifest = w.join("rse.json");
+            let json = std::fs::read_to_string(&manifest).unwrap();
+            let old = rse_world::sha256_hex(text.as_bytes());
+            let new = rse_world::sha256_hex(edited.as_bytes());
+            std::fs::write(&manifest, json.replace(&old, &new)).unwrap();
+        },
+        &["heightmap.csv: cell (4, 2) is"],
+    );
+}
+
+#[test]
+fn a_changed_seed_in_the_manifest_is_found() {
+    damaged(
+        |w| {
+            let path = w.join("rse.json");
+            let json = std::fs::read_to_string(&path).unwrap();
+            std::fs::write(&path, json.replacen("\"seed\": 0,", "\"seed\": 1,", 1)).unwrap();
+        },
+        &[
+            "heightmap.csv: cell",
+            "regenerated from rse.json (seed 1, index 1)",
+        ],
+    );
+}
+
+#[test]
+fn broken_xml_is_found() {
+    damaged(
+        |w| {
+            let path = w.join("mujoco/rse.xml");
+            let text = std::fs::read_to_string(&path).unwrap();
+            std::fs::write(&path, text.replace("</worldbody>", "")).unwrap();
+        },
+        &["mujoco/rse.xml: not well-formed XML: line"],
+    );
+}
+
+#[test]
+fn json_reports_every_world_with_its_faults() {
+    let dir = tempfile::tempdir().unwrap();
+    let batch = good_batch(dir.path());
+    std::fs::write(batch.join("world_0002/webots/extra.txt"), "x").unwrap();
+    let done = rse_gen(&["check", "--json", batch.to_str().unwrap()]);
+    assert_eq!(done.status.code(), Some(1));
+    let report: serde_json::Value = serde_json::from_slice(&done.stdout).unwrap();
+    assert_eq!(report["checked"], 3);
+    assert_eq!(report["failed"], 1);
+    let worlds = report["worlds"].as_array().unwrap();
+    assert_eq!(worlds.iter().filter(|w| w["ok"] == true).count(), 2);
+    let bad = worlds.iter().find(|w| w["ok"] == false).unwrap();
+    assert!(bad["world"].as_str().unwrap().ends_with("world_0002"));
+    assert_eq!(bad["faults"][0], "webots/extra.txt: not listed in rse.json");
+}
+
+#[test]
+fn a_folder_without_worlds_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let done = rse_gen(&["check", dir.path().to_str().unwrap()]);
+    assert_eq!(done.status.code(), Some(2));
+    assert!(
+        stderr(&done).contains("holds no world"),
+        "{}",
+        stderr(&done)
+    );
+}
