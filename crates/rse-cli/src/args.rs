@@ -35,7 +35,7 @@ pub enum Command {
     Mesh(MeshArgs),
     /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
     Batch(BatchArgs),
-    /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes.
+    /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes, physics.
     Check(CheckArgs),
 }
 
@@ -48,6 +48,11 @@ pub struct CheckArgs {
     /// Print a JSON report (one object per world) on stdout instead of one line per failed world.
     #[arg(long)]
     pub json: bool,
+
+    /// Also drop 20 bodies on each terrain in rapier for 5 simulated seconds at 1 kHz: report
+    /// bodies that sink, keep moving or leave, and the step time against a flat plane.
+    #[arg(long)]
+    pub physics: bool,
 }
 
 #[derive(Debug, Args)]

@@ -192,3 +192,106 @@ fn a_folder_without_worlds_is_a_usage_error() {
         stderr(&done)
     );
 }
+
+/// Every sample scheme, 20 worlds each, through `check --physics`.
+#[test]
+fn physics_finds_no_error_on_any_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut batches = Vec::new();
+    for entry in std::fs::read_dir(super::repo().join("schemes")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "csv") {
+            let out = dir.path().join(path.file_stem().unwrap());
+            let done = rse_gen(&[
+                "batch",
+                path.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--amount",
+                "20",
+                "--target",
+                "obj",
+            ]);
+            assert!(done.status.success(), "{}", stderr(&done));
+            batches.push(out);
+        }
+    }
+    assert!(batches.len() >= 12);
+    let mut args = vec!["check", "--physics", "--json"];
+    args.extend(batches.iter().map(|b| b.to_str().unwrap()));
+    let done = rse_gen(&args);
+    let report: serde_json::Value = serde_json::from_slice(&done.stdout).unwrap();
+    let failures: Vec<_> = report["worlds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|w| w["ok"] != true)
+        .map(|w| format!("{}: {}", w["world"], w["faults"]))
+        .collect();
+    assert!(failures.is_empty(), "{failures:#?}");
+    assert_eq!(report["checked"], 20 * batches.len());
+    for world in report["worlds"].as_array().unwrap() {
+        let physics = &world["physics"];
+        assert_eq!(physics["bodies"], 20);
+        assert_eq!(physics["steps"], 5000);
+        assert!(physics["rse_step_us"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("batch");
+    let done = rse_gen(&[
+        "batch",
+        "schemes/six_obstacles.csv",
+        "-o",
+        out.to_str().unwrap(),
+        "--target",
+        "obj",
+    ]);
+    assert!(done.status.success(), "{}", stderr(&done));
+    // Take the tops off: every face whose normal is +z (the fifth `vn`).
+    let obj = out.join("world_0000/meshes/terrain.obj");
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let holed: String = text
+        .lines()
+        .filter(|l| !(l.starts_with("f ") && l.contains("//5 ")))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(holed.len() < text.len());
+    std::fs::write(&obj, holed).unwrap();
+    let (code, text) = {
+        let done = rse_gen(&["check", "--physics", out.to_str().unwrap()]);
+        (
+            done.status.code(),
+            String::from_utf8_lossy(&done.stdout).into_owned() + &stderr(&done),
+        )
+    };
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("physics: body"), "{text}");
+    assert!(text.contains("sank into the terrain"), "{text}");
+}
+
+#[test]
+fn physics_runs_on_the_box_set_of_block_worlds() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("batch");
+    let done = rse_gen(&[
+        "batch",
+        "schemes/nist_hill.csv",
+        "-o",
+        out.to_str().unwrap(),
+        "--amount",
+        "3",
+        "--target",
+        "mujoco",
+        "--mesh",
+        "blocks",
+    ]);
+    assert!(done.status.success(), "{}", stderr(&done));
+    let done = rse_gen(&["check", "--physics", "--json", out.to_str().unwrap()]);
+    let report: serde_json::Value = serde_json::from_slice(&done.stdout).unwrap();
+    assert_eq!(report["failed"], 0, "{report:#}");
+    assert_eq!(report["worlds"][0]["physics"]["bodies"], 20);
+}

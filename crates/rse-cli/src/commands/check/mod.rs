@@ -10,7 +10,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget};
 use rayon::prelude::*;
-use rse_world::{MANIFEST, Manifest};
+use rse_core::Terrain;
+use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
+use rse_world::{MANIFEST, Manifest, MeshMode};
 use serde::Serialize;
 
 use crate::ExitStatus;
@@ -24,6 +26,9 @@ struct WorldReport {
     ok: bool,
     /// One line per fault: `file: what is wrong`.
     faults: Vec<String>,
+    /// The physics smoke test, with `--physics`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    physics: Option<PhysicsReport>,
 }
 
 /// The whole run, for `--json`.
@@ -41,7 +46,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
     let reports: Vec<WorldReport> = worlds
         .par_iter()
         .map(|world| {
-            let report = check_world(world);
+            let report = check_world(world, args.physics);
             bar.inc(1);
             report
         })
@@ -68,6 +73,19 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
         reports.len(),
         reports.len() - failed
     );
+    let physics: Vec<&PhysicsReport> = reports.iter().filter_map(|r| r.physics.as_ref()).collect();
+    if !physics.is_empty() {
+        let mean = |f: fn(&PhysicsReport) -> f64| {
+            physics.iter().map(|p| f(p)).sum::<f64>() / physics.len() as f64
+        };
+        let errors: usize = physics.iter().map(|p| p.errors.len()).sum();
+        eprintln!(
+            "rse-gen: physics: {errors} errors; mean step {:.1} µs on the RSE, {:.1} µs on a plane (ratio {:.2})",
+            mean(|p| p.rse_step_us),
+            mean(|p| p.plane_step_us),
+            mean(|p| p.ratio),
+        );
+    }
     Ok(if failed == 0 {
         ExitStatus::Success
     } else {
@@ -105,9 +123,10 @@ fn discover(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
     Ok(worlds)
 }
 
-/// Every static fault of one world.
-fn check_world(world: &Path) -> WorldReport {
+/// Every fault of one world; with `physics`, the smoke test too.
+fn check_world(world: &Path, physics: bool) -> WorldReport {
     let mut faults = Vec::new();
+    let mut physics_report = None;
     let present = match files::list(world) {
         Ok(present) => present,
         Err(e) => {
@@ -123,6 +142,11 @@ fn check_world(world: &Path) -> WorldReport {
         Ok(manifest) => {
             files::check_hashes(world, &manifest, &present, &mut faults);
             if let Some(terrain) = terrain::regenerate(world, &manifest, &mut faults) {
+                if physics {
+                    let report = physics_of(world, &manifest, &present, &terrain);
+                    faults.extend(report.errors.iter().map(|e| format!("physics: {e}")));
+                    physics_report = Some(report);
+                }
                 for obj in present
                     .iter()
                     .filter(|p| Path::new(p).extension().is_some_and(|e| e == "obj"))
@@ -140,5 +164,31 @@ fn check_world(world: &Path) -> WorldReport {
         world: world.display().to_string(),
         ok: faults.is_empty(),
         faults,
+        physics: physics_report,
     }
+}
+
+/// The smoke test of a world's terrain as its simulators load it: the mesh
+/// read back from its OBJ in single-mesh worlds, the box set otherwise.
+fn physics_of(
+    world: &Path,
+    manifest: &Manifest,
+    present: &[String],
+    terrain: &Terrain,
+) -> PhysicsReport {
+    let obj = present
+        .iter()
+        .find(|p| Path::new(p).extension().is_some_and(|e| e == "obj"));
+    let model = match (manifest.mesh, obj) {
+        (MeshMode::Single, Some(obj)) => match terrain::read_obj(&world.join(obj)) {
+            Ok(mesh) => TerrainModel::Mesh {
+                vertices: mesh.vertices,
+                triangles: mesh.triangles,
+            },
+            // Already a fault of the static checks; boxes keep the test going.
+            Err(_) => TerrainModel::boxes_of(terrain),
+        },
+        _ => TerrainModel::boxes_of(terrain),
+    };
+    smoke_test(&model, terrain, SmokeTest::default())
 }

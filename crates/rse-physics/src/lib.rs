@@ -1,0 +1,337 @@
+//! A rapier physics smoke test of a Random Step Environment (issue
+//! "`rse-gen check`"): drop a fixed, seeded set of robot-part-sized bodies
+//! on the terrain, simulate, and report the mean step time beside the same
+//! bodies on a flat plane (the paper's RTF vs control RTF, §4) and every
+//! physics error — a body that sank into the terrain, one still fast after
+//! settling, one that left the RSE without being pushed.
+
+mod bodies;
+
+use std::time::{Duration, Instant};
+
+use rapier3d::prelude::*;
+use rse_core::Terrain;
+use serde::Serialize;
+
+pub use bodies::{Body, Shape, drop_set};
+
+/// The terrain as the simulator gets it.
+#[derive(Debug, Clone)]
+pub enum TerrainModel {
+    /// One static triangle mesh (metres, grid frame).
+    Mesh {
+        /// Vertex positions.
+        vertices: Vec<[f32; 3]>,
+        /// Triangles, counter-clockwise from outside.
+        triangles: Vec<[u32; 3]>,
+    },
+    /// Static boxes: `(centre, half size)` in metres.
+    Boxes(Vec<([f64; 3], [f64; 3])>),
+}
+
+impl TerrainModel {
+    /// The single mesh of `terrain`.
+    pub fn mesh_of(terrain: &Terrain) -> Self {
+        let mesh = terrain.mesh();
+        TerrainModel::Mesh {
+            vertices: mesh.vertices().to_vec(),
+            triangles: mesh.triangles().to_vec(),
+        }
+    }
+
+    /// `true` for a terrain with nothing in it.
+    pub fn is_empty(&self) -> bool {
+        match self {
+            TerrainModel::Mesh { triangles, .. } => triangles.is_empty(),
+            TerrainModel::Boxes(boxes) => boxes.is_empty(),
+        }
+    }
+
+    /// The merged box set of `terrain`.
+    pub fn boxes_of(terrain: &Terrain) -> Self {
+        TerrainModel::Boxes(
+            terrain
+                .boxes()
+                .iter()
+                .map(|b| (b.center, b.half_size))
+                .collect(),
+        )
+    }
+}
+
+/// How long and how finely to simulate, and with how many bodies.
+#[derive(Debug, Clone, Copy)]
+pub struct SmokeTest {
+    /// Bodies dropped (boxes, spheres and capsules in turn).
+    pub bodies: usize,
+    /// Simulated time, seconds.
+    pub seconds: f64,
+    /// Steps per simulated second.
+    pub rate_hz: f64,
+}
+
+impl Default for SmokeTest {
+    /// 20 bodies, 5 s at 1 kHz.
+    fn default() -> Self {
+        SmokeTest {
+            bodies: 20,
+            seconds: 5.0,
+            rate_hz: 1000.0,
+        }
+    }
+}
+
+/// What the smoke test measured.
+#[derive(Debug, Clone, Serialize)]
+pub struct PhysicsReport {
+    /// Mean wall time of one step with the RSE, microseconds.
+    pub rse_step_us: f64,
+    /// Mean wall time of one step with the same bodies on a plane.
+    pub plane_step_us: f64,
+    /// `rse_step_us / plane_step_us`: how much the terrain slows physics.
+    pub ratio: f64,
+    /// Bodies dropped.
+    pub bodies: usize,
+    /// Steps simulated.
+    pub steps: usize,
+    /// One line per physics error; empty when the terrain is sound.
+    pub errors: Vec<String>,
+}
+
+/// A body below the surface under its centre by more than this is inside
+/// the terrain, metres.
+const SINK_TOLERANCE: f64 = 0.01;
+/// Mean speed over the last second above which a body has not settled,
+/// m/s. Measured as displacement, so jitter in place (a body wedged
+/// between two walls) is not mistaken for motion. Not lower: rapier 0.36
+/// lets a capsule lying on a flat box creep and spin up by itself, to
+/// about 0.2 m/s in 5 s, with or without our terrain.
+const SETTLED_SPEED: f64 = 0.3;
+/// How far past the RSE's edge a body may roll or slide, metres.
+const EDGE_MARGIN: f64 = 0.5;
+/// Kinetic energy a body may have beyond what its fall gave it, as a height
+/// of fall, metres: contact resolution may push a body up a little.
+const ENERGY_SLACK_HEIGHT: f64 = 0.02;
+
+/// Runs the smoke test of `model`, the terrain of `terrain`.
+pub fn smoke_test(model: &TerrainModel, terrain: &Terrain, test: SmokeTest) -> PhysicsReport {
+    let drops = drop_set(terrain, test.bodies);
+    let steps = (test.seconds * test.rate_hz).round() as usize;
+    let dt = (1.0 / test.rate_hz) as f32;
+
+    let (mut world, handles) = scene(Some(model), &drops, dt, terrain);
+    let last_second = (test.rate_hz.round() as usize).min(steps);
+    // Energy no body may exceed: what it had at the start plus what it
+    // gained by falling. A solver that throws a body out breaks this.
+    let mut gain = vec![0.0f64; handles.len()];
+    let mut watch_energy = |world: &PhysicsWorld| {
+        for ((&h, drop), gain) in handles.iter().zip(&drops).zip(&mut gain) {
+            let body = &world.bodies[h];
+            let fallen = drop.start[2] - f64::from(body.translation().z);
+            let budget = f64::from(body.mass()) * 9.81 * (fallen + ENERGY_SLACK_HEIGHT);
+            *gain = gain.max(f64::from(body.kinetic_energy()) - budget);
+        }
+    };
+    let mut rse_time = simulate(&mut world, steps - last_second, &mut watch_energy);
+    let before: Vec<Vector> = handles
+        .iter()
+        .map(|&h| world.bodies[h].translation())
+        .collect();
+    rse_time += simulate(&mut world, last_second, &mut watch_energy);
+    let moved: Vec<f64> = handles
+        .iter()
+        .zip(&before)
+        .map(|(&h, &p)| f64::from((world.bodies[h].translation() - p).length()))
+        .collect();
+    let window = last_second as f64 / test.rate_hz;
+    let mut errors = judge(&world, &handles, &moved, window, &drops, terrain);
+    for (i, (&g, drop)) in gain.iter().zip(&drops).enumerate() {
+        if g > 0.0 {
+            errors.push(format!(
+                "{}: gained {g:.3} J more kinetic energy than its fall gives (thrown by the solver)",
+                drop.label(i)
+            ));
+        }
+    }
+
+    let flat: Vec<Body> = drops
+        .iter()
+        .map(|b| Body {
+            start: [b.start[0], b.start[1], b.drop_over],
+            ..*b
+        })
+        .collect();
+    let (mut plane, _) = scene(None, &flat, dt, terrain);
+    let plane_time = simulate(&mut plane, steps, &mut |_| {});
+
+    // Timings are noisy well above these roundings.
+    let round = |v: f64, unit: f64| (v / unit).round() * unit;
+    let per_step = |t: Duration| t.as_secs_f64() * 1e6 / steps.max(1) as f64;
+    let (rse_step_us, plane_step_us) = (per_step(rse_time), per_step(plane_time));
+    PhysicsReport {
+        rse_step_us: round(rse_step_us, 0.01),
+        plane_step_us: round(plane_step_us, 0.01),
+        ratio: round(rse_step_us / plane_step_us.max(1e-9), 0.001),
+        bodies: drops.len(),
+        steps,
+        errors,
+    }
+}
+
+/// A world with a ground plane at `z = 0`, the terrain (none: the flat
+/// control) and the bodies.
+fn scene(
+    model: Option<&TerrainModel>,
+    drops: &[Body],
+    dt: f32,
+    terrain: &Terrain,
+) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, 0.0, -9.81);
+    world.integration_parameters.dt = dt;
+    let grid = terrain.grid();
+    let size = [grid.nx, grid.ny].map(|n| f64::from(n) * terrain.block_size());
+    // The floor the pallets stand on, reaching well past them.
+    let floor_half = (size[0].max(size[1]) + 10.0) as f32;
+    world.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(
+            size[0] as f32 / 2.0,
+            size[1] as f32 / 2.0,
+            -0.5,
+        )),
+        ColliderBuilder::cuboid(floor_half, floor_half, 0.5).friction(0.8),
+    );
+    // The flat control (`None`) and an empty terrain: the floor alone.
+    match model.filter(|m| !m.is_empty()) {
+        None => {}
+        Some(TerrainModel::Mesh {
+            vertices,
+            triangles,
+        }) => {
+            let points = vertices
+                .iter()
+                .map(|&[x, y, z]| Vector::new(x, y, z))
+                .collect();
+            // Fixing internal edges stops bodies sliding over a flat top from
+            // catching on the edges between its triangles.
+            let collider = ColliderBuilder::trimesh_with_flags(
+                points,
+                triangles.clone(),
+                TriMeshFlags::FIX_INTERNAL_EDGES,
+            )
+            .expect("a mesh with triangles")
+            .friction(0.8);
+            world.insert(RigidBodyBuilder::fixed(), collider);
+        }
+        Some(TerrainModel::Boxes(boxes)) => {
+            let body = world.insert_body(RigidBodyBuilder::fixed());
+            for &(c, h) in boxes {
+                let collider = ColliderBuilder::cuboid(h[0] as f32, h[1] as f32, h[2] as f32)
+                    .translation(Vector::new(c[0] as f32, c[1] as f32, c[2] as f32))
+                    .friction(0.8);
+                world.insert_collider(collider, Some(body));
+            }
+        }
+    }
+    let handles = drops
+        .iter()
+        .map(|b| {
+            let [x, y, z] = b.start.map(|v| v as f32);
+            let body = RigidBodyBuilder::dynamic()
+                .translation(Vector::new(x, y, z))
+                .rotation(Vector::from(b.rotation.map(|v| v as f32)))
+                // Robot parts stop: without damping a sphere rolls forever.
+                .linear_damping(1.0)
+                .angular_damping(4.0)
+                // A robot on the terrain never sleeps: neither do the test bodies,
+                // so both scenes pay for their contacts every step.
+                .can_sleep(false);
+            let collider = match b.shape {
+                Shape::Box(h) => ColliderBuilder::cuboid(h[0] as f32, h[1] as f32, h[2] as f32),
+                Shape::Sphere(r) => ColliderBuilder::ball(r as f32),
+                Shape::Capsule {
+                    half_height,
+                    radius,
+                } => ColliderBuilder::capsule_z(half_height as f32, radius as f32),
+            }
+            .density(500.0)
+            .friction(0.8);
+            world.insert(body, collider).0
+        })
+        .collect();
+    (world, handles)
+}
+
+/// Steps `world` `steps` times, calling `after` after each step; the time
+/// spent stepping alone.
+fn simulate(
+    world: &mut PhysicsWorld,
+    steps: usize,
+    after: &mut dyn FnMut(&PhysicsWorld),
+) -> Duration {
+    let mut spent = Duration::ZERO;
+    for _ in 0..steps {
+        let start = Instant::now();
+        world.step();
+        spent += start.elapsed();
+        after(world);
+    }
+    spent
+}
+
+/// The physics errors of the bodies at the end of the run.
+/// The physics errors of the bodies at the end of the run; `moved` is how
+/// far each went in the last `window` seconds.
+fn judge(
+    world: &PhysicsWorld,
+    handles: &[RigidBodyHandle],
+    moved: &[f64],
+    window: f64,
+    drops: &[Body],
+    terrain: &Terrain,
+) -> Vec<String> {
+    let grid = terrain.grid();
+    let s = terrain.block_size();
+    let size = [f64::from(grid.nx) * s, f64::from(grid.ny) * s];
+    let surface = |x: f64, y: f64| {
+        let (cx, cy) = ((x / s).floor(), (y / s).floor());
+        if cx < 0.0 || cy < 0.0 || cx >= f64::from(grid.nx) || cy >= f64::from(grid.ny) {
+            return 0.0;
+        }
+        let h = terrain.heightmap().get(cx as u32, cy as u32);
+        if h == 0 && terrain.base() == 0.0 {
+            0.0
+        } else {
+            terrain.elevation(cx as u32, cy as u32)
+        }
+    };
+    let mut errors = Vec::new();
+    for (i, ((&handle, drop), &moved)) in handles.iter().zip(drops).zip(moved).enumerate() {
+        let p = world.bodies[handle].translation();
+        let [x, y, z] = [p.x, p.y, p.z].map(f64::from);
+        let speed = moved / window.max(1e-9);
+        let name = drop.label(i);
+        if ![x, y, z, speed].iter().all(|v: &f64| v.is_finite()) {
+            errors.push(format!("{name}: its state is not finite"));
+            continue;
+        }
+        let under = surface(x, y);
+        if z < under - SINK_TOLERANCE {
+            errors.push(format!(
+                "{name}: sank into the terrain: centre at ({x:.3}, {y:.3}, {z:.3}) m under a surface at {under:.3} m"
+            ));
+        }
+        if speed > SETTLED_SPEED {
+            errors.push(format!(
+                "{name}: still moving after settling: {moved:.2} m in the last {window:.1} s"
+            ));
+        }
+        let outside = (-x).max(x - size[0]).max(-y).max(y - size[1]);
+        if outside > EDGE_MARGIN {
+            errors.push(format!(
+                "{name}: left the RSE: {outside:.2} m past its edge at ({x:.2}, {y:.2})"
+            ));
+        }
+    }
+    errors
+}
