@@ -23,6 +23,7 @@ lint:
 bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
+	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
 
 build:

@@ -1,0 +1,116 @@
+//! Step time of the physics smoke test on an RSE beside a flat plane, for
+//! the paper's sizes (10×10, 15×60, 50×50), with our single mesh, our merged
+//! boxes, and a naive mesh of one closed box per cell. Prints a table; run
+//! with `cargo bench -p rse-physics --bench physics`.
+//!
+//! Target (issue "`rse-gen check`"): ratio under 1.3 for 50×50 with the
+//! single mesh.
+
+use rse_core::{Scheme, Terrain, generate};
+use rse_physics::{SmokeTest, TerrainModel, smoke_test};
+
+/// The 12 triangles of a closed box whose corner `i` is `(i & 1, i >> 1 & 1, i >> 2 & 1)`.
+const BOX: [[u32; 3]; 12] = [
+    [0, 2, 1],
+    [1, 2, 3],
+    [4, 5, 6],
+    [5, 7, 6],
+    [0, 1, 4],
+    [1, 5, 4],
+    [2, 6, 3],
+    [3, 6, 7],
+    [0, 4, 2],
+    [2, 4, 6],
+    [1, 3, 5],
+    [3, 7, 5],
+];
+
+/// One closed box per cell with solid, concatenated, as the RL terrain
+/// generators build their grids.
+fn naive_mesh(terrain: &Terrain) -> TerrainModel {
+    let map = terrain.heightmap();
+    let s = terrain.block_size() as f32;
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    for y in 0..map.ny() {
+        for x in 0..map.nx() {
+            let z = terrain.elevation(x, y) as f32;
+            if z <= 0.0 {
+                continue;
+            }
+            let first = vertices.len() as u32;
+            for i in 0..8u32 {
+                vertices.push([
+                    (x + (i & 1)) as f32 * s,
+                    (y + ((i >> 1) & 1)) as f32 * s,
+                    if i >= 4 { z } else { 0.0 },
+                ]);
+            }
+            triangles.extend(BOX.iter().map(|t| t.map(|k| first + k)));
+        }
+    }
+    TerrainModel::Mesh {
+        vertices,
+        triangles,
+    }
+}
+
+fn main() {
+    let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
+    let cases = [
+        (
+            "random H4 10x10",
+            Scheme::from_csv("# size: 10x10\ntype,height\nrandom,4\n", None).unwrap(),
+        ),
+        (
+            "random H4 15x60",
+            Scheme::from_csv("# size: 15x60\ntype,height\nrandom,4\n", None).unwrap(),
+        ),
+        (
+            "random H4 50x50",
+            Scheme::from_csv("# size: 50x50\ntype,height\nrandom,4\n", None).unwrap(),
+        ),
+        (
+            "six_obstacles 50x50",
+            Scheme::load(format!("{samples}six_obstacles.csv")).unwrap(),
+        ),
+    ];
+    println!(
+        "{:<22} {:<12} {:>10} {:>12} {:>12} {:>7} {:>7}",
+        "terrain", "model", "triangles", "RSE µs/step", "plane µs", "ratio", "errors"
+    );
+    let worlds = 3;
+    for (name, scheme) in &cases {
+        let terrains: Vec<Terrain> = (0..worlds).map(|i| generate(scheme, 0, i)).collect();
+        let models: [(&str, fn(&Terrain) -> TerrainModel); 3] = [
+            ("single mesh", TerrainModel::mesh_of),
+            ("boxes", TerrainModel::boxes_of),
+            ("naive mesh", naive_mesh),
+        ];
+        for (label, model_of) in models {
+            let (mut rse, mut plane, mut errors, mut size) = (0.0, 0.0, 0, 0);
+            for terrain in &terrains {
+                let model = model_of(terrain);
+                size = match &model {
+                    TerrainModel::Mesh { triangles, .. } => triangles.len(),
+                    TerrainModel::Boxes(boxes) => boxes.len(),
+                };
+                let report = smoke_test(&model, terrain, SmokeTest::default());
+                rse += report.rse_step_us;
+                plane += report.plane_step_us;
+                errors += report.errors.len();
+            }
+            let n = worlds as f64;
+            let shown = if label == "boxes" {
+                format!("{size} boxes")
+            } else {
+                size.to_string()
+            };
+            println!(
+                "{name:<22} {label:<12} {shown:>10} {:>12.1} {:>12.1} {:>7.2} {errors:>7}",
+                rse / n,
+                plane / n,
+                rse / plane
+            );
+        }
+    }
+}
