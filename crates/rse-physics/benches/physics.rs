@@ -54,6 +54,9 @@ fn naive_mesh(terrain: &Terrain) -> TerrainModel {
     }
 }
 
+/// How a terrain becomes the model under test.
+type ModelOf = fn(&Terrain) -> TerrainModel;
+
 fn main() {
     let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
     let cases = [
@@ -81,7 +84,7 @@ fn main() {
     let worlds = 3;
     for (name, scheme) in &cases {
         let terrains: Vec<Terrain> = (0..worlds).map(|i| generate(scheme, 0, i)).collect();
-        let models: [(&str, fn(&Terrain) -> TerrainModel); 3] = [
+        let models: [(&str, ModelOf); 3] = [
             ("single mesh", TerrainModel::mesh_of),
             ("boxes", TerrainModel::boxes_of),
             ("naive mesh", naive_mesh),
