@@ -141,7 +141,7 @@ fn xml_references(text: &str) -> Result<Vec<String>, String> {
             let at = usize::try_from(reader.error_position())
                 .unwrap_or(usize::MAX)
                 .min(text.len());
-            format!("line {}: {e}", text[..at].lines().count().max(1))
+            format!("line {}: {e}", text[..at].matches('\n').count() + 1)
         })?;
         match event {
             Event::Start(e) | Event::Empty(e) => {
