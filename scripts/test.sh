@@ -42,11 +42,13 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --workspace --locked 2>&1 | tee "$log"
 
-say "third-party readers (Python: trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
+say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
+say "the Python package (pip install ./crates/rse-py: maturin, release build)"
+.venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
 RSE_GEN="$PWD/target/debug/rse-gen" .venv/bin/python -m pytest 2>&1 | tee -a "$log"
 
 say "the README's main command"

@@ -1,11 +1,27 @@
-//! Python bindings of rse (`import rse`). A skeleton for now: the module
-//! loads and reports its version; the Python issue adds the generator API.
+//! Python bindings of rse (`import rse`): schemes, terrains as numpy arrays,
+//! meshes, box sets, MJCF, batches. Thin over rse-core and rse-world: no
+//! generator logic here.
+
+// pyo3 hands every argument over by value (it converts it from Python):
+// taking some of them by reference is not an option.
+#![allow(clippy::needless_pass_by_value)]
 
 use pyo3::prelude::*;
+
+mod batch;
+mod errors;
+mod scheme;
+mod terrain;
 
 /// The native part of the `rse` package.
 #[pymodule]
 fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", rse_core::VERSION)?;
+    m.add("SchemeError", m.py().get_type::<errors::SchemeError>())?;
+    m.add_class::<scheme::Obstacle>()?;
+    m.add_class::<scheme::Scheme>()?;
+    m.add_class::<terrain::Terrain>()?;
+    m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
     Ok(())
 }

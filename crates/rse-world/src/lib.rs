@@ -24,4 +24,4 @@ pub use error::Error;
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
 pub use target::{MeshMode, Target, Targets};
 pub use templates::Templates;
-pub use world::{WorldFiles, WorldOptions, build_world};
+pub use world::{WorldFiles, WorldOptions, build_world, mjcf};

@@ -4,7 +4,9 @@
 use std::collections::BTreeMap;
 
 use rse_core::export::{mtl, obj, usda};
-use rse_core::{Scheme, generate, preview};
+use std::sync::OnceLock;
+
+use rse_core::{Scheme, Terrain, generate, preview};
 
 use crate::context::{MODEL, WorldContext};
 use crate::error::Error;
@@ -131,6 +133,27 @@ pub fn build_world(
     Ok(WorldFiles { name, files })
 }
 
+/// An MJCF model of `terrain` alone, for `mujoco.MjModel.from_xml_string`:
+/// our `MuJoCo` template in block mode (floor, light, the merged boxes as
+/// static geoms), so it needs no mesh file.
+///
+/// # Panics
+/// Never: our template writes `rse.xml`, as UTF-8 (tested).
+pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
+    static TEMPLATES: OnceLock<Templates> = OnceLock::new();
+    let boxes = terrain.boxes();
+    let name = format!("rse_{}_{}", terrain.seed(), terrain.index());
+    let context = WorldContext::new(name, terrain, MeshMode::Blocks, &boxes);
+    let files = TEMPLATES
+        .get_or_init(Templates::builtin)
+        .render(Target::Mujoco, &context)?;
+    let (_, bytes) = files
+        .into_iter()
+        .find(|(path, _)| path == "rse.xml")
+        .expect("our MuJoCo template writes rse.xml");
+    Ok(String::from_utf8(bytes).expect("templates render UTF-8 text"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -233,5 +256,15 @@ mod tests {
             generate(&again, manifest.seed, manifest.index).heightmap(),
             generate(&scheme, 7, 1).heightmap()
         );
+    }
+
+    #[test]
+    fn mjcf_is_the_block_mode_mujoco_world() {
+        let scheme = Scheme::from_csv(WALL, None).unwrap();
+        let terrain = generate(&scheme, 2, 5);
+        let xml = mjcf(&terrain).unwrap();
+        assert!(xml.contains("<mujoco model=\"rse_2_5\">"));
+        assert_eq!(xml.matches("type=\"box\"").count(), terrain.boxes().len());
+        assert!(!xml.contains("<mesh"));
     }
 }

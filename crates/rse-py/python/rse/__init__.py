@@ -1,8 +1,30 @@
 """Random Step Environments (NIST stepfields) for robot simulators.
 
-The generator lives in Rust (``rse._rse``); this package re-exports it.
+The generator lives in Rust (``rse._rse``); this package re-exports it::
+
+    import rse
+    scheme = rse.Scheme.load("schemes/six_obstacles.csv")
+    terrain = scheme.generate(seed=0, index=7)
+    terrain.heights            # numpy (ny, nx) heights in steps, read-only
+    vertices, faces = terrain.mesh()
 """
 
-from rse._rse import __version__
+from rse._rse import (
+    Obstacle,
+    Scheme,
+    SchemeError,
+    Terrain,
+    __version__,
+    generate_batch,
+    write_worlds,
+)
 
-__all__ = ["__version__"]
+__all__ = [
+    "Obstacle",
+    "Scheme",
+    "SchemeError",
+    "Terrain",
+    "__version__",
+    "generate_batch",
+    "write_worlds",
+]

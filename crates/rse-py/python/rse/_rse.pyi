@@ -1,1 +1,134 @@
+"""Type stubs of the native module ``rse._rse`` (checked by mypy.stubtest)."""
+
+import os
+from typing import Optional, Union, final
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "__version__",
+    "SchemeError",
+    "Obstacle",
+    "Scheme",
+    "Terrain",
+    "generate_batch",
+    "write_worlds",
+]
+
 __version__: str
+
+# A value, or an inclusive (lo, hi) range drawn per world.
+_IntParam = Union[int, tuple[int, int]]
+_FloatParam = Union[float, tuple[float, float]]
+
+class SchemeError(ValueError):
+    file: Optional[str]
+    line: Optional[int]
+    column: Optional[int]
+    field: Optional[str]
+
+@final
+class Obstacle:
+    def __new__(
+        cls,
+        type: str,
+        height: Optional[_IntParam] = None,
+        angle: Optional[_FloatParam] = None,
+        x1: Optional[_IntParam] = None,
+        y1: Optional[_IntParam] = None,
+        x2: Optional[_IntParam] = None,
+        y2: Optional[_IntParam] = None,
+        sigma: Optional[_FloatParam] = None,
+    ) -> Obstacle: ...
+    @property
+    def type(self) -> str: ...
+    @property
+    def height(self) -> Optional[_IntParam]: ...
+    @property
+    def angle(self) -> Optional[_FloatParam]: ...
+    @property
+    def x1(self) -> Optional[_IntParam]: ...
+    @property
+    def y1(self) -> Optional[_IntParam]: ...
+    @property
+    def x2(self) -> Optional[_IntParam]: ...
+    @property
+    def y2(self) -> Optional[_IntParam]: ...
+    @property
+    def sigma(self) -> Optional[_FloatParam]: ...
+
+@final
+class Scheme:
+    def __new__(
+        cls,
+        obstacles: list[Obstacle] = ...,
+        *,
+        size: tuple[int, int] = ...,
+        pallets: Optional[tuple[int, int]] = None,
+        pallet_size: Optional[int] = None,
+        pallet_boundary: bool = True,
+        block_size: float = 0.1,
+        step_height: float = 0.1,
+        base: float = 0.0,
+        amount: int = 1,
+        seed: int = 0,
+    ) -> Scheme: ...
+    @staticmethod
+    def load(path: Union[str, os.PathLike[str]]) -> Scheme: ...
+    @staticmethod
+    def from_csv(text: str, file: Optional[str] = None) -> Scheme: ...
+    def to_csv(self) -> str: ...
+    @property
+    def obstacles(self) -> list[Obstacle]: ...
+    @property
+    def grid(self) -> tuple[int, int]: ...
+    @property
+    def block_size(self) -> float: ...
+    @property
+    def step_height(self) -> float: ...
+    @property
+    def base(self) -> float: ...
+    @property
+    def amount(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    def generate(self, seed: int = 0, index: int = 0) -> Terrain: ...
+
+@final
+class Terrain:
+    @property
+    def heights(self) -> npt.NDArray[np.uint16]: ...
+    @property
+    def elevation(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def block_size(self) -> float: ...
+    @property
+    def step_height(self) -> float: ...
+    @property
+    def base(self) -> float: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def index(self) -> int: ...
+    @property
+    def drawn(self) -> list[dict[str, object]]: ...
+    def mesh(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]: ...
+    def boxes(self) -> npt.NDArray[np.float64]: ...
+    def mjcf(self) -> str: ...
+    def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
+
+def generate_batch(scheme: Scheme, amount: int, seed: int = 0, jobs: Optional[int] = None) -> list[Terrain]: ...
+def write_worlds(
+    scheme: Scheme,
+    out: Union[str, os.PathLike[str]],
+    *,
+    amount: Optional[int] = None,
+    seed: Optional[int] = None,
+    targets: str = "gazebo",
+    mesh: str = "single",
+    jobs: Optional[int] = None,
+    shard: Optional[str] = None,
+    template: Optional[Union[str, os.PathLike[str]]] = None,
+    force: bool = False,
+) -> dict[str, int]: ...

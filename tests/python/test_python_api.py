@@ -1,0 +1,215 @@
+"""The Python package `rse` (issue "The Python package"): the same terrains
+as the CLI and the batch, mesh arrays that are closed volumes in trimesh,
+MJCF that MuJoCo loads and that bodies rest on, hypothesis round trips and
+bad inputs, and stubs that match the module."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+import rse
+import trimesh
+from conftest import SCHEMES, heights, run
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+SAMPLES = sorted(SCHEMES.glob("*.csv"))
+
+
+@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
+def test_heights_match_rse_gen_heightmap(scheme: Path) -> None:
+    loaded = rse.Scheme.load(scheme)
+    for seed, index in [(0, 0), (12345, 7)]:
+        terrain = loaded.generate(seed=seed, index=index)
+        assert terrain.heights.shape == (loaded.grid[1], loaded.grid[0])
+        np.testing.assert_array_equal(terrain.heights, heights(scheme, seed, index))
+
+
+def test_heights_match_the_batch_heightmaps_from_both_front_ends(tmp_path: Path) -> None:
+    scheme_path = SCHEMES / "nist_hill.csv"
+    scheme = rse.Scheme.load(scheme_path)
+    run("batch", str(scheme_path), "-o", str(tmp_path / "cli"), "--amount", "3", "--seed", "4", "--target", "mujoco")
+    counts = rse.write_worlds(scheme, tmp_path / "py", amount=3, seed=4, targets="mujoco", jobs=2)
+    assert counts["written"] == 3 and counts["skipped"] == 0 and counts["bytes"] > 0
+    for i in range(3):
+        world = f"world_{i:04d}"
+        expected = scheme.generate(seed=4, index=i).heights
+        for front in ["cli", "py"]:
+            on_disk = np.loadtxt(tmp_path / front / world / "heightmap.csv", delimiter=",", dtype=np.uint16, ndmin=2)
+            np.testing.assert_array_equal(on_disk, expected)
+        for f in (tmp_path / "cli" / world).rglob("*"):
+            if f.is_file():
+                assert f.read_bytes() == (tmp_path / "py" / world / f.relative_to(tmp_path / "cli" / world)).read_bytes()
+    again = rse.write_worlds(scheme, tmp_path / "py", amount=3, seed=4, targets="mujoco")
+    assert again["skipped"] == 3
+
+
+def test_arrays_are_read_only_and_typed() -> None:
+    terrain = rse.Scheme.load(SCHEMES / "six_obstacles.csv").generate(index=2)
+    assert terrain.heights.dtype == np.uint16 and terrain.elevation.dtype == np.float64
+    with pytest.raises(ValueError):
+        terrain.heights[0, 0] = 9
+    np.testing.assert_allclose(
+        terrain.elevation, np.where(terrain.heights > 0, terrain.base + terrain.heights * terrain.step_height, 0.0)
+    )
+    vertices, faces = terrain.mesh()
+    assert vertices.dtype == np.float32 and vertices.shape[1] == 3
+    assert faces.dtype == np.uint32 and faces.shape[1] == 3
+    boxes = terrain.boxes()
+    assert boxes.dtype == np.float64 and boxes.shape[1] == 6
+    # The boxes fill the solid: their volume is the heightmap's.
+    volume = np.sum(8 * boxes[:, 3] * boxes[:, 4] * boxes[:, 5])
+    assert volume == pytest.approx(np.sum(terrain.elevation) * terrain.block_size**2)
+
+
+@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
+def test_mesh_arrays_are_a_closed_volume_in_trimesh(scheme: Path) -> None:
+    terrain = rse.Scheme.load(scheme).generate(index=1)
+    vertices, faces = terrain.mesh()
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.is_volume
+    assert mesh.volume == pytest.approx(np.sum(terrain.elevation) * terrain.block_size**2, rel=1e-5)
+
+
+def test_save_writes_each_format(tmp_path: Path) -> None:
+    terrain = rse.Scheme.load(SCHEMES / "wall.csv").generate()
+    for suffix in ["obj", "stl", "glb"]:
+        terrain.save(tmp_path / f"t.{suffix}")
+    assert (tmp_path / "t.mtl").is_file()
+    loaded = trimesh.load(tmp_path / "t.stl", force="mesh")
+    assert loaded.volume == pytest.approx(np.sum(terrain.elevation) * terrain.block_size**2, rel=1e-5)
+    with pytest.raises(ValueError, match="suffix"):
+        terrain.save(tmp_path / "t.ply")
+    with pytest.raises(OSError):
+        terrain.save(tmp_path / "no" / "such" / "dir" / "t.obj")
+
+
+def test_mjcf_loads_in_mujoco_and_bodies_rest_on_their_cells() -> None:
+    terrain = rse.Scheme.load(SCHEMES / "nist_hill.csv").generate(index=3)
+    h, s, step = terrain.heights, terrain.block_size, terrain.step_height
+    spec = mujoco.MjSpec.from_string(terrain.mjcf())
+    cells = [
+        (x, y)
+        for y in range(1, h.shape[0] - 1)
+        for x in range(1, h.shape[1] - 1)
+        if (h[y - 1 : y + 2, x - 1 : x + 2] == h[y, x]).all()
+    ][::7]
+    assert len(cells) >= 3
+    for i, (x, y) in enumerate(cells):
+        body = spec.worldbody.add_body(name=f"drop_{i}", pos=[(x + 0.5) * s, (y + 0.5) * s, h[y, x] * step + 0.05])
+        body.add_freejoint()
+        body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.02, 0, 0], mass=0.1)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    for _ in range(1000):
+        mujoco.mj_step(model, data)
+    for i, (x, y) in enumerate(cells):
+        assert data.body(f"drop_{i}").xpos[2] - 0.02 == pytest.approx(h[y, x] * step, abs=0.002)
+
+
+def test_generate_batch_is_the_per_index_generator_on_any_jobs() -> None:
+    scheme = rse.Scheme.load(SCHEMES / "six_obstacles.csv")
+    one = rse.generate_batch(scheme, 12, seed=3, jobs=1)
+    two = rse.generate_batch(scheme, 12, seed=3, jobs=2)
+    assert [t.index for t in one] == list(range(12))
+    for i, (a, b) in enumerate(zip(one, two)):
+        np.testing.assert_array_equal(a.heights, b.heights)
+        np.testing.assert_array_equal(a.heights, scheme.generate(seed=3, index=i).heights)
+    with pytest.raises(ValueError):
+        rse.generate_batch(scheme, 2, jobs=0)
+
+
+def test_scheme_errors_carry_file_line_column_and_field(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.csv"
+    bad.write_text("# size: 10x10\ntype,height,angle,x1,y1\npeak,2,45,12,3\n")
+    with pytest.raises(rse.SchemeError) as caught:
+        rse.Scheme.load(bad)
+    e = caught.value
+    assert isinstance(e, ValueError)
+    assert (e.file, e.line, e.column, e.field) == (str(bad), 3, 4, "x1")
+    with pytest.raises(OSError):
+        rse.Scheme.load(tmp_path / "missing.csv")
+    with pytest.raises(rse.SchemeError) as caught:
+        rse.Scheme([rse.Obstacle("peak", height=2, angle=45, x1=3, y1=30)], size=(10, 10))
+    assert caught.value.field == "y1"
+    with pytest.raises(rse.SchemeError):
+        rse.Obstacle("wall", height=2)  # a wall needs its angle and both points
+    with pytest.raises(ValueError):
+        rse.Obstacle("volcano", height=2)
+
+
+def test_obstacles_read_back_their_fields() -> None:
+    o = rse.Obstacle("peak", height=(2, 5), angle=30.0, x1=4, y1=(1, 8))
+    assert (o.type, o.height, o.angle, o.x1, o.y1, o.x2) == ("peak", (2, 5), 30.0, 4, (1, 8), None)
+    scheme = rse.Scheme([o], size=(10, 10), step_height=0.05, seed=9)
+    assert scheme.obstacles == [o] and scheme.grid == (10, 10) and scheme.step_height == 0.05 and scheme.seed == 9
+
+
+# --- hypothesis: round trips and bad input ------------------------------------
+
+SIZE = 12
+
+
+@st.composite
+def obstacles(draw: st.DrawFn) -> rse.Obstacle:
+    def coordinate() -> st.SearchStrategy:
+        value = st.integers(0, SIZE - 1)
+        return st.one_of(value, st.tuples(value, value).map(sorted).map(tuple))
+
+    kind = draw(st.sampled_from(["random", "gaussian", "peak", "pit", "wall", "long_pit"]))
+    height = draw(st.one_of(st.integers(1, 6), st.tuples(st.integers(1, 3), st.integers(3, 6))))
+    if kind in ("random", "gaussian"):
+        sigma = draw(st.none() | st.floats(0.1, 3.0)) if kind == "gaussian" else None
+        return rse.Obstacle(kind, height=height, sigma=sigma)
+    angle = draw(st.floats(1.0, 90.0))
+    if kind in ("peak", "pit"):
+        return rse.Obstacle(kind, height=height, angle=angle, x1=draw(coordinate()), y1=draw(coordinate()))
+    return rse.Obstacle(
+        kind,
+        height=height,
+        angle=angle,
+        x1=draw(coordinate()),
+        y1=draw(coordinate()),
+        x2=draw(coordinate()),
+        y2=draw(coordinate()),
+    )
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(obstacles(), max_size=5), st.integers(0, 2**64 - 1), st.integers(0, 1000))
+def test_schemes_round_trip_through_csv_with_the_same_worlds(table, seed, index) -> None:
+    scheme = rse.Scheme(table, size=(SIZE, SIZE))
+    again = rse.Scheme.from_csv(scheme.to_csv())
+    assert again.to_csv() == scheme.to_csv()
+    np.testing.assert_array_equal(again.generate(seed, index).heights, scheme.generate(seed, index).heights)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(max_size=300))
+def test_any_text_is_a_scheme_or_a_scheme_error(text: str) -> None:
+    try:
+        rse.Scheme.from_csv(text)
+    except rse.SchemeError as e:
+        assert str(e)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.sampled_from(["peak", "pit", "wall", "long_pit", "random", "gaussian"]),
+    st.one_of(st.none(), st.integers(-5, 70000)),
+    st.one_of(st.none(), st.floats(allow_nan=True, allow_infinity=True)),
+    st.one_of(st.none(), st.integers(-3, 40)),
+)
+def test_bad_obstacle_values_raise_value_errors_never_crash(kind, height, angle, x1) -> None:
+    try:
+        rse.Scheme([rse.Obstacle(kind, height=height, angle=angle, x1=x1, y1=x1)], size=(10, 10))
+    except (ValueError, OverflowError):
+        pass
+
+
+def test_stubs_match_the_module() -> None:
+    done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "rse._rse"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
