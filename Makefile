@@ -25,6 +25,7 @@ bench:
 	cargo bench -p rse-core --bench mesh
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
+	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 
 build:
 	cargo build --release --locked -p rse-cli

@@ -103,3 +103,18 @@ pub fn write_worlds<'py>(
     dict.set_item("bytes", summary.bytes)?;
     Ok(dict)
 }
+
+/// Seconds `scheme.generate(seed, i)` takes for `i` in `0..count`, timed
+/// inside Rust: the benchmark's yardstick for the cost of the Python call.
+#[pyfunction]
+#[pyo3(signature = (scheme, count, seed=0))]
+pub fn _time_generate(py: Python<'_>, scheme: &Scheme, count: u64, seed: u64) -> f64 {
+    let scheme = &scheme.inner;
+    py.detach(|| {
+        let start = std::time::Instant::now();
+        for index in 0..count {
+            std::hint::black_box(rse_core::generate(scheme, seed, index));
+        }
+        start.elapsed().as_secs_f64()
+    })
+}

@@ -23,5 +23,6 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<terrain::Terrain>()?;
     m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     Ok(())
 }

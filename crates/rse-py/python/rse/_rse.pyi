@@ -14,6 +14,7 @@ __all__ = [
     "Terrain",
     "generate_batch",
     "write_worlds",
+    "_time_generate",
 ]
 
 __version__: str
@@ -132,3 +133,4 @@ def write_worlds(
     template: Optional[Union[str, os.PathLike[str]]] = None,
     force: bool = False,
 ) -> dict[str, int]: ...
+def _time_generate(scheme: Scheme, count: int, seed: int = 0) -> float: ...
