@@ -37,6 +37,22 @@ pub enum Command {
     Batch(BatchArgs),
     /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes, physics.
     Check(CheckArgs),
+    /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
+    Edit(EditArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct EditArgs {
+    /// The scheme CSV file to start from (the editor saves where you say).
+    pub scheme: Option<PathBuf>,
+
+    /// Port on 127.0.0.1 [default: a free one].
+    #[arg(long, value_name = "P", default_value_t = 0)]
+    pub port: u16,
+
+    /// Open the page in the desktop's browser.
+    #[arg(long)]
+    pub open: bool,
 }
 
 #[derive(Debug, Args)]

@@ -9,7 +9,8 @@ use crate::ExitStatus;
 use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
 mod batch;
-mod check;
+pub mod check;
+mod edit;
 mod heightmap;
 mod mesh;
 mod preview;
@@ -22,6 +23,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
         Command::Batch(args) => batch::run(&args, &cli.overrides),
         Command::Check(args) => check::run(&args),
+        Command::Edit(args) => edit::run(&args, &cli.overrides),
     }
 }
 

@@ -4,6 +4,7 @@
 mod files;
 mod terrain;
 
+use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -91,6 +92,32 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
     } else {
         ExitStatus::Failure
     })
+}
+
+/// The one-line `check` verdict on the worlds in `folder` (no physics), as
+/// the editor shows it after a Generate.
+pub fn summary(folder: &Path) -> String {
+    let worlds = match discover(&[folder.to_path_buf()]) {
+        Ok(worlds) => worlds,
+        Err(e) => return format!("check: {e:#}"),
+    };
+    let reports: Vec<WorldReport> = worlds.par_iter().map(|w| check_world(w, false)).collect();
+    let failed: Vec<&WorldReport> = reports.iter().filter(|r| !r.ok).collect();
+    let mut line = format!(
+        "checked {} worlds: {} good, {} failed",
+        reports.len(),
+        reports.len() - failed.len(),
+        failed.len()
+    );
+    if let Some(first) = failed.first() {
+        let _ = write!(
+            line,
+            " (first: {}: {})",
+            first.world,
+            first.faults.join("; ")
+        );
+    }
+    line
 }
 
 /// The world folders named: a folder holding `rse.json` is a world; any

@@ -1,0 +1,222 @@
+//! The editor's JSON API: every answer comes from rse-core and rse-world,
+//! so what the page shows is what `batch` writes.
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use base64::Engine as _;
+use rse_core::preview;
+use rse_world::{BatchOptions, Targets, Templates, write_batch};
+use serde::Deserialize;
+use serde_json::{Value, json};
+
+use super::model::{FieldError, PageScheme};
+
+/// The editor's state between requests.
+#[derive(Default)]
+pub struct Editor {
+    /// The scheme file named on the command line, if any.
+    pub path: Option<PathBuf>,
+    /// The scheme it held when the editor started.
+    pub initial: PageScheme,
+    /// The batch being written (or last written).
+    pub job: Arc<Job>,
+}
+
+/// Progress of a Generate run.
+#[derive(Default)]
+pub struct Job {
+    pub running: Mutex<bool>,
+    pub done: AtomicU64,
+    pub total: AtomicU64,
+    /// The outcome line, or the error, once finished.
+    pub result: Mutex<Option<Result<String, String>>>,
+    /// The `check` summary of the written worlds.
+    pub check: Mutex<Option<String>>,
+}
+
+fn error(e: &FieldError) -> Value {
+    json!({ "ok": false, "error": e })
+}
+
+fn bad(message: impl Into<String>) -> Value {
+    json!({ "ok": false, "error": { "row": null, "field": null, "message": message.into() } })
+}
+
+/// `GET /api/state`: the scheme to start from.
+pub fn state(editor: &Editor) -> Value {
+    json!({
+        "ok": true,
+        "scheme": editor.initial,
+        "path": editor.path.as_ref().map(|p| p.display().to_string()),
+    })
+}
+
+#[derive(Deserialize)]
+struct PreviewRequest {
+    scheme: PageScheme,
+    #[serde(default)]
+    seed: u64,
+    #[serde(default)]
+    index: u64,
+}
+
+/// `POST /api/preview`: the world's heights, boxes and top-down PNG.
+pub fn preview(body: &[u8]) -> Value {
+    let start = Instant::now();
+    let request: PreviewRequest = match serde_json::from_slice(body) {
+        Ok(r) => r,
+        Err(e) => return bad(format!("bad request: {e}")),
+    };
+    let scheme = match request.scheme.scheme() {
+        Ok(s) => s,
+        Err(e) => return error(&e),
+    };
+    let terrain = rse_core::generate(&scheme, request.seed, request.index);
+    let grid = terrain.grid();
+    let png = match preview::encode_png(&preview::render(
+        &terrain,
+        preview::auto_cell_pixels(grid.nx, grid.ny),
+    )) {
+        Ok(png) => png,
+        Err(e) => return bad(e.to_string()),
+    };
+    let boxes: Vec<[f64; 6]> = terrain
+        .boxes()
+        .iter()
+        .map(|b| {
+            let ([cx, cy, cz], [hx, hy, hz]) = (b.center, b.half_size);
+            [cx, cy, cz, hx, hy, hz]
+        })
+        .collect();
+    json!({
+        "ok": true,
+        "nx": grid.nx,
+        "ny": grid.ny,
+        "max_height": terrain.heightmap().max(),
+        "block_size": terrain.block_size(),
+        "png": format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(png)),
+        "boxes": boxes,
+        "csv": scheme.to_csv(),
+        "server_ms": start.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+#[derive(Deserialize)]
+struct ParseRequest {
+    csv: String,
+}
+
+/// `POST /api/parse`: a scheme file's text as the page's fields.
+pub fn parse(body: &[u8]) -> Value {
+    let request: ParseRequest = match serde_json::from_slice(body) {
+        Ok(r) => r,
+        Err(e) => return bad(format!("bad request: {e}")),
+    };
+    match rse_core::Scheme::from_csv(&request.csv, None) {
+        Ok(scheme) => json!({ "ok": true, "scheme": PageScheme::from_scheme(&scheme) }),
+        Err(e) => bad(e.to_string()),
+    }
+}
+
+#[derive(Deserialize)]
+struct SaveRequest {
+    scheme: PageScheme,
+    path: PathBuf,
+}
+
+/// `POST /api/save`: writes the scheme as canonical CSV to the file the
+/// user named (the only file the editor writes besides the batch).
+pub fn save(body: &[u8]) -> Value {
+    let request: SaveRequest = match serde_json::from_slice(body) {
+        Ok(r) => r,
+        Err(e) => return bad(format!("bad request: {e}")),
+    };
+    let scheme = match request.scheme.scheme() {
+        Ok(s) => s,
+        Err(e) => return error(&e),
+    };
+    if request.path.extension().is_none_or(|e| e != "csv") {
+        return bad("the scheme file must end in .csv");
+    }
+    match crate::output::write_atomically(&request.path, scheme.to_csv().as_bytes()) {
+        Ok(()) => json!({ "ok": true, "path": request.path.display().to_string() }),
+        Err(e) => bad(format!("{e:#}")),
+    }
+}
+
+#[derive(Deserialize)]
+struct GenerateRequest {
+    scheme: PageScheme,
+    out: PathBuf,
+    amount: u64,
+    #[serde(default)]
+    seed: u64,
+    targets: String,
+}
+
+/// `POST /api/generate`: starts writing a batch in the background.
+pub fn generate(editor: &Editor, body: &[u8]) -> Value {
+    let request: GenerateRequest = match serde_json::from_slice(body) {
+        Ok(r) => r,
+        Err(e) => return bad(format!("bad request: {e}")),
+    };
+    let scheme = match request.scheme.scheme() {
+        Ok(s) => s,
+        Err(e) => return error(&e),
+    };
+    let targets = match Targets::parse(&request.targets) {
+        Ok(t) => t,
+        Err(e) => return bad(e.to_string()),
+    };
+    let job = Arc::clone(&editor.job);
+    {
+        let mut running = job.running.lock().expect("not poisoned");
+        if *running {
+            return bad("a batch is already being written");
+        }
+        *running = true;
+    }
+    job.done.store(0, Ordering::SeqCst);
+    job.total.store(request.amount, Ordering::SeqCst);
+    *job.result.lock().expect("not poisoned") = None;
+    *job.check.lock().expect("not poisoned") = None;
+    let options = BatchOptions::new(request.out, request.amount, request.seed, targets);
+    std::thread::spawn(move || {
+        let outcome = write_batch(&scheme, &Templates::builtin(), &options, &|_| {
+            job.done.fetch_add(1, Ordering::SeqCst);
+        });
+        let result = outcome.map_err(|e| format!("{e:#}")).map(|s| {
+            format!(
+                "{} worlds written, {} already there, into {}",
+                s.written,
+                s.skipped,
+                options.out.display()
+            )
+        });
+        if result.is_ok() {
+            let check = crate::commands::check::summary(&options.out);
+            *job.check.lock().expect("not poisoned") = Some(check);
+        }
+        *job.result.lock().expect("not poisoned") = Some(result);
+        *job.running.lock().expect("not poisoned") = false;
+    });
+    json!({ "ok": true, "total": request.amount })
+}
+
+/// `GET /api/job`: the batch's progress and, once done, its summaries.
+pub fn job(editor: &Editor) -> Value {
+    let job = &editor.job;
+    let result = job.result.lock().expect("not poisoned").clone();
+    json!({
+        "ok": true,
+        "running": *job.running.lock().expect("not poisoned"),
+        "done": job.done.load(Ordering::SeqCst),
+        "total": job.total.load(Ordering::SeqCst),
+        "summary": result.as_ref().and_then(|r| r.as_ref().ok()),
+        "error": result.as_ref().and_then(|r| r.as_ref().err()),
+        "check": *job.check.lock().expect("not poisoned"),
+    })
+}

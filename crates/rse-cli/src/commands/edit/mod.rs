@@ -1,0 +1,91 @@
+//! `rse-gen edit`: the paper's GUI as a local web page — globals, the
+//! obstacle table, a live top-down and 3D preview, load, save, generate.
+//! The page and its script are part of the binary.
+
+mod api;
+mod http;
+mod model;
+
+use std::io::Write as _;
+
+use anyhow::Context as _;
+use tiny_http::{Method, Server};
+
+use crate::ExitStatus;
+use crate::args::{EditArgs, SchemeOverrides};
+use api::Editor;
+use model::PageScheme;
+
+const INDEX_HTML: &str = include_str!("page/index.html");
+const APP_JS: &str = include_str!("page/app.js");
+const STYLE_CSS: &str = include_str!("page/style.css");
+
+pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
+    let mut editor = Editor::default();
+    if let Some(path) = &args.scheme {
+        let scheme = super::load_scheme(path, overrides)?;
+        editor.initial = PageScheme::from_scheme(&scheme);
+        editor.path = Some(path.clone());
+    } else {
+        let scheme = rse_core::Scheme::from_csv("# size: 20x20\ntype,height\nrandom,1\n", None)
+            .expect("the starting scheme is valid");
+        editor.initial = PageScheme::from_scheme(&scheme);
+    }
+    // Loopback only: the editor reads and writes files for whoever talks to it.
+    let server = Server::http(("127.0.0.1", args.port))
+        .map_err(|e| anyhow::anyhow!("{e}"))
+        .with_context(|| format!("cannot listen on 127.0.0.1:{}", args.port))?;
+    let port = server
+        .server_addr()
+        .to_ip()
+        .context("the server has an IP address")?
+        .port();
+    let url = format!("http://127.0.0.1:{port}/");
+    let mut stdout = std::io::stdout().lock();
+    writeln!(stdout, "{url}")?;
+    stdout.flush()?;
+    drop(stdout);
+    eprintln!("rse-gen: the editor is at {url} (Ctrl-C to stop)");
+    if args.open {
+        // Best effort: without a desktop the URL above is the way in.
+        let _ = std::process::Command::new("xdg-open").arg(&url).spawn();
+    }
+    for mut request in server.incoming_requests() {
+        let reply = match http::refusal(&request, port) {
+            Some(refused) => refused,
+            None => route(&editor, &mut request),
+        };
+        // A client that went away is not the editor's problem.
+        let _ = request.respond(reply);
+    }
+    Ok(ExitStatus::Success)
+}
+
+fn route(editor: &Editor, request: &mut tiny_http::Request) -> http::Reply {
+    let path = request.url().split('?').next().unwrap_or("").to_owned();
+    match (request.method(), path.as_str()) {
+        (Method::Get, "/") => http::bytes(200, "text/html; charset=utf-8", INDEX_HTML.into()),
+        (Method::Get, "/app.js") => {
+            http::bytes(200, "text/javascript; charset=utf-8", APP_JS.into())
+        }
+        (Method::Get, "/style.css") => {
+            http::bytes(200, "text/css; charset=utf-8", STYLE_CSS.into())
+        }
+        (Method::Get, "/api/state") => http::json(&api::state(editor)),
+        (Method::Get, "/api/job") => http::json(&api::job(editor)),
+        (Method::Post, api_path) => {
+            let body = match http::body(request) {
+                Ok(body) => body,
+                Err(reply) => return reply,
+            };
+            match api_path {
+                "/api/preview" => http::json(&api::preview(&body)),
+                "/api/parse" => http::json(&api::parse(&body)),
+                "/api/save" => http::json(&api::save(&body)),
+                "/api/generate" => http::json(&api::generate(editor, &body)),
+                _ => http::text(404, "not found"),
+            }
+        }
+        _ => http::text(404, "not found"),
+    }
+}

@@ -1,0 +1,284 @@
+// rse scheme editor: the page keeps the scheme as typed, asks the server
+// (rse-core) for every preview, and draws the answer: a top-down PNG and a
+// WebGL view of the merged boxes. No third-party script.
+"use strict";
+
+const COLUMNS = ["height", "angle", "x1", "y1", "x2", "y2", "sigma"];
+const TYPES = ["random", "gaussian", "peak", "pit", "wall", "long_pit"];
+const $ = (id) => document.getElementById(id);
+
+const state = { rows: [], selected: -1, request: 0, shown: 0, lastBoxes: null, view: { yaw: -0.6, pitch: 0.9, zoom: 1.0 } };
+window.rseEditor = { state, lastRoundTripMs: null, previews: 0 };
+
+async function api(path, body) {
+  const response = await fetch(path, body === undefined ? {} : {
+    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
+  });
+  if (!response.ok) throw new Error(`${path}: ${response.status} ${await response.text()}`);
+  return response.json();
+}
+
+// --- the scheme as the page holds it ----------------------------------------
+
+function splitRange(value) {
+  const parts = String(value ?? "").split("..");
+  return parts.length === 2 ? parts : [parts[0], ""];
+}
+
+function pageScheme() {
+  const globals = {};
+  document.querySelectorAll("[data-global]").forEach((input) => { globals[input.dataset.global] = input.value.trim(); });
+  const obstacles = state.rows.map((row) => {
+    const out = { type: row.type };
+    for (const c of COLUMNS) {
+      const [lo, hi] = [row[c + ".lo"] ?? "", row[c + ".hi"] ?? ""].map((v) => v.trim());
+      out[c] = hi ? `${lo}..${hi}` : lo;
+    }
+    return out;
+  });
+  return { globals, obstacles };
+}
+
+function loadScheme(scheme) {
+  document.querySelectorAll("[data-global]").forEach((input) => { input.value = scheme.globals[input.dataset.global] ?? ""; });
+  state.rows = scheme.obstacles.map((o) => {
+    const row = { type: o.type };
+    for (const c of COLUMNS) { const [lo, hi] = splitRange(o[c]); row[c + ".lo"] = lo; row[c + ".hi"] = hi; }
+    return row;
+  });
+  state.selected = state.rows.length ? 0 : -1;
+  renderTable();
+  refresh();
+}
+
+function renderTable() {
+  const body = document.querySelector("#table tbody");
+  body.replaceChildren();
+  state.rows.forEach((row, i) => {
+    const tr = document.createElement("tr");
+    tr.dataset.row = i;
+    if (i === state.selected) tr.classList.add("selected");
+    tr.addEventListener("click", () => { state.selected = i; document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i)); });
+    const num = document.createElement("td"); num.textContent = i + 1; tr.append(num);
+    const typeCell = document.createElement("td");
+    const select = document.createElement("select");
+    select.dataset.field = "type";
+    for (const t of TYPES) { const option = document.createElement("option"); option.value = option.textContent = t; select.append(option); }
+    select.value = row.type;
+    select.addEventListener("change", () => { row.type = select.value; refresh(); });
+    typeCell.append(select); tr.append(typeCell);
+    for (const c of COLUMNS) {
+      const td = document.createElement("td");
+      for (const part of ["lo", "hi"]) {
+        const input = document.createElement("input");
+        input.dataset.field = c; input.dataset.part = part;
+        input.className = part; input.value = row[`${c}.${part}`] ?? "";
+        input.title = part === "lo" ? c : `${c}: high end of a random range`;
+        input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; refresh(); });
+        td.append(input);
+      }
+      tr.append(td);
+    }
+    body.append(tr);
+  });
+}
+
+// --- table tools --------------------------------------------------------------
+
+function edit(change) { change(); renderTable(); refresh(); }
+$("add").onclick = () => edit(() => { state.rows.push({ type: "random", "height.lo": "1" }); state.selected = state.rows.length - 1; });
+$("copy").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected + 1, 0, { ...state.rows[state.selected] }); state.selected += 1; });
+$("delete").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected, 1); state.selected = Math.min(state.selected, state.rows.length - 1); });
+function move(by) {
+  const i = state.selected, j = i + by;
+  if (i < 0 || j < 0 || j >= state.rows.length) return;
+  [state.rows[i], state.rows[j]] = [state.rows[j], state.rows[i]];
+  state.selected = j;
+}
+$("up").onclick = () => edit(() => move(-1));
+$("down").onclick = () => edit(() => move(1));
+document.querySelectorAll("[data-global]").forEach((input) => input.addEventListener("input", refresh));
+$("seed").addEventListener("input", refresh);
+$("index").addEventListener("input", refresh);
+$("redraw").onclick = () => { $("index").value = String((Number($("index").value) || 0) + 1); refresh(); };
+
+// --- preview -----------------------------------------------------------------
+
+function markError(error) {
+  document.querySelectorAll(".invalid").forEach((e) => { e.classList.remove("invalid"); e.removeAttribute("aria-invalid"); });
+  $("error").textContent = "";
+  if (!error) return;
+  let where = "";
+  let targets = [];
+  if (error.row !== null && error.row !== undefined) {
+    where = `obstacle ${error.row + 1}${error.field ? ", " + error.field : ""}: `;
+    const tr = document.querySelector(`#table tbody tr[data-row="${error.row}"]`);
+    if (tr) targets = error.field ? [...tr.querySelectorAll(`[data-field="${error.field}"]`)] : [...tr.querySelectorAll("input, select")];
+  } else if (error.field) {
+    where = `${error.field}: `;
+    targets = [...document.querySelectorAll(`[data-global="${error.field}"]`)];
+  }
+  for (const t of targets) { t.classList.add("invalid"); t.setAttribute("aria-invalid", "true"); t.title = error.message; }
+  $("error").textContent = where + error.message;
+}
+
+async function refresh() {
+  const id = ++state.request;
+  const started = performance.now();
+  let answer;
+  try {
+    answer = await api("/api/preview", { scheme: pageScheme(), seed: Number($("seed").value) || 0, index: Number($("index").value) || 0 });
+  } catch (e) { $("error").textContent = String(e.message); return; }
+  if (id < state.shown) return; // an older answer arriving late
+  state.shown = id;
+  if (!answer.ok) { markError(answer.error); return; }
+  markError(null);
+  const img = $("heatmap");
+  await new Promise((resolve) => { img.onload = resolve; img.onerror = resolve; img.src = answer.png; });
+  drawBlocks(answer);
+  const ms = performance.now() - started;
+  window.rseEditor.lastRoundTripMs = ms;
+  window.rseEditor.previews += 1;
+  $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
+}
+
+// --- the 3D view: merged boxes in WebGL -------------------------------------------
+
+const gl = $("blocks").getContext("webgl", { preserveDrawingBuffer: true });
+const program = (() => {
+  const compile = (type, source) => { const s = gl.createShader(type); gl.shaderSource(s, source); gl.compileShader(s); return s; };
+  const p = gl.createProgram();
+  gl.attachShader(p, compile(gl.VERTEX_SHADER, `
+    attribute vec3 position; attribute vec3 normal; attribute vec3 colour;
+    uniform mat4 view; varying vec3 shade;
+    void main() {
+      float light = 0.45 + 0.55 * max(dot(normal, normalize(vec3(0.4, 0.3, 0.85))), 0.0);
+      shade = colour * light; gl_Position = view * vec4(position, 1.0);
+    }`));
+  gl.attachShader(p, compile(gl.FRAGMENT_SHADER, `
+    precision mediump float; varying vec3 shade;
+    void main() { gl_FragColor = vec4(shade, 1.0); }`));
+  gl.linkProgram(p);
+  return p;
+})();
+const buffer = gl.createBuffer();
+let vertexCount = 0, sceneSize = 1, sceneCentre = [0, 0, 0];
+
+function palette(t) { // blue → green → red, as the preview
+  const v = Math.round(t * 510);
+  return v <= 255 ? [0, v / 255, (255 - v) / 255] : [(v - 255) / 255, (510 - v) / 255, 0];
+}
+
+function drawBlocks(answer) {
+  const data = [];
+  const maxTop = Math.max(1e-9, ...answer.boxes.map((b) => 2 * b[5]));
+  const minTop = Math.min(...answer.boxes.map((b) => 2 * b[5]), maxTop);
+  const faces = [ // normal, then four corners as signs of the half sizes
+    [[0, 0, 1], [[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]]],
+    [[1, 0, 0], [[1, -1, -1], [1, 1, -1], [1, 1, 1], [1, -1, 1]]],
+    [[-1, 0, 0], [[-1, 1, -1], [-1, -1, -1], [-1, -1, 1], [-1, 1, 1]]],
+    [[0, 1, 0], [[1, 1, -1], [-1, 1, -1], [-1, 1, 1], [1, 1, 1]]],
+    [[0, -1, 0], [[-1, -1, -1], [1, -1, -1], [1, -1, 1], [-1, -1, 1]]],
+  ];
+  for (const [cx, cy, cz, hx, hy, hz] of answer.boxes) {
+    const colour = palette(maxTop > minTop ? (2 * hz - minTop) / (maxTop - minTop) : 0.5);
+    for (const [normal, corners] of faces) {
+      const p = corners.map(([sx, sy, sz]) => [cx + sx * hx, cy + sy * hy, cz + sz * hz]);
+      for (const k of [0, 1, 2, 0, 2, 3]) data.push(...p[k], ...normal, ...colour);
+    }
+  }
+  vertexCount = data.length / 9;
+  const s = answer.block_size;
+  sceneSize = Math.max(answer.nx, answer.ny) * s;
+  sceneCentre = [answer.nx * s / 2, answer.ny * s / 2, 0];
+  gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+  gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data), gl.STATIC_DRAW);
+  render();
+}
+
+function multiply(a, b) {
+  const out = new Array(16).fill(0);
+  for (let i = 0; i < 4; i++) for (let j = 0; j < 4; j++) for (let k = 0; k < 4; k++) out[j * 4 + i] += a[k * 4 + i] * b[j * 4 + k];
+  return out;
+}
+
+function render() {
+  const { yaw, pitch, zoom } = state.view;
+  const distance = 1.6 * sceneSize / zoom;
+  const eye = [
+    sceneCentre[0] + distance * Math.cos(pitch) * Math.sin(yaw),
+    sceneCentre[1] - distance * Math.cos(pitch) * Math.cos(yaw),
+    sceneCentre[2] + distance * Math.sin(pitch),
+  ];
+  const f = sceneCentre.map((c, i) => c - eye[i]); const fl = Math.hypot(...f); f.forEach((v, i) => { f[i] = v / fl; });
+  const up = [0, 0, 1];
+  const r = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]];
+  const rl = Math.hypot(...r) || 1; r.forEach((v, i) => { r[i] = v / rl; });
+  const u = [r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]];
+  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const lookAt = [r[0], u[0], -f[0], 0, r[1], u[1], -f[1], 0, r[2], u[2], -f[2], 0, -dot(r, eye), -dot(u, eye), dot(f, eye), 1];
+  const aspect = gl.canvas.width / gl.canvas.height, near = distance / 50, far = distance * 4, t = 1 / Math.tan(0.4);
+  const perspective = [t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0];
+  gl.viewport(0, 0, gl.canvas.width, gl.canvas.height);
+  gl.clearColor(0.87, 0.87, 0.92, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+  gl.enable(gl.DEPTH_TEST);
+  gl.useProgram(program);
+  gl.uniformMatrix4fv(gl.getUniformLocation(program, "view"), false, new Float32Array(multiply(perspective, lookAt)));
+  gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+  const attribute = (name, offset) => { const a = gl.getAttribLocation(program, name); gl.enableVertexAttribArray(a); gl.vertexAttribPointer(a, 3, gl.FLOAT, false, 36, offset); };
+  attribute("position", 0); attribute("normal", 12); attribute("colour", 24);
+  gl.drawArrays(gl.TRIANGLES, 0, vertexCount);
+}
+
+(() => { // orbit with the mouse, zoom with the wheel
+  const canvas = $("blocks");
+  let drag = null;
+  canvas.addEventListener("mousedown", (e) => { drag = [e.clientX, e.clientY]; });
+  window.addEventListener("mouseup", () => { drag = null; });
+  window.addEventListener("mousemove", (e) => {
+    if (!drag) return;
+    state.view.yaw += (e.clientX - drag[0]) * 0.01;
+    state.view.pitch = Math.min(1.5, Math.max(0.05, state.view.pitch + (e.clientY - drag[1]) * 0.01));
+    drag = [e.clientX, e.clientY];
+    render();
+  });
+  canvas.addEventListener("wheel", (e) => { e.preventDefault(); state.view.zoom = Math.min(8, Math.max(0.3, state.view.zoom * (e.deltaY < 0 ? 1.1 : 0.9))); render(); });
+})();
+
+// --- files and generation ----------------------------------------------------
+
+$("load").addEventListener("change", async () => {
+  const file = $("load").files[0];
+  if (!file) return;
+  const answer = await api("/api/parse", { csv: await file.text() });
+  if (answer.ok) loadScheme(answer.scheme); else markError(answer.error);
+});
+
+$("save").onclick = async () => {
+  const answer = await api("/api/save", { scheme: pageScheme(), path: $("save-path").value.trim() });
+  $("status").textContent = answer.ok ? `saved ${answer.path}` : "";
+  if (!answer.ok) markError(answer.error);
+};
+
+$("generate").onclick = async () => {
+  const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value).join(",");
+  $("gen-summary").textContent = ""; $("gen-check").textContent = "";
+  const answer = await api("/api/generate", {
+    scheme: pageScheme(), out: $("gen-out").value.trim(), amount: Number($("gen-amount").value) || 1,
+    seed: Number($("seed").value) || 0, targets: targets || "gazebo",
+  });
+  if (!answer.ok) { markError(answer.error); return; }
+  const poll = async () => {
+    const job = await api("/api/job");
+    $("gen-progress").max = Math.max(1, job.total); $("gen-progress").value = job.done;
+    if (job.running || (!job.summary && !job.error)) { setTimeout(poll, 100); return; }
+    $("gen-summary").textContent = job.error ? `failed: ${job.error}` : job.summary;
+    $("gen-check").textContent = job.check ?? "";
+  };
+  poll();
+};
+
+api("/api/state").then((answer) => {
+  if (answer.path) $("save-path").value = answer.path;
+  loadScheme(answer.scheme);
+});
