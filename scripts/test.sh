@@ -14,12 +14,15 @@ if [ "${CI:-}" = "true" ]; then
     export CARGO_INCREMENTAL=0  # CI builds once from clean: incremental state is waste
 fi
 
-# Debian packages the tests load our worlds in: libsdformat (`ign sdf -k`,
-# and tests/sdf_check built against it). Installed only when missing.
+# Debian packages the tests need: libsdformat (`ign sdf -k`, and
+# tests/sdf_check built against it) and Chromium (the editor's browser
+# tests; Playwright drives it, never downloads one). Installed only when
+# missing.
 apt_packages=()
 command -v ign >/dev/null || apt_packages+=(ignition-tools)
 pkg-config --exists sdformat12 2>/dev/null || apt_packages+=(libsdformat-dev pkg-config)
 command -v g++ >/dev/null || apt_packages+=(g++)
+command -v chromium >/dev/null || apt_packages+=(chromium)  # the editor's browser tests
 if [ ${#apt_packages[@]} -gt 0 ]; then
     say "installing ${apt_packages[*]} (Debian)"
     sudo=""
@@ -49,7 +52,9 @@ fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
 say "the Python package (pip install ./crates/rse-py: maturin, release build)"
 .venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
-RSE_GEN="$PWD/target/debug/rse-gen" .venv/bin/python -m pytest 2>&1 | tee -a "$log"
+cargo build --release --locked --quiet -p rse-cli  # the editor tests time the optimised binary
+RSE_GEN="$PWD/target/debug/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
+    .venv/bin/python -m pytest 2>&1 | tee -a "$log"
 
 say "the README's main command"
 rm -rf target/readme-demo

@@ -13,9 +13,18 @@ SCHEMES = REPO / "schemes"
 
 def rse_gen_path() -> Path:
     """The binary under test: $RSE_GEN, else the workspace's debug build."""
-    path = Path(os.environ.get("RSE_GEN", REPO / "target" / "debug" / "rse-gen"))
+    path = Path(os.environ.get("RSE_GEN", REPO / "target" / "debug" / "rse-gen")).resolve()
     if not path.exists():
         pytest.fail(f"{path} does not exist: run `cargo build -p rse-cli` (make test does)")
+    return path
+
+
+def rse_gen_release_path() -> Path:
+    """The optimised binary ($RSE_GEN_RELEASE, else target/release/rse-gen),
+    for tests that time what users run."""
+    path = Path(os.environ.get("RSE_GEN_RELEASE", REPO / "target" / "release" / "rse-gen")).resolve()
+    if not path.exists():
+        pytest.fail(f"{path} does not exist: run `cargo build --release -p rse-cli` (make test does)")
     return path
 
 

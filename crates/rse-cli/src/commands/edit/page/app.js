@@ -8,7 +8,9 @@ const TYPES = ["random", "gaussian", "peak", "pit", "wall", "long_pit"];
 const $ = (id) => document.getElementById(id);
 
 const state = { rows: [], selected: -1, request: 0, shown: 0, lastBoxes: null, view: { yaw: -0.6, pitch: 0.9, zoom: 1.0 } };
-window.rseEditor = { state, lastRoundTripMs: null, previews: 0 };
+// For tests and curious users: answers counts every preview answer (drawn
+// or refused), previews the drawn ones.
+window.rseEditor = { state, lastRoundTripMs: null, previews: 0, answers: 0 };
 
 async function api(path, body) {
   const response = await fetch(path, body === undefined ? {} : {
@@ -131,7 +133,7 @@ async function refresh() {
   } catch (e) { $("error").textContent = String(e.message); return; }
   if (id < state.shown) return; // an older answer arriving late
   state.shown = id;
-  if (!answer.ok) { markError(answer.error); return; }
+  if (!answer.ok) { markError(answer.error); window.rseEditor.answers += 1; return; }
   markError(null);
   const img = $("heatmap");
   await new Promise((resolve) => { img.onload = resolve; img.onerror = resolve; img.src = answer.png; });
@@ -139,6 +141,7 @@ async function refresh() {
   const ms = performance.now() - started;
   window.rseEditor.lastRoundTripMs = ms;
   window.rseEditor.previews += 1;
+  window.rseEditor.answers += 1;
   $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
 }
 

@@ -1,0 +1,212 @@
+"""`rse-gen edit` in a real headless Chromium (Debian's, driven by
+Playwright): build a scheme by clicking, watch the preview change, save,
+reload, generate, and the editor's defences (issue "`rse-gen edit`")."""
+
+import io
+import shutil
+import statistics
+import subprocess
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import numpy as np
+import pytest
+import rse
+from conftest import rse_gen_release_path
+from PIL import Image
+from playwright.sync_api import Page, sync_playwright
+
+CHROMIUM_FLAGS = [
+    "--no-sandbox",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-quic",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
+]
+
+
+@pytest.fixture
+def editor(tmp_path: Path):
+    """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
+    scheme = tmp_path / "start.csv"
+    scheme.write_text("# size: 20x16\ntype,height\nrandom,1\n")
+    process = subprocess.Popen(
+        # Optimised, as users run it: the preview round trip is timed.
+        [str(rse_gen_release_path()), "edit", str(scheme)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        cwd=tmp_path,
+    )
+    try:
+        url = process.stdout.readline().strip()
+        assert url.startswith("http://127.0.0.1:"), url
+        yield url, tmp_path
+    finally:
+        process.terminate()
+        process.wait(timeout=10)
+        process.stdout.close()
+
+
+@pytest.fixture
+def page():
+    chromium = shutil.which("chromium")
+    assert chromium, "Debian chromium is installed by the test command"
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=chromium, args=CHROMIUM_FLAGS)
+        yield browser.new_page(viewport={"width": 1500, "height": 1000})
+        browser.close()
+
+
+def previews(page: Page) -> int:
+    return page.evaluate("window.rseEditor.previews")
+
+
+def edit(page: Page, action) -> None:
+    """Does `action` and waits for the preview answer it causes (a picture
+    or a refusal)."""
+    before = page.evaluate("window.rseEditor.answers")
+    action()
+    page.wait_for_function(f"window.rseEditor.answers > {before}")
+
+
+def cell(page: Page, row: int, field: str, part: str = "lo"):
+    return page.locator(f'#table tbody tr[data-row="{row}"] [data-field="{field}"][data-part="{part}"]')
+
+
+def table(page: Page) -> list[dict]:
+    """The table's rows: type and every filled field (`height.lo`, `height.hi`, …)."""
+    rows = page.evaluate("window.rseEditor.state.rows.map(r => ({...r}))")
+    return [{k: v for k, v in row.items() if v != ""} for row in rows]
+
+
+def image_pixels(png_bytes: bytes) -> np.ndarray:
+    """A PNG screenshot as (height, width, 4) uint8."""
+    return np.asarray(Image.open(io.BytesIO(png_bytes)).convert("RGBA"))
+
+
+def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page) -> None:
+    url, folder = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor.previews >= 1")
+    first = page.locator("#heatmap").screenshot()
+
+    # Replace the random field by a wall and a peak, then put the peak first.
+    edit(page, lambda: page.click("#delete"))
+    edit(page, lambda: page.click("#add"))
+    edit(page, lambda: page.select_option('#table tbody tr[data-row="0"] select', "wall"))
+    for field, value in [("height", "3"), ("angle", "45"), ("x1", "2"), ("y1", "3"), ("x2", "17"), ("y2", "3")]:
+        edit(page, lambda f=field, v=value: cell(page, 0, f).fill(v))
+    edit(page, lambda: page.click("#add"))
+    edit(page, lambda: page.select_option('#table tbody tr[data-row="1"] select', "peak"))
+    for field, value in [("height", "2"), ("angle", "30"), ("x1", "10"), ("y1", "10")]:
+        edit(page, lambda f=field, v=value: cell(page, 1, f).fill(v))
+    page.click('#table tbody tr[data-row="1"]')
+    edit(page, lambda: page.click("#up"))
+    assert [r["type"] for r in table(page)] == ["peak", "wall"]
+    # A random range: the peak's height from 2 to 4.
+    edit(page, lambda: cell(page, 0, "height", "hi").fill("4"))
+    assert page.locator("#error").inner_text() == ""
+    after = page.locator("#heatmap").screenshot()
+    assert not np.array_equal(image_pixels(first), image_pixels(after)), "the preview's pixels changed"
+
+    # Save, then load the file back into a fresh page: the same table.
+    saved = folder / "saved.csv"
+    page.fill("#save-path", str(saved))
+    page.click("#save")
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    scheme = rse.Scheme.load(saved)
+    assert [o.type for o in scheme.obstacles] == ["peak", "wall"]
+    assert scheme.obstacles[0].height == (2, 4)
+    rows = table(page)
+    page.reload()
+    page.wait_for_function("window.rseEditor.previews >= 1")
+    before = previews(page)
+    page.set_input_files("#load", str(saved))
+    page.wait_for_function(f"window.rseEditor.previews > {before}")
+    assert table(page) == rows
+
+    # Generate three worlds and see the check summary.
+    page.fill("#gen-amount", "3")
+    page.fill("#gen-out", str(folder / "worlds"))
+    page.check('#gen-targets input[value="mujoco"]')
+    page.click("#generate")
+    page.wait_for_function("document.getElementById('gen-check').textContent !== ''", timeout=60_000)
+    assert "3 worlds written" in page.locator("#gen-summary").inner_text()
+    assert page.locator("#gen-check").inner_text().startswith("checked 3 worlds: 3 good, 0 failed")
+    assert (folder / "worlds/world_0002/mujoco/rse.xml").is_file()
+
+
+def test_the_3d_view_draws_blocks(editor, page: Page) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor.previews >= 1")
+    pixels = image_pixels(page.locator("#blocks").screenshot())
+    background = np.array([221, 221, 235])  # the clear colour, 0.87 0.87 0.92
+    drawn = np.abs(pixels[:, :, :3].astype(int) - background).sum(axis=2) > 30
+    assert drawn.mean() > 0.05, f"only {drawn.mean():.1%} of the 3D view is drawn"
+    colours = {tuple(c) for c in pixels[drawn][:, :3][::17]}
+    assert len(colours) > 5, "shaded faces in several colours"
+
+
+def test_invalid_values_are_marked_at_the_field(editor, page: Page) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.select_option('#table tbody tr[data-row="0"] select', "peak")
+    cell(page, 0, "height").fill("2")
+    cell(page, 0, "angle").fill("45")
+    cell(page, 0, "y1").fill("3")
+    cell(page, 0, "x1").fill("99")
+    page.wait_for_function("document.getElementById('error').textContent.includes('outside the grid')")
+    assert "invalid" in (cell(page, 0, "x1").get_attribute("class") or "")
+    assert page.locator("#error").inner_text().startswith("obstacle 1, x1: ")
+    page.fill('[data-global="block_size"]', "-1")
+    page.wait_for_function("document.getElementById('error').textContent.startsWith('block_size')")
+    assert "invalid" in (page.locator('[data-global="block_size"]').get_attribute("class") or "")
+    assert "Traceback" not in page.content() and "panicked" not in page.content()
+
+
+def test_a_preview_round_trip_takes_under_50_ms(editor, page: Page, capsys) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.fill('[data-global="size"]', "50x50")
+    page.wait_for_function("document.getElementById('timing').textContent.startsWith('50×50')")
+    times = []
+    for i in range(1, 16):
+        edit(page, lambda i=i: page.fill("#index", str(i)))
+        times.append(page.evaluate("window.rseEditor.lastRoundTripMs"))
+    median = statistics.median(times)
+    with capsys.disabled():
+        print(f"\n  editor preview round trip, 50x50: median {median:.1f} ms, max {max(times):.1f} ms")
+    assert median < 50
+
+
+@pytest.mark.parametrize(
+    "headers",
+    [{"Origin": "http://evil.example"}, {"Host": "evil.example"}, {"Origin": "http://127.0.0.1:1"}],
+    ids=["foreign origin", "foreign host", "other port"],
+)
+def test_foreign_origins_and_hosts_get_403(editor, headers) -> None:
+    url, _ = editor
+    request = urllib.request.Request(url + "api/state", headers=headers)
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request)
+    assert refused.value.code == 403
+    refused.value.close()
+    with urllib.request.urlopen(url + "api/state") as ok:
+        assert ok.status == 200
+
+
+def test_oversized_requests_get_413(editor) -> None:
+    url, _ = editor
+    request = urllib.request.Request(url + "api/preview", data=b"x" * (2 << 20), method="POST")
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request)
+    assert refused.value.code == 413
+    refused.value.close()
