@@ -137,8 +137,11 @@ def test_scheme_errors_carry_file_line_column_and_field(tmp_path: Path) -> None:
     assert caught.value.field == "y1"
     with pytest.raises(rse.SchemeError):
         rse.Obstacle("wall", height=2)  # a wall needs its angle and both points
-    with pytest.raises(ValueError):
+    with pytest.raises(rse.SchemeError, match="volcano"):
         rse.Obstacle("volcano", height=2)
+    with pytest.raises(rse.SchemeError) as caught:
+        rse.Obstacle("random", height=-1)
+    assert caught.value.field == "height"
 
 
 def test_obstacles_read_back_their_fields() -> None:
@@ -206,8 +209,8 @@ def test_any_text_is_a_scheme_or_a_scheme_error(text: str) -> None:
 def test_bad_obstacle_values_raise_value_errors_never_crash(kind, height, angle, x1) -> None:
     try:
         rse.Scheme([rse.Obstacle(kind, height=height, angle=angle, x1=x1, y1=x1)], size=(10, 10))
-    except (ValueError, OverflowError):
-        pass
+    except rse.SchemeError as e:
+        assert str(e) and (e.field is not None or e.line is not None)
 
 
 def test_stubs_match_the_module() -> None:

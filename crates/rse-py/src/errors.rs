@@ -23,6 +23,17 @@ pub fn scheme_error(py: Python<'_>, e: &rse_core::SchemeError) -> PyErr {
     err
 }
 
+/// `rse.SchemeError` for a bad keyword argument: the field, no file or line.
+pub fn scheme_error_at(py: Python<'_>, field: &str, message: &str) -> PyErr {
+    let err = SchemeError::new_err(format!("{field}: {message}"));
+    let value = err.value(py);
+    let _ = value.setattr("file", py.None());
+    let _ = value.setattr("line", py.None());
+    let _ = value.setattr("column", py.None());
+    let _ = value.setattr("field", field);
+    err
+}
+
 /// The Python exception for a core error.
 pub fn core_error(py: Python<'_>, e: &rse_core::Error) -> PyErr {
     match e {

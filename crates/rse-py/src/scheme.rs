@@ -2,11 +2,10 @@
 //! parameters, built from keyword arguments or read from CSV.
 
 use pyo3::IntoPyObjectExt as _;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rse_core::{Globals, ObstacleFields, ObstacleKind, Pallets, Param};
 
-use crate::errors::{core_error, scheme_error};
+use crate::errors::{core_error, scheme_error, scheme_error_at};
 use crate::terrain::Terrain;
 
 /// A value or an inclusive `(lo, hi)` range drawn per world.
@@ -23,6 +22,26 @@ impl<T> From<ParamArg<T>> for Param<T> {
             ParamArg::Range((lo, hi)) => Param::Range(lo, hi),
         }
     }
+}
+
+/// A whole-number field (height, points) from Python ints: taken signed,
+/// so that a negative value is a `SchemeError` naming the field rather than
+/// Python's `OverflowError`.
+fn whole(py: Python<'_>, field: &str, arg: Option<ParamArg<i64>>) -> PyResult<Option<Param<u32>>> {
+    let convert = |v: i64| {
+        u32::try_from(v).map_err(|_| {
+            scheme_error_at(
+                py,
+                field,
+                &format!("{v} is not a whole number from 0 to {}", u32::MAX),
+            )
+        })
+    };
+    Ok(match arg {
+        None => None,
+        Some(ParamArg::Fixed(v)) => Some(Param::Fixed(convert(v)?)),
+        Some(ParamArg::Range((lo, hi))) => Some(Param::Range(convert(lo)?, convert(hi)?)),
+    })
 }
 
 /// Python's view of a parameter: an int/float or a `(lo, hi)` tuple.
@@ -52,24 +71,24 @@ impl Obstacle {
     fn new(
         py: Python<'_>,
         r#type: &str,
-        height: Option<ParamArg<u32>>,
+        height: Option<ParamArg<i64>>,
         angle: Option<ParamArg<f64>>,
-        x1: Option<ParamArg<u32>>,
-        y1: Option<ParamArg<u32>>,
-        x2: Option<ParamArg<u32>>,
-        y2: Option<ParamArg<u32>>,
+        x1: Option<ParamArg<i64>>,
+        y1: Option<ParamArg<i64>>,
+        x2: Option<ParamArg<i64>>,
+        y2: Option<ParamArg<i64>>,
         sigma: Option<ParamArg<f64>>,
     ) -> PyResult<Self> {
         let kind: ObstacleKind = r#type
             .parse()
-            .map_err(|e| PyValueError::new_err(format!("type: {e}")))?;
+            .map_err(|e| scheme_error_at(py, "type", &format!("{e}")))?;
         let fields = ObstacleFields {
-            height: height.map(Into::into),
+            height: whole(py, "height", height)?,
             angle: angle.map(Into::into),
-            x1: x1.map(Into::into),
-            y1: y1.map(Into::into),
-            x2: x2.map(Into::into),
-            y2: y2.map(Into::into),
+            x1: whole(py, "x1", x1)?,
+            y1: whole(py, "y1", y1)?,
+            x2: whole(py, "x2", x2)?,
+            y2: whole(py, "y2", y2)?,
             sigma: sigma.map(Into::into),
         };
         let inner = rse_core::Obstacle::new(kind, fields).map_err(|e| scheme_error(py, &e))?;
