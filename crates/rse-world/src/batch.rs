@@ -13,6 +13,7 @@ use rse_core::Scheme;
 use crate::error::Error;
 use crate::target::Targets;
 use crate::templates::Templates;
+use crate::tree::list_files;
 use crate::world::{WorldFiles, WorldOptions, build_world};
 
 /// Which worlds of a batch this run writes: those with `index % n == k`.
@@ -239,9 +240,7 @@ fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> 
     if !dest.is_dir() {
         return Ok(Some("not a folder".to_owned()));
     }
-    let mut found = Vec::new();
-    list_files(dest, "", &mut found)?;
-    for path in &found {
+    for path in &list_files(dest).map_err(Error::io("read", dest))? {
         if !world.files.contains_key(path) {
             return Ok(Some(format!("unexpected file {path}")));
         }
@@ -258,25 +257,6 @@ fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> 
         }
     }
     Ok(None)
-}
-
-/// Every file under `dir`, as `/`-separated paths relative to it.
-fn list_files(dir: &Path, prefix: &str, out: &mut Vec<String>) -> Result<(), Error> {
-    for entry in std::fs::read_dir(dir).map_err(Error::io("read", dir))? {
-        let entry = entry.map_err(Error::io("read", dir))?;
-        let name = entry.file_name().to_string_lossy().into_owned();
-        let relative = format!("{prefix}{name}");
-        if entry
-            .file_type()
-            .map_err(Error::io("read", entry.path()))?
-            .is_dir()
-        {
-            list_files(&entry.path(), &format!("{relative}/"), out)?;
-        } else {
-            out.push(relative);
-        }
-    }
-    Ok(())
 }
 
 /// Removes the temporary folders an interrupted run of this shard left

@@ -17,6 +17,7 @@ mod error;
 mod manifest;
 mod target;
 mod templates;
+mod tree;
 mod world;
 
 pub use batch::{BatchOptions, Outcome, Shard, Summary, world_name, write_batch};
@@ -24,4 +25,5 @@ pub use error::Error;
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
 pub use target::{MeshMode, Target, Targets};
 pub use templates::Templates;
+pub use tree::list_files;
 pub use world::{WorldFiles, WorldOptions, build_world, mjcf};

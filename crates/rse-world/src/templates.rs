@@ -11,6 +11,7 @@ use crate::context::WorldContext;
 use crate::error::Error;
 use crate::manifest::sha256_hex;
 use crate::target::Target;
+use crate::tree::list_files;
 
 /// Suffix of the files that are rendered rather than copied.
 const TEMPLATE_SUFFIX: &str = ".j2";
@@ -104,9 +105,7 @@ impl Templates {
                 continue;
             }
             any = true;
-            let mut found = Vec::new();
-            read_tree(&folder, "", &mut found)?;
-            files.insert(target, found);
+            files.insert(target, read_tree(&folder)?);
         }
         if !any {
             return Err(Error::Usage(format!(
@@ -215,31 +214,19 @@ fn template_error(file: &str, e: &minijinja::Error) -> Error {
 }
 
 /// Every file under `dir`, with paths relative to the target folder.
-fn read_tree(dir: &Path, prefix: &str, out: &mut Vec<TemplateFile>) -> Result<(), Error> {
-    let mut entries = std::fs::read_dir(dir)
+fn read_tree(dir: &Path) -> Result<Vec<TemplateFile>, Error> {
+    list_files(dir)
         .map_err(Error::io("read", dir))?
-        .map(|e| e.map(|e| e.path()))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(Error::io("read", dir))?;
-    // Directory order differs between machines; worlds must not.
-    entries.sort();
-    for path in entries {
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .ok_or_else(|| Error::Usage(format!("{}: file names must be UTF-8", path.display())))?;
-        let relative = format!("{prefix}{name}");
-        if path.is_dir() {
-            read_tree(&path, &format!("{relative}/"), out)?;
-        } else {
-            out.push(TemplateFile {
+        .into_iter()
+        .map(|relative| {
+            let path = dir.join(&relative);
+            Ok(TemplateFile {
                 bytes: std::fs::read(&path).map_err(Error::io("read", &path))?,
                 origin: path.display().to_string(),
                 path: relative,
-            });
-        }
-    }
-    Ok(())
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -253,8 +240,7 @@ mod tests {
         for target in Target::ALL {
             let folder = root.join(target.name());
             if folder.is_dir() {
-                let mut found = Vec::new();
-                read_tree(&folder, "", &mut found).unwrap();
+                let found = read_tree(&folder).unwrap();
                 on_disk.extend(found.into_iter().map(|f| (target, f.path, f.bytes)));
             }
         }

@@ -7,26 +7,6 @@ use quick_xml::Reader;
 use quick_xml::events::Event;
 use rse_world::{MANIFEST, Manifest, sha256_hex};
 
-/// Every file under `dir`, as sorted `/`-separated relative paths.
-pub fn list(dir: &Path) -> std::io::Result<Vec<String>> {
-    fn walk(dir: &Path, prefix: &str, out: &mut Vec<String>) -> std::io::Result<()> {
-        for entry in std::fs::read_dir(dir)? {
-            let entry = entry?;
-            let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
-            if entry.file_type()?.is_dir() {
-                walk(&entry.path(), &format!("{name}/"), out)?;
-            } else {
-                out.push(name);
-            }
-        }
-        Ok(())
-    }
-    let mut out = Vec::new();
-    walk(dir, "", &mut out)?;
-    out.sort();
-    Ok(out)
-}
-
 /// Faults of the files against the manifest: missing, changed, unlisted.
 pub fn check_hashes(
     world: &Path,

@@ -154,7 +154,7 @@ fn discover(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
 fn check_world(world: &Path, physics: bool) -> WorldReport {
     let mut faults = Vec::new();
     let mut physics_report = None;
-    let present = match files::list(world) {
+    let present = match rse_world::list_files(world) {
         Ok(present) => present,
         Err(e) => {
             faults.push(format!("cannot be read: {e}"));
