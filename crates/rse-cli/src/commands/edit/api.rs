@@ -37,8 +37,17 @@ pub struct Job {
     pub check: Mutex<Option<String>>,
 }
 
+/// What a handler answers: `Ok` the result, `Err` a refusal for the page
+/// (both are sent as JSON; the page reads `ok`).
+pub type Answer = Result<Value, Value>;
+
 fn error(e: &FieldError) -> Value {
     json!({ "ok": false, "error": e })
+}
+
+/// The request body as `T`, or the page's "bad request".
+fn request<T: serde::de::DeserializeOwned>(body: &[u8]) -> Result<T, Value> {
+    serde_json::from_slice(body).map_err(|e| bad(format!("bad request: {e}")))
 }
 
 fn bad(message: impl Into<String>) -> Value {
@@ -64,25 +73,15 @@ struct PreviewRequest {
 }
 
 /// `POST /api/preview`: the world's heights, boxes and top-down PNG.
-pub fn preview(body: &[u8]) -> Value {
+pub fn preview(body: &[u8]) -> Answer {
     let start = Instant::now();
-    let request: PreviewRequest = match serde_json::from_slice(body) {
-        Ok(r) => r,
-        Err(e) => return bad(format!("bad request: {e}")),
-    };
-    let scheme = match request.scheme.scheme() {
-        Ok(s) => s,
-        Err(e) => return error(&e),
-    };
+    let request: PreviewRequest = request(body)?;
+    let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     let terrain = rse_core::generate(&scheme, request.seed, request.index);
     let grid = terrain.grid();
-    let png = match preview::encode_png(&preview::render(
-        &terrain,
-        preview::auto_cell_pixels(grid.nx, grid.ny),
-    )) {
-        Ok(png) => png,
-        Err(e) => return bad(e.to_string()),
-    };
+    let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);
+    let png = preview::encode_png(&preview::render(&terrain, cell_pixels))
+        .map_err(|e| bad(e.to_string()))?;
     let boxes: Vec<[f64; 6]> = terrain
         .boxes()
         .iter()
@@ -91,7 +90,7 @@ pub fn preview(body: &[u8]) -> Value {
             [cx, cy, cz, hx, hy, hz]
         })
         .collect();
-    json!({
+    Ok(json!({
         "ok": true,
         "nx": grid.nx,
         "ny": grid.ny,
@@ -101,7 +100,7 @@ pub fn preview(body: &[u8]) -> Value {
         "boxes": boxes,
         "csv": scheme.to_csv(),
         "server_ms": start.elapsed().as_secs_f64() * 1e3,
-    })
+    }))
 }
 
 #[derive(Deserialize)]
@@ -110,15 +109,10 @@ struct ParseRequest {
 }
 
 /// `POST /api/parse`: a scheme file's text as the page's fields.
-pub fn parse(body: &[u8]) -> Value {
-    let request: ParseRequest = match serde_json::from_slice(body) {
-        Ok(r) => r,
-        Err(e) => return bad(format!("bad request: {e}")),
-    };
-    match rse_core::Scheme::from_csv(&request.csv, None) {
-        Ok(scheme) => json!({ "ok": true, "scheme": PageScheme::from_scheme(&scheme) }),
-        Err(e) => bad(e.to_string()),
-    }
+pub fn parse(body: &[u8]) -> Answer {
+    let request: ParseRequest = request(body)?;
+    let scheme = rse_core::Scheme::from_csv(&request.csv, None).map_err(|e| bad(e.to_string()))?;
+    Ok(json!({ "ok": true, "scheme": PageScheme::from_scheme(&scheme) }))
 }
 
 #[derive(Deserialize)]
@@ -129,22 +123,15 @@ struct SaveRequest {
 
 /// `POST /api/save`: writes the scheme as canonical CSV to the file the
 /// user named (the only file the editor writes besides the batch).
-pub fn save(body: &[u8]) -> Value {
-    let request: SaveRequest = match serde_json::from_slice(body) {
-        Ok(r) => r,
-        Err(e) => return bad(format!("bad request: {e}")),
-    };
-    let scheme = match request.scheme.scheme() {
-        Ok(s) => s,
-        Err(e) => return error(&e),
-    };
+pub fn save(body: &[u8]) -> Answer {
+    let request: SaveRequest = request(body)?;
+    let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     if request.path.extension().is_none_or(|e| e != "csv") {
-        return bad("the scheme file must end in .csv");
+        return Err(bad("the scheme file must end in .csv"));
     }
-    match crate::output::write_atomically(&request.path, scheme.to_csv().as_bytes()) {
-        Ok(()) => json!({ "ok": true, "path": request.path.display().to_string() }),
-        Err(e) => bad(format!("{e:#}")),
-    }
+    crate::output::write_atomically(&request.path, scheme.to_csv().as_bytes())
+        .map_err(|e| bad(format!("{e:#}")))?;
+    Ok(json!({ "ok": true, "path": request.path.display().to_string() }))
 }
 
 #[derive(Deserialize)]
@@ -158,24 +145,15 @@ struct GenerateRequest {
 }
 
 /// `POST /api/generate`: starts writing a batch in the background.
-pub fn generate(editor: &Editor, body: &[u8]) -> Value {
-    let request: GenerateRequest = match serde_json::from_slice(body) {
-        Ok(r) => r,
-        Err(e) => return bad(format!("bad request: {e}")),
-    };
-    let scheme = match request.scheme.scheme() {
-        Ok(s) => s,
-        Err(e) => return error(&e),
-    };
-    let targets = match Targets::parse(&request.targets) {
-        Ok(t) => t,
-        Err(e) => return bad(e.to_string()),
-    };
+pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
+    let request: GenerateRequest = request(body)?;
+    let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
+    let targets = Targets::parse(&request.targets).map_err(|e| bad(e.to_string()))?;
     let job = Arc::clone(&editor.job);
     {
         let mut running = job.running.lock().expect("not poisoned");
         if *running {
-            return bad("a batch is already being written");
+            return Err(bad("a batch is already being written"));
         }
         *running = true;
     }
@@ -203,7 +181,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Value {
         *job.result.lock().expect("not poisoned") = Some(result);
         *job.running.lock().expect("not poisoned") = false;
     });
-    json!({ "ok": true, "total": request.amount })
+    Ok(json!({ "ok": true, "total": request.amount }))
 }
 
 /// `GET /api/job`: the batch's progress and, once done, its summaries.

@@ -78,13 +78,15 @@ fn route(editor: &Editor, request: &mut tiny_http::Request) -> http::Reply {
                 Ok(body) => body,
                 Err(reply) => return reply,
             };
-            match api_path {
-                "/api/preview" => http::json(&api::preview(&body)),
-                "/api/parse" => http::json(&api::parse(&body)),
-                "/api/save" => http::json(&api::save(&body)),
-                "/api/generate" => http::json(&api::generate(editor, &body)),
-                _ => http::text(404, "not found"),
-            }
+            let answer = match api_path {
+                "/api/preview" => api::preview(&body),
+                "/api/parse" => api::parse(&body),
+                "/api/save" => api::save(&body),
+                "/api/generate" => api::generate(editor, &body),
+                _ => return http::text(404, "not found"),
+            };
+            // A refusal is an answer too: the page reads its `ok` and `error`.
+            http::json(&answer.unwrap_or_else(|refusal| refusal))
         }
         _ => http::text(404, "not found"),
     }
