@@ -13,6 +13,7 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
+use rse_core::mesh::naive::box_per_cell;
 use rse_core::{Scheme, generate};
 
 /// Triangles of the naive mesh: 12 per cell with solid (a closed box each).
@@ -24,49 +25,6 @@ fn naive_triangles(terrain: &rse_core::Terrain) -> usize {
         .iter()
         .filter(|&&h| h > 0 || base)
         .count()
-}
-
-/// The 12 triangles of a closed box whose corner `i` is `(i & 1, i >> 1 & 1, i >> 2 & 1)`.
-const BOX: [[u32; 3]; 12] = [
-    [0, 2, 1],
-    [1, 2, 3],
-    [4, 5, 6],
-    [5, 7, 6],
-    [0, 1, 4],
-    [1, 5, 4],
-    [2, 6, 3],
-    [3, 6, 7],
-    [0, 4, 2],
-    [2, 4, 6],
-    [1, 3, 5],
-    [3, 7, 5],
-];
-
-/// The naive mesh itself, built as the RL terrain tools do (per-cell boxes
-/// concatenated), so its build time is comparable.
-fn naive_mesh(terrain: &rse_core::Terrain) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let map = terrain.heightmap();
-    let s = terrain.block_size() as f32;
-    let (mut v, mut t) = (Vec::new(), Vec::new());
-    for y in 0..map.ny() {
-        for x in 0..map.nx() {
-            let z = terrain.elevation(x, y) as f32;
-            if z <= 0.0 {
-                continue;
-            }
-            let first = v.len() as u32;
-            for i in 0..8u32 {
-                let corner = [
-                    (x + (i & 1)) as f32 * s,
-                    (y + ((i >> 1) & 1)) as f32 * s,
-                    if i >= 4 { z } else { 0.0 },
-                ];
-                v.push(corner);
-            }
-            t.extend(BOX.iter().map(|tri| tri.map(|k| first + k)));
-        }
-    }
-    (v, t)
 }
 
 fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
@@ -89,7 +47,7 @@ fn row(name: &str, terrain: &rse_core::Terrain) {
     let ours = mesh.triangles().len();
     let build = median_time(|| drop(black_box(terrain.mesh())), Duration::from_secs(2));
     let naive_build = median_time(
-        || drop(black_box(naive_mesh(terrain))),
+        || drop(black_box(box_per_cell(terrain))),
         Duration::from_secs(2),
     );
     println!(

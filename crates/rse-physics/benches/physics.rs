@@ -6,48 +6,14 @@
 //! Target (issue "`rse-gen check`"): ratio under 1.3 for 50×50 with the
 //! single mesh.
 
+use rse_core::mesh::naive::box_per_cell;
 use rse_core::{Scheme, Terrain, generate};
 use rse_physics::{SmokeTest, TerrainModel, smoke_test};
 
-/// The 12 triangles of a closed box whose corner `i` is `(i & 1, i >> 1 & 1, i >> 2 & 1)`.
-const BOX: [[u32; 3]; 12] = [
-    [0, 2, 1],
-    [1, 2, 3],
-    [4, 5, 6],
-    [5, 7, 6],
-    [0, 1, 4],
-    [1, 5, 4],
-    [2, 6, 3],
-    [3, 6, 7],
-    [0, 4, 2],
-    [2, 4, 6],
-    [1, 3, 5],
-    [3, 7, 5],
-];
-
-/// One closed box per cell with solid, concatenated, as the RL terrain
-/// generators build their grids.
+/// One closed box per cell with solid, as the RL terrain generators build
+/// their grids.
 fn naive_mesh(terrain: &Terrain) -> TerrainModel {
-    let map = terrain.heightmap();
-    let s = terrain.block_size() as f32;
-    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
-    for y in 0..map.ny() {
-        for x in 0..map.nx() {
-            let z = terrain.elevation(x, y) as f32;
-            if z <= 0.0 {
-                continue;
-            }
-            let first = vertices.len() as u32;
-            for i in 0..8u32 {
-                vertices.push([
-                    (x + (i & 1)) as f32 * s,
-                    (y + ((i >> 1) & 1)) as f32 * s,
-                    if i >= 4 { z } else { 0.0 },
-                ]);
-            }
-            triangles.extend(BOX.iter().map(|t| t.map(|k| first + k)));
-        }
-    }
+    let (vertices, triangles) = box_per_cell(terrain);
     TerrainModel::Mesh {
         vertices,
         triangles,

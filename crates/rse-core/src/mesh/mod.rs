@@ -3,6 +3,7 @@
 mod boxes;
 pub mod check;
 mod faces;
+pub mod naive;
 mod stitch;
 mod weld;
 
