@@ -40,8 +40,9 @@ def batches(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str], P
     return found
 
 
-def worlds(batches: dict[tuple[str, str], Path]) -> list[Path]:
-    return sorted(w for out in batches.values() for w in out.glob("world_*"))
+def worlds(batches: dict[tuple[str, str], Path], mode: str | None = None) -> list[Path]:
+    """Every world of the batches, or of those in one mesh mode."""
+    return sorted(w for (_, m), out in batches.items() if mode in (None, m) for w in out.glob("world_*"))
 
 
 
@@ -184,17 +185,14 @@ def test_mujoco_bodies_rest_at_their_cells_height(batches, mode: str) -> None:
 
 @pytest.mark.parametrize("mode", MODES)
 def test_mujoco_loads_every_world_with_one_box_geom_per_box(batches, mode: str) -> None:
-    for (stem, m), out in batches.items():
-        if m != mode:
-            continue
-        for world in sorted(out.glob("world_*")):
-            model = mujoco.MjModel.from_xml_path(str(world / "mujoco/rse.xml"))
-            boxes = sum(model.geom(i).type[0] == mujoco.mjtGeom.mjGEOM_BOX for i in range(model.ngeom))
-            expected = len(re.findall(r'type="box"', (world / "mujoco/rse.xml").read_text()))
-            assert boxes == expected
-            solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
-            assert (boxes > 0) == solid
-            assert model.nmesh == (1 if mode == "single" and solid else 0)
+    for world in worlds(batches, mode):
+        model = mujoco.MjModel.from_xml_path(str(world / "mujoco/rse.xml"))
+        boxes = sum(model.geom(i).type[0] == mujoco.mjtGeom.mjGEOM_BOX for i in range(model.ngeom))
+        expected = len(re.findall(r'type="box"', (world / "mujoco/rse.xml").read_text()))
+        assert boxes == expected
+        solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
+        assert (boxes > 0) == solid
+        assert model.nmesh == (1 if mode == "single" and solid else 0)
 
 
 @pytest.mark.parametrize("mode", MODES)
@@ -241,32 +239,29 @@ def test_urdf_collision_is_a_concave_mesh_in_single_mode(batches) -> None:
 
 @pytest.mark.parametrize("mode", MODES)
 def test_usd_stage_opens_with_valid_meshes_and_collision(batches, mode: str) -> None:
-    for (stem, m), out in batches.items():
-        if m != mode:
+    for world in worlds(batches, mode):
+        stage = Usd.Stage.Open(str(world / "usd/rse.usda"))
+        assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
+        assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
+        colliders = [prim for prim in stage.Traverse() if prim.HasAPI(UsdPhysics.CollisionAPI)]
+        h = np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2)
+        if not (h > 0).any():
+            assert colliders == []
             continue
-        for world in sorted(out.glob("world_*")):
-            stage = Usd.Stage.Open(str(world / "usd/rse.usda"))
-            assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
-            assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
-            colliders = [prim for prim in stage.Traverse() if prim.HasAPI(UsdPhysics.CollisionAPI)]
-            h = np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2)
-            if not (h > 0).any():
-                assert colliders == []
-                continue
-            if mode == "blocks":
-                cubes = [prim for prim in colliders if prim.IsA(UsdGeom.Cube)]
-                assert len(cubes) == len(colliders) == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
-                continue
-            (terrain,) = colliders
-            assert terrain.IsA(UsdGeom.Mesh) and terrain.HasAPI(UsdPhysics.MeshCollisionAPI)
-            mesh = UsdGeom.Mesh(terrain)
-            points = np.array(mesh.GetPointsAttr().Get())
-            ok, why = UsdGeom.Mesh.ValidateTopology(
-                mesh.GetFaceVertexIndicesAttr().Get(), mesh.GetFaceVertexCountsAttr().Get(), len(points)
-            )
-            assert ok, why
-            step = manifest(world)["globals"]["step_height"]
-            assert points[:, 2].max() == pytest.approx(h.max() * step, abs=1e-6)
+        if mode == "blocks":
+            cubes = [prim for prim in colliders if prim.IsA(UsdGeom.Cube)]
+            assert len(cubes) == len(colliders) == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
+            continue
+        (terrain,) = colliders
+        assert terrain.IsA(UsdGeom.Mesh) and terrain.HasAPI(UsdPhysics.MeshCollisionAPI)
+        mesh = UsdGeom.Mesh(terrain)
+        points = np.array(mesh.GetPointsAttr().Get())
+        ok, why = UsdGeom.Mesh.ValidateTopology(
+            mesh.GetFaceVertexIndicesAttr().Get(), mesh.GetFaceVertexCountsAttr().Get(), len(points)
+        )
+        assert ok, why
+        step = manifest(world)["globals"]["step_height"]
+        assert points[:, 2].max() == pytest.approx(h.max() * step, abs=1e-6)
 
 
 # --- Webots: structure --------------------------------------------------------
@@ -289,26 +284,23 @@ def parse_wbt(text: str) -> list[str]:
 
 @pytest.mark.parametrize("mode", MODES)
 def test_webots_world_is_well_formed_and_its_meshes_exist(batches, mode: str) -> None:
-    for (stem, m), out in batches.items():
-        if m != mode:
-            continue
-        for world in sorted(out.glob("world_*")):
-            wbt = world / "webots/rse.wbt"
-            text = wbt.read_text()
-            assert text.startswith("#VRML_SIM R2023b utf8\n")
-            tokens = parse_wbt(text)
-            nodes = [tokens[i - 1] for i, t in enumerate(tokens) if t == "{"]
-            for node in ["WorldInfo", "Viewpoint", "Solid"]:
-                assert node in nodes
-            urls = [tokens[i + 2].strip('"') for i, t in enumerate(tokens) if t == "url"]
-            for url in urls:
-                assert (wbt.parent / url).resolve().is_file(), url
-            solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
-            boxes = nodes.count("Box")
-            if mode == "single":
-                assert len(urls) == (1 if solid else 0) and boxes == 0
-            else:
-                assert urls == [] and boxes == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
+    for world in worlds(batches, mode):
+        wbt = world / "webots/rse.wbt"
+        text = wbt.read_text()
+        assert text.startswith("#VRML_SIM R2023b utf8\n")
+        tokens = parse_wbt(text)
+        nodes = [tokens[i - 1] for i, t in enumerate(tokens) if t == "{"]
+        for node in ["WorldInfo", "Viewpoint", "Solid"]:
+            assert node in nodes
+        urls = [tokens[i + 2].strip('"') for i, t in enumerate(tokens) if t == "url"]
+        for url in urls:
+            assert (wbt.parent / url).resolve().is_file(), url
+        solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
+        boxes = nodes.count("Box")
+        if mode == "single":
+            assert len(urls) == (1 if solid else 0) and boxes == 0
+        else:
+            assert urls == [] and boxes == len(re.findall('type="box"', (world / "mujoco/rse.xml").read_text()))
 
 
 def test_the_webots_parser_catches_unbalanced_nodes() -> None:
