@@ -7,27 +7,37 @@ use super::{rse_gen, stderr};
 
 const ALL_TARGETS: &str = "obj,gazebo,webots,mujoco,urdf,usd";
 
+/// Writes a batch of `scheme` into `out` with the `extra` flags; it must succeed.
+fn write_batch(scheme: &str, out: &Path, extra: &[&str]) {
+    let mut args = vec!["batch", scheme, "-o", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let done = rse_gen(&args);
+    assert!(done.status.success(), "{}", stderr(&done));
+}
+
 /// A fresh batch of three worlds of every target.
 fn good_batch(dir: &Path) -> PathBuf {
     let out = dir.join("batch");
-    let done = rse_gen(&[
-        "batch",
+    write_batch(
         "schemes/six_obstacles.csv",
-        "-o",
-        out.to_str().unwrap(),
-        "--amount",
-        "3",
-        "--target",
-        ALL_TARGETS,
-    ]);
-    assert!(done.status.success(), "{}", stderr(&done));
+        &out,
+        &["--amount", "3", "--target", ALL_TARGETS],
+    );
     out
 }
 
-fn check(path: &Path) -> (Option<i32>, String) {
-    let done = rse_gen(&["check", path.to_str().unwrap()]);
+/// `rse-gen check` with `flags` on `path`: exit code, and stdout then stderr.
+fn check_with(flags: &[&str], path: &Path) -> (Option<i32>, String) {
+    let mut args = vec!["check"];
+    args.extend_from_slice(flags);
+    args.push(path.to_str().unwrap());
+    let done = rse_gen(&args);
     let text = String::from_utf8_lossy(&done.stdout).into_owned() + &stderr(&done);
     (done.status.code(), text)
+}
+
+fn check(path: &Path) -> (Option<i32>, String) {
+    check_with(&[], path)
 }
 
 #[test]
@@ -202,17 +212,11 @@ fn physics_finds_no_error_on_any_sample() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "csv") {
             let out = dir.path().join(path.file_stem().unwrap());
-            let done = rse_gen(&[
-                "batch",
+            write_batch(
                 path.to_str().unwrap(),
-                "-o",
-                out.to_str().unwrap(),
-                "--amount",
-                "20",
-                "--target",
-                "obj",
-            ]);
-            assert!(done.status.success(), "{}", stderr(&done));
+                &out,
+                &["--amount", "20", "--target", "obj"],
+            );
             batches.push(out);
         }
     }
@@ -242,15 +246,7 @@ fn physics_finds_no_error_on_any_sample() {
 fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("batch");
-    let done = rse_gen(&[
-        "batch",
-        "schemes/six_obstacles.csv",
-        "-o",
-        out.to_str().unwrap(),
-        "--target",
-        "obj",
-    ]);
-    assert!(done.status.success(), "{}", stderr(&done));
+    write_batch("schemes/six_obstacles.csv", &out, &["--target", "obj"]);
     // Take the tops off: every face whose normal is +z (the fifth `vn`).
     let obj = out.join("world_0000/meshes/terrain.obj");
     let text = std::fs::read_to_string(&obj).unwrap();
@@ -263,13 +259,7 @@ fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
     }
     assert!(holed.len() < text.len());
     std::fs::write(&obj, holed).unwrap();
-    let (code, text) = {
-        let done = rse_gen(&["check", "--physics", out.to_str().unwrap()]);
-        (
-            done.status.code(),
-            String::from_utf8_lossy(&done.stdout).into_owned() + &stderr(&done),
-        )
-    };
+    let (code, text) = check_with(&["--physics"], &out);
     assert_eq!(code, Some(1), "{text}");
     assert!(text.contains("physics: body"), "{text}");
     assert!(text.contains("sank into the terrain"), "{text}");
@@ -279,19 +269,11 @@ fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
 fn physics_runs_on_the_box_set_of_block_worlds() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("batch");
-    let done = rse_gen(&[
-        "batch",
+    write_batch(
         "schemes/nist_hill.csv",
-        "-o",
-        out.to_str().unwrap(),
-        "--amount",
-        "3",
-        "--target",
-        "mujoco",
-        "--mesh",
-        "blocks",
-    ]);
-    assert!(done.status.success(), "{}", stderr(&done));
+        &out,
+        &["--amount", "3", "--target", "mujoco", "--mesh", "blocks"],
+    );
     let done = rse_gen(&["check", "--physics", "--json", out.to_str().unwrap()]);
     let report: serde_json::Value = serde_json::from_slice(&done.stdout).unwrap();
     assert_eq!(report["failed"], 0, "{report:#}");
