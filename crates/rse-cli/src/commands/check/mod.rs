@@ -69,11 +69,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
         }
     }
     out.flush()?;
-    eprintln!(
-        "rse-gen: checked {} worlds: {} good, {failed} failed",
-        reports.len(),
-        reports.len() - failed
-    );
+    eprintln!("rse-gen: {}", verdict(&reports));
     let physics: Vec<&PhysicsReport> = reports.iter().filter_map(|r| r.physics.as_ref()).collect();
     if !physics.is_empty() {
         let mean = |f: fn(&PhysicsReport) -> f64| {
@@ -102,14 +98,8 @@ pub fn summary(folder: &Path) -> String {
         Err(e) => return format!("check: {e:#}"),
     };
     let reports: Vec<WorldReport> = worlds.par_iter().map(|w| check_world(w, false)).collect();
-    let failed: Vec<&WorldReport> = reports.iter().filter(|r| !r.ok).collect();
-    let mut line = format!(
-        "checked {} worlds: {} good, {} failed",
-        reports.len(),
-        reports.len() - failed.len(),
-        failed.len()
-    );
-    if let Some(first) = failed.first() {
+    let mut line = verdict(&reports);
+    if let Some(first) = reports.iter().find(|r| !r.ok) {
         let _ = write!(
             line,
             " (first: {}: {})",
@@ -118,6 +108,23 @@ pub fn summary(folder: &Path) -> String {
         );
     }
     line
+}
+
+/// `checked N worlds: G good, F failed`.
+fn verdict(reports: &[WorldReport]) -> String {
+    let failed = reports.iter().filter(|r| !r.ok).count();
+    format!(
+        "checked {} worlds: {} good, {failed} failed",
+        reports.len(),
+        reports.len() - failed
+    )
+}
+
+/// The OBJ files among a world's files.
+fn objs(present: &[String]) -> impl Iterator<Item = &String> {
+    present
+        .iter()
+        .filter(|p| Path::new(p).extension().is_some_and(|e| e == "obj"))
 }
 
 /// The world folders named: a folder holding `rse.json` is a world; any
@@ -174,10 +181,7 @@ fn check_world(world: &Path, physics: bool) -> WorldReport {
                     faults.extend(report.errors.iter().map(|e| format!("physics: {e}")));
                     physics_report = Some(report);
                 }
-                for obj in present
-                    .iter()
-                    .filter(|p| Path::new(p).extension().is_some_and(|e| e == "obj"))
-                {
+                for obj in objs(&present) {
                     terrain::check_obj(world, obj, &terrain, &mut faults);
                 }
             }
@@ -203,9 +207,7 @@ fn physics_of(
     present: &[String],
     terrain: &Terrain,
 ) -> PhysicsReport {
-    let obj = present
-        .iter()
-        .find(|p| Path::new(p).extension().is_some_and(|e| e == "obj"));
+    let obj = objs(present).next();
     let model = match (manifest.mesh, obj) {
         (MeshMode::Single, Some(obj)) => match terrain::read_obj(&world.join(obj)) {
             Ok(mesh) => TerrainModel::Mesh {
