@@ -11,27 +11,35 @@ pyo3::create_exception!(
     "A scheme that cannot be used: `file`, `line`, `column` and `field` say where (each may be None)."
 );
 
-/// `rse.SchemeError` for a core scheme error, with its place as attributes.
-pub fn scheme_error(py: Python<'_>, e: &rse_core::SchemeError) -> PyErr {
-    let err = SchemeError::new_err(e.to_string());
+/// `rse.SchemeError` with `message` and its place as attributes.
+fn placed(
+    py: Python<'_>,
+    message: String,
+    (file, line, column, field): (Option<&str>, Option<u64>, Option<u64>, Option<&str>),
+) -> PyErr {
+    let err = SchemeError::new_err(message);
     let value = err.value(py);
     // Setting attributes on a fresh exception object cannot fail.
-    let _ = value.setattr("file", e.file.clone());
-    let _ = value.setattr("line", e.line);
-    let _ = value.setattr("column", e.column);
-    let _ = value.setattr("field", e.field.clone());
+    let _ = value.setattr("file", file);
+    let _ = value.setattr("line", line);
+    let _ = value.setattr("column", column);
+    let _ = value.setattr("field", field);
     err
+}
+
+/// `rse.SchemeError` for a core scheme error, with its place.
+pub fn scheme_error(py: Python<'_>, e: &rse_core::SchemeError) -> PyErr {
+    let place = (e.file.as_deref(), e.line, e.column, e.field.as_deref());
+    placed(py, e.to_string(), place)
 }
 
 /// `rse.SchemeError` for a bad keyword argument: the field, no file or line.
 pub fn scheme_error_at(py: Python<'_>, field: &str, message: &str) -> PyErr {
-    let err = SchemeError::new_err(format!("{field}: {message}"));
-    let value = err.value(py);
-    let _ = value.setattr("file", py.None());
-    let _ = value.setattr("line", py.None());
-    let _ = value.setattr("column", py.None());
-    let _ = value.setattr("field", field);
-    err
+    placed(
+        py,
+        format!("{field}: {message}"),
+        (None, None, None, Some(field)),
+    )
 }
 
 /// The Python exception for a core error.
