@@ -118,13 +118,8 @@ fn highest_within(terrain: &Terrain, x: f64, y: f64, reach: f64) -> f64 {
     let cell = |v: f64, n: u32| ((v / s).floor().max(0.0) as u32).min(n - 1);
     let (x0, x1) = (cell(x - reach, grid.nx), cell(x + reach, grid.nx));
     let (y0, y1) = (cell(y - reach, grid.ny), cell(y + reach, grid.ny));
-    let mut top: f64 = 0.0;
-    for cy in y0..=y1 {
-        for cx in x0..=x1 {
-            if terrain.heightmap().get(cx, cy) > 0 || terrain.base() > 0.0 {
-                top = top.max(terrain.elevation(cx, cy));
-            }
-        }
-    }
-    top
+    // An empty cell without a slab has elevation 0: the ground.
+    (y0..=y1)
+        .flat_map(|cy| (x0..=x1).map(move |cx| terrain.elevation(cx, cy)))
+        .fold(0.0, f64::max)
 }

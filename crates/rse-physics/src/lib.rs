@@ -298,12 +298,8 @@ fn judge(
         if cx < 0.0 || cy < 0.0 || cx >= f64::from(grid.nx) || cy >= f64::from(grid.ny) {
             return 0.0;
         }
-        let h = terrain.heightmap().get(cx as u32, cy as u32);
-        if h == 0 && terrain.base() == 0.0 {
-            0.0
-        } else {
-            terrain.elevation(cx as u32, cy as u32)
-        }
+        // `base + h·step`: 0, the ground, for an empty cell without a slab.
+        terrain.elevation(cx as u32, cy as u32)
     };
     let mut errors = Vec::new();
     for (i, ((&handle, drop), &moved)) in handles.iter().zip(drops).zip(moved).enumerate() {
