@@ -19,13 +19,14 @@ lint:
 	cargo clippy --workspace --all-targets --locked -- -D warnings
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
-## Benchmarks: generator (criterion), meshes (table), batch throughput beside cp -r.
+## Benchmarks: generator (criterion), meshes (table), physics, batch throughput beside cp -r, Python, editor round trip.
 bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
+	.venv/bin/python bench/editor.py
 
 build:
 	cargo build --release --locked -p rse-cli

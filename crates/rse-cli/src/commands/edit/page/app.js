@@ -173,9 +173,13 @@ function palette(t) { // blue → green → red, as the preview
 }
 
 function drawBlocks(answer) {
-  const data = [];
-  const maxTop = Math.max(1e-9, ...answer.boxes.map((b) => 2 * b[5]));
-  const minTop = Math.min(...answer.boxes.map((b) => 2 * b[5]), maxTop);
+  // Filled in place (5 faces x 6 vertices x 9 floats a box): building a JS
+  // array with push(...) first cost more than the server's whole answer.
+  const data = new Float32Array(answer.boxes.length * 5 * 6 * 9);
+  let n = 0;
+  let maxTop = 1e-9, minTop = Infinity;
+  for (const b of answer.boxes) { maxTop = Math.max(maxTop, 2 * b[5]); minTop = Math.min(minTop, 2 * b[5]); }
+  minTop = Math.min(minTop, maxTop);
   const faces = [ // normal, then four corners as signs of the half sizes
     [[0, 0, 1], [[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]]],
     [[1, 0, 0], [[1, -1, -1], [1, 1, -1], [1, 1, 1], [1, -1, 1]]],
@@ -187,7 +191,7 @@ function drawBlocks(answer) {
     const colour = palette(maxTop > minTop ? (2 * hz - minTop) / (maxTop - minTop) : 0.5);
     for (const [normal, corners] of faces) {
       const p = corners.map(([sx, sy, sz]) => [cx + sx * hx, cy + sy * hy, cz + sz * hz]);
-      for (const k of [0, 1, 2, 0, 2, 3]) data.push(...p[k], ...normal, ...colour);
+      for (const k of [0, 1, 2, 0, 2, 3]) { data.set(p[k], n); data.set(normal, n + 3); data.set(colour, n + 6); n += 9; }
     }
   }
   vertexCount = data.length / 9;
@@ -195,7 +199,7 @@ function drawBlocks(answer) {
   sceneSize = Math.max(answer.nx, answer.ny) * s;
   sceneCentre = [answer.nx * s / 2, answer.ny * s / 2, 0];
   gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-  gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data), gl.STATIC_DRAW);
+  gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
   render();
 }
 
