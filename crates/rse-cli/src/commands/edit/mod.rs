@@ -24,7 +24,7 @@ const STYLE_CSS: &str = include_str!("page/style.css");
 ///
 /// Loopback only: the editor reads and writes files for whoever talks to it.
 /// `TCP_NODELAY` is set on the listening socket, which Linux hands on to every
-/// accepted connection: tiny_http writes a response's headers and its body
+/// accepted connection: `tiny_http` writes a response's headers and its body
 /// separately, and with Nagle's algorithm the body then waits for the browser's
 /// delayed ACK of the headers, 40 ms on every preview.
 fn listener(port: u16) -> std::io::Result<std::net::TcpListener> {
