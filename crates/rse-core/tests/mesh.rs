@@ -134,6 +134,23 @@ fn flat_1000_by_1000_is_12_triangles() {
 }
 
 #[test]
+fn a_large_mesh_is_the_same_on_one_thread_and_on_several() {
+    // Large enough (about 90,000 faces) to be triangulated in parallel.
+    let scheme = Scheme::from_csv("# size: 220x220\ntype,height\nrandom,4\n", None).unwrap();
+    let terrain = generate(&scheme, 7, 0);
+    let on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| terrain.mesh())
+    };
+    let one = on(1);
+    assert_eq!(one, on(3));
+    assert_exact(terrain.heightmap(), terrain.mesh_units(), &one);
+}
+
+#[test]
 fn every_sample_meshes_exactly() {
     for entry in std::fs::read_dir(repo().join("schemes")).unwrap() {
         let path = entry.unwrap().path();

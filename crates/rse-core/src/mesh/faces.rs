@@ -60,11 +60,27 @@ pub(crate) struct Rect {
     pub normal: Normal,
 }
 
+/// A face of the boundary, as [`faces`] emits it.
+pub(crate) enum Face<'a> {
+    /// Tops, the bottom, and walls of one span.
+    Rect(Rect),
+    /// The wall segments along one grid line that face the same way, each
+    /// overlapping the next, as one polygon. `outline[..split]`: the
+    /// corners of its lower edge, `outline[split..]` those of its upper
+    /// edge, each in order along the line from the same end.
+    Staircase {
+        outline: &'a [Key],
+        split: usize,
+        normal: Normal,
+    },
+}
+
 /// The level code of every cell's top (0: no solid there), with the grid size.
 pub(crate) struct Levels {
     nx: u32,
     ny: u32,
     cells: Vec<u32>,
+    has_base: bool,
 }
 
 impl Levels {
@@ -84,6 +100,22 @@ impl Levels {
             nx: map.nx(),
             ny: map.ny(),
             cells,
+            has_base,
+        }
+    }
+
+    /// The height of `level` in steps, up to one offset for the whole mesh,
+    /// where heights in steps are linear in `z` — which is what a wall's
+    /// triangulation needs to tell left turns from right ones. Without a
+    /// slab that is every level (the ground, 0, is the top of an empty
+    /// cell); with one, only the tops are: the ground is `base`, not a
+    /// whole number of steps, below the lowest top. `None` for the ground
+    /// then.
+    pub(crate) fn steps(&self, level: u32) -> Option<i64> {
+        match level {
+            0 if self.has_base => None,
+            0 => Some(0),
+            l => Some(i64::from(l) - 1),
         }
     }
 
@@ -135,18 +167,18 @@ impl Levels {
     }
 }
 
-/// Every rectangle of the boundary, `emit`ted in order: tops, the bottom,
-/// and the walls. Streamed rather than collected: on a large random field
-/// a list of them would be the biggest buffer of the whole build.
-pub(crate) fn rectangles(levels: &Levels, emit: &mut dyn FnMut(Rect)) {
+/// Every face of the boundary, `emit`ted in order: tops, the bottom, and
+/// the walls. Streamed rather than collected: on a large random field a
+/// list of them would be the biggest buffer of the whole build.
+pub(crate) fn faces(levels: &Levels, emit: &mut dyn FnMut(Face)) {
     let (nx, ny) = (levels.nx, levels.ny);
 
     // Tops: cells of equal level merged into rectangles.
     levels.top_rectangles(|[x0, y0, x1, y1], l| {
-        emit(Rect {
+        emit(Face::Rect(Rect {
             corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
             normal: Normal::PosZ,
-        });
+        }));
     });
     // The bottom: every cell with solid, at level 0, facing down.
     greedy_rectangles(
@@ -154,13 +186,14 @@ pub(crate) fn rectangles(levels: &Levels, emit: &mut dyn FnMut(Rect)) {
         ny,
         |x, y| (levels.get(x, y) > 0).then_some(0),
         |[x0, y0, x1, y1], _| {
-            emit(Rect {
+            emit(Face::Rect(Rect {
                 corners: [[x0, y0, 0], [x0, y1, 0], [x1, y1, 0], [x1, y0, 0]],
                 normal: Normal::NegZ,
-            });
+            }));
         },
     );
 
+    let mut buffers = RunBuffers::default();
     // Walls on the line x = i between cells (i−1, j) and (i, j); outside is
     // level 0. Emitted row by row like everything else, so that later
     // lookups walk memory in order instead of striding down columns: a run
@@ -174,30 +207,139 @@ pub(crate) fn rectangles(levels: &Levels, emit: &mut dyn FnMut(Rect)) {
     let mut covered_until = vec![0u32; nx as usize + 1];
     for j in 0..ny {
         for i in 0..=nx {
-            if j < covered_until[i as usize] {
+            if j < covered_until[i as usize] || x_segment(i, j).is_none() {
                 continue;
             }
-            let Some(this) = x_segment(i, j) else {
-                continue;
+            let line = WallLine {
+                levels,
+                segments: ny,
+                wall: |j| x_segment(i, j),
+                key: |j, level| [i, j, level],
+                normals: [Normal::PosX, Normal::NegX],
+                along_y: true,
             };
-            let mut j1 = j + 1;
-            while j1 < ny && x_segment(i, j1) == Some(this) {
-                j1 += 1;
-            }
-            covered_until[i as usize] = j1;
-            emit(x_wall(i, [j, j1], this));
+            covered_until[i as usize] = line.emit_run(j, &mut buffers, emit);
         }
     }
 
     // Walls on the line y = j between cells (i, j−1) and (i, j).
     for j in 0..=ny {
         let (south, north) = (i64::from(j) - 1, i64::from(j));
-        let side = |i: u32| (levels.at(i.into(), south), levels.at(i.into(), north));
-        wall_runs(nx, side, |[i0, i1], [lo, hi], faces_positive| {
-            let corners = [[i0, j, lo], [i0, j, hi], [i1, j, hi], [i1, j, lo]];
-            emit(wall(corners, faces_positive, [Normal::PosY, Normal::NegY]));
-        });
+        let line = WallLine {
+            levels,
+            segments: nx,
+            wall: |i: u32| wall_between(levels.at(i.into(), south), levels.at(i.into(), north)),
+            key: |i, level| [i, j, level],
+            normals: [Normal::PosY, Normal::NegY],
+            along_y: false,
+        };
+        let mut i = 0;
+        while i < nx {
+            i = if (line.wall)(i).is_some() {
+                line.emit_run(i, &mut buffers, emit)
+            } else {
+                i + 1
+            };
+        }
     }
+}
+
+/// One grid line of walls: `wall(k)` is the wall of segment `k` (if any),
+/// `key(k, level)` the lattice point at the start of segment `k`.
+struct WallLine<'a, W, K> {
+    levels: &'a Levels,
+    segments: u32,
+    wall: W,
+    key: K,
+    /// The normals facing the positive and the negative side.
+    normals: [Normal; 2],
+    /// The line runs along y (a wall facing ±x).
+    along_y: bool,
+}
+
+impl<W: Fn(u32) -> Option<Wall>, K: Fn(u32, u32) -> Key> WallLine<'_, W, K> {
+    /// Emits the run of walls that starts at segment `start` (which has
+    /// one) and returns the segment after it. A run is the segments facing
+    /// the same way, each overlapping the one before: a rectangle when they
+    /// all have the same span, else a staircase. Walls down to a ground that
+    /// is no whole number of steps below the tops stay rectangles (see
+    /// [`Levels::steps`]).
+    fn emit_run(&self, start: u32, buffers: &mut RunBuffers, emit: &mut dyn FnMut(Face)) -> u32 {
+        let first @ ([lo, hi], faces_positive) =
+            (self.wall)(start).expect("a run starts at a wall");
+        let staircase = self.levels.steps(lo).is_some();
+        let (mut uniform, mut previous) = (true, [lo, hi]);
+        // Read once: a line along y strides through the grid.
+        let spans = &mut buffers.spans;
+        spans.clear();
+        spans.push([lo, hi]);
+        let mut end = start + 1;
+        while end < self.segments {
+            let Some(this @ ([l, h], f)) = (self.wall)(end) else {
+                break;
+            };
+            let joins = if uniform && this == first {
+                true
+            } else {
+                let overlaps = l.max(previous[0]) < h.min(previous[1]);
+                f == faces_positive && overlaps && staircase && self.levels.steps(l).is_some()
+            };
+            if !joins {
+                break;
+            }
+            uniform &= this == first;
+            previous = [l, h];
+            spans.push(previous);
+            end += 1;
+        }
+        if uniform {
+            let [a, b, c, d] =
+                [(start, lo), (start, hi), (end, hi), (end, lo)].map(|(k, l)| (self.key)(k, l));
+            // Counter-clockwise seen from the positive side: along +y that
+            // is a, d, c, b (y runs to the right), along +x a, b, c, d.
+            let corners = if self.along_y {
+                [a, d, c, b]
+            } else {
+                [a, b, c, d]
+            };
+            emit(Face::Rect(wall(corners, faces_positive, self.normals)));
+            return end;
+        }
+        // The corners of the lower edge, then of the upper one.
+        let outline = &mut buffers.outline;
+        outline.clear();
+        let mut split = 0;
+        for side in 0..2 {
+            let mut previous = spans[0][side];
+            outline.push((self.key)(start, previous));
+            for (k, span) in (start + 1..end).zip(&spans[1..]) {
+                let this = span[side];
+                if this != previous {
+                    outline.extend([(self.key)(k, previous), (self.key)(k, this)]);
+                    previous = this;
+                }
+            }
+            outline.push((self.key)(end, previous));
+            if side == 0 {
+                split = outline.len();
+            }
+        }
+        emit(Face::Staircase {
+            outline,
+            split,
+            normal: self.normals[usize::from(!faces_positive)],
+        });
+        end
+    }
+}
+
+/// Buffers for [`WallLine::emit_run`], reused from one run to the next.
+#[derive(Default)]
+struct RunBuffers {
+    /// The spans of the run's segments.
+    spans: Vec<[u32; 2]>,
+    /// The staircase's corners.
+    outline: Vec<Key>,
 }
 
 /// A wall segment between two cells: its `[lo, hi]` span of levels and
@@ -208,12 +350,6 @@ type Wall = ([u32; 2], bool);
 /// they differ. It faces the lower side: positive when `behind` is higher.
 fn wall_between(behind: u32, front: u32) -> Option<Wall> {
     (behind != front).then(|| ([behind.min(front), behind.max(front)], behind > front))
-}
-
-/// The wall on the line x = `i` over rows `j0..j1`.
-fn x_wall(i: u32, [j0, j1]: [u32; 2], ([lo, hi], faces_positive): Wall) -> Rect {
-    let corners = [[i, j0, lo], [i, j1, lo], [i, j1, hi], [i, j0, hi]];
-    wall(corners, faces_positive, [Normal::PosX, Normal::NegX])
 }
 
 /// A wall with `corners` counter-clockwise seen from the positive side: as
@@ -231,34 +367,6 @@ fn wall(corners: [Key; 4], faces_positive: bool, normals: [Normal; 2]) -> Rect {
             corners: [a, d, c, b],
             normal: normals[1],
         }
-    }
-}
-
-/// Along one grid line, the walls between the cells on its two sides
-/// (`side(k)` gives the levels behind and in front of segment `k`): runs of
-/// segments with the same span and facing become one rectangle.
-/// `emit([k0, k1], [lo, hi], faces_positive)`.
-fn wall_runs(
-    segments: u32,
-    side: impl Fn(u32) -> (u32, u32),
-    mut emit: impl FnMut([u32; 2], [u32; 2], bool),
-) {
-    let wall = |k: u32| {
-        let (behind, front) = side(k);
-        wall_between(behind, front)
-    };
-    let mut k = 0;
-    while k < segments {
-        let Some(this) = wall(k) else {
-            k += 1;
-            continue;
-        };
-        let mut end = k + 1;
-        while end < segments && wall(end) == Some(this) {
-            end += 1;
-        }
-        emit([k, end], this.0, this.1);
-        k = end;
     }
 }
 

@@ -4,6 +4,7 @@ mod boxes;
 pub mod check;
 mod faces;
 pub mod naive;
+mod staircase;
 mod stitch;
 mod weld;
 
@@ -95,7 +96,7 @@ impl Terrain {
 /// The closed mesh of the solid `{0 ≤ z ≤ base + h·step}` over every cell.
 pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
     let levels = faces::Levels::new(heights, units.base > 0.0);
-    let triangles = stitch::triangulate(&levels, |emit| faces::rectangles(&levels, emit));
+    let triangles = stitch::triangulate(&levels, |emit| faces::faces(&levels, emit));
     let (keys, ids, normals) = weld::split_saddles(triangles, &levels);
     let position = |[x, y, level]: Key| {
         [

@@ -1,12 +1,15 @@
-//! Triangulating the boundary rectangles without T-junctions.
+//! Triangulating the boundary faces without T-junctions.
 //!
-//! Every lattice point that is a corner of any rectangle is inserted into
-//! every rectangle edge it lies on, so two faces that share a stretch of edge
-//! split it at the same points. Each rectangle, now a convex polygon whose
-//! extra points lie on its sides, is triangulated by a zipper that never
-//! makes a zero-area triangle and adds no point.
+//! Every lattice point that is a corner of any face is inserted into every
+//! face edge it lies on, so two faces that share a stretch of edge split it
+//! at the same points. Each rectangle, now a convex polygon whose extra
+//! points lie on its sides, is triangulated by a zipper that never makes a
+//! zero-area triangle and adds no point; each staircase wall by the sweep of
+//! [`super::staircase`].
 
-use super::faces::{Key, Levels, Normal, Rect};
+use super::faces::{Face, Key, Levels, Normal};
+use super::staircase::{self, Point};
+use rayon::prelude::*;
 
 /// The lattice points that are corners of the boundary's rectangles, with
 /// ids in order of first use. Every point at grid corner `(x, y)` lies at the
@@ -124,35 +127,207 @@ pub(crate) struct Triangles {
     pub normals: Vec<Normal>,
 }
 
-/// Triangulates every rectangle that `rectangles` emits, in order.
-pub(crate) fn triangulate(
-    levels: &Levels,
-    rectangles: impl FnOnce(&mut dyn FnMut(Rect)),
-) -> Triangles {
+/// A face as kept between numbering and triangulating: corner ids only, in
+/// 20 bytes (a large random field has millions of faces).
+enum Numbered {
+    Rect([u32; 4], Normal),
+    /// The outline's ids are `outlines[start..end]`, split as in the face.
+    Staircase {
+        start: u32,
+        split: u32,
+        end: u32,
+        normal: Normal,
+    },
+}
+
+/// Triangulates every face that `faces` emits, in order.
+pub(crate) fn triangulate(levels: &Levels, faces: impl FnOnce(&mut dyn FnMut(Face))) -> Triangles {
     let mut corners = Corners::new(levels);
-    // Numbering every corner before any rectangle is split, so that the
-    // splitting sees all of them; each rectangle keeps only its corners' ids.
-    let mut quads = Vec::new();
-    rectangles(&mut |rect: Rect| {
-        quads.push((rect.corners.map(|k| corners.insert(k)), rect.normal));
+    // Numbering every corner before any face is split, so that the
+    // splitting sees all of them; each face keeps only its corners' ids.
+    // Sized for a random field (about two faces per cell and one outline
+    // corner), so that these large buffers are not copied as they grow.
+    let cells = levels.nx() as usize * levels.ny() as usize;
+    let mut numbered = Vec::with_capacity(2 * cells);
+    let mut outlines = Vec::with_capacity(cells);
+    faces(&mut |face: Face| match face {
+        Face::Rect(rect) => {
+            numbered.push(Numbered::Rect(
+                rect.corners.map(|k| corners.insert(k)),
+                rect.normal,
+            ));
+        }
+        Face::Staircase {
+            outline,
+            split,
+            normal,
+        } => {
+            let start = outlines.len();
+            outlines.extend(outline.iter().map(|&k| corners.insert(k)));
+            numbered.push(Numbered::Staircase {
+                start: start as u32,
+                split: (start + split) as u32,
+                end: outlines.len() as u32,
+                normal,
+            });
+        }
     });
-    let mut triangles = Vec::with_capacity(quads.len() * 3);
-    let mut normals = Vec::with_capacity(quads.len() * 3);
-    let (mut ab, mut ad) = (Vec::new(), Vec::new());
-    for &(ids, normal) in &quads {
-        let [a, b, c, d] = ids.map(|id| (id, corners.keys[id as usize]));
-        // Two chains from corner a to the opposite corner c: through b and
-        // through d, each with the points on its sides.
-        corners.chain([a, b, c], &mut ab);
-        corners.chain([a, d, c], &mut ad);
-        zip(&ab, &ad, &mut triangles);
-        normals.resize(triangles.len(), normal);
-    }
+    // Faces are triangulated independently of each other: a large mesh is
+    // cut into runs of faces of a fixed length, triangulated in parallel and
+    // joined in order, so the output does not depend on the thread count.
+    let (ids, normals) = if numbered.len() <= FACES_PER_TASK {
+        triangulate_faces(levels, &corners, &outlines, &numbered)
+    } else {
+        let parts: Vec<_> = numbered
+            .par_chunks(FACES_PER_TASK)
+            .map(|faces| triangulate_faces(levels, &corners, &outlines, faces))
+            .collect();
+        let total = parts.iter().map(|(t, _)| t.len()).sum();
+        let (mut ids, mut normals) = (Vec::with_capacity(total), Vec::with_capacity(total));
+        for (t, n) in parts {
+            ids.extend_from_slice(&t);
+            normals.extend_from_slice(&n);
+        }
+        (ids, normals)
+    };
     Triangles {
         corners,
-        ids: triangles,
+        ids,
         normals,
     }
+}
+
+/// Faces per parallel task: small meshes (a 50×50 field has about 5,000
+/// faces) stay on the calling thread.
+const FACES_PER_TASK: usize = 1 << 16;
+
+/// The triangles of `faces`, in order, with their normals.
+fn triangulate_faces(
+    levels: &Levels,
+    corners: &Corners,
+    outlines: &[u32],
+    faces: &[Numbered],
+) -> (Vec<[u32; 3]>, Vec<Normal>) {
+    // About three triangles a face on a random field; reserved once, as
+    // growing copies the largest buffers of the build.
+    let mut triangles = Vec::with_capacity(faces.len() * 4);
+    let mut normals = Vec::with_capacity(faces.len() * 4);
+    let (mut ab, mut ad) = (Vec::new(), Vec::new());
+    let mut staircase = StaircaseBuffers::default();
+    for face in faces {
+        match *face {
+            Numbered::Rect(ids, normal) => {
+                let [a, b, c, d] = ids.map(|id| (id, corners.keys[id as usize]));
+                // Two chains from corner a to the opposite corner c: through b and
+                // through d, each with the points on its sides.
+                corners.chain([a, b, c], &mut ab);
+                corners.chain([a, d, c], &mut ad);
+                zip(&ab, &ad, &mut triangles);
+                normals.resize(triangles.len(), normal);
+            }
+            Numbered::Staircase {
+                start,
+                split,
+                end,
+                normal,
+            } => {
+                let [start, split, end] = [start, split, end].map(|i| i as usize);
+                let edges = [&outlines[start..split], &outlines[split..end]];
+                staircase.triangulate(levels, corners, edges, normal, &mut triangles);
+                normals.resize(triangles.len(), normal);
+            }
+        }
+    }
+    (triangles, normals)
+}
+
+/// Buffers for triangulating staircase walls, reused from one to the next.
+#[derive(Default)]
+struct StaircaseBuffers {
+    keyed: Vec<(u32, Key)>,
+    base: Vec<Point>,
+    top: Vec<Point>,
+    scratch: staircase::Scratch,
+}
+
+impl StaircaseBuffers {
+    /// Appends the triangles of the staircase wall whose lower and upper
+    /// edges have the corner ids `edges` (see [`Face::Staircase`]),
+    /// counter-clockwise seen from the side `normal` points to.
+    fn triangulate(
+        &mut self,
+        levels: &Levels,
+        corners: &Corners,
+        [lower, upper]: [&[u32]; 2],
+        normal: Normal,
+        out: &mut Vec<[u32; 3]>,
+    ) {
+        let keys = &corners.keys;
+        let along =
+            usize::from(keys[lower[0] as usize][0] == keys[lower[lower.len() - 1] as usize][0]);
+        // Both chains from the left end of the lower edge to the right end:
+        // the lower edge; and up the left side, along the upper edge and
+        // down the right side.
+        let ends = [lower[0], lower[lower.len() - 1]];
+        let upper = ends[..1].iter().chain(upper).chain(&ends[1..]);
+        for (ids, points) in [
+            (lower.iter().chain(&[]).chain(&[]), &mut self.base),
+            (upper, &mut self.top),
+        ] {
+            chain_points(
+                corners,
+                levels,
+                along,
+                ids.copied(),
+                &mut self.keyed,
+                points,
+            );
+        }
+
+        let first = out.len();
+        staircase::triangulate(&self.base, &self.top, &mut self.scratch, out);
+        // Counter-clockwise in (u, w) is seen from +x for a line along y
+        // (u = y, w = z), from −y for a line along x.
+        let seen_from = if along == 1 {
+            Normal::PosX
+        } else {
+            Normal::NegY
+        };
+        if seen_from != normal {
+            for t in &mut out[first..] {
+                t.swap(1, 2);
+            }
+        }
+    }
+}
+
+/// The points of the chain through the corners `ids`, with every point
+/// other faces put on it, as `(u, w)` points of a wall along axis `along`:
+/// heights in steps, linear in z, so that turns are those of space.
+fn chain_points(
+    corners: &Corners,
+    levels: &Levels,
+    along: usize,
+    ids: impl Iterator<Item = u32>,
+    keyed: &mut Vec<(u32, Key)>,
+    points: &mut Vec<Point>,
+) {
+    keyed.clear();
+    let mut previous: Option<Key> = None;
+    for id in ids {
+        let key = corners.keys[id as usize];
+        if let Some(p) = previous {
+            corners.between(p, key, keyed);
+        }
+        keyed.push((id, key));
+        previous = Some(key);
+    }
+    points.clear();
+    points.extend(keyed.iter().map(|&(id, k)| Point {
+        id,
+        u: i64::from(k[along]),
+        w: levels.steps(k[2]).expect("staircases have whole steps"),
+    }));
 }
 
 /// Triangulates the convex polygon `a … c` (chain `ab`, counter-clockwise)
@@ -186,6 +361,7 @@ fn zip(ab: &[(u32, Key)], ad: &[(u32, Key)], out: &mut Vec<[u32; 3]>) {
 mod tests {
     use super::*;
     use crate::heightmap::Heightmap;
+    use crate::mesh::faces::Rect;
 
     fn area2(keys: &[Key], t: [u32; 3]) -> i64 {
         let [p, q, r] = t.map(|id| keys[id as usize].map(i64::from));
@@ -209,7 +385,7 @@ mod tests {
     #[test]
     fn a_bare_rectangle_is_two_triangles() {
         let levels = Levels::new(&Heightmap::from_cells(5, 3, vec![0; 15]).unwrap(), true);
-        let t = triangulate(&levels, |emit| emit(top(0, 0, 5, 3)));
+        let t = triangulate(&levels, |emit| emit(Face::Rect(top(0, 0, 5, 3))));
         assert_eq!(t.ids.len(), 2);
         assert!(t.ids.iter().all(|&id| area2(&t.corners.keys, id) > 0));
     }
@@ -221,7 +397,11 @@ mod tests {
         let rects = [top(0, 0, 6, 6), top(2, 6, 3, 7), top(6, 1, 7, 4)];
         let Triangles {
             corners, ids: t, ..
-        } = triangulate(&levels, |emit| rects.into_iter().for_each(emit));
+        } = triangulate(&levels, |emit| {
+            for rect in rects {
+                emit(Face::Rect(rect));
+            }
+        });
         // big: 4 corners + (2,6), (3,6) + (6,1), (6,4) = 8 points → 6 triangles
         let keys = &corners.keys;
         let inside = |t: &&[u32; 3]| {
