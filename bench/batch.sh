@@ -15,11 +15,15 @@ trap 'rm -rf "$work"' EXIT
 
 now() { date +%s.%N; }
 
+# Each timing starts with no dirty pages left by the step before it, so
+# that neither pays for the other's writeback.
+sync
 start=$(now)
 target/release/rse-gen batch schemes/six_obstacles.csv -o "$work/worlds" \
     --amount "$amount" --target gazebo --jobs "$jobs" 2>/dev/null
 generate=$(echo "$(now) - $start" | bc -l)
 
+sync
 start=$(now)
 cp -r "$work/worlds" "$work/copy"
 copy=$(echo "$(now) - $start" | bc -l)

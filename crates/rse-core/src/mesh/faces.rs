@@ -1,5 +1,5 @@
 //! The boundary of the solid `{0 ≤ z ≤ base + h·step}` as axis-aligned
-//! rectangles on an integer lattice.
+//! rectangles and staircases on an integer lattice.
 //!
 //! A lattice point ([`Key`]) is `[x, y, level]`: `x`, `y` count cell corners
 //! and `level` codes a height: 0 is the ground `z = 0`, and `h + 1` is the top
@@ -64,14 +64,17 @@ pub(crate) struct Rect {
 pub(crate) enum Face<'a> {
     /// Tops, the bottom, and walls of one span.
     Rect(Rect),
-    /// The wall segments along one grid line that face the same way, each
-    /// overlapping the next, as one polygon. `outline[..split]`: the
-    /// corners of its lower edge, `outline[split..]` those of its upper
-    /// edge, each in order along the line from the same end.
+    /// A polygon monotone along lattice axis `axes[0]` (`u`), spanning
+    /// along `axes[1]` (`w`): the wall segments along one grid line that
+    /// face the same way, each overlapping the next (`w` is z), or a piece
+    /// of a top or of the bottom (u = y, w = x). `outline[..split]`: the
+    /// corners of its low-`w` edge, `outline[split..]` those of its
+    /// high-`w` edge, each by increasing `u`.
     Staircase {
         outline: &'a [Key],
         split: usize,
         normal: Normal,
+        axes: [u8; 2],
     },
 }
 
@@ -173,27 +176,48 @@ impl Levels {
 pub(crate) fn faces(levels: &Levels, emit: &mut dyn FnMut(Face)) {
     let (nx, ny) = (levels.nx, levels.ny);
 
-    // Tops: cells of equal level merged into rectangles.
-    levels.top_rectangles(|[x0, y0, x1, y1], l| {
-        emit(Face::Rect(Rect {
-            corners: [[x0, y0, l], [x1, y0, l], [x1, y1, l], [x0, y1, l]],
-            normal: Normal::PosZ,
-        }));
-    });
-    // The bottom: every cell with solid, at level 0, facing down.
-    greedy_rectangles(
+    let mut buffers = RunBuffers::default();
+    // Tops: cells of equal level; the bottom: every cell with solid, at
+    // level 0, facing down. Each in pieces monotone along y, one run of
+    // cells per row.
+    let mut flat = |y0: u32, runs: &[[u32; 2]], level: u32, normal: Normal| {
+        let [x0, x1] = runs[0];
+        let y1 = y0 + runs.len() as u32;
+        if runs.iter().all(|&r| r == runs[0]) {
+            let [a, b, c, d] = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]].map(|[x, y]| [x, y, level]);
+            let corners = if normal == Normal::PosZ {
+                [a, b, c, d]
+            } else {
+                [a, d, c, b]
+            };
+            emit(Face::Rect(Rect { corners, normal }));
+        } else {
+            let split = outline(y0, runs, |y, x| [x, y, level], &mut buffers.outline);
+            emit(Face::Staircase {
+                outline: &buffers.outline,
+                split,
+                normal,
+                axes: [1, 0],
+            });
+        }
+    };
+    monotone_pieces(
+        nx,
+        ny,
+        |x, y| Some(levels.get(x, y)).filter(|&l| l > 0),
+        |y0, runs, l| {
+            flat(y0, runs, l, Normal::PosZ);
+        },
+    );
+    monotone_pieces(
         nx,
         ny,
         |x, y| (levels.get(x, y) > 0).then_some(0),
-        |[x0, y0, x1, y1], _| {
-            emit(Face::Rect(Rect {
-                corners: [[x0, y0, 0], [x0, y1, 0], [x1, y1, 0], [x1, y0, 0]],
-                normal: Normal::NegZ,
-            }));
+        |y0, runs, _| {
+            flat(y0, runs, 0, Normal::NegZ);
         },
     );
 
-    let mut buffers = RunBuffers::default();
     // Walls on the line x = i between cells (i−1, j) and (i, j); outside is
     // level 0. Emitted row by row like everything else, so that later
     // lookups walk memory in order instead of striding down columns: a run
@@ -305,31 +329,119 @@ impl<W: Fn(u32) -> Option<Wall>, K: Fn(u32, u32) -> Key> WallLine<'_, W, K> {
             emit(Face::Rect(wall(corners, faces_positive, self.normals)));
             return end;
         }
-        // The corners of the lower edge, then of the upper one.
-        let outline = &mut buffers.outline;
-        outline.clear();
-        let mut split = 0;
-        for side in 0..2 {
-            let mut previous = spans[0][side];
-            outline.push((self.key)(start, previous));
-            for (k, span) in (start + 1..end).zip(&spans[1..]) {
-                let this = span[side];
-                if this != previous {
-                    outline.extend([(self.key)(k, previous), (self.key)(k, this)]);
-                    previous = this;
-                }
-            }
-            outline.push((self.key)(end, previous));
-            if side == 0 {
-                split = outline.len();
-            }
-        }
+        let split = outline(start, spans, &self.key, &mut buffers.outline);
         emit(Face::Staircase {
-            outline,
+            outline: &buffers.outline,
             split,
             normal: self.normals[usize::from(!faces_positive)],
+            axes: [u8::from(self.along_y), 2],
         });
         end
+    }
+}
+
+/// The outline of a [`Face::Staircase`] whose `spans[k]` (`[low, high]` in
+/// `w`) stands on `u = start + k .. start + k + 1`, into `outline`: the
+/// corners of the low side, then of the high side, each by increasing `u`.
+/// `key(u, w)` is the lattice point. Returns where the high side starts.
+fn outline(
+    start: u32,
+    spans: &[[u32; 2]],
+    key: impl Fn(u32, u32) -> Key,
+    outline: &mut Vec<Key>,
+) -> usize {
+    outline.clear();
+    let end = start + spans.len() as u32;
+    let mut split = 0;
+    for side in 0..2 {
+        let mut previous = spans[0][side];
+        outline.push(key(start, previous));
+        for (u, span) in (start + 1..end).zip(&spans[1..]) {
+            let this = span[side];
+            if this != previous {
+                outline.extend([key(u, previous), key(u, this)]);
+                previous = this;
+            }
+        }
+        outline.push(key(end, previous));
+        if side == 0 {
+            split = outline.len();
+        }
+    }
+    split
+}
+
+/// Covers the cells where `value` is `Some` with pieces monotone along y:
+/// each piece is one run of cells of equal value per row, over consecutive
+/// rows, each run overlapping the one before. A run continues the first
+/// piece it overlaps that has its value and no run in this row yet.
+/// `emit(y0, runs, value)` with the runs `[x0, x1)` from row `y0` on, as
+/// each piece closes: row by row, and along a row by x.
+fn monotone_pieces(
+    nx: u32,
+    ny: u32,
+    value: impl Fn(u32, u32) -> Option<u32>,
+    mut emit: impl FnMut(u32, &[[u32; 2]], u32),
+) {
+    struct Piece {
+        y0: u32,
+        value: u32,
+        runs: Vec<[u32; 2]>,
+    }
+    // The pieces with a run in the row before, by x; `None` once continued.
+    let (mut open, mut next): (Vec<Option<Piece>>, Vec<Option<Piece>>) = (Vec::new(), Vec::new());
+    let mut spare: Vec<Vec<[u32; 2]>> = Vec::new();
+    let mut close = |piece: Option<Piece>, spare: &mut Vec<Vec<[u32; 2]>>| {
+        if let Some(piece) = piece {
+            emit(piece.y0, &piece.runs, piece.value);
+            spare.push(piece.runs);
+        }
+    };
+    for y in 0..=ny {
+        let mut k = 0;
+        let mut x = 0;
+        while y < ny && x < nx {
+            let Some(v) = value(x, y) else {
+                x += 1;
+                continue;
+            };
+            let mut x1 = x + 1;
+            while x1 < nx && value(x1, y) == Some(v) {
+                x1 += 1;
+            }
+            // Pieces ending left of this run can no longer continue.
+            while k < open.len()
+                && open[k]
+                    .as_ref()
+                    .is_none_or(|p| p.runs[p.runs.len() - 1][1] <= x)
+            {
+                close(open[k].take(), &mut spare);
+                k += 1;
+            }
+            let continued = open[k..]
+                .iter_mut()
+                .take_while(|p| p.as_ref().is_none_or(|p| p.runs[p.runs.len() - 1][0] < x1))
+                .find(|p| p.as_ref().is_some_and(|p| p.value == v))
+                .and_then(Option::take);
+            let mut piece = continued.unwrap_or_else(|| Piece {
+                y0: y,
+                value: v,
+                runs: spare
+                    .pop()
+                    .map(|mut r| {
+                        r.clear();
+                        r
+                    })
+                    .unwrap_or_default(),
+            });
+            piece.runs.push([x, x1]);
+            next.push(Some(piece));
+            x = x1;
+        }
+        for piece in open.drain(..) {
+            close(piece, &mut spare);
+        }
+        std::mem::swap(&mut open, &mut next);
     }
 }
 
@@ -406,6 +518,44 @@ fn greedy_rectangles(
             }
             emit([x, y, x1, y1], v);
             x = x1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::monotone_pieces;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Every cell with a value is in exactly one piece, of its value;
+        /// a piece's runs are in consecutive rows, each overlapping the one
+        /// before.
+        #[test]
+        fn monotone_pieces_cover_each_cell_once(
+            (nx, ny, cells) in (1u32..9, 1u32..9).prop_flat_map(|(nx, ny)| {
+                (Just(nx), Just(ny), proptest::collection::vec(0u32..4, (nx * ny) as usize))
+            })
+        ) {
+            let value = |x: u32, y: u32| Some(cells[(y * nx + x) as usize]).filter(|&v| v > 0);
+            let mut covered = vec![0; cells.len()];
+            monotone_pieces(nx, ny, value, |y0, runs, v| {
+                for (k, &[x0, x1]) in runs.iter().enumerate() {
+                    assert!(x0 < x1 && x1 <= nx);
+                    if k > 0 {
+                        let [p0, p1] = runs[k - 1];
+                        assert!(x0.max(p0) < x1.min(p1), "runs overlap");
+                    }
+                    let y = y0 + k as u32;
+                    for x in x0..x1 {
+                        assert_eq!(value(x, y), Some(v));
+                        covered[(y * nx + x) as usize] += 1;
+                    }
+                }
+            });
+            for (i, &c) in covered.iter().enumerate() {
+                prop_assert_eq!(c, u32::from(cells[i] > 0), "cell {}", i);
+            }
         }
     }
 }

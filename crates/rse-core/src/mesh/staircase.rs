@@ -1,20 +1,21 @@
-//! Triangulating a staircase wall: the wall segments along one grid line
-//! that face the same way and overlap, as one polygon, keeping every point
-//! on its boundary and adding none.
+//! Triangulating a staircase: a polygon monotone along one lattice axis,
+//! keeping every point on its boundary and adding none. Walls (the wall
+//! segments along one grid line that face the same way and overlap) and
+//! the pieces of tops and of the bottom (one run of cells per row) are
+//! staircases.
 //!
-//! Cutting such a wall into one rectangle per segment puts points on its
-//! straight edges at every segment boundary, which the neighbouring faces
-//! must then share; as one polygon its edges have only the points other
-//! faces put there. The polygon is monotone along the line, so the classic
-//! sweep with a stack of reflex vertices (de Berg et al., *Computational
-//! Geometry*, §3.3) triangulates it in linear time. Ties in the sweep
-//! direction need care: the sides and steps are swept in boundary order,
-//! and where both chains have points on one vertical line and one of them
-//! steps there, the polygon is first cut along that line (between the
-//! bottom's highest and the top's lowest point there, always inside), so
-//! that no triangle has three points on one vertical line.
+//! Cutting such a polygon into rectangles puts points on its straight
+//! edges where the rectangles meet, which the neighbouring faces must then
+//! share; as one polygon its edges have only the points other faces put
+//! there. The classic sweep with a stack of reflex vertices (de Berg et al.,
+//! *Computational Geometry*, §3.3) triangulates it in linear time. Ties in
+//! the sweep direction need care: the sides and steps are swept in boundary
+//! order, and where both chains have points on one line across the sweep
+//! and one of them steps there, the polygon is first cut along that line
+//! (between the low chain's highest and the high chain's lowest point
+//! there, always inside), so that no triangle has three points on one line.
 
-/// A point of the polygon in its own plane: `u` along the line, `w` up.
+/// A point of the polygon in its own plane: `u` along the sweep, `w` across.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Point {
     pub id: u32,
@@ -36,12 +37,12 @@ enum Chain {
 }
 
 /// Triangulates the polygon whose boundary is `bottom` and `top`, both
-/// from the left end of the wall to its right end, sharing their first and
-/// last points: the bottom along the wall's lower edge, the top up its left
-/// side, along its upper edge and down its right side. `u` never decreases
-/// along either, and the top is above the bottom everywhere between the
-/// ends. Appends triangles counter-clockwise in `(u, w)`: as many as points
-/// minus two.
+/// from its first end (lowest `u`) to its last, sharing their first and
+/// last points: the bottom along its low-`w` edge, the top up its first
+/// side, along its high-`w` edge and down its last side (in a wall, `w` is
+/// up). `u` never decreases along either, and the top is above the bottom
+/// everywhere between the ends. Appends triangles counter-clockwise in
+/// `(u, w)`: as many as points minus two.
 pub(crate) fn triangulate(
     bottom: &[Point],
     top: &[Point],

@@ -137,6 +137,7 @@ enum Numbered {
         split: u32,
         end: u32,
         normal: Normal,
+        axes: [u8; 2],
     },
 }
 
@@ -161,6 +162,7 @@ pub(crate) fn triangulate(levels: &Levels, faces: impl FnOnce(&mut dyn FnMut(Fac
             outline,
             split,
             normal,
+            axes,
         } => {
             let start = outlines.len();
             outlines.extend(outline.iter().map(|&k| corners.insert(k)));
@@ -169,6 +171,7 @@ pub(crate) fn triangulate(levels: &Levels, faces: impl FnOnce(&mut dyn FnMut(Fac
                 split: (start + split) as u32,
                 end: outlines.len() as u32,
                 normal,
+                axes,
             });
         }
     });
@@ -230,10 +233,11 @@ fn triangulate_faces(
                 split,
                 end,
                 normal,
+                axes,
             } => {
                 let [start, split, end] = [start, split, end].map(|i| i as usize);
                 let edges = [&outlines[start..split], &outlines[split..end]];
-                staircase.triangulate(levels, corners, edges, normal, &mut triangles);
+                staircase.triangulate(levels, corners, edges, axes, normal, &mut triangles);
                 normals.resize(triangles.len(), normal);
             }
         }
@@ -245,53 +249,56 @@ fn triangulate_faces(
 #[derive(Default)]
 struct StaircaseBuffers {
     keyed: Vec<(u32, Key)>,
-    base: Vec<Point>,
-    top: Vec<Point>,
+    low: Vec<Point>,
+    high: Vec<Point>,
     scratch: staircase::Scratch,
 }
 
 impl StaircaseBuffers {
-    /// Appends the triangles of the staircase wall whose lower and upper
-    /// edges have the corner ids `edges` (see [`Face::Staircase`]),
-    /// counter-clockwise seen from the side `normal` points to.
+    /// Appends the triangles of the staircase whose low-`w` and high-`w`
+    /// edges have the corner ids `edges` in the plane of `axes` (see
+    /// [`Face::Staircase`]), counter-clockwise seen from the side `normal`
+    /// points to.
     fn triangulate(
         &mut self,
         levels: &Levels,
         corners: &Corners,
-        [lower, upper]: [&[u32]; 2],
+        [low, high]: [&[u32]; 2],
+        axes: [u8; 2],
         normal: Normal,
         out: &mut Vec<[u32; 3]>,
     ) {
-        let keys = &corners.keys;
-        let along =
-            usize::from(keys[lower[0] as usize][0] == keys[lower[lower.len() - 1] as usize][0]);
-        // Both chains from the left end of the lower edge to the right end:
-        // the lower edge; and up the left side, along the upper edge and
-        // down the right side.
-        let ends = [lower[0], lower[lower.len() - 1]];
-        let upper = ends[..1].iter().chain(upper).chain(&ends[1..]);
-        for (ids, points) in [
-            (lower.iter().chain(&[]).chain(&[]), &mut self.base),
-            (upper, &mut self.top),
-        ] {
-            chain_points(
-                corners,
-                levels,
-                along,
-                ids.copied(),
-                &mut self.keyed,
-                points,
-            );
-        }
+        // Both chains from the first corner of the low edge to its last:
+        // the low edge; and across the first end, along the high edge and
+        // back across the last end.
+        let ends = [low[0], low[low.len() - 1]];
+        let high = ends[..1].iter().chain(high).chain(&ends[1..]);
+        let axes = axes.map(usize::from);
+        chain_points(
+            corners,
+            levels,
+            axes,
+            low.iter().copied(),
+            &mut self.keyed,
+            &mut self.low,
+        );
+        chain_points(
+            corners,
+            levels,
+            axes,
+            high.copied(),
+            &mut self.keyed,
+            &mut self.high,
+        );
 
         let first = out.len();
-        staircase::triangulate(&self.base, &self.top, &mut self.scratch, out);
-        // Counter-clockwise in (u, w) is seen from +x for a line along y
-        // (u = y, w = z), from −y for a line along x.
-        let seen_from = if along == 1 {
-            Normal::PosX
-        } else {
-            Normal::NegY
+        staircase::triangulate(&self.low, &self.high, &mut self.scratch, out);
+        // Counter-clockwise in (u, w) is seen from the side of u × w.
+        let seen_from = match axes {
+            [1, 2] => Normal::PosX,
+            [0, 2] => Normal::NegY,
+            [1, 0] => Normal::NegZ,
+            _ => unreachable!("staircases are walls, tops and the bottom"),
         };
         if seen_from != normal {
             for t in &mut out[first..] {
@@ -302,12 +309,12 @@ impl StaircaseBuffers {
 }
 
 /// The points of the chain through the corners `ids`, with every point
-/// other faces put on it, as `(u, w)` points of a wall along axis `along`:
-/// heights in steps, linear in z, so that turns are those of space.
+/// other faces put on it, as `(u, w)` points in the plane of `axes`.
+/// Heights are in steps, linear in z, so that turns are those of space.
 fn chain_points(
     corners: &Corners,
     levels: &Levels,
-    along: usize,
+    [u, w]: [usize; 2],
     ids: impl Iterator<Item = u32>,
     keyed: &mut Vec<(u32, Key)>,
     points: &mut Vec<Point>,
@@ -322,11 +329,18 @@ fn chain_points(
         keyed.push((id, key));
         previous = Some(key);
     }
+    let coordinate = |k: Key, axis: usize| {
+        if axis == 2 {
+            levels.steps(k[2]).expect("staircases have whole steps")
+        } else {
+            i64::from(k[axis])
+        }
+    };
     points.clear();
     points.extend(keyed.iter().map(|&(id, k)| Point {
         id,
-        u: i64::from(k[along]),
-        w: levels.steps(k[2]).expect("staircases have whole steps"),
+        u: coordinate(k, u),
+        w: coordinate(k, w),
     }));
 }
 
