@@ -142,6 +142,10 @@ def test_scheme_errors_carry_file_line_column_and_field(tmp_path: Path) -> None:
     with pytest.raises(rse.SchemeError) as caught:
         rse.Obstacle("random", height=-1)
     assert caught.value.field == "height"
+    # Ints of any size: one past 64 bits is a scheme error too, not an OverflowError.
+    with pytest.raises(rse.SchemeError) as caught:
+        rse.Obstacle("peak", height=2, angle=45, x1=(0, 2**70), y1=3)
+    assert caught.value.field == "x1" and str(2**70) in str(caught.value)
 
 
 def test_obstacles_read_back_their_fields() -> None:

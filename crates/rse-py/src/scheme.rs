@@ -3,6 +3,7 @@
 
 use pyo3::IntoPyObjectExt as _;
 use pyo3::prelude::*;
+use pyo3::types::PyInt;
 use rse_core::{Globals, ObstacleFields, ObstacleKind, Pallets, Param};
 
 use crate::errors::{core_error, scheme_error, scheme_error_at};
@@ -24,12 +25,16 @@ impl<T> From<ParamArg<T>> for Param<T> {
     }
 }
 
-/// A whole-number field (height, points) from Python ints: taken signed,
-/// so that a negative value is a `SchemeError` naming the field rather than
-/// Python's `OverflowError`.
-fn whole(py: Python<'_>, field: &str, arg: Option<ParamArg<i64>>) -> PyResult<Option<Param<u32>>> {
-    let convert = |v: i64| {
-        u32::try_from(v).map_err(|_| {
+/// A whole-number field (height, points) from Python ints of any size, so
+/// that a negative or huge value is a `SchemeError` naming the field rather
+/// than Python's `OverflowError`.
+fn whole<'py>(
+    py: Python<'py>,
+    field: &str,
+    arg: Option<ParamArg<Bound<'py, PyInt>>>,
+) -> PyResult<Option<Param<u32>>> {
+    let convert = |v: &Bound<'py, PyInt>| {
+        v.extract::<u32>().map_err(|_| {
             scheme_error_at(
                 py,
                 field,
@@ -39,8 +44,8 @@ fn whole(py: Python<'_>, field: &str, arg: Option<ParamArg<i64>>) -> PyResult<Op
     };
     Ok(match arg {
         None => None,
-        Some(ParamArg::Fixed(v)) => Some(Param::Fixed(convert(v)?)),
-        Some(ParamArg::Range((lo, hi))) => Some(Param::Range(convert(lo)?, convert(hi)?)),
+        Some(ParamArg::Fixed(v)) => Some(Param::Fixed(convert(&v)?)),
+        Some(ParamArg::Range((lo, hi))) => Some(Param::Range(convert(&lo)?, convert(&hi)?)),
     })
 }
 
@@ -68,15 +73,15 @@ impl Obstacle {
     #[new]
     #[pyo3(signature = (r#type, height=None, angle=None, x1=None, y1=None, x2=None, y2=None, sigma=None))]
     #[allow(clippy::too_many_arguments)]
-    fn new(
-        py: Python<'_>,
+    fn new<'py>(
+        py: Python<'py>,
         r#type: &str,
-        height: Option<ParamArg<i64>>,
+        height: Option<ParamArg<Bound<'py, PyInt>>>,
         angle: Option<ParamArg<f64>>,
-        x1: Option<ParamArg<i64>>,
-        y1: Option<ParamArg<i64>>,
-        x2: Option<ParamArg<i64>>,
-        y2: Option<ParamArg<i64>>,
+        x1: Option<ParamArg<Bound<'py, PyInt>>>,
+        y1: Option<ParamArg<Bound<'py, PyInt>>>,
+        x2: Option<ParamArg<Bound<'py, PyInt>>>,
+        y2: Option<ParamArg<Bound<'py, PyInt>>>,
         sigma: Option<ParamArg<f64>>,
     ) -> PyResult<Self> {
         let kind: ObstacleKind = r#type
