@@ -185,6 +185,7 @@ pub(crate) fn faces(levels: &Levels, emit: &mut dyn FnMut(Face)) {
         let y1 = y0 + runs.len() as u32;
         if runs.iter().all(|&r| r == runs[0]) {
             let [a, b, c, d] = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]].map(|[x, y]| [x, y, level]);
+            // Counter-clockwise seen from outside: from above for a top.
             let corners = if normal == Normal::PosZ {
                 [a, b, c, d]
             } else {
