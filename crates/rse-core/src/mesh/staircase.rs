@@ -23,7 +23,7 @@ pub(crate) struct Point {
     pub w: i64,
 }
 
-/// Reusable buffers, so that a mesh of millions of walls allocates once.
+/// Reusable buffers, so that a mesh of millions of faces allocates once.
 #[derive(Default)]
 pub(crate) struct Scratch {
     piece: Vec<Point>,
@@ -51,8 +51,9 @@ pub(crate) fn triangulate(
 ) {
     debug_assert!(bottom.len() >= 2 && top.len() >= 3);
     debug_assert!(bottom[0] == top[0] && bottom[bottom.len() - 1] == top[top.len() - 1]);
-    // Cut where both chains have points on one vertical line and one of
-    // them steps: between the bottom's highest and the top's lowest point.
+    // Cut where both chains have points on one line across the sweep (a
+    // vertical one in a wall) and one of them steps there: between the
+    // bottom's highest and the top's lowest point on that line.
     let (mut from_bottom, mut from_top) = (0, 0);
     let (mut b, mut t) = (1, 1);
     while b < bottom.len() - 1 {
@@ -94,7 +95,7 @@ fn piece(bottom: &[Point], top: &[Point], scratch: &mut Scratch, out: &mut Vec<[
     let tail = bottom.iter().rev().take_while(|p| p.u == last_u).count() - 1;
     let closed = top[0] == bottom[0] && top[top.len() - 1] == bottom[n - 1];
     if lead == 0 && tail == 0 && closed {
-        // The whole wall, uncut: the usual case.
+        // The whole polygon, uncut: the usual case.
         sweep(bottom, top, &mut scratch.stack, out);
         return;
     }
@@ -123,6 +124,7 @@ fn orient(p: Point, q: Point, r: Point) -> i64 {
     (q.u - p.u) * (r.w - p.w) - (q.w - p.w) * (r.u - p.u)
 }
 
+/// Appends the triangle `(p, q, r)` turned counter-clockwise.
 fn push_ccw(p: Point, q: Point, r: Point, out: &mut Vec<[u32; 3]>) {
     let area = orient(p, q, r);
     debug_assert!(area != 0, "zero-area triangle {p:?} {q:?} {r:?}");
