@@ -147,8 +147,9 @@ pub(crate) fn triangulate(levels: &Levels, faces: impl FnOnce(&mut dyn FnMut(Fac
     // Numbering every corner before any face is split, so that the
     // splitting sees all of them; each face keeps only its corners' ids.
     // Sized for a random field (about two faces per cell and one outline
-    // corner), so that these large buffers are not copied as they grow.
-    let cells = levels.nx() as usize * levels.ny() as usize;
+    // corner), so that these large buffers are not copied as they grow; up
+    // to a cap, as a flat field of 10⁸ cells has a handful of faces.
+    let cells = (levels.nx() as usize * levels.ny() as usize).min(1 << 24);
     let mut numbered = Vec::with_capacity(2 * cells);
     let mut outlines = Vec::with_capacity(cells);
     faces(&mut |face: Face| match face {
