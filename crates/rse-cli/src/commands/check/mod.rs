@@ -176,13 +176,18 @@ fn check_world(world: &Path, physics: bool) -> WorldReport {
         Ok(manifest) => {
             files::check_hashes(world, &manifest, &present, &mut faults);
             if let Some(terrain) = terrain::regenerate(world, &manifest, &mut faults) {
+                // Each OBJ is read once, for the static checks and physics.
+                let meshes: Vec<_> = objs(&present)
+                    .map(|obj| (obj, terrain::read_obj(&world.join(obj))))
+                    .collect();
                 if physics {
-                    let report = physics_of(world, &manifest, &present, &terrain);
+                    let first = meshes.first().and_then(|(_, mesh)| mesh.as_ref().ok());
+                    let report = physics_of(&manifest, first, &terrain);
                     faults.extend(report.errors.iter().map(|e| format!("physics: {e}")));
                     physics_report = Some(report);
                 }
-                for obj in objs(&present) {
-                    terrain::check_obj(world, obj, &terrain, &mut faults);
+                for (obj, mesh) in &meshes {
+                    terrain::check_obj(obj, mesh, &terrain, &mut faults);
                 }
             }
         }
@@ -200,22 +205,18 @@ fn check_world(world: &Path, physics: bool) -> WorldReport {
 }
 
 /// The smoke test of a world's terrain as its simulators load it: the mesh
-/// read back from its OBJ in single-mesh worlds, the box set otherwise.
+/// read back from its (first) OBJ in single-mesh worlds, the box set
+/// otherwise — or when the OBJ could not be read, already a fault of the
+/// static checks: boxes keep the test going.
 fn physics_of(
-    world: &Path,
     manifest: &Manifest,
-    present: &[String],
+    obj: Option<&terrain::ObjMesh>,
     terrain: &Terrain,
 ) -> PhysicsReport {
-    let obj = objs(present).next();
     let model = match (manifest.mesh, obj) {
-        (MeshMode::Single, Some(obj)) => match terrain::read_obj(&world.join(obj)) {
-            Ok(mesh) => TerrainModel::Mesh {
-                vertices: mesh.vertices,
-                triangles: mesh.triangles,
-            },
-            // Already a fault of the static checks; boxes keep the test going.
-            Err(_) => TerrainModel::boxes_of(terrain),
+        (MeshMode::Single, Some(mesh)) => TerrainModel::Mesh {
+            vertices: mesh.vertices.clone(),
+            triangles: mesh.triangles.clone(),
         },
         _ => TerrainModel::boxes_of(terrain),
     };

@@ -102,9 +102,15 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh, String> {
     Ok(mesh)
 }
 
-/// Faults of the OBJ at `path` (relative to `world`) as the mesh of `terrain`.
-pub fn check_obj(world: &Path, path: &str, terrain: &Terrain, faults: &mut Vec<String>) {
-    let mesh = match read_obj(&world.join(path)) {
+/// Faults of the OBJ at `path` (in the world), read as `mesh`, as the mesh
+/// of `terrain`.
+pub fn check_obj(
+    path: &str,
+    mesh: &Result<ObjMesh, String>,
+    terrain: &Terrain,
+    faults: &mut Vec<String>,
+) {
+    let mesh = match mesh {
         Ok(mesh) => mesh,
         Err(e) => {
             faults.push(format!("{path}: cannot be read as OBJ: {e}"));
