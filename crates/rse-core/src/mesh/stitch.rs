@@ -78,15 +78,19 @@ impl Corners {
         (id != NONE).then_some(id)
     }
 
-    /// Clears `out`, then pushes the chain `p`, the corners between `p` and
-    /// `q`, `q`, the corners between `q` and `r`, and `r`.
-    fn chain(&self, [p, q, r]: [(u32, Key); 3], out: &mut Vec<(u32, Key)>) {
+    /// Clears `out`, then pushes the chain through `corners` (each edge
+    /// between two in a row axis-aligned): each corner, and between two the
+    /// corners that lie on the edge joining them.
+    fn chain(&self, corners: impl IntoIterator<Item = (u32, Key)>, out: &mut Vec<(u32, Key)>) {
         out.clear();
-        out.push(p);
-        self.between(p.1, q.1, out);
-        out.push(q);
-        self.between(q.1, r.1, out);
-        out.push(r);
+        let mut previous: Option<Key> = None;
+        for (id, key) in corners {
+            if let Some(p) = previous {
+                self.between(p, key, out);
+            }
+            out.push((id, key));
+            previous = Some(key);
+        }
     }
 
     /// Pushes the corners strictly between `p` and `q` (which differ in one
@@ -320,16 +324,7 @@ fn chain_points(
     keyed: &mut Vec<(u32, Key)>,
     points: &mut Vec<Point>,
 ) {
-    keyed.clear();
-    let mut previous: Option<Key> = None;
-    for id in ids {
-        let key = corners.keys[id as usize];
-        if let Some(p) = previous {
-            corners.between(p, key, keyed);
-        }
-        keyed.push((id, key));
-        previous = Some(key);
-    }
+    corners.chain(ids.map(|id| (id, corners.keys[id as usize])), keyed);
     let coordinate = |k: Key, axis: usize| {
         if axis == 2 {
             levels.steps(k[2]).expect("staircases have whole steps")
