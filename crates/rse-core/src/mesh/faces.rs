@@ -158,8 +158,9 @@ impl Levels {
     }
 
     /// Cells of equal level with solid on them, merged into rectangles:
-    /// `emit([x0, y0, x1, y1], level)`. The tops of the mesh, and the boxes
-    /// of the block model.
+    /// `emit([x0, y0, x1, y1], level)`. The boxes of the block model (the
+    /// mesh's tops are [`monotone_pieces`], which need no point on a
+    /// straight edge).
     pub(crate) fn top_rectangles(&self, emit: impl FnMut([u32; 4], u32)) {
         greedy_rectangles(
             self.nx,
