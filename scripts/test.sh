@@ -43,7 +43,7 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 say "Rust tests: unit, property, golden, samples, CLI"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-cargo test --workspace --locked 2>&1 | tee "$log"
+cargo test --workspace --locked -- --include-ignored 2>&1 | tee "$log"
 
 say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
 if [ ! -x .venv/bin/python ]; then

@@ -277,8 +277,10 @@ fn remove_leftovers(out: &Path, options: &BatchOptions) -> Result<(), Error> {
     Ok(())
 }
 
-/// The world index of a leftover temporary folder's name.
-fn leftover_index(name: &str) -> Option<u64> {
+/// The world index of the name of a temporary folder a batch writes in
+/// (`.world_0007.tmp-PID`, `.world_0007.old-PID`); `None` for any other
+/// name. One left behind is what a cut-short run leaves.
+pub fn leftover_index(name: &str) -> Option<u64> {
     let rest = name.strip_prefix(".world_")?;
     let (index, kind) = rest.split_once('.')?;
     (kind.starts_with("tmp-") || kind.starts_with("old-"))

@@ -20,7 +20,7 @@ mod templates;
 mod tree;
 mod world;
 
-pub use batch::{BatchOptions, Outcome, Shard, Summary, world_name, write_batch};
+pub use batch::{BatchOptions, Outcome, Shard, Summary, leftover_index, world_name, write_batch};
 pub use error::Error;
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
 pub use target::{MeshMode, Target, Targets};

@@ -1,7 +1,7 @@
 //! One world folder, built in memory: heightmap, preview, meshes, each
 //! target's files from its templates, and the manifest over them all.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use rse_core::export::{mtl, obj, usda};
 use std::sync::OnceLock;
@@ -31,6 +31,10 @@ pub struct WorldFiles {
     pub name: String,
     /// Every file, `rse.json` included.
     pub files: BTreeMap<String, Vec<u8>>,
+    /// The paths among `files` rendered from templates (the rest the
+    /// generator writes itself): what `check` can only hash when a world was
+    /// made with templates it does not have.
+    pub from_templates: BTreeSet<String>,
 }
 
 impl WorldFiles {
@@ -93,6 +97,7 @@ pub fn build_world(
     }
 
     let context = WorldContext::new(name.clone(), &terrain, options.mesh, &boxes);
+    let mut from_templates = BTreeSet::new();
     for target in targets.iter() {
         for (path, bytes) in templates.render(target, &context)? {
             let path = format!("{target}/{path}");
@@ -101,6 +106,7 @@ pub fn build_world(
                     "the {target} template has a file {path} that the generator writes itself"
                 )));
             }
+            from_templates.insert(path.clone());
             files.insert(path, bytes);
         }
     }
@@ -130,7 +136,11 @@ pub fn build_world(
             .collect(),
     };
     files.insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
-    Ok(WorldFiles { name, files })
+    Ok(WorldFiles {
+        name,
+        files,
+        from_templates,
+    })
 }
 
 /// An MJCF model of `terrain` alone, for `mujoco.MjModel.from_xml_string`:

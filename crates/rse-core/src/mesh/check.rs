@@ -43,7 +43,30 @@ pub enum MeshFault {
         /// The triangle's index.
         triangle: usize,
     },
+    /// A vertex with a coordinate that is infinite or not a number.
+    NonFinite {
+        /// The vertex.
+        vertex: u32,
+    },
+    /// Edges so long against the shortest one that looking for T-junctions
+    /// would take more than [`MAX_BUCKET_VISITS_PER_ELEMENT`] steps per
+    /// edge and vertex: no terrain mesh is like that, a damaged one can be.
+    TooIrregular {
+        /// The buckets the T-junction search would have visited.
+        bucket_visits: u64,
+    },
 }
+
+/// The T-junction search visits at most this many grid buckets per edge
+/// and vertex of a mesh (plus [`MIN_BUCKET_VISITS`]). A terrain mesh needs
+/// a few: its edges are a few of its shortest edge long, and a long one
+/// lies along one axis. Past the cap the mesh is reported, not searched,
+/// so a hostile mesh (a vertex at 10^30 m) cannot make the check run for
+/// ever.
+pub const MAX_BUCKET_VISITS_PER_ELEMENT: u64 = 64;
+
+/// Bucket visits always allowed, however small the mesh.
+pub const MIN_BUCKET_VISITS: u64 = 1 << 20;
 
 impl std::fmt::Display for MeshFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -72,6 +95,13 @@ impl std::fmt::Display for MeshFault {
                     "triangle {triangle} refers to a vertex that does not exist"
                 )
             }
+            MeshFault::NonFinite { vertex } => {
+                write!(f, "vertex {vertex} has a coordinate that is not finite")
+            }
+            MeshFault::TooIrregular { bucket_visits } => write!(
+                f,
+                "edges too long against the shortest to search for T-junctions ({bucket_visits} bucket visits)"
+            ),
         }
     }
 }
@@ -79,7 +109,16 @@ impl std::fmt::Display for MeshFault {
 /// Every fault of `vertices`/`triangles`, in a stable order (empty: the mesh
 /// is a closed, oriented, T-junction-free surface of triangles with area).
 pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
-    let mut faults = Vec::new();
+    let mut faults: Vec<MeshFault> = vertices
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        .map(|(v, _)| MeshFault::NonFinite { vertex: v as u32 })
+        .collect();
+    if !faults.is_empty() {
+        // Every measure below would be NaN or infinite.
+        return faults;
+    }
     let n = vertices.len() as u32;
     for (i, t) in triangles.iter().enumerate() {
         if t.iter().any(|&v| v >= n) {
@@ -206,6 +245,26 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
         return Vec::new();
     }
     let bucket = |p: [f64; 3]| p.map(|c| (c / shortest).floor() as i64);
+    // The search's cost, counted before it starts (casts saturate, spans
+    // are added in u128): bounded, whatever the coordinates.
+    let visits = undirected
+        .iter()
+        .map(|&(a, b)| {
+            let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
+            let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
+            (0..3).fold(1u128, |n, i| {
+                n.saturating_mul((i128::from(hi[i]) - i128::from(lo[i])) as u128 + 1)
+            })
+        })
+        .fold(0u128, u128::saturating_add);
+    let budget = MAX_BUCKET_VISITS_PER_ELEMENT
+        .saturating_mul((undirected.len() + vertices.len()) as u64)
+        .saturating_add(MIN_BUCKET_VISITS);
+    if visits > u128::from(budget) {
+        return vec![MeshFault::TooIrregular {
+            bucket_visits: u64::try_from(visits).unwrap_or(u64::MAX),
+        }];
+    }
     let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
     for (v, &p) in vertices.iter().enumerate() {
         buckets.entry(bucket(point(p))).or_default().push(v as u32);
@@ -324,6 +383,27 @@ mod tests {
             [3, 7, 5], // x = 1
         ];
         (v, t)
+    }
+
+    #[test]
+    fn non_finite_and_absurd_coordinates_are_faults_found_at_once() {
+        // Once an endless loop: an infinite coordinate cast to a bucket.
+        for bad in [f32::INFINITY, f32::NAN, f32::NEG_INFINITY] {
+            let (mut v, t) = cube();
+            v[3][0] = bad;
+            assert_eq!(faults(&v, &t), [MeshFault::NonFinite { vertex: 3 }]);
+        }
+        // A finite but absurd vertex: the search would visit ~10^37
+        // buckets; it is reported instead.
+        let (mut v, t) = cube();
+        v[7] = [1e30, 1.0, 1.0];
+        assert!(
+            faults(&v, &t)
+                .iter()
+                .any(|f| matches!(f, MeshFault::TooIrregular { .. })),
+            "{:?}",
+            faults(&v, &t)
+        );
     }
 
     #[test]

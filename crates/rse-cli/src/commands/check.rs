@@ -1,0 +1,93 @@
+//! `rse-gen check`: prints what `rse_verify` finds in the worlds named —
+//! one FAIL line per failed world (or a JSON report), a verdict on stderr.
+//! Every check itself is in the library.
+
+use std::io::Write as _;
+use std::path::Path;
+
+use indicatif::{ProgressBar, ProgressDrawTarget};
+use rse_physics::PhysicsReport;
+use rse_verify::{CheckOptions, CheckReport, check_paths};
+
+use crate::ExitStatus;
+use crate::args::CheckArgs;
+
+pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    let options = CheckOptions {
+        physics: args.physics,
+    };
+    let report = check_paths(&args.paths, options, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        serde_json::to_writer_pretty(&mut out, &report)?;
+        writeln!(out)?;
+    } else {
+        for fault in &report.batch_faults {
+            writeln!(out, "FAIL {fault}")?;
+        }
+        for world in report.worlds.iter().filter(|r| !r.ok) {
+            let faults: Vec<String> = world.faults.iter().map(ToString::to_string).collect();
+            writeln!(out, "FAIL {}: {}", world.world, faults.join("; "))?;
+        }
+    }
+    out.flush()?;
+    eprintln!("rse-gen: {}", report.verdict());
+    let hashed: usize = report.worlds.iter().map(|w| w.hashed_only.len()).sum();
+    if hashed > 0 {
+        eprintln!(
+            "rse-gen: {hashed} files from user templates could only be compared with their SHA-256 in rse.json"
+        );
+    }
+    print_physics(&report);
+    Ok(if report.ok() {
+        ExitStatus::Success
+    } else {
+        ExitStatus::Failure
+    })
+}
+
+/// The physics summary line, when the smoke test ran.
+fn print_physics(report: &CheckReport) {
+    let physics: Vec<&PhysicsReport> = report
+        .worlds
+        .iter()
+        .filter_map(|r| r.physics.as_ref())
+        .collect();
+    if physics.is_empty() {
+        return;
+    }
+    let mean = |f: fn(&PhysicsReport) -> f64| {
+        physics.iter().map(|p| f(p)).sum::<f64>() / physics.len() as f64
+    };
+    let errors: usize = physics.iter().map(|p| p.errors.len()).sum();
+    eprintln!(
+        "rse-gen: physics: {errors} errors; mean step {:.1} µs on the RSE, {:.1} µs on a plane (ratio {:.2})",
+        mean(|p| p.rse_step_us),
+        mean(|p| p.plane_step_us),
+        mean(|p| p.ratio),
+    );
+}
+
+/// The one-line `check` verdict on the worlds in `folder` (no physics), as
+/// the editor shows it after a Generate: the verdict, and the first fault.
+pub fn summary(folder: &Path) -> String {
+    let report = match check_paths(&[folder.to_path_buf()], CheckOptions::default(), &|| {}) {
+        Ok(report) => report,
+        Err(e) => return format!("check: {e}"),
+    };
+    let mut line = report.verdict();
+    let first = report
+        .batch_faults
+        .first()
+        .map(ToString::to_string)
+        .or_else(|| {
+            let world = report.worlds.iter().find(|r| !r.ok)?;
+            Some(format!("{}: {}", world.world, world.faults.first()?))
+        });
+    if let Some(first) = first {
+        line.push_str(&format!(" (first: {first})"));
+    }
+    line
+}

@@ -1,0 +1,164 @@
+//! Many worlds at once: the world folders under the paths given (a folder
+//! holding `rse.json` is a world, any other a batch of them), checked in
+//! parallel, with the faults of a batch as a whole — folders left by a run
+//! that was cut short, and the same world twice.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use rse_world::MANIFEST;
+use serde::Serialize;
+
+use crate::fault::{Fault, FaultKind};
+use crate::world::{CheckOptions, WorldReport, check_world};
+
+/// A whole `check` run.
+#[derive(Debug, Clone, Serialize)]
+pub struct CheckReport {
+    /// One report per world, in the order found (paths as given, each
+    /// batch's worlds sorted by name).
+    pub worlds: Vec<WorldReport>,
+    /// Faults of batches as wholes (leftover temporary folders, duplicate
+    /// worlds), with the batch folder in `file`.
+    pub batch_faults: Vec<Fault>,
+    /// Worlds checked.
+    pub checked: usize,
+    /// Worlds with at least one fault.
+    pub failed: usize,
+}
+
+impl CheckReport {
+    /// `true` when no world and no batch has a fault.
+    pub fn ok(&self) -> bool {
+        self.failed == 0 && self.batch_faults.is_empty()
+    }
+
+    /// `checked N worlds: G good, F failed`, and the batch faults' count
+    /// when there are any: the verdict the CLI and the editor print.
+    pub fn verdict(&self) -> String {
+        let mut line = format!(
+            "checked {} worlds: {} good, {} failed",
+            self.checked,
+            self.checked - self.failed,
+            self.failed
+        );
+        if !self.batch_faults.is_empty() {
+            line.push_str(&format!("; {} batch faults", self.batch_faults.len()));
+        }
+        line
+    }
+}
+
+/// A path given to `check` that is not a world or a batch of worlds.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DiscoverError {
+    /// The path is not a folder.
+    #[error("{} is not a folder", .0.display())]
+    NotAFolder(PathBuf),
+    /// The folder cannot be listed.
+    #[error("cannot read {}: {reason}", path.display())]
+    Unreadable {
+        /// The folder.
+        path: PathBuf,
+        /// The system's reason.
+        reason: String,
+    },
+    /// Neither the folder nor any of its sub-folders holds `rse.json`.
+    #[error("{} holds no world (no rse.json in it or in its sub-folders)", .0.display())]
+    NoWorld(PathBuf),
+}
+
+/// The worlds under `paths`, with the batch faults found on the way.
+pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), DiscoverError> {
+    let mut worlds = Vec::new();
+    let mut faults = Vec::new();
+    for path in paths {
+        if !path.is_dir() {
+            return Err(DiscoverError::NotAFolder(path.clone()));
+        }
+        if path.join(MANIFEST).exists() {
+            worlds.push(path.clone());
+            continue;
+        }
+        let unreadable = |e: std::io::Error| DiscoverError::Unreadable {
+            path: path.clone(),
+            reason: e.to_string(),
+        };
+        let mut found = Vec::new();
+        let mut leftovers = Vec::new();
+        for entry in std::fs::read_dir(path).map_err(unreadable)? {
+            let entry = entry.map_err(unreadable)?;
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let is_dir = entry.file_type().map_err(unreadable)?.is_dir();
+            if is_dir && rse_world::leftover_index(&name).is_some() {
+                leftovers.push(name);
+            } else if is_dir && entry.path().join(MANIFEST).exists() {
+                found.push(entry.path());
+            }
+        }
+        if found.is_empty() && leftovers.is_empty() {
+            return Err(DiscoverError::NoWorld(path.clone()));
+        }
+        found.sort();
+        leftovers.sort();
+        faults.extend(
+            leftovers
+                .into_iter()
+                .map(|name| Fault::of(&path.join(name).display().to_string(), FaultKind::Leftover)),
+        );
+        worlds.extend(found);
+    }
+    Ok((worlds, faults))
+}
+
+/// Checks every world under `paths` in parallel (on rayon's current pool),
+/// calling `progress` after each world.
+pub fn check_paths(
+    paths: &[PathBuf],
+    options: CheckOptions,
+    progress: &(dyn Fn() + Sync),
+) -> Result<CheckReport, DiscoverError> {
+    let (worlds, mut batch_faults) = discover(paths)?;
+    let reports: Vec<WorldReport> = worlds
+        .par_iter()
+        .map(|world| {
+            let report = check_world(world, options);
+            progress();
+            report
+        })
+        .collect();
+    batch_faults.extend(duplicates(&worlds, &reports));
+    let failed = reports.iter().filter(|r| !r.ok).count();
+    Ok(CheckReport {
+        checked: reports.len(),
+        failed,
+        worlds: reports,
+        batch_faults,
+    })
+}
+
+/// Worlds of one batch folder with the same seed pair: one world written
+/// twice (under two names, as a grown batch once did).
+fn duplicates(worlds: &[PathBuf], reports: &[WorldReport]) -> Vec<Fault> {
+    let mut first: BTreeMap<(Option<&Path>, u64, u64), &Path> = BTreeMap::new();
+    let mut faults = Vec::new();
+    for (world, report) in worlds.iter().zip(reports) {
+        let (Some(seed), Some(index)) = (report.seed, report.index) else {
+            continue;
+        };
+        match first.entry((world.parent(), seed, index)) {
+            std::collections::btree_map::Entry::Vacant(slot) => {
+                slot.insert(world);
+            }
+            std::collections::btree_map::Entry::Occupied(slot) => faults.push(Fault::of(
+                &world.display().to_string(),
+                FaultKind::Duplicate {
+                    of: slot.get().display().to_string(),
+                },
+            )),
+        }
+    }
+    faults
+}

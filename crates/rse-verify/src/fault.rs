@@ -1,0 +1,276 @@
+//! What can be wrong with a world: one typed fault per finding, with the
+//! file it is in. Data first, text last: the CLI prints the message, JSON
+//! and Python get the `kind` and its fields to match on.
+
+use serde::Serialize;
+
+/// One finding of `check`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fault {
+    /// The file, `/`-separated and relative to the world folder (or the
+    /// batch folder, for a batch fault); `None` for the folder itself.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// What is wrong.
+    #[serde(flatten)]
+    pub kind: FaultKind,
+    /// `kind` in words, as the CLI prints it.
+    pub message: String,
+}
+
+impl Fault {
+    /// A fault of `file` (or of the folder, for `None`).
+    pub fn new(file: Option<&str>, kind: FaultKind) -> Self {
+        let message = kind.to_string();
+        Fault {
+            file: file.map(str::to_owned),
+            kind,
+            message,
+        }
+    }
+
+    /// A fault of the file at `path`.
+    pub fn of(path: &str, kind: FaultKind) -> Self {
+        Self::new(Some(path), kind)
+    }
+}
+
+impl std::fmt::Display for Fault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.file {
+            Some(file) => write!(f, "{file}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+/// The kinds of fault. In JSON, `kind` is the variant's snake-case name and
+/// the fields sit beside it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum FaultKind {
+    /// The folder or file cannot be read (permissions, I/O error, a name
+    /// that is not UTF-8).
+    Unreadable {
+        /// The system's reason.
+        reason: String,
+    },
+    /// A symbolic link or other non-regular file: `rse` writes none, and
+    /// following one could read outside the world.
+    NotAFile,
+    /// A file larger than any world's can be; refused before reading.
+    TooLarge {
+        /// Its size, bytes.
+        bytes: u64,
+        /// The cap it is over.
+        cap: u64,
+    },
+    /// A path (in `rse.json` or named by a world file) that leads outside
+    /// the world folder: absolute, or climbing out with `..`.
+    OutsideWorld {
+        /// The path as written.
+        path: String,
+    },
+    /// `rse.json` is missing, is not JSON, or is not a manifest.
+    BadManifest {
+        /// What the JSON reader said.
+        reason: String,
+    },
+    /// The scheme recorded in `rse.json` does not load.
+    BadScheme {
+        /// The scheme error.
+        reason: String,
+    },
+    /// The world cannot be rebuilt from its manifest (a template error).
+    NotRebuilt {
+        /// Why.
+        reason: String,
+    },
+    /// A file the world must have is not there.
+    Missing,
+    /// A file the world does not have is there.
+    Unexpected,
+    /// A file's bytes differ from the world regenerated from `rse.json`.
+    Differs {
+        /// 1-based line of the first difference (text files).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        line: Option<usize>,
+        /// Byte offset of the first difference.
+        byte: usize,
+    },
+    /// A file that could only be hashed (from a user's template) does not
+    /// match its SHA-256 in `rse.json`.
+    HashMismatch,
+    /// `heightmap.csv` does not parse or has the wrong size.
+    BadHeightmap {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A cell of `heightmap.csv` is not the regenerated height.
+    HeightDiffers {
+        /// Cell column.
+        x: u32,
+        /// Cell row.
+        y: u32,
+        /// Height in the file, steps.
+        found: u16,
+        /// Height regenerated, steps.
+        expected: u16,
+    },
+    /// A file that must be UTF-8 text is not.
+    NotText,
+    /// An XML file that is not well-formed, declares a DTD, or nests too
+    /// deep.
+    BadXml {
+        /// 1-based line of the fault.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A world file names a file that is not in the world.
+    MissingReference {
+        /// The reference as written.
+        reference: String,
+    },
+    /// A world file names an absolute path: the world could not move.
+    AbsoluteReference {
+        /// The reference as written.
+        reference: String,
+    },
+    /// An OBJ file that does not parse, or holds a non-triangle or a
+    /// non-finite coordinate.
+    BadObj {
+        /// What is wrong.
+        reason: String,
+    },
+    /// An OBJ mesh that breaks SPEC §6 (holes, flips, T-junctions, …).
+    BadMesh {
+        /// How many faults the mesh check found.
+        faults: usize,
+        /// The first, in words.
+        first: String,
+    },
+    /// The mesh's volume is not the heightmap's.
+    VolumeDiffers {
+        /// Enclosed by the mesh, m³.
+        measured: f64,
+        /// Of the heightmap's solid, m³.
+        expected: f64,
+    },
+    /// The mesh's bounding box is not the heightmap's.
+    BoundsDiffer {
+        /// `[min, max]` of the mesh, metres (none for an empty mesh).
+        measured: Option<[[f64; 3]; 2]>,
+        /// `[min, max]` of the solid, metres (none for an empty solid).
+        expected: Option<[[f64; 3]; 2]>,
+    },
+    /// An upward face that is not on the top of the cell under it.
+    TopMisplaced {
+        /// Cell column.
+        x: u32,
+        /// Cell row.
+        y: u32,
+        /// The face's height, metres.
+        z: f64,
+        /// The cell's top, metres.
+        top: f64,
+    },
+    /// The physics smoke test found an error.
+    Physics {
+        /// The smoke test's words.
+        error: String,
+    },
+    /// A temporary folder left by a batch that was cut short.
+    Leftover,
+    /// Two world folders of one batch are the same world.
+    Duplicate {
+        /// The other folder.
+        of: String,
+    },
+}
+
+impl std::fmt::Display for FaultKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FaultKind::Unreadable { reason } => write!(f, "cannot be read: {reason}"),
+            FaultKind::NotAFile => {
+                f.write_str("is a link or special file, not a regular file (not followed)")
+            }
+            FaultKind::TooLarge { bytes, cap } => write!(
+                f,
+                "is {bytes} bytes, over the cap of {cap} for this world (not read)"
+            ),
+            FaultKind::OutsideWorld { path } => {
+                write!(f, "names {path}, outside the world folder (not read)")
+            }
+            FaultKind::BadManifest { reason } => write!(f, "is not a world manifest: {reason}"),
+            FaultKind::BadScheme { reason } => write!(f, "its scheme does not load: {reason}"),
+            FaultKind::NotRebuilt { reason } => {
+                write!(f, "the world cannot be rebuilt from it: {reason}")
+            }
+            FaultKind::Missing => {
+                f.write_str("missing (the world regenerated from rse.json has it)")
+            }
+            FaultKind::Unexpected => {
+                f.write_str("not a file of the world regenerated from rse.json")
+            }
+            FaultKind::Differs {
+                line: Some(line), ..
+            } => write!(
+                f,
+                "differs from the world regenerated from rse.json, first at line {line}"
+            ),
+            FaultKind::Differs { line: None, byte } => write!(
+                f,
+                "differs from the world regenerated from rse.json, first at byte {byte}"
+            ),
+            FaultKind::HashMismatch => {
+                f.write_str("SHA-256 differs from rse.json (the file changed)")
+            }
+            FaultKind::BadHeightmap { reason } => write!(f, "not a heightmap: {reason}"),
+            FaultKind::HeightDiffers {
+                x,
+                y,
+                found,
+                expected,
+            } => write!(
+                f,
+                "cell ({x}, {y}) is {found}, but the world regenerated from rse.json has {expected}"
+            ),
+            FaultKind::NotText => f.write_str("not UTF-8 text"),
+            FaultKind::BadXml { line, reason } => {
+                write!(f, "not well-formed XML: line {line}: {reason}")
+            }
+            FaultKind::MissingReference { reference } => {
+                write!(f, "names {reference}, which does not exist")
+            }
+            FaultKind::AbsoluteReference { reference } => write!(
+                f,
+                "names the absolute path {reference} (worlds must be movable)"
+            ),
+            FaultKind::BadObj { reason } => write!(f, "cannot be read as OBJ: {reason}"),
+            FaultKind::BadMesh { faults, first } => write!(
+                f,
+                "not a closed, oriented, exact mesh: {faults} faults, first: {first}"
+            ),
+            FaultKind::VolumeDiffers { measured, expected } => write!(
+                f,
+                "encloses {measured:.6} m³, but the heightmap's solid is {expected:.6} m³"
+            ),
+            FaultKind::BoundsDiffer { measured, expected } => write!(
+                f,
+                "bounding box {measured:?}, but the heightmap's solid spans {expected:?}"
+            ),
+            FaultKind::TopMisplaced { x, y, z, top } => write!(
+                f,
+                "a top face at z = {z:.4} m lies over cell ({x}, {y}), whose top is at {top:.4} m"
+            ),
+            FaultKind::Physics { error } => write!(f, "physics: {error}"),
+            FaultKind::Leftover => f.write_str(
+                "a temporary folder of a batch that was cut short: rerun the batch to finish it",
+            ),
+            FaultKind::Duplicate { of } => write!(f, "the same world (seed, index) as {of}"),
+        }
+    }
+}

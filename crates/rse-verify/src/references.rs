@@ -1,0 +1,225 @@
+//! World files that name other files (SDF, `model.config`, MJCF, URDF,
+//! Webots, USD): each must parse, and every file it names must be in the
+//! world. XML is read as a stream with a depth cap and no DTD, so a
+//! hostile file costs time in proportion to its (capped) size.
+
+use quick_xml::Reader;
+use quick_xml::events::Event;
+
+use crate::fault::{Fault, FaultKind};
+use crate::folder::{Folder, resolve};
+use crate::limits::MAX_XML_DEPTH;
+
+/// The kinds of world file that name other files.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum FileKind {
+    /// SDF worlds and models, `model.config`, MJCF, URDF.
+    Xml,
+    /// A Webots `.wbt` world.
+    Webots,
+    /// A USD ASCII layer.
+    Usd,
+}
+
+/// The kind of a file, by suffix; `None` for files that name nothing.
+fn kind(path: &str) -> Option<FileKind> {
+    match std::path::Path::new(path).extension()?.to_str()? {
+        "world" | "sdf" | "config" | "xml" | "urdf" => Some(FileKind::Xml),
+        "wbt" => Some(FileKind::Webots),
+        "usda" => Some(FileKind::Usd),
+        _ => None,
+    }
+}
+
+/// `true` for the files [`check`] looks into.
+pub fn names_files(path: &str) -> bool {
+    kind(path).is_some()
+}
+
+/// Faults of the world file `path` (its `bytes`): not text, not
+/// well-formed, or naming a file that is not in `folder`.
+pub fn check(path: &str, bytes: &[u8], folder: &Folder) -> Vec<Fault> {
+    let Some(kind) = kind(path) else {
+        return Vec::new();
+    };
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return vec![Fault::of(path, FaultKind::NotText)];
+    };
+    let references = match kind {
+        FileKind::Xml => match xml_references(text) {
+            Ok(found) => found,
+            Err((line, reason)) => {
+                return vec![Fault::of(path, FaultKind::BadXml { line, reason })];
+            }
+        },
+        FileKind::Webots => wbt_urls(text),
+        FileKind::Usd => usd_asset_paths(text),
+    };
+    let dir = path.rsplit_once('/').map_or("", |(dir, _)| dir);
+    references
+        .into_iter()
+        .filter_map(|reference| check_reference(folder, dir, &reference))
+        .map(|kind| Fault::of(path, kind))
+        .collect()
+}
+
+/// `None` if `reference` (named by a file in `dir`) is in the world.
+fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultKind> {
+    if reference.contains("://") && !reference.starts_with("model://") {
+        return None; // a web address or a package the simulator resolves
+    }
+    if reference.starts_with('/') || reference.contains(":\\") {
+        return Some(FaultKind::AbsoluteReference {
+            reference: reference.to_owned(),
+        });
+    }
+    let target = match reference.strip_prefix("model://") {
+        // Models are looked up on the Gazebo resource path: our `gazebo/`.
+        Some(model) if !model.contains('/') => resolve("gazebo", &format!("{model}/model.config")),
+        Some(model) => resolve("gazebo", model),
+        None => resolve(dir, reference),
+    };
+    match target {
+        None => Some(FaultKind::OutsideWorld {
+            path: reference.to_owned(),
+        }),
+        Some(target) if folder.has(&target) => None,
+        Some(_) => Some(FaultKind::MissingReference {
+            reference: reference.to_owned(),
+        }),
+    }
+}
+
+/// The files an XML world file names: `<uri>` and `<sdf>` texts (SDF,
+/// model.config) and `file`/`filename` attributes (MJCF, URDF). The error
+/// is the 1-based line and what is wrong.
+fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
+    let mut reader = Reader::from_str(text);
+    let line_at = |at: u64| {
+        let at = usize::try_from(at).unwrap_or(usize::MAX).min(text.len());
+        text.as_bytes()[..at]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1
+    };
+    let mut found = Vec::new();
+    let mut in_reference = false;
+    let mut depth = 0usize;
+    loop {
+        let start = reader.buffer_position();
+        let event = reader
+            .read_event()
+            .map_err(|e| (line_at(reader.error_position()), e.to_string()))?;
+        let fault = |reason: String| (line_at(start), reason);
+        match event {
+            Event::DocType(_) => {
+                // Entities declared in a DTD can expand without bound in a
+                // simulator's parser; `rse` writes none.
+                return Err(fault("declares a DTD (world files have none)".to_owned()));
+            }
+            Event::Start(ref e) | Event::Empty(ref e) => {
+                if matches!(event, Event::Start(_)) {
+                    depth += 1;
+                    if depth > MAX_XML_DEPTH {
+                        return Err(fault(format!(
+                            "elements nest deeper than {MAX_XML_DEPTH} levels"
+                        )));
+                    }
+                }
+                in_reference = matches!(e.local_name().into_inner(), "uri" | "sdf");
+                for attribute in e.attributes() {
+                    let attribute = attribute.map_err(|e| fault(e.to_string()))?;
+                    if matches!(attribute.key.local_name().into_inner(), "file" | "filename") {
+                        let value = attribute
+                            .normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                            .map_err(|e| fault(e.to_string()))?;
+                        found.push(value.into_owned());
+                    }
+                }
+            }
+            Event::Text(t) if in_reference => {
+                let value = t.xml10_content();
+                if !value.trim().is_empty() {
+                    found.push(value.trim().to_owned());
+                }
+            }
+            Event::End(_) => {
+                in_reference = false;
+                depth = depth.saturating_sub(1);
+            }
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    Ok(found)
+}
+
+/// The strings of every `url [ … ]` field of a Webots world.
+fn wbt_urls(text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("url") {
+        rest = &rest[at + 3..];
+        let Some(list) = rest.trim_start().strip_prefix('[') else {
+            continue;
+        };
+        let end = list.find(']').unwrap_or(list.len());
+        found.extend(list[..end].split('"').skip(1).step_by(2).map(str::to_owned));
+        rest = &list[end..];
+    }
+    found
+}
+
+/// The asset paths (`@path@`) of a USD layer.
+fn usd_asset_paths(text: &str) -> Vec<String> {
+    text.split('@')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_owned)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn references_are_found_in_each_format() {
+        let sdf =
+            "<sdf><model><uri>model://m/meshes/a.obj</uri><x file=\"../b.obj\"/></model></sdf>";
+        assert_eq!(
+            xml_references(sdf).unwrap(),
+            ["model://m/meshes/a.obj", "../b.obj"]
+        );
+        assert_eq!(
+            wbt_urls("Mesh { url [\n \"../meshes/terrain.obj\" ] } url [ \"x\" \"y\" ]"),
+            ["../meshes/terrain.obj", "x", "y"]
+        );
+        assert_eq!(
+            usd_asset_paths("references = @./terrain.usda@\n"),
+            ["./terrain.usda"]
+        );
+    }
+
+    #[test]
+    fn broken_xml_is_reported_with_its_line() {
+        let (line, _) = xml_references("<a>\n<b>\n</a>\n").unwrap_err();
+        assert_eq!(line, 3);
+    }
+
+    #[test]
+    fn hostile_xml_is_refused_not_expanded_or_recursed() {
+        let bomb = "<?xml version=\"1.0\"?>\n<!DOCTYPE a [<!ENTITY x \"xxxxxxxx\"><!ENTITY y \"&x;&x;&x;&x;\">]>\n<a b=\"&y;\"/>";
+        let (line, reason) = xml_references(bomb).unwrap_err();
+        assert_eq!(line, 2, "{reason}");
+        assert!(reason.contains("DTD"), "{reason}");
+        let deep = "<a>".repeat(MAX_XML_DEPTH + 1) + &"</a>".repeat(MAX_XML_DEPTH + 1);
+        let (_, reason) = xml_references(&deep).unwrap_err();
+        assert!(reason.contains("nest deeper"), "{reason}");
+        let fine = "<a>".repeat(MAX_XML_DEPTH) + &"</a>".repeat(MAX_XML_DEPTH);
+        assert!(xml_references(&fine).is_ok());
+        // An entity no DTD declares is an error, not an expansion.
+        assert!(xml_references("<a file=\"&z;\"/>").is_err());
+    }
+}

@@ -1,0 +1,176 @@
+//! A world's terrain files against the terrain regenerated from its
+//! manifest: the heightmap cell by cell, and every OBJ re-read against
+//! SPEC §6 and the heightmap (closed, exact, volume, bounding box, tops).
+
+use rse_core::mesh::check::{bounding_box, faults as mesh_faults, volume};
+use rse_core::{Heightmap, Terrain};
+
+use crate::fault::FaultKind;
+use crate::limits::MESH_RELATIVE_TOLERANCE;
+
+/// Why `heightmap.csv` (its `bytes`) is not `terrain`'s heightmap; `None`
+/// when it is, or when it differs only in format (the byte comparison
+/// reports that).
+pub fn heightmap_fault(bytes: &[u8], terrain: &Terrain) -> Option<FaultKind> {
+    let bad = |reason: String| Some(FaultKind::BadHeightmap { reason });
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return Some(FaultKind::NotText);
+    };
+    let map = match Heightmap::from_csv(text) {
+        Ok(map) => map,
+        Err(e) => return bad(e),
+    };
+    let want = terrain.heightmap();
+    if (map.nx(), map.ny()) != (want.nx(), want.ny()) {
+        return bad(format!(
+            "{}x{} cells, but the world regenerated from rse.json has {}x{}",
+            map.nx(),
+            map.ny(),
+            want.nx(),
+            want.ny()
+        ));
+    }
+    let i = map
+        .cells()
+        .iter()
+        .zip(want.cells())
+        .position(|(a, b)| a != b)?;
+    let (x, y) = (i as u32 % map.nx(), i as u32 / map.nx());
+    Some(FaultKind::HeightDiffers {
+        x,
+        y,
+        found: map.get(x, y),
+        expected: want.get(x, y),
+    })
+}
+
+/// A mesh read from an OBJ file.
+#[derive(Debug, Clone)]
+pub struct ObjMesh {
+    /// Vertex positions, every coordinate finite.
+    pub vertices: Vec<[f32; 3]>,
+    /// Triangles, every index a vertex of `vertices`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Reads an OBJ file's positions and triangles (normals and materials are
+/// the readers' business). Refuses what a simulator could not use: faces
+/// that are not triangles, indices that name no vertex, coordinates that
+/// are not finite numbers.
+pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
+    let bad = |reason: String| FaultKind::BadObj { reason };
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ..tobj::LoadOptions::default()
+    };
+    let (models, _) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| {
+        Ok((Vec::new(), std::collections::HashMap::default()))
+    })
+    .map_err(|e| bad(e.to_string()))?;
+    let mut mesh = ObjMesh {
+        vertices: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for model in models {
+        let m = model.mesh;
+        if m.face_arities.iter().any(|&n| n != 3) {
+            return Err(bad("has faces that are not triangles".to_owned()));
+        }
+        let first = mesh.vertices.len() as u32;
+        let count = (m.positions.len() / 3) as u32;
+        if let Some(i) = m.positions.iter().position(|c| !c.is_finite()) {
+            return Err(bad(format!(
+                "vertex {} has a coordinate that is not a finite number",
+                mesh.vertices.len() + i / 3 + 1
+            )));
+        }
+        mesh.vertices
+            .extend(m.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        for t in m.indices.chunks_exact(3) {
+            if t.iter().any(|&i| i >= count) {
+                return Err(bad(format!(
+                    "a face names vertex {}, but there are {count}",
+                    t.iter().max().map_or(0, |&i| u64::from(i) + 1)
+                )));
+            }
+            mesh.triangles
+                .push([first + t[0], first + t[1], first + t[2]]);
+        }
+    }
+    Ok(mesh)
+}
+
+/// Faults of `mesh` as the mesh of `terrain`: SPEC §6 first; then, for a
+/// sound mesh, volume, bounding box and top heights.
+pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> {
+    let broken = mesh_faults(&mesh.vertices, &mesh.triangles);
+    if let Some(first) = broken.first() {
+        return vec![FaultKind::BadMesh {
+            faults: broken.len(),
+            first: first.to_string(),
+        }];
+    }
+    let mut faults = Vec::new();
+    let map = terrain.heightmap();
+    let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
+    let top = |x: u32, y: u32| base + f64::from(map.get(x, y)) * step;
+    let solid: Vec<(u32, u32)> = (0..map.ny())
+        .flat_map(|y| (0..map.nx()).map(move |x| (x, y)))
+        .filter(|&(x, y)| top(x, y) > 0.0)
+        .collect();
+    let expected: f64 = solid.iter().map(|&(x, y)| s * s * top(x, y)).sum();
+    let measured = volume(&mesh.vertices, &mesh.triangles);
+    if (measured - expected).abs() > MESH_RELATIVE_TOLERANCE * expected.max(1e-3) {
+        faults.push(FaultKind::VolumeDiffers { measured, expected });
+    }
+    let close = |a: f64, b: f64| (a - b).abs() <= MESH_RELATIVE_TOLERANCE * b.abs().max(1.0);
+    let want = solid
+        .iter()
+        .fold(None, |acc: Option<[[f64; 3]; 2]>, &(x, y)| {
+            let lo = [f64::from(x) * s, f64::from(y) * s, 0.0];
+            let hi = [f64::from(x + 1) * s, f64::from(y + 1) * s, top(x, y)];
+            Some(match acc {
+                None => [lo, hi],
+                Some([a, b]) => [
+                    std::array::from_fn(|i| a[i].min(lo[i])),
+                    std::array::from_fn(|i| b[i].max(hi[i])),
+                ],
+            })
+        });
+    let got = bounding_box(&mesh.vertices).map(|(lo, hi)| [lo, hi]);
+    let same = match (got, want) {
+        (None, None) => true,
+        (Some([lo, hi]), Some([a, b])) => (0..3).all(|i| close(lo[i], a[i]) && close(hi[i], b[i])),
+        _ => false,
+    };
+    if !same {
+        faults.push(FaultKind::BoundsDiffer {
+            measured: got,
+            expected: want,
+        });
+        return faults; // tops beyond the grid would be looked up off the map
+    }
+    // Every upward face lies on the top of the cells under it.
+    for t in &mesh.triangles {
+        let [p, q, r] = t.map(|i| mesh.vertices[i as usize].map(f64::from));
+        let nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+        if nz <= 0.0 || !(close(p[2], q[2]) && close(q[2], r[2])) || p[2] == 0.0 {
+            continue;
+        }
+        let (cx, cy) = ((p[0] + q[0] + r[0]) / 3.0, (p[1] + q[1] + r[1]) / 3.0);
+        let (x, y) = ((cx / s).floor(), (cy / s).floor());
+        let on_map = x >= 0.0 && y >= 0.0 && x < f64::from(map.nx()) && y < f64::from(map.ny());
+        let (x, y) = (x as u32, y as u32);
+        if !on_map || !close(p[2], top(x, y)) {
+            faults.push(FaultKind::TopMisplaced {
+                x,
+                y,
+                z: p[2],
+                top: if on_map { top(x, y) } else { 0.0 },
+            });
+            break;
+        }
+    }
+    faults
+}

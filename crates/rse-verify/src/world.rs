@@ -1,0 +1,312 @@
+//! One world folder checked: the world is rebuilt in memory from its
+//! `rse.json` and every file compared byte for byte (the strongest check,
+//! and cheap next to writing the world); files from templates `check`
+//! does not have are hashed; then the meshes, heightmap and world files are
+//! checked on their own, and with `physics` the terrain is dropped on.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use rse_core::{Scheme, Terrain, generate};
+use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
+use rse_world::{MANIFEST, Manifest, MeshMode, Templates, WorldOptions, build_world, sha256_hex};
+use serde::Serialize;
+
+use crate::fault::{Fault, FaultKind};
+use crate::folder::{Folder, inside};
+use crate::limits::{MAX_MANIFEST_BYTES, file_cap};
+use crate::{references, terrain};
+
+/// What to check beyond the static checks.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CheckOptions {
+    /// Run the rapier physics smoke test on the terrain.
+    pub physics: bool,
+}
+
+/// What was found in one world.
+#[derive(Debug, Clone, Serialize)]
+pub struct WorldReport {
+    /// The world folder, as given or found.
+    pub world: String,
+    /// `true` when no fault was found.
+    pub ok: bool,
+    /// Every fault, in a stable order.
+    pub faults: Vec<Fault>,
+    /// Files that could only be compared with their hash in `rse.json`
+    /// (rendered from templates this `check` does not have), sorted.
+    pub hashed_only: Vec<String>,
+    /// The seed pair from `rse.json`, when it could be read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// The world's index in its batch, when `rse.json` could be read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub index: Option<u64>,
+    /// The physics smoke test, when asked for and the terrain could be
+    /// rebuilt.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physics: Option<PhysicsReport>,
+}
+
+/// Checks the world folder `path`. Never panics on what is in the folder,
+/// reads nothing outside it, and reads no file larger than a cap
+/// (`limits`).
+pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
+    let (folder, mut faults) = Folder::list(path);
+    let mut report = WorldReport {
+        world: path.display().to_string(),
+        ok: false,
+        faults: Vec::new(),
+        hashed_only: Vec::new(),
+        seed: None,
+        index: None,
+        physics: None,
+    };
+    match read_manifest(&folder) {
+        Err(kind) => {
+            faults.push(Fault::of(MANIFEST, kind));
+            // Without a manifest there is no world to compare with: look
+            // into what can be checked alone.
+            for path in folder.paths().filter(|p| references::names_files(p)) {
+                match folder.read(path, file_cap(0)) {
+                    Ok(bytes) => faults.extend(references::check(path, &bytes, &folder)),
+                    Err(kind) => faults.push(Fault::of(path, kind)),
+                }
+            }
+        }
+        Ok(manifest) => {
+            report.seed = Some(manifest.seed);
+            report.index = Some(manifest.index);
+            check_against_manifest(&folder, &manifest, options, &mut report, &mut faults);
+        }
+    }
+    // One fault per file and kind: a mesh named twice is missing once.
+    let mut seen = BTreeSet::new();
+    faults.retain(|f| seen.insert((f.file.clone(), f.message.clone())));
+    report.ok = faults.is_empty();
+    report.faults = faults;
+    report
+}
+
+/// `rse.json`, read within its cap and parsed.
+fn read_manifest(folder: &Folder) -> Result<Manifest, FaultKind> {
+    let bytes = folder.read(MANIFEST, MAX_MANIFEST_BYTES)?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| FaultKind::NotText)?;
+    Manifest::from_json(text).map_err(|e| FaultKind::BadManifest {
+        reason: e.to_string(),
+    })
+}
+
+/// Every check that needs the manifest.
+fn check_against_manifest(
+    folder: &Folder,
+    manifest: &Manifest,
+    options: CheckOptions,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) {
+    // Paths the manifest names are checked as names before anything is read.
+    let outside: Vec<&String> = manifest.files.keys().filter(|p| !inside(p)).collect();
+    for path in &outside {
+        faults.push(Fault::of(
+            MANIFEST,
+            FaultKind::OutsideWorld {
+                path: (*path).clone(),
+            },
+        ));
+    }
+    let scheme = match Scheme::from_csv(&manifest.scheme, Some("rse.json scheme")) {
+        Ok(scheme) => scheme,
+        Err(e) => {
+            faults.push(Fault::of(
+                MANIFEST,
+                FaultKind::BadScheme {
+                    reason: e.to_string(),
+                },
+            ));
+            return;
+        }
+    };
+    let terrain = generate(&scheme, manifest.seed, manifest.index);
+    let expected = match expected_files(&scheme, manifest) {
+        Ok(expected) => expected,
+        Err(reason) => {
+            faults.push(Fault::of(MANIFEST, FaultKind::NotRebuilt { reason }));
+            return;
+        }
+    };
+    let cells = u64::from(terrain.grid().nx) * u64::from(terrain.grid().ny);
+    let mut contents: BTreeMap<&str, Vec<u8>> = BTreeMap::new();
+    for (path, want) in &expected.files {
+        // Reading one byte more than the regenerated file shows a longer
+        // file without reading all of it.
+        match folder.read(path, want.len() as u64 + 1) {
+            Ok(bytes) => {
+                if let Some(kind) = difference(path, &bytes, want, &terrain) {
+                    faults.push(Fault::of(path, kind));
+                }
+                contents.insert(path, bytes);
+            }
+            Err(FaultKind::TooLarge { .. }) => faults.push(Fault::of(
+                path,
+                FaultKind::Differs {
+                    line: None,
+                    byte: want.len(),
+                },
+            )),
+            Err(kind) => faults.push(Fault::of(path, kind)),
+        }
+    }
+    for path in &expected.hashed_only {
+        let Some(digest) = manifest.files.get(path) else {
+            continue;
+        };
+        match folder.read(path, file_cap(cells)) {
+            Ok(bytes) => {
+                if sha256_hex(&bytes) != *digest {
+                    faults.push(Fault::of(path, FaultKind::HashMismatch));
+                }
+                contents.insert(path, bytes);
+            }
+            Err(kind) => faults.push(Fault::of(path, kind)),
+        }
+    }
+    for path in folder.paths() {
+        if !expected.files.contains_key(path) && !expected.hashed_only.contains(path) {
+            faults.push(Fault::of(path, FaultKind::Unexpected));
+        }
+    }
+    // The files checked on their own: world files' references, meshes.
+    for (path, bytes) in &contents {
+        faults.extend(references::check(path, bytes, folder));
+    }
+    let mut first_mesh = None;
+    for (path, bytes) in contents.iter().filter(|(p, _)| p.ends_with(".obj")) {
+        match terrain::read_obj(bytes) {
+            Ok(mesh) => {
+                faults.extend(
+                    terrain::mesh_faults_against(&mesh, &terrain)
+                        .into_iter()
+                        .map(|kind| Fault::of(path, kind)),
+                );
+                first_mesh.get_or_insert(mesh);
+            }
+            Err(kind) => faults.push(Fault::of(path, kind)),
+        }
+    }
+    report.hashed_only = expected.hashed_only.into_iter().collect();
+    if options.physics {
+        let physics = physics_of(manifest.mesh, first_mesh.as_ref(), &terrain);
+        faults.extend(physics.errors.iter().map(|error| {
+            Fault::new(
+                None,
+                FaultKind::Physics {
+                    error: error.clone(),
+                },
+            )
+        }));
+        report.physics = Some(physics);
+    }
+}
+
+/// How the file at `path` (its `bytes`) differs from the regenerated
+/// `want`; `None` if it does not.
+fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Option<FaultKind> {
+    if bytes == want {
+        return None;
+    }
+    if path == "heightmap.csv" {
+        // Name the cell, not just the line, where that is the difference.
+        if let Some(kind) = terrain::heightmap_fault(bytes, terrain) {
+            return Some(kind);
+        }
+    }
+    let byte = bytes
+        .iter()
+        .zip(want)
+        .position(|(a, b)| a != b)
+        .unwrap_or(bytes.len().min(want.len()));
+    let text = std::str::from_utf8(want).is_ok();
+    Some(FaultKind::Differs {
+        line: text.then(|| want[..byte].iter().filter(|&&b| b == b'\n').count() + 1),
+        byte,
+    })
+}
+
+/// The world's files as `check` can rebuild them, and the paths it can
+/// only hash.
+struct Expected {
+    files: BTreeMap<String, Vec<u8>>,
+    hashed_only: BTreeSet<String>,
+}
+
+/// Rebuilds the world `manifest` describes. With our own templates (and
+/// this version of `rse`) that is every file, `rse.json` included; with a
+/// user's templates, every file but the rendered ones, whose hashes are
+/// taken from the manifest (so `rse.json` is still rebuilt whole).
+fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, String> {
+    let builtin = Templates::builtin();
+    let options = WorldOptions {
+        targets: manifest.targets.clone(),
+        mesh: manifest.mesh,
+    };
+    let world = build_world(
+        scheme,
+        manifest.seed,
+        manifest.index,
+        manifest.world.clone(),
+        &options,
+        &builtin,
+    )
+    .map_err(|e| e.to_string())?;
+    let ours = manifest.version == rse_core::VERSION
+        && manifest.templates == "builtin"
+        && manifest.templates_sha256 == builtin.digest();
+    if ours {
+        return Ok(Expected {
+            files: world.files,
+            hashed_only: BTreeSet::new(),
+        });
+    }
+    let mut files = world.files;
+    for path in &world.from_templates {
+        files.remove(path);
+    }
+    let rebuilt = files.remove(MANIFEST).expect("build_world writes rse.json");
+    let mut rebuilt =
+        Manifest::from_json(std::str::from_utf8(&rebuilt).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?;
+    let hashed_only: BTreeSet<String> = manifest
+        .files
+        .keys()
+        .filter(|p| !files.contains_key(*p) && inside(p))
+        .cloned()
+        .collect();
+    rebuilt.templates.clone_from(&manifest.templates);
+    rebuilt
+        .templates_sha256
+        .clone_from(&manifest.templates_sha256);
+    rebuilt.version.clone_from(&manifest.version);
+    rebuilt.files.retain(|p, _| files.contains_key(p));
+    for path in &hashed_only {
+        rebuilt
+            .files
+            .insert(path.clone(), manifest.files[path].clone());
+    }
+    files.insert(MANIFEST.to_owned(), rebuilt.to_json().into_bytes());
+    Ok(Expected { files, hashed_only })
+}
+
+/// The smoke test of a world's terrain as its simulators load it: the mesh
+/// read back from its (first) OBJ in single-mesh worlds, the box set
+/// otherwise, or when the OBJ could not be read (already a fault).
+fn physics_of(mesh: MeshMode, obj: Option<&terrain::ObjMesh>, terrain: &Terrain) -> PhysicsReport {
+    let model = match (mesh, obj) {
+        (MeshMode::Single, Some(mesh)) => TerrainModel::Mesh {
+            vertices: mesh.vertices.clone(),
+            triangles: mesh.triangles.clone(),
+        },
+        _ => TerrainModel::boxes_of(terrain),
+    };
+    smoke_test(&model, terrain, SmokeTest::default())
+}
