@@ -4,6 +4,7 @@
 //! that was cut short, and the same world twice.
 
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
@@ -44,9 +45,21 @@ impl CheckReport {
             self.failed
         );
         if !self.batch_faults.is_empty() {
-            line.push_str(&format!("; {} batch faults", self.batch_faults.len()));
+            let _ = write!(line, "; {} batch faults", self.batch_faults.len());
         }
         line
+    }
+}
+
+impl CheckReport {
+    /// The first fault found, with its world: batch faults first, then the
+    /// worlds in order.
+    pub fn first_fault(&self) -> Option<String> {
+        if let Some(fault) = self.batch_faults.first() {
+            return Some(fault.to_string());
+        }
+        let world = self.worlds.iter().find(|r| !r.ok)?;
+        Some(format!("{}: {}", world.world, world.faults.first()?))
     }
 }
 

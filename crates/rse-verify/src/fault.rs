@@ -44,6 +44,11 @@ impl std::fmt::Display for Fault {
     }
 }
 
+/// The 1-based line of byte `at` in `bytes` (the last line past the end).
+pub(crate) fn line_of(bytes: &[u8], at: usize) -> usize {
+    bytes[..at.min(bytes.len())].split(|&b| b == b'\n').count()
+}
+
 /// The kinds of fault. In JSON, `kind` is the variant's snake-case name and
 /// the fields sit beside it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -80,11 +85,6 @@ pub enum FaultKind {
     /// The scheme recorded in `rse.json` does not load.
     BadScheme {
         /// The scheme error.
-        reason: String,
-    },
-    /// The world cannot be rebuilt from its manifest (a template error).
-    NotRebuilt {
-        /// Why.
         reason: String,
     },
     /// A file the world must have is not there.
@@ -206,9 +206,6 @@ impl std::fmt::Display for FaultKind {
             }
             FaultKind::BadManifest { reason } => write!(f, "is not a world manifest: {reason}"),
             FaultKind::BadScheme { reason } => write!(f, "its scheme does not load: {reason}"),
-            FaultKind::NotRebuilt { reason } => {
-                write!(f, "the world cannot be rebuilt from it: {reason}")
-            }
             FaultKind::Missing => {
                 f.write_str("missing (the world regenerated from rse.json has it)")
             }

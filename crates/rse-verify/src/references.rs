@@ -6,7 +6,7 @@
 use quick_xml::Reader;
 use quick_xml::events::Event;
 
-use crate::fault::{Fault, FaultKind};
+use crate::fault::{Fault, FaultKind, line_of};
 use crate::folder::{Folder, resolve};
 use crate::limits::MAX_XML_DEPTH;
 
@@ -95,14 +95,7 @@ fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultK
 /// is the 1-based line and what is wrong.
 fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
     let mut reader = Reader::from_str(text);
-    let line_at = |at: u64| {
-        let at = usize::try_from(at).unwrap_or(usize::MAX).min(text.len());
-        text.as_bytes()[..at]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1
-    };
+    let line_at = |at: u64| line_of(text.as_bytes(), usize::try_from(at).unwrap_or(usize::MAX));
     let mut found = Vec::new();
     let mut in_reference = false;
     let mut depth = 0usize;
@@ -147,6 +140,10 @@ fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
             Event::End(_) => {
                 in_reference = false;
                 depth = depth.saturating_sub(1);
+            }
+            // quick-xml stops at the end without asking for open elements.
+            Event::Eof if depth > 0 => {
+                return Err(fault(format!("ends with {depth} elements not closed")));
             }
             Event::Eof => break,
             _ => {}
@@ -221,5 +218,8 @@ mod tests {
         assert!(xml_references(&fine).is_ok());
         // An entity no DTD declares is an error, not an expansion.
         assert!(xml_references("<a file=\"&z;\"/>").is_err());
+        // Cut short.
+        let (_, reason) = xml_references("<a><b></b>").unwrap_err();
+        assert!(reason.contains("not closed"), "{reason}");
     }
 }

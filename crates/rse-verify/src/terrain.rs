@@ -59,6 +59,35 @@ pub struct ObjMesh {
 /// are not finite numbers.
 pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
     let bad = |reason: String| FaultKind::BadObj { reason };
+    // tobj skips lines it does not know: garbage would read as an empty
+    // mesh. Every line must be one of the statements of a polygon OBJ.
+    for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let keyword = line
+            .split(u8::is_ascii_whitespace)
+            .find(|w| !w.is_empty())
+            .unwrap_or_default();
+        let known = [
+            &b"v"[..],
+            b"vn",
+            b"vt",
+            b"f",
+            b"o",
+            b"g",
+            b"s",
+            b"usemtl",
+            b"mtllib",
+            b"l",
+            b"p",
+        ]
+        .contains(&keyword);
+        if !(keyword.is_empty() || keyword.starts_with(b"#") || known) {
+            return Err(bad(format!(
+                "line {}: `{}` is not an OBJ statement",
+                i + 1,
+                String::from_utf8_lossy(&keyword[..keyword.len().min(20)])
+            )));
+        }
+    }
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,

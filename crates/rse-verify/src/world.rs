@@ -12,7 +12,7 @@ use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
 use rse_world::{MANIFEST, Manifest, MeshMode, Templates, WorldOptions, build_world, sha256_hex};
 use serde::Serialize;
 
-use crate::fault::{Fault, FaultKind};
+use crate::fault::{Fault, FaultKind, line_of};
 use crate::folder::{Folder, inside};
 use crate::limits::{MAX_MANIFEST_BYTES, file_cap};
 use crate::{references, terrain};
@@ -131,29 +131,23 @@ fn check_against_manifest(
     let expected = match expected_files(&scheme, manifest) {
         Ok(expected) => expected,
         Err(reason) => {
-            faults.push(Fault::of(MANIFEST, FaultKind::NotRebuilt { reason }));
+            let reason = format!("the world cannot be rebuilt from it: {reason}");
+            faults.push(Fault::of(MANIFEST, FaultKind::BadManifest { reason }));
             return;
         }
     };
     let cells = u64::from(terrain.grid().nx) * u64::from(terrain.grid().ny);
     let mut contents: BTreeMap<&str, Vec<u8>> = BTreeMap::new();
     for (path, want) in &expected.files {
-        // Reading one byte more than the regenerated file shows a longer
-        // file without reading all of it.
-        match folder.read(path, want.len() as u64 + 1) {
+        // A file longer than the rebuilt one is read up to the cap all the
+        // same, so the checks below can say what is wrong with it.
+        match folder.read(path, file_cap(cells).max(want.len() as u64)) {
             Ok(bytes) => {
                 if let Some(kind) = difference(path, &bytes, want, &terrain) {
                     faults.push(Fault::of(path, kind));
                 }
                 contents.insert(path, bytes);
             }
-            Err(FaultKind::TooLarge { .. }) => faults.push(Fault::of(
-                path,
-                FaultKind::Differs {
-                    line: None,
-                    byte: want.len(),
-                },
-            )),
             Err(kind) => faults.push(Fault::of(path, kind)),
         }
     }
@@ -180,8 +174,13 @@ fn check_against_manifest(
     for (path, bytes) in &contents {
         faults.extend(references::check(path, bytes, folder));
     }
-    let mut first_mesh = None;
-    for (path, bytes) in contents.iter().filter(|(p, _)| p.ends_with(".obj")) {
+    let mut meshes: Vec<(&str, &[u8], terrain::ObjMesh)> = Vec::new();
+    let is_obj = |p: &str| {
+        std::path::Path::new(p)
+            .extension()
+            .is_some_and(|e| e == "obj")
+    };
+    for (path, bytes) in contents.iter().filter(|(p, _)| is_obj(p)) {
         match terrain::read_obj(bytes) {
             Ok(mesh) => {
                 faults.extend(
@@ -189,23 +188,55 @@ fn check_against_manifest(
                         .into_iter()
                         .map(|kind| Fault::of(path, kind)),
                 );
-                first_mesh.get_or_insert(mesh);
+                meshes.push((path, bytes, mesh));
             }
             Err(kind) => faults.push(Fault::of(path, kind)),
         }
     }
-    report.hashed_only = expected.hashed_only.into_iter().collect();
+    report.hashed_only = expected.hashed_only.iter().cloned().collect();
     if options.physics {
-        let physics = physics_of(manifest.mesh, first_mesh.as_ref(), &terrain);
+        physics(manifest.mesh, meshes, &terrain, report, faults);
+    }
+}
+
+/// The physics smoke test of each distinct mesh the simulators would load
+/// (copies are one), or of the box set in block worlds.
+fn physics(
+    mode: MeshMode,
+    meshes: Vec<(&str, &[u8], terrain::ObjMesh)>,
+    terrain: &Terrain,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) {
+    let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
+    if mode == MeshMode::Single && !meshes.is_empty() {
+        let mut seen: Vec<&[u8]> = Vec::new();
+        for (path, bytes, mesh) in meshes {
+            if !seen.contains(&bytes) {
+                seen.push(bytes);
+                runs.push((
+                    Some(path),
+                    TerrainModel::Mesh {
+                        vertices: mesh.vertices,
+                        triangles: mesh.triangles,
+                    },
+                ));
+            }
+        }
+    } else {
+        runs.push((None, TerrainModel::boxes_of(terrain)));
+    }
+    for (path, model) in runs {
+        let physics = smoke_test(&model, terrain, SmokeTest::default());
         faults.extend(physics.errors.iter().map(|error| {
             Fault::new(
-                None,
+                path,
                 FaultKind::Physics {
                     error: error.clone(),
                 },
             )
         }));
-        report.physics = Some(physics);
+        report.physics.get_or_insert(physics);
     }
 }
 
@@ -228,7 +259,7 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
         .unwrap_or(bytes.len().min(want.len()));
     let text = std::str::from_utf8(want).is_ok();
     Some(FaultKind::Differs {
-        line: text.then(|| want[..byte].iter().filter(|&&b| b == b'\n').count() + 1),
+        line: text.then(|| line_of(want, byte)),
         byte,
     })
 }
@@ -295,18 +326,4 @@ fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, Stri
     }
     files.insert(MANIFEST.to_owned(), rebuilt.to_json().into_bytes());
     Ok(Expected { files, hashed_only })
-}
-
-/// The smoke test of a world's terrain as its simulators load it: the mesh
-/// read back from its (first) OBJ in single-mesh worlds, the box set
-/// otherwise, or when the OBJ could not be read (already a fault).
-fn physics_of(mesh: MeshMode, obj: Option<&terrain::ObjMesh>, terrain: &Terrain) -> PhysicsReport {
-    let model = match (mesh, obj) {
-        (MeshMode::Single, Some(mesh)) => TerrainModel::Mesh {
-            vertices: mesh.vertices.clone(),
-            triangles: mesh.triangles.clone(),
-        },
-        _ => TerrainModel::boxes_of(terrain),
-    };
-    smoke_test(&model, terrain, SmokeTest::default())
 }

@@ -77,17 +77,8 @@ pub fn summary(folder: &Path) -> String {
         Ok(report) => report,
         Err(e) => return format!("check: {e}"),
     };
-    let mut line = report.verdict();
-    let first = report
-        .batch_faults
-        .first()
-        .map(ToString::to_string)
-        .or_else(|| {
-            let world = report.worlds.iter().find(|r| !r.ok)?;
-            Some(format!("{}: {}", world.world, world.faults.first()?))
-        });
-    if let Some(first) = first {
-        line.push_str(&format!(" (first: {first})"));
+    match report.first_fault() {
+        Some(first) => format!("{} (first: {first})", report.verdict()),
+        None => report.verdict(),
     }
-    line
 }

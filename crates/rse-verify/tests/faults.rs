@@ -1,0 +1,610 @@
+//! Every fault kind, each found in a world damaged on purpose. Wherever a
+//! file is changed, its hash in `rse.json` is rewritten to match ("forged"),
+//! so only the deeper checks can tell.
+
+use std::path::{Path, PathBuf};
+
+use rse_core::Scheme;
+use rse_verify::{CheckOptions, FaultKind, WorldReport, check_paths, check_world};
+use rse_world::{Manifest, MeshMode, Targets, Templates, WorldOptions, build_world, sha256_hex};
+
+const ALL: &str = "obj,gazebo,webots,mujoco,urdf,usd";
+
+/// A small scheme with something of every height.
+const SCHEME: &str = "# size: 12x10\n# base: 0.05\ntype,height,angle,x1,y1,x2,y2\n\
+    random,2,,,,,\nwall,4,45,2,2,9,6\n";
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Writes world `index` of `scheme` into `dir/name` and returns its path.
+fn write_world(dir: &Path, name: &str, scheme: &str, templates: &Templates) -> PathBuf {
+    let scheme = Scheme::from_csv(scheme, None).unwrap();
+    let options = WorldOptions {
+        targets: Targets::parse(ALL).unwrap(),
+        mesh: MeshMode::Single,
+    };
+    let world = build_world(&scheme, 3, 1, name.to_owned(), &options, templates).unwrap();
+    let root = dir.join(name);
+    for (path, bytes) in &world.files {
+        let path = root.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, bytes).unwrap();
+    }
+    root
+}
+
+fn good_world(dir: &Path) -> PathBuf {
+    write_world(dir, "world_0001", SCHEME, &Templates::builtin())
+}
+
+/// Rewrites every hash in `rse.json` to match the files on disk, as a
+/// careful forger would.
+fn forge(world: &Path) {
+    let path = world.join("rse.json");
+    let mut manifest = Manifest::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    for (file, digest) in &mut manifest.files {
+        if let Ok(bytes) = std::fs::read(world.join(file)) {
+            *digest = sha256_hex(&bytes);
+        }
+    }
+    std::fs::write(&path, manifest.to_json()).unwrap();
+}
+
+/// Edits `rse.json` as a value.
+fn edit_manifest(world: &Path, edit: impl FnOnce(&mut Manifest)) {
+    let path = world.join("rse.json");
+    let mut manifest = Manifest::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    edit(&mut manifest);
+    std::fs::write(&path, manifest.to_json()).unwrap();
+}
+
+fn check(world: &Path) -> WorldReport {
+    check_world(world, CheckOptions::default())
+}
+
+/// The report must fail, with a fault of `file` matching `kind`.
+fn assert_fault(report: &WorldReport, file: Option<&str>, kind: impl Fn(&FaultKind) -> bool) {
+    assert!(!report.ok, "{report:#?}");
+    assert!(
+        report
+            .faults
+            .iter()
+            .any(|f| f.file.as_deref() == file && kind(&f.kind)),
+        "no such fault of {file:?} in {:#?}",
+        report.faults
+    );
+}
+
+#[test]
+fn an_untouched_world_is_good_and_fully_rebuilt() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = check(&good_world(dir.path()));
+    assert!(report.ok, "{:#?}", report.faults);
+    assert!(report.hashed_only.is_empty());
+    assert_eq!((report.seed, report.index), (Some(3), Some(1)));
+}
+
+#[test]
+fn unreadable_a_file_name_that_is_not_utf8() {
+    use std::os::unix::ffi::OsStrExt as _;
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let name = std::ffi::OsStr::from_bytes(b"bad\xffname");
+    std::fs::write(world.join(name), "x").unwrap();
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("bad\u{fffd}name"),
+        |k| matches!(k, FaultKind::Unreadable { reason } if reason.contains("UTF-8")),
+    );
+}
+
+#[test]
+fn not_a_file_a_link_out_of_the_world_is_not_followed() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    // A FIFO outside: reading it would block for ever, so a check that
+    // returns proves it was not read.
+    let fifo = dir.path().join("fifo");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    std::fs::remove_file(world.join("heightmap.csv")).unwrap();
+    std::os::unix::fs::symlink(&fifo, world.join("heightmap.csv")).unwrap();
+    let report = check(&world);
+    assert_fault(&report, Some("heightmap.csv"), |k| {
+        *k == FaultKind::NotAFile
+    });
+    assert_fault(&report, Some("heightmap.csv"), |k| *k == FaultKind::Missing);
+}
+
+#[test]
+fn outside_world_a_manifest_path_that_climbs_out_is_not_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let fifo = dir.path().join("fifo");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    for path in ["../fifo", "/etc/passwd", "a/../../fifo"] {
+        edit_manifest(&world, |m| {
+            m.files.insert(path.to_owned(), "0".repeat(64));
+        });
+    }
+    let report = check(&world);
+    for path in ["../fifo", "/etc/passwd", "a/../../fifo"] {
+        assert_fault(
+            &report,
+            Some("rse.json"),
+            |k| matches!(k, FaultKind::OutsideWorld { path: p } if p == path),
+        );
+    }
+}
+
+#[test]
+fn outside_world_a_reference_that_climbs_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let path = world.join("webots/rse.wbt");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let edited = text.replace("../meshes/terrain.obj", "../../../etc/passwd");
+    assert_ne!(text, edited);
+    std::fs::write(&path, edited).unwrap();
+    forge(&world);
+    let report = check(&world);
+    assert_fault(&report, Some("webots/rse.wbt"), |k| {
+        matches!(k, FaultKind::OutsideWorld { .. })
+    });
+}
+
+#[test]
+fn too_large_a_manifest_past_its_cap_is_not_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    // Sparse: no disk is used, and reading it would take a while.
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(world.join("rse.json"))
+        .unwrap();
+    file.set_len(rse_verify::limits::MAX_MANIFEST_BYTES + 1)
+        .unwrap();
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("rse.json"),
+        |k| matches!(k, FaultKind::TooLarge { bytes, .. } if *bytes == rse_verify::limits::MAX_MANIFEST_BYTES + 1),
+    );
+}
+
+#[test]
+fn bad_manifest_truncated_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let path = world.join("rse.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, &text[..text.len() / 2]).unwrap();
+    let report = check(&world);
+    assert_fault(&report, Some("rse.json"), |k| {
+        matches!(k, FaultKind::BadManifest { .. })
+    });
+    // An empty one and garbage too.
+    for bytes in [&b""[..], b"\x00\x01garbage"] {
+        std::fs::write(&path, bytes).unwrap();
+        let report = check(&world);
+        assert!(!report.ok);
+        assert_eq!(report.faults[0].file.as_deref(), Some("rse.json"));
+    }
+}
+
+#[test]
+fn bad_scheme_in_the_manifest() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    edit_manifest(&world, |m| m.scheme = m.scheme.replace("wall,", "tower,"));
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("rse.json"),
+        |k| matches!(k, FaultKind::BadScheme { reason } if reason.contains("tower")),
+    );
+}
+
+#[test]
+fn missing_a_deleted_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    std::fs::remove_file(world.join("gazebo/rse_terrain/meshes/terrain.obj")).unwrap();
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("gazebo/rse_terrain/meshes/terrain.obj"),
+        |k| *k == FaultKind::Missing,
+    );
+    assert_fault(
+        &report,
+        Some("gazebo/rse_terrain/model.sdf"),
+        |k| matches!(k, FaultKind::MissingReference { reference } if reference.contains("terrain.obj")),
+    );
+}
+
+#[test]
+fn unexpected_a_file_added_and_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    std::fs::write(world.join("webots/extra.txt"), "x").unwrap();
+    edit_manifest(&world, |m| {
+        m.files
+            .insert("webots/extra.txt".to_owned(), sha256_hex(b"x"));
+    });
+    let report = check(&world);
+    assert_fault(&report, Some("webots/extra.txt"), |k| {
+        *k == FaultKind::Unexpected
+    });
+}
+
+#[test]
+fn differs_text_and_binary_named_by_line_and_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let sdf = world.join("gazebo/rse.world");
+    let text = std::fs::read_to_string(&sdf).unwrap();
+    let line = text.lines().position(|l| l.contains("<gravity>")).unwrap() + 1;
+    std::fs::write(&sdf, text.replace("<gravity>0 0 -9.8", "<gravity>0 0 -1.6")).unwrap();
+    let png = world.join("preview.png");
+    let mut bytes = std::fs::read(&png).unwrap();
+    let middle = bytes.len() / 2;
+    bytes[middle] ^= 1;
+    std::fs::write(&png, bytes).unwrap();
+    forge(&world);
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("gazebo/rse.world"),
+        |k| matches!(k, FaultKind::Differs { line: Some(l), .. } if *l == line),
+    );
+    assert_fault(
+        &report,
+        Some("preview.png"),
+        |k| matches!(k, FaultKind::Differs { line: None, byte } if *byte == middle),
+    );
+    assert_fault(&report, Some("rse.json"), |k| {
+        matches!(k, FaultKind::Differs { .. })
+    });
+}
+
+#[test]
+fn hash_mismatch_of_a_file_from_user_templates() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    copy_tree(&repo().join("templates/gazebo"), &templates.join("gazebo"));
+    std::fs::write(templates.join("gazebo/notes.txt"), "our lab's notes\n").unwrap();
+    let custom = Templates::with_overrides(&templates).unwrap();
+    let world = write_world(dir.path(), "world_0001", SCHEME, &custom);
+    let report = check(&world);
+    assert!(report.ok, "{:#?}", report.faults);
+    assert!(
+        report.hashed_only.contains(&"gazebo/notes.txt".to_owned()),
+        "{:?}",
+        report.hashed_only
+    );
+    // Terrain files are still rebuilt: a forged heightmap is still found.
+    std::fs::write(world.join("gazebo/notes.txt"), "changed\n").unwrap();
+    let report = check(&world);
+    assert_fault(&report, Some("gazebo/notes.txt"), |k| {
+        *k == FaultKind::HashMismatch
+    });
+}
+
+#[test]
+fn too_large_a_file_from_user_templates_past_its_cap() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    copy_tree(&repo().join("templates/gazebo"), &templates.join("gazebo"));
+    std::fs::write(templates.join("gazebo/notes.txt"), "x").unwrap();
+    let custom = Templates::with_overrides(&templates).unwrap();
+    let world = write_world(dir.path(), "world_0001", SCHEME, &custom);
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(world.join("gazebo/notes.txt"))
+        .unwrap();
+    let cap = rse_verify::limits::file_cap(12 * 10);
+    file.set_len(cap + 1).unwrap();
+    let report = check(&world);
+    assert_fault(&report, Some("gazebo/notes.txt"), |k| {
+        *k == FaultKind::TooLarge {
+            bytes: cap + 1,
+            cap,
+        }
+    });
+}
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&entry.path(), &to.join(entry.file_name()));
+        } else {
+            std::fs::copy(entry.path(), to.join(entry.file_name())).unwrap();
+        }
+    }
+}
+
+/// Replaces line `y` (0-based) of the heightmap, adding 1 to column `x`.
+fn raise_cell(world: &Path, x: usize, y: usize) {
+    let path = world.join("heightmap.csv");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let mut cells: Vec<u32> = lines[y].split(',').map(|c| c.parse().unwrap()).collect();
+    cells[x] += 1;
+    lines[y] = cells
+        .iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join(",");
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+}
+
+#[test]
+fn height_differs_names_the_cell() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    raise_cell(&world, 4, 2);
+    forge(&world);
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("heightmap.csv"),
+        |k| matches!(k, FaultKind::HeightDiffers { x: 4, y: 2, found, expected } if *found == expected + 1),
+    );
+}
+
+#[test]
+fn bad_heightmap_garbage_and_wrong_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    for text in ["1,2,x\n", "1,2\n3,4\n", ""] {
+        std::fs::write(world.join("heightmap.csv"), text).unwrap();
+        forge(&world);
+        let report = check(&world);
+        assert_fault(&report, Some("heightmap.csv"), |k| {
+            matches!(k, FaultKind::BadHeightmap { .. })
+        });
+    }
+}
+
+#[test]
+fn not_text_a_world_file_that_is_not_utf8() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    std::fs::write(world.join("urdf/rse.urdf"), b"<robot>\xff\xfe</robot>").unwrap();
+    forge(&world);
+    let report = check(&world);
+    assert_fault(&report, Some("urdf/rse.urdf"), |k| *k == FaultKind::NotText);
+}
+
+#[test]
+fn bad_xml_broken_entity_bomb_and_deep() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let mjcf = world.join("mujoco/rse.xml");
+    let text = std::fs::read_to_string(&mjcf).unwrap();
+    let deep = "<a>".repeat(100_000) + &"</a>".repeat(100_000);
+    let bomb = "<?xml version=\"1.0\"?>\n<!DOCTYPE m [<!ENTITY a \"aaaaaaaaaa\">\
+        <!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\"><!ENTITY c \"&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;\">]>\n\
+        <mujoco file=\"&c;\"/>\n";
+    let huge = format!("<mujoco model=\"{}\">", "m".repeat(1 << 20));
+    for (bad, reason) in [
+        (text.replace("</worldbody>", ""), "expected"),
+        (bomb.to_owned(), "DTD"),
+        (deep, "nest deeper"),
+        (huge, ""),
+    ] {
+        std::fs::write(&mjcf, &bad).unwrap();
+        forge(&world);
+        let report = check(&world);
+        assert_fault(
+            &report,
+            Some("mujoco/rse.xml"),
+            |k| matches!(k, FaultKind::BadXml { reason: r, .. } if r.contains(reason)),
+        );
+    }
+}
+
+#[test]
+fn missing_and_absolute_references() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let urdf = world.join("urdf/rse.urdf");
+    let text = std::fs::read_to_string(&urdf).unwrap();
+    let edited = text.replacen("../meshes/terrain.obj", "/abs/terrain.obj", 1);
+    let edited = edited.replacen("../meshes/terrain.obj", "../meshes/none.obj", 1);
+    std::fs::write(&urdf, edited).unwrap();
+    forge(&world);
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("urdf/rse.urdf"),
+        |k| matches!(k, FaultKind::AbsoluteReference { reference } if reference == "/abs/terrain.obj"),
+    );
+    assert_fault(
+        &report,
+        Some("urdf/rse.urdf"),
+        |k| matches!(k, FaultKind::MissingReference { reference } if reference == "../meshes/none.obj"),
+    );
+}
+
+/// Replaces `meshes/terrain.obj` by `text` and forges the hashes.
+fn replace_obj(world: &Path, text: &str) -> WorldReport {
+    std::fs::write(world.join("meshes/terrain.obj"), text).unwrap();
+    forge(world);
+    check(world)
+}
+
+#[test]
+fn bad_obj_non_finite_bad_indices_garbage_and_non_triangles() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let good = std::fs::read_to_string(world.join("meshes/terrain.obj")).unwrap();
+    let first_v = good
+        .lines()
+        .find(|l| l.starts_with("v "))
+        .unwrap()
+        .to_owned();
+    let cases = [
+        good.replacen(&first_v, "v inf 0 0", 1),
+        good.replacen(&first_v, "v NaN 0 0", 1),
+        good.replacen(&first_v, "v 1e308 0 0", 1),
+        good + "f 1//1 2//1 999999//1\n",
+        "f 0 1 2\n".to_owned(),
+        "f -5 -6 -7\n".to_owned(),
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n".to_owned(),
+        "\u{0}\u{1}garbage".to_owned(),
+    ];
+    for case in &cases {
+        let report = replace_obj(&world, case);
+        assert_fault(&report, Some("meshes/terrain.obj"), |k| {
+            matches!(k, FaultKind::BadObj { .. })
+        });
+    }
+}
+
+#[test]
+fn bad_mesh_a_hole() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let good = std::fs::read_to_string(world.join("meshes/terrain.obj")).unwrap();
+    let first_f = good.lines().find(|l| l.starts_with("f ")).unwrap();
+    let report = replace_obj(&world, &good.replacen(&format!("{first_f}\n"), "", 1));
+    assert_fault(
+        &report,
+        Some("meshes/terrain.obj"),
+        |k| matches!(k, FaultKind::BadMesh { first, .. } if first.contains("edge")),
+    );
+}
+
+/// The OBJ of another terrain, written into the world.
+fn obj_of(scheme: &str) -> String {
+    let scheme = Scheme::from_csv(scheme, None).unwrap();
+    let terrain = rse_core::generate(&scheme, 3, 1);
+    rse_core::export::obj(&terrain.mesh(), Some("terrain.mtl"))
+}
+
+const PEAK_A: &str = "# size: 10x10\n# base: 0.05\ntype,height,angle,x1,y1\npeak,3,90,2,5\n";
+
+#[test]
+fn volume_bounds_and_tops_of_a_sound_mesh_of_another_terrain() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = write_world(dir.path(), "world_0001", PEAK_A, &Templates::builtin());
+    // One more block: same bounds, more volume.
+    let more = obj_of(&format!("{PEAK_A}peak,1,90,8,8\n"));
+    let report = replace_obj(&world, &more);
+    assert_fault(
+        &report,
+        Some("meshes/terrain.obj"),
+        |k| matches!(k, FaultKind::VolumeDiffers { measured, expected } if measured > expected),
+    );
+    // Taller: other bounds.
+    let taller = obj_of(&PEAK_A.replace("peak,3,", "peak,5,"));
+    let report = replace_obj(&world, &taller);
+    assert_fault(&report, Some("meshes/terrain.obj"), |k| {
+        matches!(k, FaultKind::BoundsDiffer { .. })
+    });
+    // The peak elsewhere: same volume, same bounds, tops misplaced.
+    let moved = obj_of(&PEAK_A.replace(",2,5", ",7,5"));
+    let report = replace_obj(&world, &moved);
+    assert_fault(&report, Some("meshes/terrain.obj"), |k| {
+        matches!(k, FaultKind::TopMisplaced { .. })
+    });
+    assert!(
+        !report.faults.iter().any(|f| matches!(
+            f.kind,
+            FaultKind::VolumeDiffers { .. } | FaultKind::BoundsDiffer { .. }
+        )),
+        "{:#?}",
+        report.faults
+    );
+}
+
+#[test]
+fn physics_bodies_fall_through_a_mesh_without_tops() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let good = std::fs::read_to_string(world.join("meshes/terrain.obj")).unwrap();
+    // Drop every upward face (normal 5 is +z).
+    let holed: String = good
+        .split_inclusive('\n')
+        .filter(|l| !(l.starts_with("f ") && l.contains("//5 ")))
+        .collect();
+    std::fs::write(world.join("meshes/terrain.obj"), holed).unwrap();
+    forge(&world);
+    let report = check_world(&world, CheckOptions { physics: true });
+    assert!(report.physics.is_some());
+    assert_fault(
+        &report,
+        Some("meshes/terrain.obj"),
+        |k| matches!(k, FaultKind::Physics { error } if error.contains("sank")),
+    );
+}
+
+#[test]
+fn leftover_and_duplicate_worlds_of_a_batch() {
+    let dir = tempfile::tempdir().unwrap();
+    let batch = dir.path().join("batch");
+    write_world(&batch, "world_0001", SCHEME, &Templates::builtin());
+    write_world(&batch, "world_00001", SCHEME, &Templates::builtin());
+    std::fs::create_dir_all(batch.join(".world_0002.tmp-999/meshes")).unwrap();
+    let report = check_paths(
+        std::slice::from_ref(&batch),
+        CheckOptions::default(),
+        &|| {},
+    )
+    .unwrap();
+    assert!(!report.ok());
+    assert_eq!(report.checked, 2, "a leftover is not a world");
+    let kinds: Vec<&FaultKind> = report.batch_faults.iter().map(|f| &f.kind).collect();
+    assert!(kinds.contains(&&FaultKind::Leftover), "{kinds:?}");
+    assert!(
+        kinds
+            .iter()
+            .any(|k| matches!(k, FaultKind::Duplicate { of } if of.ends_with("world_00001"))),
+        "{kinds:?}"
+    );
+    assert!(
+        report.verdict().contains("2 batch faults"),
+        "{}",
+        report.verdict()
+    );
+}
+
+#[test]
+fn faults_serialise_with_their_kind_and_fields() {
+    let fault = rse_verify::Fault::of(
+        "heightmap.csv",
+        FaultKind::HeightDiffers {
+            x: 1,
+            y: 2,
+            found: 3,
+            expected: 4,
+        },
+    );
+    let json = serde_json::to_value(&fault).unwrap();
+    assert_eq!(json["kind"], "height_differs");
+    assert_eq!(json["file"], "heightmap.csv");
+    assert_eq!(json["x"], 1);
+    assert_eq!(json["expected"], 4);
+    assert_eq!(
+        json["message"],
+        "cell (1, 2) is 3, but the world regenerated from rse.json has 4"
+    );
+}
