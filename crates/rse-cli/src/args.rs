@@ -18,10 +18,13 @@ use rse_world::{MeshMode, Shard, Targets};
     max_term_width = 100
 )]
 pub struct Cli {
+    // Plain comments: clap would show doc comments in the help.
     #[command(subcommand)]
+    #[allow(missing_docs)]
     pub command: Command,
 
     #[command(flatten)]
+    #[allow(missing_docs)]
     pub overrides: SchemeOverrides,
 }
 

@@ -4,35 +4,11 @@ use std::io::Write as _;
 use std::process::ExitCode;
 
 use clap::Parser as _;
-
-mod args;
-mod commands;
-mod output;
-
-/// How a run ended: 0 success, 1 a check or validation failed, 2 usage or I/O error.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ExitStatus {
-    /// Everything asked for was done.
-    Success,
-    /// The command ran, and what it checked failed.
-    Failure,
-    /// Bad input, usage or I/O.
-    Error,
-}
-
-impl From<ExitStatus> for ExitCode {
-    fn from(status: ExitStatus) -> Self {
-        match status {
-            ExitStatus::Success => ExitCode::SUCCESS,
-            ExitStatus::Failure => ExitCode::from(1),
-            ExitStatus::Error => ExitCode::from(2),
-        }
-    }
-}
+use rse_cli::{Cli, ExitStatus};
 
 fn main() -> ExitCode {
-    let cli = args::Cli::parse();
-    match commands::run(cli) {
+    let cli = Cli::parse();
+    match rse_cli::run(cli) {
         Ok(status) => status.into(),
         Err(error) => {
             // A closed pipe (`rse-gen heightmap … | head`) is not a failure.

@@ -12,7 +12,7 @@ use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
 /// A rayon pool of `jobs` threads (`None`: one per core).
-fn pool(jobs: Option<usize>) -> PyResult<rayon::ThreadPool> {
+pub fn pool(jobs: Option<usize>) -> PyResult<rayon::ThreadPool> {
     if jobs == Some(0) {
         return Err(PyValueError::new_err("jobs must be at least 1"));
     }

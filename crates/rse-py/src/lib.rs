@@ -9,6 +9,7 @@
 use pyo3::prelude::*;
 
 mod batch;
+mod check;
 mod errors;
 mod scheme;
 mod terrain;
@@ -24,5 +25,6 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
+    m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
     Ok(())
 }

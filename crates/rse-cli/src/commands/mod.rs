@@ -10,7 +10,7 @@ use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
 mod batch;
 pub mod check;
-mod edit;
+pub mod edit;
 mod heightmap;
 mod mesh;
 mod preview;

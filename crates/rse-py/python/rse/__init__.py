@@ -18,13 +18,18 @@ from rse._rse import (
     generate_batch,
     write_worlds,
 )
+from rse._check import CheckReport, Fault, WorldReport, check
 
 __all__ = [
+    "CheckReport",
+    "Fault",
     "Obstacle",
     "Scheme",
     "SchemeError",
     "Terrain",
+    "WorldReport",
     "__version__",
+    "check",
     "generate_batch",
     "write_worlds",
 ]

@@ -28,8 +28,11 @@ pub struct Editor {
 /// Progress of a Generate run.
 #[derive(Default)]
 pub struct Job {
+    /// A batch is being written.
     pub running: Mutex<bool>,
+    /// Worlds written so far.
     pub done: AtomicU64,
+    /// Worlds to write.
     pub total: AtomicU64,
     /// The outcome line, or the error, once finished.
     pub result: Mutex<Option<Result<String, String>>>,

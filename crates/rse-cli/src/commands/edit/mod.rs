@@ -2,7 +2,7 @@
 //! obstacle table, a live top-down and 3D preview, load, save, generate.
 //! The page and its script are part of the binary.
 
-mod api;
+pub mod api;
 mod http;
 mod model;
 

@@ -1,0 +1,29 @@
+//! `rse.check`: the worlds under some paths verified by `rse_verify`, with
+//! the GIL released. The report crosses into Python as the same JSON that
+//! `rse-gen check --json` prints; `rse/_check.py` makes it dataclasses.
+
+use pyo3::exceptions::{PyNotADirectoryError, PyOSError, PyValueError};
+use pyo3::prelude::*;
+use rse_verify::{CheckOptions, DiscoverError, check_paths};
+
+use crate::batch::pool;
+
+/// The `check` report of the worlds under `paths`, as JSON text.
+#[pyfunction]
+#[pyo3(signature = (paths, physics=false, jobs=None))]
+pub fn _check_json(
+    py: Python<'_>,
+    paths: Vec<std::path::PathBuf>,
+    physics: bool,
+    jobs: Option<usize>,
+) -> PyResult<String> {
+    let pool = pool(jobs)?;
+    let report = py
+        .detach(|| pool.install(|| check_paths(&paths, CheckOptions { physics }, &|| {})))
+        .map_err(|e| match e {
+            DiscoverError::NotAFolder(_) => PyNotADirectoryError::new_err(e.to_string()),
+            DiscoverError::Unreadable { .. } => PyOSError::new_err(e.to_string()),
+            _ => PyValueError::new_err(e.to_string()),
+        })?;
+    serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))
+}

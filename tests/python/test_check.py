@@ -1,0 +1,88 @@
+"""``rse.check`` from Python: the same verdicts and faults as
+``rse-gen check --json`` on the same folders, typed for matching."""
+
+import json
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import rse
+from conftest import SCHEMES, rse_gen_path
+
+
+def write(out: Path, amount: int = 3) -> Path:
+    scheme = rse.Scheme.load(SCHEMES / "six_obstacles.csv")
+    rse.write_worlds(scheme, out, amount=amount, targets="obj,gazebo,mujoco,urdf")
+    return out
+
+
+def cli_report(*paths: Path) -> dict:
+    done = subprocess.run(
+        [str(rse_gen_path()), "check", "--json", *map(str, paths)], capture_output=True, text=True
+    )
+    assert done.returncode in (0, 1), done.stderr
+    return json.loads(done.stdout)
+
+
+def test_a_good_batch_and_one_world_are_ok(tmp_path: Path) -> None:
+    batch = write(tmp_path / "b")
+    report = rse.check(batch)
+    assert report.ok and bool(report)
+    assert (report.checked, report.failed) == (3, 0)
+    assert all(w.ok and w.faults == [] and w.hashed_only == [] for w in report.worlds)
+    assert [w.index for w in report.worlds] == [0, 1, 2]
+    one = rse.check(batch / "world_0001")
+    assert one.checked == 1 and one.ok
+
+
+def test_a_damaged_world_gives_typed_faults_as_the_cli_does(tmp_path: Path) -> None:
+    batch = write(tmp_path / "b")
+    heightmap = batch / "world_0002" / "heightmap.csv"
+    lines = heightmap.read_text().splitlines()
+    cells = lines[3].split(",")
+    cells[5] = str(int(cells[5]) + 1)
+    lines[3] = ",".join(cells)
+    heightmap.write_text("\n".join(lines) + "\n")
+    (batch / "world_0000" / "mujoco" / "extra.txt").write_text("x")
+
+    report = rse.check(batch)
+    assert not report.ok and report.failed == 2
+    bad = {Path(w.world).name: w for w in report.worlds if not w.ok}
+    height = [f for f in bad["world_0002"].faults if f.kind == "height_differs"]
+    assert len(height) == 1
+    assert height[0].file == "heightmap.csv"
+    assert (height[0].details["x"], height[0].details["y"]) == (5, 3)
+    assert height[0].details["found"] == height[0].details["expected"] + 1
+    assert [f.kind for f in bad["world_0000"].faults] == ["unexpected"]
+    assert str(bad["world_0000"].faults[0]) == (
+        "mujoco/extra.txt: not a file of the world regenerated from rse.json"
+    )
+
+    cli = cli_report(batch)
+    assert (cli["checked"], cli["failed"]) == (report.checked, report.failed)
+    for ours, theirs in zip(report.worlds, cli["worlds"]):
+        assert [(f.kind, f.file, f.message) for f in ours.faults] == [
+            (f["kind"], f.get("file"), f["message"]) for f in theirs["faults"]
+        ]
+
+
+def test_physics_reports_the_smoke_test(tmp_path: Path) -> None:
+    batch = write(tmp_path / "b", amount=1)
+    report = rse.check(batch, physics=True)
+    assert report.ok, [str(f) for w in report.worlds for f in w.faults]
+    physics = report.worlds[0].physics
+    assert physics is not None and physics["bodies"] == 20 and physics["errors"] == []
+
+
+def test_batch_faults_and_bad_paths(tmp_path: Path) -> None:
+    batch = write(tmp_path / "b", amount=1)
+    (batch / ".world_0001.tmp-4242").mkdir()
+    report = rse.check(batch)
+    assert [f.kind for f in report.batch_faults] == ["leftover"]
+    assert not report.ok and report.failed == 0
+    with pytest.raises(NotADirectoryError, match="is not a folder"):
+        rse.check(tmp_path / "nowhere")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ValueError, match="holds no world"):
+        rse.check(tmp_path / "empty")
