@@ -15,6 +15,7 @@ __all__ = [
     "generate_batch",
     "write_worlds",
     "_time_generate",
+    "_check_json",
 ]
 
 __version__: str
