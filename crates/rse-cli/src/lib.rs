@@ -36,4 +36,3 @@ impl From<ExitStatus> for ExitCode {
         }
     }
 }
-

@@ -92,6 +92,7 @@ impl Scheme {
         let grid = globals.grid();
         for (i, obstacle) in obstacles.iter().enumerate() {
             check_inside(obstacle, grid).map_err(|e| origin.locate_obstacle(e, i))?;
+            check_height(obstacle, &globals).map_err(|e| origin.locate_obstacle(e, i))?;
         }
         Ok(Scheme {
             globals,
@@ -183,6 +184,27 @@ impl Scheme {
     pub fn file(&self) -> Option<&str> {
         self.origin.file.as_deref()
     }
+}
+
+/// An obstacle's height (its range's top) must not make a wall too slender
+/// for an exact `f32` mesh.
+fn check_height(obstacle: &Obstacle, globals: &Globals) -> Result<(), SchemeError> {
+    let Some(height) = obstacle.fields().height else {
+        return Ok(());
+    };
+    let (top, limit) = (
+        globals.top(height.hi()),
+        crate::globals::MAX_TOP_IN_BLOCKS * globals.block_size,
+    );
+    if top > limit {
+        return Err(SchemeError::new(SchemeErrorKind::TooTall {
+            height: height.hi(),
+            top,
+            limit,
+        })
+        .with_field("height"));
+    }
+    Ok(())
 }
 
 fn check_inside(obstacle: &Obstacle, grid: Grid) -> Result<(), SchemeError> {

@@ -197,6 +197,44 @@ fn negative_and_too_large_heights() {
     assert_eq!(e.kind, SchemeErrorKind::HeightTooLarge(70000));
 }
 
+/// Once accepted, and `check` then failed the worlds: a wall 6,553 m tall
+/// and 0.1 m wide has corners within one f32 unit of its other edges.
+#[test]
+fn heights_too_tall_for_an_exact_mesh() {
+    let e = refuse(&format!("{HEAD}random,65535,,,,,\n"));
+    assert_at(&e, 3, Some(2), "height");
+    assert!(
+        matches!(e.kind, SchemeErrorKind::TooTall { height: 65535, .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("1000 block sizes"), "{e}");
+    // The top of a range counts; 1000 steps of 0.1 m on 0.1 m blocks is
+    // the most there is.
+    let e = refuse(&format!("{HEAD}peak,1..1001,90,1,1,,\n"));
+    assert!(matches!(e.kind, SchemeErrorKind::TooTall { .. }), "{e}");
+    scheme(&format!("{HEAD}random,1000,,,,,\n"));
+    // A larger block size allows more.
+    scheme(&format!("# block_size: 1\n{HEAD}random,10000,,,,,\n"));
+}
+
+#[test]
+fn globals_whose_products_are_not_finite() {
+    for (text, line, key) in [
+        ("# step_height: 1e308\ntype,height\n", 1, "step_height"),
+        ("# base: 1e308\ntype,height\n", 1, "base"),
+        ("# block_size: 1e308\ntype,height\n", 1, "block_size"),
+        (
+            "# size: 10000x10\n# block_size: 100\ntype,height\n",
+            2,
+            "block_size",
+        ),
+    ] {
+        let e = refuse(text);
+        assert_at(&e, line, None, key);
+        assert!(!e.to_string().contains("0000000000"), "{e}");
+    }
+}
+
 #[test]
 fn angle_outside_0_to_90() {
     for angle in ["91", "-1", "30..95"] {

@@ -28,5 +28,5 @@ mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
 pub use fault::{Fault, FaultKind};
-pub use terrain::{ObjMesh, read_obj};
+pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
 pub use world::{CheckOptions, WorldReport, check_world};

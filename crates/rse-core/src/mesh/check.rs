@@ -48,25 +48,26 @@ pub enum MeshFault {
         /// The vertex.
         vertex: u32,
     },
-    /// Edges so long against the shortest one that looking for T-junctions
-    /// would take more than [`MAX_BUCKET_VISITS_PER_ELEMENT`] steps per
-    /// edge and vertex: no terrain mesh is like that, a damaged one can be.
+    /// A mesh so irregular (vertices crowded where long edges pass) that
+    /// looking for T-junctions would take more than
+    /// [`MAX_SEARCH_STEPS_PER_ELEMENT`] steps per edge and vertex: no
+    /// terrain mesh is like that, a damaged or hostile one can be.
     TooIrregular {
-        /// The buckets the T-junction search would have visited.
-        bucket_visits: u64,
+        /// The steps taken when the search gave up.
+        search_steps: u64,
     },
 }
 
-/// The T-junction search visits at most this many grid buckets per edge
-/// and vertex of a mesh (plus [`MIN_BUCKET_VISITS`]). A terrain mesh needs
-/// a few: its edges are a few of its shortest edge long, and a long one
-/// lies along one axis. Past the cap the mesh is reported, not searched,
-/// so a hostile mesh (a vertex at 10^30 m) cannot make the check run for
-/// ever.
-pub const MAX_BUCKET_VISITS_PER_ELEMENT: u64 = 64;
+/// The T-junction search takes at most this many steps (a bucket visited,
+/// a vertex tested) per edge and vertex of a mesh, plus
+/// [`MIN_SEARCH_STEPS`]. A terrain mesh needs a handful: buckets grow
+/// until long edges walk few of them, and its vertices are spread evenly.
+/// Past the cap the mesh is reported, not searched, so a hostile mesh
+/// cannot make the check run for ever.
+pub const MAX_SEARCH_STEPS_PER_ELEMENT: u64 = 256;
 
-/// Bucket visits always allowed, however small the mesh.
-pub const MIN_BUCKET_VISITS: u64 = 1 << 20;
+/// Search steps always allowed, however small the mesh.
+pub const MIN_SEARCH_STEPS: u64 = 1 << 22;
 
 impl std::fmt::Display for MeshFault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -98,9 +99,9 @@ impl std::fmt::Display for MeshFault {
             MeshFault::NonFinite { vertex } => {
                 write!(f, "vertex {vertex} has a coordinate that is not finite")
             }
-            MeshFault::TooIrregular { bucket_visits } => write!(
+            MeshFault::TooIrregular { search_steps } => write!(
                 f,
-                "edges too long against the shortest to search for T-junctions ({bucket_visits} bucket visits)"
+                "too irregular to search for T-junctions (gave up after {search_steps} steps)"
             ),
         }
     }
@@ -244,33 +245,57 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
     if !shortest.is_finite() {
         return Vec::new();
     }
-    let bucket = |p: [f64; 3]| p.map(|c| (c / shortest).floor() as i64);
-    // The search's cost, counted before it starts (casts saturate, spans
-    // are added in u128): bounded, whatever the coordinates.
-    let visits = undirected
-        .iter()
-        .map(|&(a, b)| {
-            let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
-            let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
-            (0..3).fold(1u128, |n, i| {
-                n.saturating_mul((i128::from(hi[i]) - i128::from(lo[i])) as u128 + 1)
-            })
-        })
-        .fold(0u128, u128::saturating_add);
-    let budget = MAX_BUCKET_VISITS_PER_ELEMENT
+    let budget = MAX_SEARCH_STEPS_PER_ELEMENT
         .saturating_mul((undirected.len() + vertices.len()) as u64)
-        .saturating_add(MIN_BUCKET_VISITS);
-    if visits > u128::from(budget) {
-        return vec![MeshFault::TooIrregular {
-            bucket_visits: u64::try_from(visits).unwrap_or(u64::MAX),
-        }];
+        .saturating_add(MIN_SEARCH_STEPS);
+    // Buckets as small as the shortest edge keep few vertices in each; but
+    // an edge thousands of times longer (a 65,535-step tower) would walk
+    // thousands of them. Double the bucket until the walk fits half the
+    // budget. The walk's length is counted before it starts (casts
+    // saturate, spans are summed in u128): bounded, whatever the
+    // coordinates.
+    let bucket_of = |size: f64| move |p: [f64; 3]| p.map(|c| (c / size).floor() as i64);
+    let visits = |size: f64| {
+        let bucket = bucket_of(size);
+        undirected
+            .iter()
+            .map(|&(a, b)| {
+                let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
+                let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
+                (0..3).fold(1u128, |n, i| {
+                    n.saturating_mul((i128::from(hi[i]) - i128::from(lo[i])) as u128 + 1)
+                })
+            })
+            .fold(0u128, u128::saturating_add)
+    };
+    let mut size = shortest;
+    while visits(size) > u128::from(budget / 2) && (size * 2.0).is_finite() {
+        size *= 2.0;
     }
+    let bucket = bucket_of(size);
     let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
     for (v, &p) in vertices.iter().enumerate() {
         buckets.entry(bucket(point(p))).or_default().push(v as u32);
     }
-    let tolerance = 1e-6 * scale;
+    // A vertex meant to lie on an edge is off it by its rounding to f32
+    // alone: half a unit in the last place per coordinate. Two units of the
+    // largest coordinate catch every such vertex; a looser tolerance
+    // (relative to the mesh's extent) flagged true corners of long, thin
+    // wall triangles, which sit a hundred microns from the far edge.
+    let largest = vertices
+        .iter()
+        .flat_map(|p| p.iter().map(|c| f64::from(c.abs())))
+        .fold(0.0, f64::max);
+    let tolerance = 2.0 * f64::from(f32::EPSILON) * largest.max(scale * 1e-3);
     let mut found = Vec::new();
+    // Every bucket visited and every vertex tested is a step; past the
+    // budget the mesh is reported instead of searched.
+    let mut steps = 0u64;
+    let too_irregular = |steps: u64| {
+        vec![MeshFault::TooIrregular {
+            search_steps: steps,
+        }]
+    };
     for &(a, b) in &undirected {
         let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
         let d = sub(q, p);
@@ -279,7 +304,12 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
-                    for &v in buckets.get(&[x, y, z]).into_iter().flatten() {
+                    let inside = buckets.get(&[x, y, z]).map_or(&[][..], Vec::as_slice);
+                    steps = steps.saturating_add(1 + inside.len() as u64);
+                    if steps > budget {
+                        return too_irregular(steps);
+                    }
+                    for &v in inside {
                         if v == a || v == b {
                             continue;
                         }
@@ -393,16 +423,21 @@ mod tests {
             v[3][0] = bad;
             assert_eq!(faults(&v, &t), [MeshFault::NonFinite { vertex: 3 }]);
         }
-        // A finite but absurd vertex: the search would visit ~10^37
-        // buckets; it is reported instead.
+        // A finite but absurd vertex: buckets grow until the walk is short,
+        // and the answer comes at once.
         let (mut v, t) = cube();
         v[7] = [1e30, 1.0, 1.0];
+        let _ = faults(&v, &t);
+        // Thousands of vertices crowded where thousands of edges pass: the
+        // search gives up past its budget instead of testing every pair.
+        let n = 6000u32;
+        let mut v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        v.extend((0..n).map(|k| [0.5, 1e-3 * (k + 1) as f32, 0.0]));
+        let t: Vec<[u32; 3]> = (2..n + 2).map(|k| [0, 1, k]).collect();
         assert!(
             faults(&v, &t)
                 .iter()
-                .any(|f| matches!(f, MeshFault::TooIrregular { .. })),
-            "{:?}",
-            faults(&v, &t)
+                .any(|f| matches!(f, MeshFault::TooIrregular { .. }))
         );
     }
 
