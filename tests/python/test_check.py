@@ -86,3 +86,23 @@ def test_batch_faults_and_bad_paths(tmp_path: Path) -> None:
     (tmp_path / "empty").mkdir()
     with pytest.raises(ValueError, match="holds no world"):
         rse.check(tmp_path / "empty")
+
+
+def test_one_default_seed_everywhere(tmp_path: Path) -> None:
+    """A scheme's `# seed:` is the default of the CLI and of every Python
+    call alike (Scheme.generate and generate_batch once ignored it)."""
+    text = (SCHEMES / "six_obstacles.csv").read_text()
+    path = tmp_path / "seeded.csv"
+    path.write_text("# seed: 7\n" + text)
+    scheme = rse.Scheme.load(path)
+    cli = subprocess.run(
+        [str(rse_gen_path()), "heightmap", str(path), "--index", "2"], capture_output=True, text=True, check=True
+    ).stdout
+    cli_heights = [[int(v) for v in line.split(",")] for line in cli.splitlines()]
+    assert scheme.generate(index=2).heights.tolist() == cli_heights
+    assert scheme.generate(seed=7, index=2).heights.tolist() == cli_heights
+    assert scheme.generate(seed=0, index=2).heights.tolist() != cli_heights
+    assert rse.generate_batch(scheme, 3)[2].heights.tolist() == cli_heights
+    rse.write_worlds(scheme, tmp_path / "w", amount=3, targets="obj")
+    written = (tmp_path / "w" / "world_0002" / "heightmap.csv").read_text()
+    assert [[int(v) for v in line.split(",")] for line in written.splitlines()] == cli_heights

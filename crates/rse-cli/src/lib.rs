@@ -11,10 +11,12 @@ mod output;
 pub use args::Cli;
 pub use commands::run;
 
-/// The editor's JSON API handlers (request body in, JSON answer out), for
-/// the fuzz targets.
+/// The editor's pure JSON API handlers (request body in, JSON answer out),
+/// for the fuzz targets.
 #[doc(hidden)]
-pub use commands::edit::api as editor_api;
+pub mod editor_api {
+    pub use crate::commands::edit::api::{Answer, parse, preview};
+}
 
 /// How a run ended: 0 success, 1 a check or validation failed, 2 usage or I/O error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,6 +27,8 @@ pub enum ExitStatus {
     Failure,
     /// Bad input, usage or I/O.
     Error,
+    /// Stopped by Ctrl-C (exit 130, as a shell reports SIGINT).
+    Interrupted,
 }
 
 impl From<ExitStatus> for ExitCode {
@@ -33,6 +37,7 @@ impl From<ExitStatus> for ExitCode {
             ExitStatus::Success => ExitCode::SUCCESS,
             ExitStatus::Failure => ExitCode::from(1),
             ExitStatus::Error => ExitCode::from(2),
+            ExitStatus::Interrupted => ExitCode::from(130),
         }
     }
 }

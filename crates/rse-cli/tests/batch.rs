@@ -121,6 +121,46 @@ fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
     assert_same_tree(&clean, &killed);
 }
 
+/// Ctrl-C (SIGINT) once exited silently: now the worlds being written are
+/// finished, the run says what it kept and that a rerun resumes, and exits
+/// 130; the rerun ends identical to an uninterrupted run.
+#[test]
+fn ctrl_c_says_what_was_kept_and_a_rerun_finishes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (clean, stopped) = (dir.path().join("clean"), dir.path().join("stopped"));
+    let common = ["--amount", "400", "--target", "obj", "--jobs", "2"];
+    stdout(&batch(&clean, &common));
+    let child = Command::new(env!("CARGO_BIN_EXE_rse-gen"))
+        .args(["batch", "schemes/six_obstacles.csv", "-o"])
+        .arg(&stopped)
+        .args(common)
+        .current_dir(repo())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Once the first world is there, the run is under way.
+    while !stopped.join("world_0000").exists() {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let pid = child.id().to_string();
+    assert!(
+        Command::new("kill")
+            .args(["-INT", &pid])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let done = child.wait_with_output().unwrap();
+    let message = String::from_utf8_lossy(&done.stderr).into_owned();
+    assert_eq!(done.status.code(), Some(130), "{message}");
+    assert!(message.contains("rse-gen: interrupted:"), "{message}");
+    assert!(message.contains("Rerun the same command"), "{message}");
+    assert!(message.contains("not started"), "{message}");
+    assert!(stdout(&batch(&stopped, &common)).is_empty());
+    assert_same_tree(&clean, &stopped);
+}
+
 #[test]
 fn a_rerun_skips_whole_worlds_and_changes_nothing() {
     let dir = tempfile::tempdir().unwrap();
@@ -141,6 +181,30 @@ fn a_rerun_skips_whole_worlds_and_changes_nothing() {
         stderr(&again)
     );
     assert_eq!(before, tree(dir.path()));
+}
+
+/// A grown batch keeps its worlds: names depend on the index alone (from
+/// 10,000 to 10,001 worlds the width once changed and every world was
+/// written again beside the old ones).
+#[test]
+fn a_grown_batch_keeps_its_worlds_and_adds_the_new_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    assert!(batch(dir.path(), &["--amount", "3"]).status.success());
+    let grown = batch(dir.path(), &["--amount", "5"]);
+    assert!(
+        stderr(&grown).contains("2 written, 3 already there"),
+        "{}",
+        stderr(&grown)
+    );
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(names.len(), 5, "{names:?}");
+    assert!(
+        names.iter().all(|n| n.len() == "world_0000".len()),
+        "{names:?}"
+    );
 }
 
 #[test]

@@ -11,6 +11,9 @@
 //! corruption of good files rarely does. Proptest stays where it fits, on
 //! generated schemes and meshes (`rse-core/tests/properties.rs`).
 
+// A body panics when a property breaks: that is how libFuzzer hears of it.
+#![allow(clippy::missing_panics_doc)]
+
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -22,9 +25,12 @@ use rse_world::{Manifest, MeshMode, Targets, Templates, WorldOptions, build_worl
 /// a big grid is slow, not wrong, and would read as a time-out.
 pub const MAX_FUZZ_CELLS: usize = 4096;
 
+/// A target's body: bytes in, a panic if a property breaks.
+pub type Body = fn(&[u8]);
+
 /// Every target: its name (the folder of its seeds and regressions) and
 /// its body.
-pub const TARGETS: &[(&str, fn(&[u8]))] = &[
+pub const TARGETS: &[(&str, Body)] = &[
     ("scheme", scheme),
     ("obj", obj),
     ("manifest", manifest),

@@ -22,19 +22,21 @@ pub fn pool(jobs: Option<usize>) -> PyResult<rayon::ThreadPool> {
         .map_err(|e| PyValueError::new_err(format!("cannot start worker threads: {e}")))
 }
 
-/// Worlds `0..amount` of seed `seed`, generated in parallel on `jobs`
+/// Worlds `0..amount` of seed `seed` (default: the scheme's `# seed:`,
+/// else 0, as on the command line), generated in parallel on `jobs`
 /// threads with the GIL released; the same terrains whatever `jobs` is.
 #[pyfunction]
-#[pyo3(signature = (scheme, amount, seed=0, jobs=None))]
+#[pyo3(signature = (scheme, amount, seed=None, jobs=None))]
 pub fn generate_batch(
     py: Python<'_>,
     scheme: &Scheme,
     amount: u64,
-    seed: u64,
+    seed: Option<u64>,
     jobs: Option<usize>,
 ) -> PyResult<Vec<Terrain>> {
     let pool = pool(jobs)?;
     let scheme = &scheme.inner;
+    let seed = seed.unwrap_or(scheme.globals().seed);
     let terrains: Vec<rse_core::Terrain> = py.detach(|| {
         pool.install(|| {
             (0..amount)

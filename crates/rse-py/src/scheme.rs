@@ -254,10 +254,12 @@ impl Scheme {
         self.inner.globals().seed
     }
 
-    /// World `index` of the batch with base seed `seed`.
-    #[pyo3(signature = (seed=0, index=0))]
-    fn generate(&self, py: Python<'_>, seed: u64, index: u64) -> Terrain {
+    /// World `index` of the batch with base seed `seed` (default: the
+    /// scheme's `# seed:`, else 0, as on the command line).
+    #[pyo3(signature = (seed=None, index=0))]
+    fn generate(&self, py: Python<'_>, seed: Option<u64>, index: u64) -> Terrain {
         let scheme = &self.inner;
+        let seed = seed.unwrap_or(scheme.globals().seed);
         Terrain {
             inner: py.detach(|| rse_core::generate(scheme, seed, index)),
         }

@@ -114,7 +114,8 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
         if found.is_empty() && leftovers.is_empty() {
             return Err(DiscoverError::NoWorld(path.clone()));
         }
-        found.sort();
+        // By length, then text: world_9999 before world_10000.
+        found.sort_by_key(|p| (p.as_os_str().len(), p.clone()));
         leftovers.sort();
         faults.extend(
             leftovers

@@ -577,7 +577,7 @@ fn leftover_and_duplicate_worlds_of_a_batch() {
     assert!(
         kinds
             .iter()
-            .any(|k| matches!(k, FaultKind::Duplicate { of } if of.ends_with("world_00001"))),
+            .any(|k| matches!(k, FaultKind::Duplicate { of } if of.ends_with("world_0001"))),
         "{kinds:?}"
     );
     assert!(

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use rayon::prelude::*;
 use rse_core::Scheme;
@@ -19,10 +19,35 @@ use crate::world::{WorldFiles, WorldOptions, build_world};
 /// Which worlds of a batch this run writes: those with `index % n == k`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
+    k: u64,
+    n: u64,
+}
+
+impl Shard {
+    /// Shard `k` of `n`; refused unless `0 ≤ k < n` (so `n ≥ 1`).
+    pub fn new(k: u64, n: u64) -> Result<Self, Error> {
+        if k >= n {
+            return Err(Error::Usage(format!(
+                "bad shard {k}/{n}: expected K/N with 0 <= K < N, e.g. 0/4"
+            )));
+        }
+        Ok(Shard { k, n })
+    }
+
     /// This shard, `0 ≤ k < n`.
-    pub k: u64,
-    /// The number of shards.
-    pub n: u64,
+    pub fn k(&self) -> u64 {
+        self.k
+    }
+
+    /// The number of shards, at least 1.
+    pub fn n(&self) -> u64 {
+        self.n
+    }
+
+    /// How many of a batch of `amount` worlds are this shard's.
+    pub fn worlds(&self, amount: u64) -> u64 {
+        amount.saturating_sub(self.k).div_ceil(self.n)
+    }
 }
 
 impl Default for Shard {
@@ -47,10 +72,7 @@ impl FromStr for Shard {
             k.trim().parse().map_err(|_| bad())?,
             n.trim().parse().map_err(|_| bad())?,
         );
-        if k >= n {
-            return Err(bad());
-        }
-        Ok(Shard { k, n })
+        Shard::new(k, n).map_err(|_| bad())
     }
 }
 
@@ -111,16 +133,21 @@ pub struct Summary {
     pub skipped: u64,
     /// Worlds replaced under `force`.
     pub replaced: u64,
+    /// Worlds not started because the run was asked to stop (see
+    /// [`write_batch_until`]); a rerun writes them.
+    pub not_started: u64,
     /// Bytes written.
     pub bytes: u64,
 }
 
-/// The folder name of world `index` in a batch of `amount`: `world_0007`,
-/// with at least four digits and as many as the largest index needs, so
-/// names sort in order.
-pub fn world_name(index: u64, amount: u64) -> String {
-    let digits = amount.saturating_sub(1).max(1).ilog10() as usize + 1;
-    format!("world_{index:0width$}", width = digits.max(4))
+/// The folder name of world `index`: `world_0007`, four digits at least,
+/// more only from `world_10000` on. It depends on the index alone: a batch
+/// grown from 10,000 worlds to 10,001 keeps its folders (the width once
+/// followed the amount, and such a rerun wrote every world again as
+/// `world_00000`…). Past 9,999 names no longer sort as text: sort them by
+/// length, then text (as `rse-gen check` does).
+pub fn world_name(index: u64) -> String {
+    format!("world_{index:04}")
 }
 
 /// Writes the worlds of `options.shard` into `options.out`, calling
@@ -132,8 +159,29 @@ pub fn write_batch(
     options: &BatchOptions,
     on_world: &(dyn Fn(Outcome) + Sync),
 ) -> Result<Summary, Error> {
+    write_batch_until(
+        scheme,
+        templates,
+        options,
+        on_world,
+        &AtomicBool::new(false),
+    )
+}
+
+/// [`write_batch`], stopping early once `stop` is set (by a Ctrl-C
+/// handler, say): worlds being written are finished, no new one is
+/// started, and [`Summary::not_started`] counts those left for a rerun.
+pub fn write_batch_until(
+    scheme: &Scheme,
+    templates: &Templates,
+    options: &BatchOptions,
+    on_world: &(dyn Fn(Outcome) + Sync),
+    stop: &AtomicBool,
+) -> Result<Summary, Error> {
     let out = &options.out;
     std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
+    // Held until this function returns; the system drops it if the process dies.
+    let _lock = lock_shard(out, options.shard)?;
     remove_leftovers(out, options)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.unwrap_or(0))
@@ -145,12 +193,16 @@ pub fn write_batch(
             ))
         })?;
     let Shard { k, n } = options.shard;
-    let count = options.amount.saturating_sub(k).div_ceil(n);
-    let [written, skipped, replaced, bytes] = [(); 4].map(|()| AtomicU64::new(0));
+    let count = options.shard.worlds(options.amount);
+    let [written, skipped, replaced, bytes, not_started] = [(); 5].map(|()| AtomicU64::new(0));
     pool.install(|| {
         (0..count).into_par_iter().try_for_each(|j| {
+            if stop.load(Ordering::Relaxed) {
+                not_started.fetch_add(1, Ordering::Relaxed);
+                return Ok(());
+            }
             let index = k + j * n;
-            let name = world_name(index, options.amount);
+            let name = world_name(index);
             let world = build_world(scheme, options.seed, index, name, &options.world, templates)?;
             let outcome = place_world(out, &world, options.force)?;
             match outcome {
@@ -175,7 +227,41 @@ pub fn write_batch(
         skipped: skipped.into_inner(),
         replaced: replaced.into_inner(),
         bytes: bytes.into_inner(),
+        not_started: not_started.into_inner(),
     })
+}
+
+/// Locks shard `shard` of the output folder `out` for this run, or says
+/// another run holds it: two identical batches at once raced (one renamed
+/// a world onto the other's and failed with "Directory not empty"). The
+/// lock file lives in the system's temporary folder, named by a hash of
+/// `out`'s canonical path, so the output folder holds worlds only (shards
+/// still merge into identical trees). An advisory `flock`: released by the
+/// system when the process ends, however it ends; it guards runs on one
+/// machine (not several machines writing to one network folder).
+fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
+    let canonical = out.canonicalize().map_err(Error::io("read", out))?;
+    let key = crate::manifest::sha256_hex(canonical.as_os_str().as_encoded_bytes());
+    let path = std::env::temp_dir().join(format!(
+        "rse-batch-{}-shard-{}-of-{}.lock",
+        &key[..16],
+        shard.k,
+        shard.n
+    ));
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(Error::io("create", &path))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(Error::Busy {
+            path: out.to_path_buf(),
+            shard: format!("{}/{}", shard.k, shard.n),
+        }),
+        Err(std::fs::TryLockError::Error(e)) => Err(Error::io("lock", &path)(e)),
+    }
 }
 
 /// Puts `world` at `out/<name>`: written into a temporary folder, then
@@ -293,16 +379,35 @@ mod tests {
     use super::*;
 
     #[test]
-    fn names_have_at_least_four_digits_and_sort() {
-        assert_eq!(world_name(7, 1), "world_0007");
-        assert_eq!(world_name(7, 10_000), "world_0007");
-        assert_eq!(world_name(7, 10_001), "world_00007");
-        assert_eq!(world_name(0, 0), "world_0000");
+    fn names_depend_on_the_index_alone() {
+        assert_eq!(world_name(7), "world_0007");
+        assert_eq!(world_name(0), "world_0000");
+        assert_eq!(world_name(12_345), "world_12345");
     }
 
     #[test]
     fn shards_parse() {
-        assert_eq!("1/4".parse::<Shard>().unwrap(), Shard { k: 1, n: 4 });
+        assert_eq!("1/4".parse::<Shard>().unwrap(), Shard::new(1, 4).unwrap());
+        // Once a panic in div_ceil when built by hand with n = 0.
+        assert!(Shard::new(0, 0).is_err());
+        assert_eq!(Shard::new(1, 4).unwrap().worlds(10), 3);
+    }
+
+    #[test]
+    fn one_run_at_a_time_per_output_folder_and_shard() {
+        let dir = tempfile::tempdir().unwrap();
+        let whole = Shard::default();
+        let held = lock_shard(dir.path(), whole).unwrap();
+        // flock: a second open file conflicts, even in this process.
+        let busy = lock_shard(dir.path(), whole).unwrap_err();
+        assert!(matches!(busy, Error::Busy { .. }), "{busy}");
+        assert!(busy.to_string().contains("another rse-gen batch"), "{busy}");
+        // Another shard, or another folder, is free.
+        let _other = lock_shard(dir.path(), Shard::new(1, 2).unwrap()).unwrap();
+        let elsewhere = tempfile::tempdir().unwrap();
+        let _there = lock_shard(elsewhere.path(), whole).unwrap();
+        drop(held);
+        let _again = lock_shard(dir.path(), whole).unwrap();
         for bad in ["4/4", "1", "a/2", "1/0", "-1/2"] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 /// An error of world building or batch writing.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A bad option value.
     #[error("{0}")]
@@ -36,6 +37,14 @@ pub enum Error {
         path: PathBuf,
         /// The first difference found.
         reason: String,
+    },
+    /// Another run is writing the same shard of the same output folder.
+    #[error("another rse-gen batch is writing shard {shard} of {} right now; wait for it to end (a rerun then skips every world it wrote)", path.display())]
+    Busy {
+        /// The output folder.
+        path: PathBuf,
+        /// The shard, `K/N`.
+        shard: String,
     },
     /// Encoding a world file failed.
     #[error(transparent)]

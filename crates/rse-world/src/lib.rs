@@ -20,7 +20,10 @@ mod templates;
 mod tree;
 mod world;
 
-pub use batch::{BatchOptions, Outcome, Shard, Summary, leftover_index, world_name, write_batch};
+pub use batch::{
+    BatchOptions, Outcome, Shard, Summary, leftover_index, world_name, write_batch,
+    write_batch_until,
+};
 pub use error::Error;
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
 pub use target::{MeshMode, Target, Targets};

@@ -1,11 +1,12 @@
 //! `rse-gen batch`: many worlds from one scheme, with a progress bar on a
 //! terminal and a one-line summary.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
-use rse_world::{BatchOptions, Templates, WorldOptions, write_batch};
+use rse_world::{BatchOptions, Templates, WorldOptions, write_batch_until};
 
 use crate::ExitStatus;
 use crate::args::{BatchArgs, SchemeOverrides};
@@ -29,7 +30,7 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
         force: args.force,
     };
     let shard = options.shard;
-    let worlds = options.amount.saturating_sub(shard.k).div_ceil(shard.n);
+    let worlds = shard.worlds(options.amount);
     // Drawn only on a terminal: indicatif hides it on a pipe or file.
     let bar = ProgressBar::with_draw_target(Some(worlds), ProgressDrawTarget::stderr());
     bar.set_style(
@@ -47,10 +48,26 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
     );
     bar.enable_steady_tick(Duration::from_millis(200));
     let start = Instant::now();
-    let result = write_batch(&scheme, &templates, &options, &|_| bar.inc(1));
+    let result = write_batch_until(
+        &scheme,
+        &templates,
+        &options,
+        &|_| bar.inc(1),
+        stop_on_ctrl_c(),
+    );
     bar.finish_and_clear();
     let summary =
         result.with_context(|| format!("batch into {} stopped", options.out.display()))?;
+    if summary.not_started > 0 {
+        eprintln!(
+            "rse-gen: interrupted: {} worlds written whole, {} already there, {} not started; no world is half-written in {}. Rerun the same command to finish: it skips every world that is there.",
+            summary.written + summary.replaced,
+            summary.skipped,
+            summary.not_started,
+            options.out.display(),
+        );
+        return Ok(ExitStatus::Interrupted);
+    }
     let seconds = start.elapsed().as_secs_f64();
     let done = summary.written + summary.replaced;
     eprintln!(
@@ -65,4 +82,21 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
         summary.bytes as f64 / 1e6 / seconds.max(1e-9),
     );
     Ok(ExitStatus::Success)
+}
+
+/// A flag set by the first Ctrl-C (SIGINT): the batch then finishes the
+/// worlds it is writing and starts no other. A second Ctrl-C exits at once
+/// (a world being written is left in its temporary folder, which the next
+/// run removes).
+fn stop_on_ctrl_c() -> &'static AtomicBool {
+    static STOP: AtomicBool = AtomicBool::new(false);
+    let handler = || {
+        if STOP.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+        eprintln!("\nrse-gen: stopping after the worlds being written (Ctrl-C again to quit now)");
+    };
+    // Fails only if a handler is already set: then that one stands.
+    let _ = ctrlc::set_handler(handler);
+    &STOP
 }
