@@ -157,7 +157,7 @@ pub enum SchemeErrorKind {
     #[error("{0} is above the largest supported height, {max} steps", max = crate::obstacle::MAX_HEIGHT)]
     HeightTooLarge(u64),
     /// A height whose top is too high for the block size (see
-    /// [`MAX_TOP_IN_BLOCKS`](crate::globals::MAX_TOP_IN_BLOCKS)).
+    /// [`MAX_TOP_IN_BLOCKS`](crate::MAX_TOP_IN_BLOCKS)).
     #[error("{height} steps reach {top} m, more than {max} block sizes ({limit} m): meshes of walls that slender are not exact in f32; use fewer steps, a smaller step_height or a larger block_size", max = crate::globals::MAX_TOP_IN_BLOCKS)]
     TooTall {
         /// The height, steps (a range's upper end).

@@ -45,7 +45,8 @@ mod stamp;
 pub use error::{Error, SchemeError, SchemeErrorKind};
 pub use generate::{Terrain, generate};
 pub use globals::{
-    DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, Pallets, format_dims, parse_dims,
+    DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
+    Pallets, format_dims, parse_dims,
 };
 pub use heightmap::Heightmap;
 pub use obstacle::{
