@@ -262,6 +262,28 @@ def test_usd_stage_opens_with_valid_meshes_and_collision(batches, mode: str) -> 
         assert ok, why
         step = manifest(world)["globals"]["step_height"]
         assert points[:, 2].max() == pytest.approx(h.max() * step, abs=1e-6)
+        assert UsdPhysics.MeshCollisionAPI(terrain).GetApproximationAttr().Get() == "none"
+
+
+def test_usd_terrain_asset_is_a_collider_alone(batches) -> None:
+    """usd/terrain.usda opened alone (as Isaac Lab's terrain_type="usd" and
+    Isaac Sim's drag-and-drop do): its default prim is the mesh, a static
+    collider with the exact triangles."""
+    checked = 0
+    for world in worlds(batches, "single"):
+        asset = world / "usd/terrain.usda"
+        if not asset.exists():
+            continue
+        stage = Usd.Stage.Open(str(asset))
+        assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
+        assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
+        terrain = stage.GetDefaultPrim()
+        assert terrain.IsA(UsdGeom.Mesh)
+        assert terrain.HasAPI(UsdPhysics.CollisionAPI) and terrain.HasAPI(UsdPhysics.MeshCollisionAPI)
+        assert UsdPhysics.MeshCollisionAPI(terrain).GetApproximationAttr().Get() == "none"
+        assert not terrain.HasAPI(UsdPhysics.RigidBodyAPI)  # static
+        checked += 1
+    assert checked > 0
 
 
 # --- Webots: structure --------------------------------------------------------

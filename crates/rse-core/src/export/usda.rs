@@ -1,6 +1,9 @@
 //! USD ASCII (`.usda`): one layer whose default prim is the terrain mesh,
-//! Z up, metres, for stages to reference (physics APIs go on the
-//! referencing prim, where the stage's author wants them).
+//! Z up, metres, a static collider of its own (`PhysicsCollisionAPI`, and
+//! `PhysicsMeshCollisionAPI` with approximation `none`: the exact
+//! triangles, not a convex hull). So the file is a whole asset: Isaac
+//! Lab's `TerrainImporterCfg(terrain_type="usd")` and Isaac Sim's
+//! drag-and-drop reference it alone and collide with it.
 
 use std::fmt::Write as _;
 
@@ -23,7 +26,9 @@ pub fn usda(mesh: &TriMesh) -> String {
         mesh.triangles().len()
     )
     .expect(FMT);
-    out.push_str("def Mesh \"terrain\"\n{\n");
+    out.push_str(
+        "def Mesh \"terrain\" (\n    prepend apiSchemas = [\"PhysicsCollisionAPI\", \"PhysicsMeshCollisionAPI\"]\n)\n{\n    uniform token physics:approximation = \"none\"\n",
+    );
     if let Some((lo, hi)) = bounding_box(mesh.vertices()) {
         // The box of f32 points, exactly: back to f32 before printing.
         let [lo, hi] = [lo, hi].map(|p| p.map(|c| c as f32));
