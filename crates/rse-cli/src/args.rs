@@ -200,6 +200,23 @@ pub struct SchemeOverrides {
     pub base: Option<f64>,
 }
 
+impl SchemeOverrides {
+    /// The first global flag given, as typed (`--size`), if any.
+    pub fn first_set(&self) -> Option<&'static str> {
+        [
+            (self.size.is_some(), "--size"),
+            (self.pallets.is_some(), "--pallets"),
+            (self.pallet_size.is_some(), "--pallet-size"),
+            (self.pallet_boundary.is_some(), "--pallet-boundary"),
+            (self.block_size.is_some(), "--block-size"),
+            (self.step_height.is_some(), "--step-height"),
+            (self.base.is_some(), "--base"),
+        ]
+        .into_iter()
+        .find_map(|(set, flag)| set.then_some(flag))
+    }
+}
+
 /// `--pallets` is a layout or `off`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PalletsFlag {

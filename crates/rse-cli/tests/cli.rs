@@ -262,8 +262,20 @@ fn usage_and_io_errors_exit_2() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
         assert!(!stderr(&out).is_empty());
     }
+    // The system's reason once (it was printed twice).
     let err = stderr(&rse_gen(&["heightmap", "no-such.csv"]));
-    assert!(err.starts_with("rse-gen: no-such.csv: "), "{err}");
+    assert_eq!(
+        err.trim_end(),
+        "rse-gen: cannot read no-such.csv: No such file or directory (os error 2)"
+    );
+    // A global flag the subcommand would ignore is refused.
+    let out = rse_gen(&["check", "schemes", "--size", "5x5"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--size does not apply to check"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]

@@ -9,8 +9,10 @@ pub enum Error {
     /// The scheme (a file, a string or values built in code) is invalid.
     #[error(transparent)]
     Scheme(#[from] SchemeError),
-    /// A file could not be read.
-    #[error("{path}: {source}")]
+    /// A file could not be read. The message names the file; the
+    /// system's reason is the source, printed once after it by `{:#}`
+    /// (it was in both, and the CLI printed it twice).
+    #[error("cannot read {path}")]
     Io {
         /// The file that failed.
         path: String,
@@ -19,8 +21,8 @@ pub enum Error {
         source: std::io::Error,
     },
     /// An image could not be encoded.
-    #[error("cannot encode the preview: {0}")]
-    Image(String),
+    #[error("cannot encode the preview")]
+    Image(#[from] png::EncodingError),
 }
 
 /// A scheme that cannot be used, with the place of the fault.

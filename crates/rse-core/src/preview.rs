@@ -93,13 +93,9 @@ pub fn encode_png(preview: &Preview) -> Result<Vec<u8>, Error> {
     encoder.set_compression(png::Compression::Fast);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .map_err(|e| Error::Image(e.to_string()))?;
-    writer
-        .write_image_data(&preview.rgb)
-        .map_err(|e| Error::Image(e.to_string()))?;
-    writer.finish().map_err(|e| Error::Image(e.to_string()))?;
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(&preview.rgb)?;
+    writer.finish()?;
     Ok(bytes)
 }
 

@@ -46,9 +46,21 @@ pub fn scheme_error_at(py: Python<'_>, field: &str, message: &str) -> PyErr {
 pub fn core_error(py: Python<'_>, e: &rse_core::Error) -> PyErr {
     match e {
         rse_core::Error::Scheme(e) => scheme_error(py, e),
-        rse_core::Error::Io { .. } => PyOSError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
+        rse_core::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
+        _ => PyValueError::new_err(error_chain(e)),
     }
+}
+
+/// `e` and its causes, `: `-separated, as the CLI prints them.
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        text.push_str(": ");
+        text.push_str(&c.to_string());
+        cause = c.source();
+    }
+    text
 }
 
 /// The Python exception for a world-writing error.
@@ -56,6 +68,6 @@ pub fn world_error(py: Python<'_>, e: &rse_world::Error) -> PyErr {
     match e {
         rse_world::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
         rse_world::Error::Core(e) => core_error(py, e),
-        _ => PyValueError::new_err(e.to_string()),
+        _ => PyValueError::new_err(error_chain(e)),
     }
 }

@@ -22,7 +22,16 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Preview(args) => preview::run(&args, &cli.overrides),
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
         Command::Batch(args) => batch::run(&args, &cli.overrides),
-        Command::Check(args) => check::run(&args),
+        Command::Check(args) => {
+            // A world's parameters are in its rse.json: a flag would be
+            // silently ignored, so it is refused.
+            if let Some(flag) = cli.overrides.first_set() {
+                anyhow::bail!(
+                    "{flag} does not apply to check: a world is checked against the parameters in its rse.json"
+                );
+            }
+            check::run(&args)
+        }
         Command::Edit(args) => edit::run(&args, &cli.overrides),
     }
 }

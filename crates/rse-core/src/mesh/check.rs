@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 /// A way in which a mesh breaks the invariants.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum MeshFault {
     /// The directed edge `a → b` has no twin `b → a`, or is used more than once.
     UnpairedEdge {
