@@ -268,6 +268,43 @@ fn usage_and_io_errors_exit_2() {
         err.trim_end(),
         "rse-gen: cannot read no-such.csv: No such file or directory (os error 2)"
     );
+    // Far too large for memory: refused before anything is allocated or
+    // written (a 19.6 TB preview once aborted with a backtrace).
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("p.png");
+    let out = rse_gen(&[
+        "preview",
+        "schemes/random.csv",
+        "--size",
+        "10000x10000",
+        "--cell-pixels",
+        "256",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("use fewer --cell-pixels"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!png.exists());
+    let batch = dir.path().join("huge");
+    let out = rse_gen(&[
+        "batch",
+        "schemes/random.csv",
+        "--size",
+        "10000x10000",
+        "-o",
+        batch.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("MiB are available"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!batch.exists());
     // A global flag the subcommand would ignore is refused.
     let out = rse_gen(&["check", "schemes", "--size", "5x5"]);
     assert_eq!(out.status.code(), Some(2));

@@ -20,6 +20,18 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// A preview larger than [`preview::MAX_PIXELS`](crate::preview::MAX_PIXELS).
+    #[error(
+        "a {width}x{height} pixel preview is more than the {max} pixels drawn at most: use fewer --cell-pixels"
+    )]
+    PreviewTooLarge {
+        /// Width asked for, pixels.
+        width: u64,
+        /// Height asked for, pixels.
+        height: u64,
+        /// The cap, pixels.
+        max: u64,
+    },
     /// An image could not be encoded.
     #[error("cannot encode the preview")]
     Image(#[from] png::EncodingError),

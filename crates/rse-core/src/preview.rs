@@ -18,6 +18,28 @@ pub struct Preview {
     pub rgb: Vec<u8>,
 }
 
+/// The largest preview drawn, pixels (about 800 MB of RGB): a
+/// 10000×10000 grid at 256 pixels per cell once tried to allocate 19.6 TB
+/// and aborted.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+/// Refuses a preview of an `nx × ny` grid at `cell_pixels` larger than
+/// [`MAX_PIXELS`], before anything is drawn.
+pub fn check_size(nx: u32, ny: u32, cell_pixels: u32) -> Result<(), Error> {
+    let (width, height) = (
+        u64::from(nx) * u64::from(cell_pixels),
+        u64::from(ny) * u64::from(cell_pixels),
+    );
+    if width.saturating_mul(height) > MAX_PIXELS {
+        return Err(Error::PreviewTooLarge {
+            width,
+            height,
+            max: MAX_PIXELS,
+        });
+    }
+    Ok(())
+}
+
 /// Pixels per cell that make a preview about 512 pixels wide (1 to 32).
 pub fn auto_cell_pixels(nx: u32, ny: u32) -> u32 {
     (512 / nx.max(ny).max(1)).clamp(1, 32)

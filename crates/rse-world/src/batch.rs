@@ -178,6 +178,7 @@ pub fn write_batch_until(
     on_world: &(dyn Fn(Outcome) + Sync),
     stop: &AtomicBool,
 ) -> Result<Summary, Error> {
+    check_memory(scheme, options)?;
     let out = &options.out;
     std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
     // Held until this function returns; the system drops it if the process dies.
@@ -229,6 +230,43 @@ pub fn write_batch_until(
         bytes: bytes.into_inner(),
         not_started: not_started.into_inner(),
     })
+}
+
+/// Memory one world may take while it is built, per cell of its grid:
+/// heightmap, mesh, box set and every file in memory. Measured at about
+/// 1.4 KiB (single mesh) and 1.8 KiB (blocks) per cell on a 1000×1000
+/// random field of height 4 with every target, the worst case there is.
+pub const WORLD_BYTES_PER_CELL: u64 = 2048;
+
+/// Refuses a batch whose worlds, as many at once as it has threads, would
+/// need more memory than the machine has available (`MemAvailable` on
+/// Linux; elsewhere nothing is refused): better a clear error before
+/// starting than an abort half-way.
+fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
+    let Some(available) = crate::memory::available_bytes() else {
+        return Ok(());
+    };
+    let grid = scheme.grid();
+    let threads = options
+        .jobs
+        .unwrap_or_else(rayon::current_num_threads)
+        .max(1) as u64;
+    let at_once = threads.min(options.shard.worlds(options.amount)).max(1);
+    let per_world = (grid.cells() as u64).saturating_mul(WORLD_BYTES_PER_CELL);
+    let needed = per_world.saturating_mul(at_once);
+    if needed > available {
+        return Err(Error::TooBig {
+            message: format!(
+                "a {}x{} world needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell), {at_once} at once: {} MiB, but {} MiB are available; use fewer --jobs or a smaller grid",
+                grid.nx,
+                grid.ny,
+                per_world >> 20,
+                needed >> 20,
+                available >> 20
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Locks shard `shard` of the output folder `out` for this run, or says

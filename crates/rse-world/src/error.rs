@@ -38,6 +38,12 @@ pub enum Error {
         /// The first difference found.
         reason: String,
     },
+    /// A batch too large for this machine's memory.
+    #[error("{message}")]
+    TooBig {
+        /// What it needs and what there is.
+        message: String,
+    },
     /// Another run is writing the same shard of the same output folder.
     #[error("another rse-gen batch is writing shard {shard} of {} right now; wait for it to end (a rerun then skips every world it wrote)", path.display())]
     Busy {

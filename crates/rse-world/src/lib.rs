@@ -15,14 +15,15 @@ mod batch;
 mod context;
 mod error;
 mod manifest;
+mod memory;
 mod target;
 mod templates;
 mod tree;
 mod world;
 
 pub use batch::{
-    BatchOptions, Outcome, Shard, Summary, leftover_index, world_name, write_batch,
-    write_batch_until,
+    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, world_name,
+    write_batch, write_batch_until,
 };
 pub use error::Error;
 pub use manifest::{MANIFEST, Manifest, sha256_hex};

@@ -7,11 +7,13 @@ use crate::args::{PreviewArgs, SchemeOverrides};
 use crate::output;
 
 pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
-    let grid = terrain.grid();
+    let grid = super::load_scheme(&args.scheme, overrides)?.grid();
     let cell_pixels = args
         .cell_pixels
         .unwrap_or_else(|| preview::auto_cell_pixels(grid.nx, grid.ny));
+    // Refused before the world is generated, let alone drawn.
+    preview::check_size(grid.nx, grid.ny, cell_pixels)?;
+    let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
     let png = preview::encode_png(&preview::render(&terrain, cell_pixels))?;
     output::write_atomically(&args.output, &png)?;
     Ok(ExitStatus::Success)
