@@ -7,11 +7,15 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test lint bench demo build
+.PHONY: test lint bench demo build fuzz
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
 	scripts/test.sh
+
+## Every fuzz target for FUZZ_SECONDS each (default 12; make test runs this too).
+fuzz:
+	scripts/fuzz.sh
 
 ## fmt, clippy -D warnings, rustdoc -D warnings.
 lint:

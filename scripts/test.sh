@@ -45,6 +45,9 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --workspace --locked -- --include-ignored 2>&1 | tee "$log"
 
+say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
+scripts/fuzz.sh
+
 say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
