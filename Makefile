@@ -29,6 +29,7 @@ bench:
 	cargo bench -p rse-core --bench mesh
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
+	bench/check.sh
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 	.venv/bin/python bench/editor.py
 
