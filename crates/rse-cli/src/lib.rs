@@ -6,7 +6,6 @@ use std::process::ExitCode;
 
 mod args;
 mod commands;
-mod output;
 
 pub use args::Cli;
 pub use commands::run;

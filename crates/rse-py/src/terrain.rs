@@ -3,10 +3,8 @@
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
-use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rse_core::export::{MeshFormat, glb, mtl, obj, stl};
 
 use crate::errors::world_error;
 
@@ -32,12 +30,6 @@ fn rows<T: numpy::Element, const N: usize>(
     Array2::from_shape_vec((count, N), flat)
         .expect("count × N values")
         .into_pyarray(py)
-}
-
-/// Writes a file; `OSError` naming it if that fails.
-fn write(path: &std::path::Path, bytes: &[u8]) -> PyResult<()> {
-    std::fs::write(path, bytes)
-        .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display())))
 }
 
 #[pymethods]
@@ -152,27 +144,9 @@ impl Terrain {
 
     /// Writes the mesh as OBJ (with its `.mtl` beside it), STL or GLB, by
     /// the path's suffix.
-    fn save(&self, path: std::path::PathBuf) -> PyResult<()> {
-        let format = MeshFormat::from_path(&path).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "{}: the suffix must be .obj, .stl or .glb",
-                path.display()
-            ))
-        })?;
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
         let mesh = self.inner.mesh();
-        match format {
-            MeshFormat::Obj => {
-                let mtl_path = path.with_extension("mtl");
-                let mtl_name = mtl_path
-                    .file_name()
-                    .and_then(|n| n.to_str())
-                    .unwrap_or("terrain.mtl");
-                write(&path, obj(&mesh, Some(mtl_name)).as_bytes())?;
-                write(&mtl_path, mtl().as_bytes())
-            }
-            MeshFormat::Stl => write(&path, &stl(&mesh)),
-            MeshFormat::Glb => write(&path, &glb(&mesh)),
-        }
+        rse_world::write_mesh(&mesh, &path).map_err(|e| world_error(py, &e))
     }
 
     fn __repr__(&self) -> String {

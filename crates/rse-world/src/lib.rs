@@ -14,6 +14,7 @@
 mod batch;
 mod context;
 mod error;
+mod files;
 mod manifest;
 mod memory;
 mod target;
@@ -26,6 +27,7 @@ pub use batch::{
     write_batch, write_batch_until,
 };
 pub use error::Error;
+pub use files::{write_atomically, write_mesh};
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
 pub use target::{MeshMode, Target, Targets};
 pub use templates::Templates;

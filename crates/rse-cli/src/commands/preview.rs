@@ -4,7 +4,6 @@ use rse_core::preview;
 
 use crate::ExitStatus;
 use crate::args::{PreviewArgs, SchemeOverrides};
-use crate::output;
 
 pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let grid = super::load_scheme(&args.scheme, overrides)?.grid();
@@ -15,6 +14,6 @@ pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<Ex
     preview::check_size(grid.nx, grid.ny, cell_pixels)?;
     let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
     let png = preview::encode_png(&preview::render(&terrain, cell_pixels))?;
-    output::write_atomically(&args.output, &png)?;
+    rse_world::write_atomically(&args.output, &png)?;
     Ok(ExitStatus::Success)
 }

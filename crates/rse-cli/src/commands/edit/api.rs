@@ -132,8 +132,8 @@ pub fn save(body: &[u8]) -> Answer {
     if request.path.extension().is_none_or(|e| e != "csv") {
         return Err(bad("the scheme file must end in .csv"));
     }
-    crate::output::write_atomically(&request.path, scheme.to_csv().as_bytes())
-        .map_err(|e| bad(format!("{e:#}")))?;
+    rse_world::write_atomically(&request.path, scheme.to_csv().as_bytes())
+        .map_err(|e| bad(format!("{:#}", anyhow::Error::from(e))))?;
     Ok(json!({ "ok": true, "path": request.path.display().to_string() }))
 }
 

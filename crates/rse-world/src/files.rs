@@ -1,0 +1,102 @@
+//! Single output files, written whole or not at all: the one home of mesh
+//! files for `rse-gen mesh`, `rse-gen preview` and Python's
+//! `Terrain.save`.
+
+use std::io::Write as _;
+use std::path::Path;
+
+use rse_core::export::{self, MeshFormat};
+use rse_core::mesh::TriMesh;
+
+use crate::error::Error;
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over
+/// `path`: an interrupted run never leaves a half-written file. Errors name
+/// `path`, never the temporary file.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let dir = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    // Temporary files are private (0600); the output is an ordinary file.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut file = builder.tempfile_in(dir).map_err(Error::io("write", path))?;
+    file.write_all(bytes).map_err(Error::io("write", path))?;
+    file.as_file()
+        .sync_all()
+        .map_err(Error::io("write", path))?;
+    file.persist(path)
+        .map_err(|e| Error::io("write", path)(e.error))?;
+    Ok(())
+}
+
+/// Writes `mesh` to `path` in the format its suffix names (`.obj`, `.stl`,
+/// `.glb`). An OBJ gets its material library beside it, named after it
+/// (`terrain.obj` → `terrain.mtl`); a name that is not UTF-8 is refused,
+/// since the OBJ must name the `.mtl` in text.
+pub fn write_mesh(mesh: &TriMesh, path: &Path) -> Result<(), Error> {
+    let format = MeshFormat::from_path(path).ok_or_else(|| {
+        Error::Usage(format!(
+            "{}: unknown mesh format; name the file .obj, .stl or .glb",
+            path.display()
+        ))
+    })?;
+    match format {
+        MeshFormat::Obj => {
+            let mtl_path = path.with_extension("mtl");
+            let mtl_name = mtl_path
+                .file_name()
+                .and_then(|n| n.to_str())
+                .ok_or_else(|| {
+                    Error::Usage(format!(
+                        "{}: the file name is not UTF-8, so the OBJ could not name its .mtl",
+                        path.display()
+                    ))
+                })?;
+            write_atomically(&mtl_path, export::mtl().as_bytes())?;
+            write_atomically(path, export::obj(mesh, Some(mtl_name)).as_bytes())
+        }
+        MeshFormat::Stl => write_atomically(path, &export::stl(mesh)),
+        MeshFormat::Glb => write_atomically(path, &export::glb(mesh)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_obj_names_the_mtl_written_beside_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let scheme =
+            rse_core::Scheme::from_csv("# size: 3x3\ntype,height\nrandom,2\n", None).unwrap();
+        let mesh = rse_core::generate(&scheme, 0, 0).mesh();
+        write_mesh(&mesh, &dir.path().join("t.obj")).unwrap();
+        let text = std::fs::read_to_string(dir.path().join("t.obj")).unwrap();
+        assert!(text.contains("mtllib t.mtl"));
+        assert!(dir.path().join("t.mtl").is_file());
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            2,
+            "no temporary file left"
+        );
+        let err = write_mesh(&mesh, &dir.path().join("t.ply")).unwrap_err();
+        assert!(err.to_string().contains("unknown mesh format"), "{err}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_name_that_is_not_utf8_is_refused_before_writing() {
+        use std::os::unix::ffi::OsStrExt as _;
+        let dir = tempfile::tempdir().unwrap();
+        let scheme =
+            rse_core::Scheme::from_csv("# size: 3x3\ntype,height\nrandom,2\n", None).unwrap();
+        let mesh = rse_core::generate(&scheme, 0, 0).mesh();
+        let name = std::ffi::OsStr::from_bytes(b"t\xff.obj");
+        let err = write_mesh(&mesh, &dir.path().join(name)).unwrap_err();
+        assert!(err.to_string().contains("not UTF-8"), "{err}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+}
