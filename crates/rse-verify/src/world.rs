@@ -174,24 +174,31 @@ fn check_against_manifest(
     for (path, bytes) in &contents {
         faults.extend(references::check(path, bytes, folder));
     }
-    let mut meshes: Vec<(&str, &[u8], terrain::ObjMesh)> = Vec::new();
+    let mut meshes: Vec<(&str, terrain::ObjMesh)> = Vec::new();
     let is_obj = |p: &str| {
         std::path::Path::new(p)
             .extension()
             .is_some_and(|e| e == "obj")
     };
+    // Copies of one mesh (meshes/ and the Gazebo model's) are read and
+    // checked once; each copy gets the faults found.
+    let mut checked: Vec<(&[u8], Vec<FaultKind>)> = Vec::new();
     for (path, bytes) in contents.iter().filter(|(p, _)| is_obj(p)) {
-        match terrain::read_obj(bytes) {
-            Ok(mesh) => {
-                faults.extend(
-                    terrain::mesh_faults_against(&mesh, &terrain)
-                        .into_iter()
-                        .map(|kind| Fault::of(path, kind)),
-                );
-                meshes.push((path, bytes, mesh));
-            }
-            Err(kind) => faults.push(Fault::of(path, kind)),
+        let bytes = bytes.as_slice();
+        if let Some((_, found)) = checked.iter().find(|(b, _)| *b == bytes) {
+            faults.extend(found.iter().map(|kind| Fault::of(path, kind.clone())));
+            continue;
         }
+        let found = match terrain::read_obj(bytes) {
+            Ok(mesh) => {
+                let found = terrain::mesh_faults_against(&mesh, &terrain);
+                meshes.push((path, mesh));
+                found
+            }
+            Err(kind) => vec![kind],
+        };
+        faults.extend(found.iter().map(|kind| Fault::of(path, kind.clone())));
+        checked.push((bytes, found));
     }
     report.hashed_only = expected.hashed_only.iter().cloned().collect();
     if options.physics {
@@ -200,28 +207,24 @@ fn check_against_manifest(
 }
 
 /// The physics smoke test of each distinct mesh the simulators would load
-/// (copies are one), or of the box set in block worlds.
+/// (`meshes` holds one of each set of copies), or of the box set in block worlds.
 fn physics(
     mode: MeshMode,
-    meshes: Vec<(&str, &[u8], terrain::ObjMesh)>,
+    meshes: Vec<(&str, terrain::ObjMesh)>,
     terrain: &Terrain,
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) {
     let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
     if mode == MeshMode::Single && !meshes.is_empty() {
-        let mut seen: Vec<&[u8]> = Vec::new();
-        for (path, bytes, mesh) in meshes {
-            if !seen.contains(&bytes) {
-                seen.push(bytes);
-                runs.push((
-                    Some(path),
-                    TerrainModel::Mesh {
-                        vertices: mesh.vertices,
-                        triangles: mesh.triangles,
-                    },
-                ));
-            }
+        for (path, mesh) in meshes {
+            runs.push((
+                Some(path),
+                TerrainModel::Mesh {
+                    vertices: mesh.vertices,
+                    triangles: mesh.triangles,
+                },
+            ));
         }
     } else {
         runs.push((None, TerrainModel::boxes_of(terrain)));
