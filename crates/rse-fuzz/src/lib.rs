@@ -123,6 +123,13 @@ fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
     })
 }
 
+/// The `rse.json` of the world the `manifest` target checks: its seed
+/// `fuzz/seeds/manifest/good.json` must stay equal to it (tested), or the
+/// fuzzer starts from a failing world only.
+pub fn good_manifest() -> &'static [u8] {
+    &world_folder().2
+}
+
 /// `rse.json` through the whole check: any bytes give a report, never a
 /// panic; the world's own manifest gives a good one.
 pub fn manifest(data: &[u8]) {

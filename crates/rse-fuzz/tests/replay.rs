@@ -24,3 +24,13 @@ fn every_kept_input_passes_its_target() {
         assert!(replayed > 0, "no seed kept for the {target} target");
     }
 }
+
+#[test]
+fn the_manifest_seed_is_the_good_world() {
+    let seed =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/seeds/manifest/good.json");
+    assert!(
+        std::fs::read(seed).unwrap() == rse_fuzz::good_manifest(),
+        "fuzz/seeds/manifest/good.json is stale: copy world_0001/rse.json of `rse-gen batch` of the scheme in rse_fuzz::world_folder (--amount 2, every target) over it"
+    );
+}
