@@ -279,7 +279,9 @@ struct Expected {
 /// user's templates, every file but the rendered ones, whose hashes are
 /// taken from the manifest (so `rse.json` is still rebuilt whole).
 fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, String> {
-    let builtin = Templates::builtin();
+    // Parsed once per process, not once per world checked.
+    static BUILTIN: std::sync::OnceLock<Templates> = std::sync::OnceLock::new();
+    let builtin = BUILTIN.get_or_init(Templates::builtin);
     let options = WorldOptions {
         targets: manifest.targets.clone(),
         mesh: manifest.mesh,
@@ -290,7 +292,7 @@ fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, Stri
         manifest.index,
         manifest.world.clone(),
         &options,
-        &builtin,
+        builtin,
     )
     .map_err(|e| e.to_string())?;
     let ours = manifest.version == rse_core::VERSION

@@ -101,13 +101,10 @@ fn unreadable_a_file_name_that_is_not_utf8() {
     );
 }
 
-#[test]
-fn not_a_file_a_link_out_of_the_world_is_not_followed() {
-    let dir = tempfile::tempdir().unwrap();
-    let world = good_world(dir.path());
-    // A FIFO outside: reading it would block for ever, so a check that
-    // returns proves it was not read.
-    let fifo = dir.path().join("fifo");
+/// A FIFO `dir/fifo`, outside the world: reading it would block for
+/// ever, so a check that returns proves it was not read.
+fn make_fifo(dir: &Path) -> PathBuf {
+    let fifo = dir.join("fifo");
     assert!(
         std::process::Command::new("mkfifo")
             .arg(&fifo)
@@ -115,6 +112,14 @@ fn not_a_file_a_link_out_of_the_world_is_not_followed() {
             .unwrap()
             .success()
     );
+    fifo
+}
+
+#[test]
+fn not_a_file_a_link_out_of_the_world_is_not_followed() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let fifo = make_fifo(dir.path());
     std::fs::remove_file(world.join("heightmap.csv")).unwrap();
     std::os::unix::fs::symlink(&fifo, world.join("heightmap.csv")).unwrap();
     let report = check(&world);
@@ -128,14 +133,7 @@ fn not_a_file_a_link_out_of_the_world_is_not_followed() {
 fn outside_world_a_manifest_path_that_climbs_out_is_not_read() {
     let dir = tempfile::tempdir().unwrap();
     let world = good_world(dir.path());
-    let fifo = dir.path().join("fifo");
-    assert!(
-        std::process::Command::new("mkfifo")
-            .arg(&fifo)
-            .status()
-            .unwrap()
-            .success()
-    );
+    make_fifo(dir.path());
     for path in ["../fifo", "/etc/passwd", "a/../../fifo"] {
         edit_manifest(&world, |m| {
             m.files.insert(path.to_owned(), "0".repeat(64));
