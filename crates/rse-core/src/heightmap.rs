@@ -2,6 +2,32 @@
 
 use std::fmt::Write as _;
 
+/// Why a heightmap CSV does not parse; lines and columns count from 1.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum HeightmapCsvError {
+    /// A value that is not a height in steps (a whole number 0–65535).
+    #[error("line {line}, column {column}: `{value}` is not a height")]
+    NotAHeight {
+        /// The line.
+        line: usize,
+        /// The column.
+        column: usize,
+        /// The text found there.
+        value: String,
+    },
+    /// A line with another number of values than the first line.
+    #[error("line {line}: {found} values, but line 1 has {expected}")]
+    Ragged {
+        /// The line.
+        line: usize,
+        /// Values on it.
+        found: u32,
+        /// Values on the first line.
+        expected: u32,
+    },
+}
+
 /// Cell heights in steps, `nx × ny`, stored row by row from `y = 0`
 /// (`index = y·nx + x`), the layout of a numpy `(ny, nx)` array.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,7 +116,7 @@ impl Heightmap {
 
     /// Parses the CSV text of [`Heightmap::to_csv`]. The error names the
     /// 1-based line and column of the first bad value.
-    pub fn from_csv(text: &str) -> Result<Self, String> {
+    pub fn from_csv(text: &str) -> Result<Self, HeightmapCsvError> {
         let mut cells = Vec::new();
         let mut nx = None;
         let mut ny = 0u32;
@@ -101,20 +127,24 @@ impl Heightmap {
             }
             let before = cells.len();
             for (j, value) in line.split(',').enumerate() {
-                let h = value.trim().parse::<u16>().map_err(|_| {
-                    format!(
-                        "line {line_no}, column {}: `{value}` is not a height",
-                        j + 1
-                    )
-                })?;
+                let h = value
+                    .trim()
+                    .parse::<u16>()
+                    .map_err(|_| HeightmapCsvError::NotAHeight {
+                        line: line_no,
+                        column: j + 1,
+                        value: value.to_owned(),
+                    })?;
                 cells.push(h);
             }
             let width = (cells.len() - before) as u32;
-            if *nx.get_or_insert(width) != width {
-                return Err(format!(
-                    "line {line_no}: {width} values, but line 1 has {}",
-                    nx.unwrap_or(0)
-                ));
+            let expected = *nx.get_or_insert(width);
+            if expected != width {
+                return Err(HeightmapCsvError::Ragged {
+                    line: line_no,
+                    found: width,
+                    expected,
+                });
             }
             ny += 1;
         }
@@ -147,11 +177,22 @@ mod tests {
     #[test]
     fn from_csv_names_the_bad_value() {
         let error = Heightmap::from_csv("1,2\n3,x\n").unwrap_err();
-        assert!(error.contains("line 2, column 2"), "{error}");
-        assert!(
-            Heightmap::from_csv("1,2\n3\n")
-                .unwrap_err()
-                .contains("line 2")
+        assert_eq!(
+            error,
+            HeightmapCsvError::NotAHeight {
+                line: 2,
+                column: 2,
+                value: "x".to_owned()
+            }
+        );
+        assert!(error.to_string().contains("line 2, column 2"), "{error}");
+        assert_eq!(
+            Heightmap::from_csv("1,2\n3\n").unwrap_err(),
+            HeightmapCsvError::Ragged {
+                line: 2,
+                found: 1,
+                expected: 2
+            }
         );
     }
 }

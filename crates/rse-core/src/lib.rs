@@ -48,7 +48,7 @@ pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
     Pallets, format_dims, parse_dims,
 };
-pub use heightmap::Heightmap;
+pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use obstacle::{
     DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
 };

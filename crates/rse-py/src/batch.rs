@@ -12,14 +12,8 @@ use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
 /// A rayon pool of `jobs` threads (`None`: one per core).
-pub fn pool(jobs: Option<usize>) -> PyResult<rayon::ThreadPool> {
-    if jobs == Some(0) {
-        return Err(PyValueError::new_err("jobs must be at least 1"));
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.unwrap_or(0))
-        .build()
-        .map_err(|e| PyValueError::new_err(format!("cannot start worker threads: {e}")))
+pub fn pool(py: Python<'_>, jobs: Option<usize>) -> PyResult<rayon::ThreadPool> {
+    rse_world::thread_pool(jobs).map_err(|e| world_error(py, &e))
 }
 
 /// Worlds `0..amount` of seed `seed` (default: the scheme's `# seed:`,
@@ -34,7 +28,7 @@ pub fn generate_batch(
     seed: Option<u64>,
     jobs: Option<usize>,
 ) -> PyResult<Vec<Terrain>> {
-    let pool = pool(jobs)?;
+    let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
     let seed = seed.unwrap_or(scheme.globals().seed);
     let terrains: Vec<rse_core::Terrain> = py.detach(|| {
@@ -70,25 +64,22 @@ pub fn write_worlds<'py>(
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let bad = |e: rse_world::Error| PyValueError::new_err(e.to_string());
-    let globals = scheme.inner.globals();
+    let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
     let options = BatchOptions {
-        out,
-        amount: amount.unwrap_or(globals.amount),
-        seed: seed.unwrap_or(globals.seed),
+        amount: amount.unwrap_or(scheme_batch.amount),
+        seed: seed.unwrap_or(scheme_batch.seed),
         world: WorldOptions {
             targets: Targets::parse(targets).map_err(bad)?,
             mesh: mesh.parse::<MeshMode>().map_err(bad)?,
         },
-        jobs: match jobs {
-            Some(0) => return Err(PyValueError::new_err("jobs must be at least 1")),
-            other => other,
-        },
+        jobs,
         shard: shard
             .map(str::parse::<Shard>)
             .transpose()
             .map_err(bad)?
             .unwrap_or_default(),
         force,
+        ..scheme_batch
     };
     let templates = match &template {
         Some(dir) => Templates::with_overrides(dir).map_err(|e| world_error(py, &e))?,

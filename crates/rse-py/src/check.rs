@@ -17,7 +17,7 @@ pub fn _check_json(
     physics: bool,
     jobs: Option<usize>,
 ) -> PyResult<String> {
-    let pool = pool(jobs)?;
+    let pool = pool(py, jobs)?;
     let report = py
         .detach(|| pool.install(|| check_paths(&paths, CheckOptions { physics }, &|| {})))
         .map_err(|e| match e {

@@ -18,7 +18,7 @@ pub fn heightmap_fault(bytes: &[u8], terrain: &Terrain) -> Option<FaultKind> {
     };
     let map = match Heightmap::from_csv(text) {
         Ok(map) => map,
-        Err(e) => return bad(e),
+        Err(e) => return bad(e.to_string()),
     };
     let want = terrain.heightmap();
     if (map.nx(), map.ny()) != (want.nx(), want.ny()) {

@@ -27,9 +27,10 @@ impl Shard {
     /// Shard `k` of `n`; refused unless `0 ≤ k < n` (so `n ≥ 1`).
     pub fn new(k: u64, n: u64) -> Result<Self, Error> {
         if k >= n {
-            return Err(Error::Usage(format!(
-                "bad shard {k}/{n}: expected K/N with 0 <= K < N, e.g. 0/4"
-            )));
+            return Err(Error::BadOption {
+                option: "shard",
+                message: format!("bad shard {k}/{n}: expected K/N with 0 <= K < N, e.g. 0/4"),
+            });
         }
         Ok(Shard { k, n })
     }
@@ -62,10 +63,9 @@ impl FromStr for Shard {
 
     /// Parses `K/N`, `0 ≤ K < N`.
     fn from_str(s: &str) -> Result<Self, Error> {
-        let bad = || {
-            Error::Usage(format!(
-                "bad shard {s:?}: expected K/N with 0 <= K < N, e.g. 0/4"
-            ))
+        let bad = || Error::BadOption {
+            option: "shard",
+            message: format!("bad shard {s:?}: expected K/N with 0 <= K < N, e.g. 0/4"),
         };
         let (k, n) = s.split_once('/').ok_or_else(bad)?;
         let (k, n): (u64, u64) = (
@@ -111,6 +111,33 @@ impl BatchOptions {
             force: false,
         }
     }
+
+    /// The scheme's own batch: its `# amount:` worlds of its `# seed:`,
+    /// into `out`, for the default targets. Every front end (command line,
+    /// Python, editor) starts here, so a scheme file means one dataset
+    /// whichever of them writes it.
+    pub fn for_scheme(scheme: &Scheme, out: impl Into<PathBuf>) -> Self {
+        let globals = scheme.globals();
+        BatchOptions::new(out, globals.amount, globals.seed, Targets::default())
+    }
+}
+
+/// A pool of `jobs` worker threads (`None`: one per core); `Some(0)` is
+/// refused. Batches, checks and Python's `generate_batch` all use it.
+pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool, Error> {
+    if jobs == Some(0) {
+        return Err(Error::BadOption {
+            option: "jobs",
+            message: "jobs must be at least 1".to_owned(),
+        });
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|source| Error::Threads {
+            jobs: jobs.map_or_else(|| "one per core".to_owned(), |j| j.to_string()),
+            source,
+        })
 }
 
 /// What happened to one world.
@@ -178,21 +205,13 @@ pub fn write_batch_until(
     on_world: &(dyn Fn(Outcome) + Sync),
     stop: &AtomicBool,
 ) -> Result<Summary, Error> {
+    let pool = thread_pool(options.jobs)?;
     check_memory(scheme, options)?;
     let out = &options.out;
     std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
     // Held until this function returns; the system drops it if the process dies.
     let _lock = lock_shard(out, options.shard)?;
     remove_leftovers(out, options)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.jobs.unwrap_or(0))
-        .build()
-        .map_err(|e| {
-            Error::Usage(format!(
-                "cannot start {:?} worker threads: {e}",
-                options.jobs
-            ))
-        })?;
     let Shard { k, n } = options.shard;
     let count = options.shard.worlds(options.amount);
     let [written, skipped, replaced, bytes, not_started] = [(); 5].map(|()| AtomicU64::new(0));
@@ -421,6 +440,28 @@ mod tests {
         assert_eq!(world_name(7), "world_0007");
         assert_eq!(world_name(0), "world_0000");
         assert_eq!(world_name(12_345), "world_12345");
+    }
+
+    #[test]
+    fn no_worker_threads_is_refused_naming_jobs() {
+        let err = thread_pool(Some(0)).unwrap_err();
+        assert!(
+            matches!(err, Error::BadOption { option: "jobs", .. }),
+            "{err:?}"
+        );
+        assert_eq!(thread_pool(Some(2)).unwrap().current_num_threads(), 2);
+    }
+
+    #[test]
+    fn a_scheme_batch_is_its_amount_and_seed() {
+        let scheme = Scheme::from_csv(
+            "# size: 4x4\n# amount: 7\n# seed: 9\ntype,height\nrandom,1\n",
+            None,
+        )
+        .unwrap();
+        let options = BatchOptions::for_scheme(&scheme, "out");
+        assert_eq!((options.amount, options.seed), (7, 9));
+        assert_eq!(options.world.targets, Targets::default());
     }
 
     #[test]

@@ -6,9 +6,47 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A bad option value.
-    #[error("{0}")]
-    Usage(String),
+    /// An option value that is not one of those allowed: a target, mesh
+    /// mode, shard or worker count.
+    #[error("{message}")]
+    BadOption {
+        /// The option, as the library names it: "target", "mesh", "shard", "jobs".
+        option: &'static str,
+        /// What was given and what is allowed.
+        message: String,
+    },
+    /// A mesh file name the writer cannot serve.
+    #[error("{}: {reason}", path.display())]
+    BadMeshPath {
+        /// The file asked for.
+        path: PathBuf,
+        /// Why it cannot be written.
+        reason: &'static str,
+    },
+    /// A template folder that cannot be used.
+    #[error("template folder {}: {reason}", path.display())]
+    BadTemplateFolder {
+        /// The folder given.
+        path: PathBuf,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A template renders a file the generator writes itself.
+    #[error("the {target} template has a file {path} that the generator writes itself")]
+    TemplateClash {
+        /// The target whose template it is.
+        target: String,
+        /// The file, relative to the world folder.
+        path: String,
+    },
+    /// The worker threads could not be started.
+    #[error("cannot start {jobs} worker threads")]
+    Threads {
+        /// How many were asked for ("one per core" when unset).
+        jobs: String,
+        /// The system's reason.
+        source: rayon::ThreadPoolBuildError,
+    },
     /// A template that does not parse or render.
     #[error("{file}:{line}: {message}")]
     Template {

@@ -37,11 +37,9 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
 /// (`terrain.obj` → `terrain.mtl`); a name that is not UTF-8 is refused,
 /// since the OBJ must name the `.mtl` in text.
 pub fn write_mesh(mesh: &TriMesh, path: &Path) -> Result<(), Error> {
-    let format = MeshFormat::from_path(path).ok_or_else(|| {
-        Error::Usage(format!(
-            "{}: unknown mesh format; name the file .obj, .stl or .glb",
-            path.display()
-        ))
+    let format = MeshFormat::from_path(path).ok_or_else(|| Error::BadMeshPath {
+        path: path.to_owned(),
+        reason: "unknown mesh format; name the file .obj, .stl or .glb",
     })?;
     match format {
         MeshFormat::Obj => {
@@ -49,11 +47,9 @@ pub fn write_mesh(mesh: &TriMesh, path: &Path) -> Result<(), Error> {
             let mtl_name = mtl_path
                 .file_name()
                 .and_then(|n| n.to_str())
-                .ok_or_else(|| {
-                    Error::Usage(format!(
-                        "{}: the file name is not UTF-8, so the OBJ could not name its .mtl",
-                        path.display()
-                    ))
+                .ok_or_else(|| Error::BadMeshPath {
+                    path: path.to_owned(),
+                    reason: "the file name is not UTF-8, so the OBJ could not name its .mtl",
                 })?;
             write_atomically(&mtl_path, export::mtl().as_bytes())?;
             write_atomically(path, export::obj(mesh, Some(mtl_name)).as_bytes())

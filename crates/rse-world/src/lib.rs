@@ -23,8 +23,8 @@ mod tree;
 mod world;
 
 pub use batch::{
-    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, world_name,
-    write_batch, write_batch_until,
+    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, thread_pool,
+    world_name, write_batch, write_batch_until,
 };
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};

@@ -62,8 +62,9 @@ impl FromStr for Target {
         Target::ALL
             .into_iter()
             .find(|t| t.name() == s)
-            .ok_or_else(|| {
-                Error::Usage(format!("unknown target {s:?}: expected one of {}", names()))
+            .ok_or_else(|| Error::BadOption {
+                option: "target",
+                message: format!("unknown target {s:?}: expected one of {}", names()),
             })
     }
 }
@@ -134,9 +135,10 @@ impl FromStr for MeshMode {
         match s {
             "single" => Ok(MeshMode::Single),
             "blocks" => Ok(MeshMode::Blocks),
-            _ => Err(Error::Usage(format!(
-                "unknown mesh mode {s:?}: expected single or blocks"
-            ))),
+            _ => Err(Error::BadOption {
+                option: "mesh",
+                message: format!("unknown mesh mode {s:?}: expected single or blocks"),
+            }),
         }
     }
 }

@@ -108,11 +108,13 @@ impl Templates {
             files.insert(target, read_tree(&folder)?);
         }
         if !any {
-            return Err(Error::Usage(format!(
-                "template folder {} has no target folder (expected one of {})",
-                dir.display(),
-                Target::ALL.map(Target::name).join(", ")
-            )));
+            return Err(Error::BadTemplateFolder {
+                path: dir.to_owned(),
+                reason: format!(
+                    "it has no target folder (expected one of {})",
+                    Target::ALL.map(Target::name).join(", ")
+                ),
+            });
         }
         Self::new(files, true)
     }

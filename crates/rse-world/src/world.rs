@@ -102,9 +102,10 @@ pub fn build_world(
         for (path, bytes) in templates.render(target, &context)? {
             let path = format!("{target}/{path}");
             if files.contains_key(&path) {
-                return Err(Error::Usage(format!(
-                    "the {target} template has a file {path} that the generator writes itself"
-                )));
+                return Err(Error::TemplateClash {
+                    target: target.to_string(),
+                    path,
+                });
             }
             from_templates.insert(path.clone());
             files.insert(path, bytes);

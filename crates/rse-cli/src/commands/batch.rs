@@ -17,10 +17,10 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
         Some(dir) => Templates::with_overrides(dir)?,
         None => Templates::builtin(),
     };
+    let scheme_batch = BatchOptions::for_scheme(&scheme, &args.output);
     let options = BatchOptions {
-        out: args.output.clone(),
-        amount: args.amount.unwrap_or(scheme.globals().amount),
-        seed: args.seed.unwrap_or(scheme.globals().seed),
+        amount: args.amount.unwrap_or(scheme_batch.amount),
+        seed: args.seed.unwrap_or(scheme_batch.seed),
         world: WorldOptions {
             targets: args.target.clone(),
             mesh: args.mesh,
@@ -28,6 +28,7 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
         jobs: args.jobs.map(usize::from),
         shard: args.shard.unwrap_or_default(),
         force: args.force,
+        ..scheme_batch
     };
     let shard = options.shard;
     let worlds = shard.worlds(options.amount);

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use base64::Engine as _;
 use rse_core::preview;
-use rse_world::{BatchOptions, Targets, Templates, write_batch};
+use rse_world::{BatchOptions, Targets, Templates, WorldOptions, write_batch};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -164,7 +164,15 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     job.total.store(request.amount, Ordering::SeqCst);
     *job.result.lock().expect("not poisoned") = None;
     *job.check.lock().expect("not poisoned") = None;
-    let options = BatchOptions::new(request.out, request.amount, request.seed, targets);
+    let options = BatchOptions {
+        amount: request.amount,
+        seed: request.seed,
+        world: WorldOptions {
+            targets,
+            ..WorldOptions::default()
+        },
+        ..BatchOptions::for_scheme(&scheme, request.out)
+    };
     std::thread::spawn(move || {
         let outcome = write_batch(&scheme, &Templates::builtin(), &options, &|_| {
             job.done.fetch_add(1, Ordering::SeqCst);
