@@ -35,9 +35,11 @@ def run(*args: str) -> str:
     return done.stdout
 
 
-def heights(scheme: Path, seed: int = 0, index: int = 0) -> np.ndarray:
+def heights(scheme: Path, seed: int = 0, index: int = 0, difficulty: float = 1.0) -> np.ndarray:
     """The heightmap in steps, shape (ny, nx), a[y, x]."""
-    text = run("heightmap", str(scheme), "--seed", str(seed), "--index", str(index))
+    text = run(
+        "heightmap", str(scheme), "--seed", str(seed), "--index", str(index), "--difficulty", repr(difficulty)
+    )
     return np.array([[int(v) for v in line.split(",")] for line in text.splitlines()])
 
 

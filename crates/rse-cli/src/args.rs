@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use rse_core::Difficulty;
 use rse_world::{MeshMode, Shard, Targets};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
@@ -91,6 +92,9 @@ pub struct BatchArgs {
     #[arg(long, value_name = "B")]
     pub seed: Option<u64>,
 
+    #[command(flatten)]
+    pub difficulty: DifficultyArg,
+
     /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
     #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
     pub target: Targets,
@@ -165,6 +169,17 @@ pub struct WorldArgs {
     /// Index of the world in the batch.
     #[arg(long, value_name = "I", default_value_t = 0)]
     pub index: u64,
+
+    #[command(flatten)]
+    pub difficulty: DifficultyArg,
+}
+
+/// A difficulty for curricula (schemes/README.md, "Difficulty").
+#[derive(Debug, Args)]
+pub struct DifficultyArg {
+    /// Scale every obstacle height h to floor(D·h + 0.5) steps, 0 ≤ D ≤ 1; the layout stays, frames stay 1 step.
+    #[arg(long = "difficulty", value_name = "D", default_value = "1", allow_negative_numbers = true)]
+    pub value: Difficulty,
 }
 
 /// Global parameters that override the scheme's (SPEC §2).

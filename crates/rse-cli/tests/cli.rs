@@ -8,6 +8,7 @@ use sha2::{Digest, Sha256};
 
 mod batch;
 mod check;
+mod difficulty;
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")

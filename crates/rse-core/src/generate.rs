@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use crate::difficulty::Difficulty;
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::obstacle::{DEFAULT_SIGMA, DrawnObstacle, Obstacle, ObstacleKind};
@@ -21,6 +22,7 @@ pub struct Terrain {
     base: f64,
     seed: u64,
     index: u64,
+    difficulty: Difficulty,
     drawn: Vec<DrawnObstacle>,
 }
 
@@ -37,6 +39,22 @@ pub struct Terrain {
 /// # Ok::<(), rse_core::SchemeError>(())
 /// ```
 pub fn generate(scheme: &Scheme, seed: u64, index: u64) -> Terrain {
+    generate_at(scheme, seed, index, Difficulty::FULL)
+}
+
+/// World `index` of seed `seed` at `difficulty`: the world [`generate`]
+/// makes, with every non-frame height `h` scaled to `floor(D·h + 0.5)`
+/// steps. The obstacles drawn are the same at every difficulty.
+///
+/// ```
+/// use rse_core::{Difficulty, Scheme, generate_at};
+/// let scheme = Scheme::from_csv("# size: 5x5\ntype,height,angle,x1,y1\npeak,4,45,2,2\n", None)?;
+/// let half = generate_at(&scheme, 0, 0, Difficulty::new(0.5).unwrap());
+/// assert_eq!(half.heightmap().get(2, 2), 2);
+/// assert_eq!(half.heightmap().get(3, 2), 2); // 3 steps: floor(1.5 + 0.5)
+/// # Ok::<(), rse_core::SchemeError>(())
+/// ```
+pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficulty) -> Terrain {
     let globals = scheme.globals();
     let grid = scheme.grid();
     let units = Units {
@@ -50,6 +68,13 @@ pub fn generate(scheme: &Scheme, seed: u64, index: u64) -> Terrain {
         let resolved = draw(obstacle, &mut rng);
         stamp::apply(&resolved, &mut heightmap, &mut rng, units);
         drawn.push(resolved);
+    }
+    if !difficulty.is_full() {
+        // Before the frames, which stay one step at any difficulty.
+        heightmap
+            .cells_mut()
+            .iter_mut()
+            .for_each(|h| *h = difficulty.scale(*h));
     }
     if let Some(period) = grid.frame_period {
         // Frames are exactly one step, whatever the obstacles did (SPEC §2).
@@ -70,6 +95,7 @@ pub fn generate(scheme: &Scheme, seed: u64, index: u64) -> Terrain {
         base: globals.base,
         seed,
         index,
+        difficulty,
         drawn,
     }
 }
@@ -146,6 +172,11 @@ impl Terrain {
     /// The world's index in its batch.
     pub fn index(&self) -> u64 {
         self.index
+    }
+
+    /// The difficulty its heights were scaled to.
+    pub fn difficulty(&self) -> Difficulty {
+        self.difficulty
     }
 
     /// The obstacles as drawn for this world, in table order.

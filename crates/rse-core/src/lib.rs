@@ -28,6 +28,7 @@
 //! The contract (grid, units, obstacle maths, seeding, scheme files) is the
 //! project's `SPEC.md`; `schemes/README.md` documents the file format.
 
+mod difficulty;
 mod error;
 pub mod export;
 mod generate;
@@ -42,8 +43,9 @@ mod scheme;
 mod scheme_csv;
 mod stamp;
 
+pub use difficulty::{Difficulty, DifficultyError};
 pub use error::{Error, SchemeError, SchemeErrorKind};
-pub use generate::{Terrain, generate};
+pub use generate::{Terrain, generate, generate_at};
 pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
     Pallets, format_dims, parse_dims,

@@ -102,6 +102,7 @@ fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
         let options = WorldOptions {
             targets: Targets::parse("obj,gazebo,webots,mujoco,urdf,usd").expect("targets"),
             mesh: MeshMode::Single,
+            ..WorldOptions::default()
         };
         let world = build_world(
             &scheme,

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use rse_world::{BatchOptions, MeshMode, Shard, Targets, Templates, WorldOptions};
 
 use crate::errors::world_error;
-use crate::scheme::Scheme;
+use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::Terrain;
 
 /// A rayon pool of `jobs` threads (`None`: one per core).
@@ -20,14 +20,16 @@ pub fn pool(py: Python<'_>, jobs: Option<usize>) -> PyResult<rayon::ThreadPool> 
 /// else 0, as on the command line), generated in parallel on `jobs`
 /// threads with the GIL released; the same terrains whatever `jobs` is.
 #[pyfunction]
-#[pyo3(signature = (scheme, amount, seed=None, jobs=None))]
+#[pyo3(signature = (scheme, amount, seed=None, jobs=None, difficulty=1.0))]
 pub fn generate_batch(
     py: Python<'_>,
     scheme: &Scheme,
     amount: u64,
     seed: Option<u64>,
     jobs: Option<usize>,
+    difficulty: f64,
 ) -> PyResult<Vec<Terrain>> {
+    let difficulty = difficulty_arg(difficulty)?;
     let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
     let seed = seed.unwrap_or(scheme.globals().seed);
@@ -35,7 +37,7 @@ pub fn generate_batch(
         pool.install(|| {
             (0..amount)
                 .into_par_iter()
-                .map(|index| rse_core::generate(scheme, seed, index))
+                .map(|index| rse_core::generate_at(scheme, seed, index, difficulty))
                 .collect()
         })
     });
@@ -48,7 +50,7 @@ pub fn generate_batch(
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="single", jobs=None, shard=None, template=None, force=false))]
+#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="single", jobs=None, shard=None, template=None, force=false, difficulty=1.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
@@ -62,6 +64,7 @@ pub fn write_worlds<'py>(
     shard: Option<&str>,
     template: Option<std::path::PathBuf>,
     force: bool,
+    difficulty: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let bad = |e: rse_world::Error| PyValueError::new_err(e.to_string());
     let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
@@ -71,6 +74,7 @@ pub fn write_worlds<'py>(
         world: WorldOptions {
             targets: Targets::parse(targets).map_err(bad)?,
             mesh: mesh.parse::<MeshMode>().map_err(bad)?,
+            difficulty: difficulty_arg(difficulty)?,
         },
         jobs,
         shard: shard

@@ -255,14 +255,23 @@ impl Scheme {
     }
 
     /// World `index` of the batch with base seed `seed` (default: the
-    /// scheme's `# seed:`, else 0, as on the command line).
-    #[pyo3(signature = (seed=None, index=0))]
-    fn generate(&self, py: Python<'_>, seed: Option<u64>, index: u64) -> Terrain {
+    /// scheme's `# seed:`, else 0, as on the command line), its obstacle
+    /// heights scaled to `difficulty` (0 to 1: `h` becomes
+    /// `floor(difficulty·h + 0.5)` steps, frames stay 1 step).
+    #[pyo3(signature = (seed=None, index=0, difficulty=1.0))]
+    fn generate(
+        &self,
+        py: Python<'_>,
+        seed: Option<u64>,
+        index: u64,
+        difficulty: f64,
+    ) -> PyResult<Terrain> {
+        let difficulty = difficulty_arg(difficulty)?;
         let scheme = &self.inner;
         let seed = seed.unwrap_or(scheme.globals().seed);
-        Terrain {
-            inner: py.detach(|| rse_core::generate(scheme, seed, index)),
-        }
+        Ok(Terrain {
+            inner: py.detach(|| rse_core::generate_at(scheme, seed, index, difficulty)),
+        })
     }
 
     fn __eq__(&self, other: &Scheme) -> bool {
@@ -276,4 +285,9 @@ impl Scheme {
             self.inner.obstacles().len()
         )
     }
+}
+
+/// A `difficulty=` argument, refused with `ValueError` unless `0 ≤ d ≤ 1`.
+pub fn difficulty_arg(d: f64) -> PyResult<rse_core::Difficulty> {
+    rse_core::Difficulty::new(d).map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
 }

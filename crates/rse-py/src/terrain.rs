@@ -81,6 +81,12 @@ impl Terrain {
         self.inner.index()
     }
 
+    /// The difficulty its obstacle heights were scaled to (1: as drawn).
+    #[getter]
+    fn difficulty(&self) -> f64 {
+        self.inner.difficulty().get()
+    }
+
     /// The obstacles as drawn for this world: one dict each (`type`,
     /// `height`, and `angle`, `p1`, `p2`, `sigma` where they apply).
     #[getter]

@@ -7,7 +7,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use rse_core::{Scheme, Terrain, generate};
+use rse_core::{Scheme, Terrain, generate_at};
 use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
 use rse_world::{MANIFEST, Manifest, MeshMode, Templates, WorldOptions, build_world, sha256_hex};
 use serde::Serialize;
@@ -127,7 +127,7 @@ fn check_against_manifest(
             return;
         }
     };
-    let terrain = generate(&scheme, manifest.seed, manifest.index);
+    let terrain = generate_at(&scheme, manifest.seed, manifest.index, manifest.difficulty);
     let expected = match expected_files(&scheme, manifest) {
         Ok(expected) => expected,
         Err(reason) => {
@@ -285,6 +285,7 @@ fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, Stri
     let options = WorldOptions {
         targets: manifest.targets.clone(),
         mesh: manifest.mesh,
+        difficulty: manifest.difficulty,
     };
     let world = build_world(
         scheme,

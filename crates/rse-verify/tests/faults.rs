@@ -24,6 +24,7 @@ fn write_world(dir: &Path, name: &str, scheme: &str, templates: &Templates) -> P
     let options = WorldOptions {
         targets: Targets::parse(ALL).unwrap(),
         mesh: MeshMode::Single,
+        ..WorldOptions::default()
     };
     let world = build_world(&scheme, 3, 1, name.to_owned(), &options, templates).unwrap();
     let root = dir.join(name);

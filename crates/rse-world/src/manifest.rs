@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use rse_core::{DrawnObstacle, Globals, Grid};
+use rse_core::{Difficulty, DrawnObstacle, Globals, Grid};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
@@ -25,6 +25,10 @@ pub struct Manifest {
     pub seed: u64,
     /// Index of the world in the batch.
     pub index: u64,
+    /// The difficulty the heights were scaled to; absent at 1, so worlds
+    /// of full difficulty keep the bytes they had before difficulties.
+    #[serde(default, skip_serializing_if = "is_full")]
+    pub difficulty: Difficulty,
     /// The targets written.
     pub targets: Targets,
     /// The terrain model of the simulator files.
@@ -63,6 +67,11 @@ impl Manifest {
     pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
         serde_json::from_str(text)
     }
+}
+
+/// For serde: whether a manifest's difficulty is left out.
+fn is_full(d: &Difficulty) -> bool {
+    d.is_full()
 }
 
 /// The SHA-256 of `bytes` as lower-case hex.

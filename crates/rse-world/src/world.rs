@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use rse_core::export::{mtl, obj, usda};
 use std::sync::OnceLock;
 
-use rse_core::{Scheme, Terrain, generate, preview};
+use rse_core::{Difficulty, Scheme, Terrain, generate_at, preview};
 
 use crate::context::{MODEL, WorldContext};
 use crate::error::Error;
@@ -21,6 +21,8 @@ pub struct WorldOptions {
     pub targets: Targets,
     /// Single mesh or boxes in the simulator files.
     pub mesh: MeshMode,
+    /// The difficulty the heights are scaled to.
+    pub difficulty: Difficulty,
 }
 
 /// The files of one world folder, by `/`-separated relative path, with the
@@ -53,7 +55,7 @@ pub fn build_world(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
-    let terrain = generate(scheme, seed, index);
+    let terrain = generate_at(scheme, seed, index, options.difficulty);
     let grid = terrain.grid();
     let mut files = BTreeMap::new();
     files.insert(
@@ -118,6 +120,7 @@ pub fn build_world(
         world: name.clone(),
         seed,
         index,
+        difficulty: options.difficulty,
         targets: targets.clone(),
         mesh: options.mesh,
         templates: if templates.is_custom() {
@@ -168,12 +171,14 @@ pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rse_core::generate;
 
     fn files(scheme: &str, mesh: MeshMode, targets: &str) -> Vec<String> {
         let scheme = Scheme::from_csv(scheme, None).unwrap();
         let options = WorldOptions {
             targets: Targets::parse(targets).unwrap(),
             mesh,
+            ..WorldOptions::default()
         };
         let world = build_world(
             &scheme,
@@ -245,6 +250,7 @@ mod tests {
         let options = WorldOptions {
             targets: Targets::parse(ALL).unwrap(),
             mesh: MeshMode::Blocks,
+            ..WorldOptions::default()
         };
         let world = build_world(
             &scheme,
@@ -267,6 +273,24 @@ mod tests {
             generate(&again, manifest.seed, manifest.index).heightmap(),
             generate(&scheme, 7, 1).heightmap()
         );
+    }
+
+    #[test]
+    fn the_manifest_records_a_difficulty_below_one_only() {
+        let scheme = Scheme::from_csv(WALL, None).unwrap();
+        let manifest_of = |difficulty| {
+            let options = WorldOptions {
+                difficulty,
+                ..WorldOptions::default()
+            };
+            let world =
+                build_world(&scheme, 1, 2, "w".into(), &options, &Templates::builtin()).unwrap();
+            String::from_utf8(world.files[MANIFEST].clone()).unwrap()
+        };
+        assert!(!manifest_of(Difficulty::FULL).contains("difficulty"));
+        let half = manifest_of(Difficulty::new(0.5).unwrap());
+        assert!(half.contains("\"difficulty\": 0.5,"), "{half}");
+        assert_eq!(Manifest::from_json(&half).unwrap().difficulty.get(), 0.5);
     }
 
     #[test]

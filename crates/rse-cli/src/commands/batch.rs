@@ -24,6 +24,7 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
         world: WorldOptions {
             targets: args.target.clone(),
             mesh: args.mesh,
+            difficulty: args.difficulty.value,
         },
         jobs: args.jobs.map(usize::from),
         shard: args.shard.unwrap_or_default(),

@@ -45,7 +45,12 @@ pub fn load_world(
 ) -> anyhow::Result<Terrain> {
     let scheme = load_scheme(path, overrides)?;
     let seed = world.seed.unwrap_or(scheme.globals().seed);
-    Ok(rse_core::generate(&scheme, seed, world.index))
+    Ok(rse_core::generate_at(
+        &scheme,
+        seed,
+        world.index,
+        world.difficulty.value,
+    ))
 }
 
 /// Reads the scheme at `path` and applies the command-line overrides.

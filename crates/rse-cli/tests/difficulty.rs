@@ -1,0 +1,131 @@
+//! `--difficulty` on heightmap, preview, mesh and batch: the contract of
+//! schemes/README.md through the binary, and bad values refused.
+
+use super::{rse_gen, stderr, stdout};
+
+fn cells(csv: &str) -> Vec<Vec<u32>> {
+    csv.lines()
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn heightmap_scales_every_non_frame_cell_and_keeps_frames() {
+    let scheme = "schemes/paper_pallets.csv";
+    let full = stdout(&rse_gen(&["heightmap", scheme, "--index", "2"]));
+    let same = stdout(&rse_gen(&[
+        "heightmap",
+        scheme,
+        "--index",
+        "2",
+        "--difficulty",
+        "1",
+    ]));
+    assert_eq!(full, same);
+    let half = stdout(&rse_gen(&[
+        "heightmap",
+        scheme,
+        "--index",
+        "2",
+        "--difficulty",
+        "0.5",
+    ]));
+    let zero = stdout(&rse_gen(&[
+        "heightmap",
+        scheme,
+        "--index",
+        "2",
+        "--difficulty",
+        "0",
+    ]));
+    let (full, half, zero) = (cells(&full), cells(&half), cells(&zero));
+    let mut frames = 0;
+    for (y, row) in full.iter().enumerate() {
+        for (x, &h) in row.iter().enumerate() {
+            // paper_pallets: 3-cell pallets, a frame every 4th line.
+            if x % 4 == 0 || y % 4 == 0 {
+                assert_eq!((half[y][x], zero[y][x]), (1, 1), "frame ({x}, {y})");
+                frames += 1;
+            } else {
+                assert_eq!(half[y][x], (f64::from(h) * 0.5 + 0.5).floor() as u32);
+                assert_eq!(zero[y][x], 0);
+            }
+        }
+    }
+    assert!(frames > 0);
+}
+
+#[test]
+fn bad_difficulties_exit_2_naming_the_flag_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.obj");
+    for bad in ["2", "-0.1", "NaN", "hard", "inf"] {
+        let output = rse_gen(&[
+            "mesh",
+            "schemes/wall.csv",
+            "-o",
+            out.to_str().unwrap(),
+            "--difficulty",
+            bad,
+        ]);
+        assert_eq!(output.status.code(), Some(2), "{bad}");
+        let err = stderr(&output);
+        assert!(err.contains("--difficulty"), "{bad}: {err}");
+        assert!(err.contains("from 0 to 1"), "{bad}: {err}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "{bad}");
+    }
+}
+
+#[test]
+fn a_batch_at_a_difficulty_records_it_and_checks_good() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let out = out.to_str().unwrap();
+    let scheme = "schemes/six_obstacles.csv";
+    stdout(&rse_gen(&[
+        "batch",
+        scheme,
+        "-o",
+        out,
+        "--amount",
+        "2",
+        "--seed",
+        "5",
+        "--difficulty",
+        "0.3",
+        "--target",
+        "obj,mujoco",
+    ]));
+    let world = std::path::Path::new(out).join("world_0001");
+    let manifest = std::fs::read_to_string(world.join("rse.json")).unwrap();
+    assert!(manifest.contains("\"difficulty\": 0.3,"), "{manifest}");
+    let want = stdout(&rse_gen(&[
+        "heightmap",
+        scheme,
+        "--seed",
+        "5",
+        "--index",
+        "1",
+        "--difficulty",
+        "0.3",
+    ]));
+    assert_eq!(
+        std::fs::read_to_string(world.join("heightmap.csv")).unwrap(),
+        want
+    );
+    stdout(&rse_gen(&["check", out]));
+    // Another difficulty is another world: a rerun does not pass it off as this one.
+    let rerun = rse_gen(&[
+        "batch",
+        scheme,
+        "-o",
+        out,
+        "--amount",
+        "2",
+        "--seed",
+        "5",
+        "--target",
+        "obj,mujoco",
+    ]);
+    assert_eq!(rerun.status.code(), Some(2), "{}", stderr(&rerun));
+}
