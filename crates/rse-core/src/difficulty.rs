@@ -50,7 +50,9 @@ impl Difficulty {
 
     /// `true` for [`Difficulty::FULL`].
     pub fn is_full(self) -> bool {
-        self.0 == 1.0
+        // Exactly 1: only then is every height kept (new() never stores
+        // anything above 1).
+        self.0 >= 1.0
     }
 
     /// A height of `h` steps at this difficulty: `floor(D·h + 0.5)`.
@@ -169,8 +171,8 @@ mod tests {
     fn json_refuses_out_of_range() {
         assert!(serde_json::from_str::<Difficulty>("1.5").is_err());
         assert_eq!(
-            serde_json::from_str::<Difficulty>("0.25").unwrap().get(),
-            0.25
+            serde_json::from_str::<Difficulty>("0.25").unwrap(),
+            Difficulty::new(0.25).unwrap()
         );
     }
 }

@@ -70,6 +70,7 @@ impl Manifest {
 }
 
 /// For serde: whether a manifest's difficulty is left out.
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
 fn is_full(d: &Difficulty) -> bool {
     d.is_full()
 }
