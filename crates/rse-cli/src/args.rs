@@ -178,7 +178,12 @@ pub struct WorldArgs {
 #[derive(Debug, Args)]
 pub struct DifficultyArg {
     /// Scale every obstacle height h to floor(D·h + 0.5) steps, 0 ≤ D ≤ 1; the layout stays, frames stay 1 step.
-    #[arg(long = "difficulty", value_name = "D", default_value = "1", allow_negative_numbers = true)]
+    #[arg(
+        long = "difficulty",
+        value_name = "D",
+        default_value = "1",
+        allow_negative_numbers = true
+    )]
     pub value: Difficulty,
 }
 

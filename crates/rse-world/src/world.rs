@@ -290,7 +290,10 @@ mod tests {
         assert!(!manifest_of(Difficulty::FULL).contains("difficulty"));
         let half = manifest_of(Difficulty::new(0.5).unwrap());
         assert!(half.contains("\"difficulty\": 0.5,"), "{half}");
-        assert_eq!(Manifest::from_json(&half).unwrap().difficulty.get(), 0.5);
+        assert_eq!(
+            Manifest::from_json(&half).unwrap().difficulty,
+            Difficulty::new(0.5).unwrap()
+        );
     }
 
     #[test]
