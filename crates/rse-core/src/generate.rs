@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use crate::difficulty::Difficulty;
-use crate::globals::Grid;
+use crate::globals::{Globals, Grid};
 use crate::heightmap::Heightmap;
 use crate::obstacle::{DEFAULT_SIGMA, DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
@@ -134,6 +134,27 @@ fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
 }
 
 impl Terrain {
+    /// A terrain of given heights (an atlas's map): no obstacles drawn,
+    /// world 0 of `seed`, the units of `globals`.
+    pub(crate) fn from_heightmap(
+        grid: Grid,
+        heightmap: Heightmap,
+        globals: &Globals,
+        seed: u64,
+    ) -> Terrain {
+        Terrain {
+            grid,
+            heightmap,
+            block_size: globals.block_size,
+            step_height: globals.step_height,
+            base: globals.base,
+            seed,
+            index: 0,
+            difficulty: Difficulty::FULL,
+            drawn: Vec::new(),
+        }
+    }
+
     /// The grid, with where its pallet frames are.
     pub fn grid(&self) -> Grid {
         self.grid

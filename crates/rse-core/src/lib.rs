@@ -28,6 +28,7 @@
 //! The contract (grid, units, obstacle maths, seeding, scheme files) is the
 //! project's `SPEC.md`; `schemes/README.md` documents the file format.
 
+mod atlas;
 mod difficulty;
 mod error;
 pub mod export;
@@ -41,8 +42,10 @@ pub mod preview;
 mod rng;
 mod scheme;
 mod scheme_csv;
+pub mod spawn;
 mod stamp;
 
+pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
 pub use error::{Error, SchemeError, SchemeErrorKind};
 pub use generate::{Terrain, generate, generate_at};

@@ -1,5 +1,6 @@
 //! Integration tests of rse-core, one binary (see `STYLE.md`).
 
+mod atlas;
 mod difficulty;
 mod golden;
 mod mesh;

@@ -1,0 +1,314 @@
+//! An atlas: one terrain made of `rows × cols` tiles for RL curricula, as
+//! Isaac Lab's and legged_gym's terrain generators lay them out — rows run
+//! along x and are difficulty levels, columns run along y and cycle through
+//! the schemes — with a spawn origin and flat patches per tile.
+
+use rayon::prelude::*;
+
+use crate::difficulty::Difficulty;
+use crate::generate::{Terrain, generate_at};
+use crate::globals::{Grid, MAX_CELLS, MAX_EXTENT};
+use crate::heightmap::Heightmap;
+use crate::scheme::Scheme;
+use crate::spawn::{Region, flat_patches, highest_under_disc};
+
+/// Flat patches to find on every tile (none when `count` is 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchOptions {
+    /// At most this many per tile.
+    pub count: u32,
+    /// Disc radius in metres.
+    pub radius: f64,
+    /// Largest height difference under a disc, in steps.
+    pub max_step: u16,
+}
+
+impl Default for PatchOptions {
+    fn default() -> Self {
+        PatchOptions {
+            count: 0,
+            radius: 0.3,
+            max_step: 0,
+        }
+    }
+}
+
+/// How to lay out an atlas.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtlasOptions {
+    /// Tiles along x: difficulty levels.
+    pub rows: u32,
+    /// Tiles along y: column `c` uses scheme `c mod (number of schemes)`.
+    pub cols: u32,
+    /// The base seed of every tile; tile `(r, c)` is world `r·cols + c`.
+    pub seed: u64,
+    /// Cells of height 0 between tiles and around the outside.
+    pub border: u32,
+    /// Difficulty of the first row and of the last.
+    pub difficulty: (Difficulty, Difficulty),
+    /// Radius in metres of the disc around a tile's centre whose highest
+    /// top is the origin's z.
+    pub spawn_radius: f64,
+    /// Flat patches per tile.
+    pub patches: PatchOptions,
+}
+
+impl Default for AtlasOptions {
+    fn default() -> Self {
+        AtlasOptions {
+            rows: 1,
+            cols: 1,
+            seed: 0,
+            border: 0,
+            difficulty: (
+                Difficulty::new(0.0).expect("0 is a difficulty"),
+                Difficulty::FULL,
+            ),
+            spawn_radius: 0.3,
+            patches: PatchOptions::default(),
+        }
+    }
+}
+
+/// One tile of an atlas.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tile {
+    /// Row, along x (difficulty level).
+    pub row: u32,
+    /// Column, along y.
+    pub col: u32,
+    /// Which of the atlas's schemes it comes from.
+    pub scheme: usize,
+    /// Base seed.
+    pub seed: u64,
+    /// World index: `row·cols + col`.
+    pub index: u64,
+    /// Its difficulty.
+    pub difficulty: Difficulty,
+    /// The cells it covers in the atlas's grid.
+    pub region: Region,
+    /// Spawn point `[x, y, z]` in metres in the atlas's frame: the tile's
+    /// centre, on the highest top within the spawn radius.
+    pub origin: [f64; 3],
+    /// Flat patch centres `[x, y, z]` in metres, z the highest top under
+    /// the patch.
+    pub flat_patches: Vec<[f64; 3]>,
+}
+
+/// A built atlas: its terrain and tiles (row by row, `r·cols + c`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Atlas {
+    terrain: Terrain,
+    tiles: Vec<Tile>,
+    options: AtlasOptions,
+}
+
+/// Why an atlas cannot be built; the field is the option's name.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum AtlasError {
+    /// No scheme given.
+    #[error("an atlas needs at least one scheme")]
+    NoScheme,
+    /// An option out of range.
+    #[error("{field}: {reason}")]
+    BadOption {
+        /// The option: `rows`, `cols`, `difficulty`, `spawn_radius`, …
+        field: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Two schemes whose tiles cannot sit side by side.
+    #[error(
+        "scheme {other} has {field} {found}, but scheme 0 has {expected}: every tile of an atlas must share it"
+    )]
+    Mismatch {
+        /// `block_size`, `step_height`, `base` or `size`.
+        field: &'static str,
+        /// The position of the scheme that differs.
+        other: usize,
+        /// Its value.
+        found: String,
+        /// Scheme 0's value.
+        expected: String,
+    },
+    /// More cells or metres than one terrain may have.
+    #[error(
+        "the atlas would be {nx}x{ny} cells ({metres} m across); at most {MAX_CELLS} cells and {MAX_EXTENT} m"
+    )]
+    TooLarge {
+        /// Cells along x.
+        nx: u64,
+        /// Cells along y.
+        ny: u64,
+        /// The longer side in metres.
+        metres: f64,
+    },
+}
+
+impl AtlasOptions {
+    fn validate(&self) -> Result<(), AtlasError> {
+        let bad = |field, reason: &str| {
+            Err(AtlasError::BadOption {
+                field,
+                reason: reason.to_owned(),
+            })
+        };
+        if self.rows == 0 {
+            return bad("rows", "must be at least 1");
+        }
+        if self.cols == 0 {
+            return bad("cols", "must be at least 1");
+        }
+        if self.difficulty.0 > self.difficulty.1 {
+            return bad(
+                "difficulty",
+                &format!(
+                    "the range {}..{} runs backwards",
+                    self.difficulty.0, self.difficulty.1
+                ),
+            );
+        }
+        if !(self.spawn_radius.is_finite() && self.spawn_radius >= 0.0) {
+            return bad("spawn_radius", "must be a length of 0 m or more");
+        }
+        if !(self.patches.radius.is_finite() && self.patches.radius >= 0.0) {
+            return bad("patch_radius", "must be a length of 0 m or more");
+        }
+        Ok(())
+    }
+}
+
+/// Builds the atlas of `schemes` (the scheme of column `c` is
+/// `schemes[c % len]`). Tile `(r, c)` is exactly
+/// `generate_at(scheme, seed, r·cols + c, lo + (hi − lo)·r/(rows − 1))`.
+/// The same on any number of threads.
+pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, AtlasError> {
+    options.validate()?;
+    let first = schemes.first().ok_or(AtlasError::NoScheme)?;
+    let units = first.globals();
+    let tile_grid = first.grid();
+    for (other, scheme) in schemes.iter().enumerate().skip(1) {
+        let g = scheme.globals();
+        let mismatch = |field, found: String, expected: String| AtlasError::Mismatch {
+            field,
+            other,
+            found,
+            expected,
+        };
+        for (field, found, expected) in [
+            ("block_size", g.block_size, units.block_size),
+            ("step_height", g.step_height, units.step_height),
+            ("base", g.base, units.base),
+        ] {
+            if found.to_bits() != expected.to_bits() {
+                return Err(mismatch(field, format!("{found}"), format!("{expected}")));
+            }
+        }
+        let grid = scheme.grid();
+        if (grid.nx, grid.ny) != (tile_grid.nx, tile_grid.ny) {
+            return Err(mismatch(
+                "size",
+                format!("{}x{}", grid.nx, grid.ny),
+                format!("{}x{}", tile_grid.nx, tile_grid.ny),
+            ));
+        }
+    }
+    let b = u64::from(options.border);
+    let nx = u64::from(options.rows) * (u64::from(tile_grid.nx) + b) + b;
+    let ny = u64::from(options.cols) * (u64::from(tile_grid.ny) + b) + b;
+    let metres = nx.max(ny) as f64 * units.block_size;
+    if nx * ny > MAX_CELLS || metres > MAX_EXTENT || nx > u64::from(u32::MAX) {
+        return Err(AtlasError::TooLarge { nx, ny, metres });
+    }
+    let (nx, ny) = (nx as u32, ny as u32);
+
+    let (lo, hi) = options.difficulty;
+    let tiles: Vec<(Tile, Terrain)> = (0..options.rows * options.cols)
+        .into_par_iter()
+        .map(|i| {
+            let (row, col) = (i / options.cols, i % options.cols);
+            let scheme = col as usize % schemes.len();
+            let difficulty = Difficulty::lerp(lo, hi, row, options.rows);
+            let index = u64::from(i);
+            let terrain = generate_at(&schemes[scheme], options.seed, index, difficulty);
+            let region = Region {
+                x0: options.border + row * (tile_grid.nx + options.border),
+                y0: options.border + col * (tile_grid.ny + options.border),
+                nx: tile_grid.nx,
+                ny: tile_grid.ny,
+            };
+            let tile = Tile {
+                row,
+                col,
+                scheme,
+                seed: options.seed,
+                index,
+                difficulty,
+                region,
+                origin: [0.0; 3],
+                flat_patches: Vec::new(),
+            };
+            (tile, terrain)
+        })
+        .collect();
+
+    let mut heightmap = Heightmap::zeros(nx, ny);
+    for (tile, terrain) in &tiles {
+        let r = tile.region;
+        for y in 0..r.ny {
+            let dest = &mut heightmap.row_mut(r.y0 + y)[r.x0 as usize..(r.x0 + r.nx) as usize];
+            dest.copy_from_slice(terrain.heightmap().row(y));
+        }
+    }
+
+    let s = units.block_size;
+    let top = |h: u16| units.base + f64::from(h) * units.step_height;
+    let metres3 = |at: [f64; 2], h: u16| [at[0] * s, at[1] * s, top(h)];
+    let tiles: Vec<Tile> = tiles
+        .into_par_iter()
+        .map(|(mut tile, _)| {
+            let centre = tile.region.centre();
+            let highest =
+                highest_under_disc(&heightmap, tile.region, centre, options.spawn_radius / s);
+            tile.origin = metres3(centre, highest);
+            let p = options.patches;
+            tile.flat_patches =
+                flat_patches(&heightmap, tile.region, p.count, p.radius / s, p.max_step)
+                    .into_iter()
+                    .map(|patch| metres3(patch.at, patch.top))
+                    .collect();
+            tile
+        })
+        .collect();
+
+    let grid = Grid {
+        nx,
+        ny,
+        frame_period: None,
+    };
+    let terrain = Terrain::from_heightmap(grid, heightmap, units, options.seed);
+    Ok(Atlas {
+        terrain,
+        tiles,
+        options: *options,
+    })
+}
+
+impl Atlas {
+    /// The whole map as one terrain (the atlas's grid frame: the outer
+    /// corner of cell (0, 0) at the origin).
+    pub fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    /// The tiles, row by row: tile `(r, c)` is `tiles()[r·cols + c]`.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The options it was built with.
+    pub fn options(&self) -> &AtlasOptions {
+        &self.options
+    }
+}

@@ -1,0 +1,222 @@
+//! Where a robot may start on a heightmap: the highest top under a disc
+//! (spawn origins) and discs that are flat within a few steps (flat
+//! patches, after Isaac Lab's `FlatPatchSamplingCfg`). Everything here is
+//! in cell units: cell `(x, y)` covers `[x, x+1] × [y, y+1]`.
+
+use crate::heightmap::Heightmap;
+
+/// A rectangle of cells: `x0 ≤ x < x0 + nx`, `y0 ≤ y < y0 + ny`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Region {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// Columns.
+    pub nx: u32,
+    /// Rows.
+    pub ny: u32,
+}
+
+impl Region {
+    /// The centre, in cell units.
+    pub fn centre(&self) -> [f64; 2] {
+        [
+            f64::from(self.x0) + f64::from(self.nx) / 2.0,
+            f64::from(self.y0) + f64::from(self.ny) / 2.0,
+        ]
+    }
+}
+
+/// A point of a flat patch: its position in cell units and the highest
+/// height (steps) under its disc.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Patch {
+    /// x, y in cell units.
+    pub at: [f64; 2],
+    /// The highest cell under the disc, in steps.
+    pub top: u16,
+}
+
+/// The cells of `region` that a disc of radius `r` around `p` touches
+/// (boundary included: a disc of radius 0 on a cell corner touches the four
+/// cells that meet there), as `(y, x_first, x_last)` per row.
+fn disc_rows(region: Region, p: [f64; 2], r: f64) -> impl Iterator<Item = (u32, u32, u32)> {
+    // Index of the first and last cell whose band [i, i+1] meets [lo, hi],
+    // kept to the region.
+    let span = |lo: f64, hi: f64, first: u32, n: u32| -> (u32, u32) {
+        let a = ((lo.ceil() - 1.0).max(f64::from(first))) as u32;
+        let b = (hi.floor().max(0.0) as u32).min(first + n - 1);
+        (a, b)
+    };
+    let (y_first, y_last) = span(p[1] - r, p[1] + r, region.y0, region.ny);
+    (y_first..=y_last).filter_map(move |y| {
+        // Distance from p to the row's band [y, y+1] along y.
+        let dy = (f64::from(y) - p[1]).max(p[1] - f64::from(y + 1)).max(0.0);
+        let left = r * r - dy * dy;
+        if left < 0.0 {
+            return None;
+        }
+        let half = left.sqrt();
+        let (x_first, x_last) = span(p[0] - half, p[0] + half, region.x0, region.nx);
+        (x_first <= x_last).then_some((y, x_first, x_last))
+    })
+}
+
+/// The highest cell of `region` touched by the disc of radius `r` (cells)
+/// around `p`: a body whose footprint fits in the disc, set on this top,
+/// starts inside no block.
+pub fn highest_under_disc(map: &Heightmap, region: Region, p: [f64; 2], r: f64) -> u16 {
+    disc_rows(region, p, r)
+        .flat_map(|(y, x_lo, x_hi)| map.row(y)[x_lo as usize..=x_hi as usize].iter().copied())
+        .max()
+        .unwrap_or(0)
+}
+
+/// Lowest and highest cell under the disc, stopping early once they are
+/// more than `max_step` apart (`None` then).
+fn flat_under_disc(
+    map: &Heightmap,
+    region: Region,
+    p: [f64; 2],
+    r: f64,
+    max_step: u16,
+) -> Option<u16> {
+    let (mut lo, mut hi) = (u16::MAX, 0u16);
+    for (y, x_lo, x_hi) in disc_rows(region, p, r) {
+        for &h in &map.row(y)[x_lo as usize..=x_hi as usize] {
+            lo = lo.min(h);
+            hi = hi.max(h);
+            if hi - lo > max_step {
+                return None;
+            }
+        }
+    }
+    Some(hi)
+}
+
+/// Up to `count` flat patches in `region`: centres of cells whose disc of
+/// radius `r` (cells) lies inside the region and touches only cells within
+/// `max_step` steps of each other.
+///
+/// Deterministic and spread out: the first is the candidate nearest the
+/// region's centre, each next the candidate farthest from those already
+/// chosen (ties go to the first in row order, y then x). A region with
+/// fewer candidates gives fewer patches.
+pub fn flat_patches(
+    map: &Heightmap,
+    region: Region,
+    count: u32,
+    r: f64,
+    max_step: u16,
+) -> Vec<Patch> {
+    if count == 0 || region.nx == 0 || region.ny == 0 {
+        return Vec::new();
+    }
+    let mut candidates = Vec::new();
+    for y in region.y0..region.y0 + region.ny {
+        for x in region.x0..region.x0 + region.nx {
+            let p = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+            let inside = p[0] - r >= f64::from(region.x0)
+                && p[0] + r <= f64::from(region.x0 + region.nx)
+                && p[1] - r >= f64::from(region.y0)
+                && p[1] + r <= f64::from(region.y0 + region.ny);
+            if !inside {
+                continue;
+            }
+            if let Some(top) = flat_under_disc(map, region, p, r, max_step) {
+                candidates.push(Patch { at: p, top });
+            }
+        }
+    }
+    farthest_points(&candidates, region.centre(), count as usize)
+}
+
+/// Greedy farthest-point sampling of `n` of `candidates`, starting from
+/// the one nearest `start`; ties go to the earlier candidate.
+fn farthest_points(candidates: &[Patch], start: [f64; 2], n: usize) -> Vec<Patch> {
+    let dist2 = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
+    let mut chosen: Vec<Patch> = Vec::with_capacity(n.min(candidates.len()));
+    let mut taken = vec![false; candidates.len()];
+    // Higher is picked first: minus the distance to `start` for the first
+    // pick, then the distance to the nearest point already chosen.
+    let mut score: Vec<f64> = candidates.iter().map(|c| -dist2(c.at, start)).collect();
+    while chosen.len() < n {
+        let mut best: Option<usize> = None;
+        for (i, &s) in score.iter().enumerate() {
+            if !taken[i] && best.is_none_or(|b| s > score[b]) {
+                best = Some(i);
+            }
+        }
+        let Some(i) = best else { break };
+        taken[i] = true;
+        let pick = candidates[i];
+        for (c, s) in candidates.iter().zip(score.iter_mut()) {
+            let d = dist2(c.at, pick.at);
+            *s = if chosen.is_empty() { d } else { s.min(d) };
+        }
+        chosen.push(pick);
+    }
+    chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn map(rows: &[&[u16]]) -> Heightmap {
+        let text: String = rows
+            .iter()
+            .map(|r| r.iter().map(u16::to_string).collect::<Vec<_>>().join(",") + "\n")
+            .collect();
+        Heightmap::from_csv(&text).unwrap()
+    }
+
+    const ALL: Region = Region {
+        x0: 0,
+        y0: 0,
+        nx: 4,
+        ny: 4,
+    };
+
+    #[test]
+    fn a_point_disc_on_a_corner_touches_its_four_cells() {
+        let m = map(&[&[0, 0, 0, 0], &[0, 1, 2, 0], &[0, 3, 4, 0], &[0, 0, 0, 9]]);
+        assert_eq!(highest_under_disc(&m, ALL, [2.0, 2.0], 0.0), 4);
+        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 0.4), 1);
+        // Radius 1 from the centre of (1, 1) reaches (2, 2)'s corner? No:
+        // its nearest point is (2, 2), √0.5 ≈ 0.71 away — yes, it does.
+        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 1.0), 4);
+        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 0.7), 3);
+    }
+
+    #[test]
+    fn patches_are_flat_inside_and_spread() {
+        let m = map(&[&[0, 0, 0, 5], &[0, 0, 0, 5], &[0, 0, 0, 5], &[1, 0, 0, 5]]);
+        let patches = flat_patches(&m, ALL, 10, 0.5, 0);
+        assert!(!patches.is_empty());
+        for p in &patches {
+            let (x, y) = (p.at[0] as usize, p.at[1] as usize);
+            assert!(x < 3 && !(x == 0 && y == 3), "{p:?}");
+            assert_eq!(p.top, 0);
+        }
+        // Nearest the centre first, then the farthest from it.
+        assert_eq!(patches[0].at, [1.5, 1.5]);
+        let with_step = flat_patches(&m, ALL, 100, 0.5, 1);
+        assert!(with_step.iter().any(|p| p.at == [0.5, 3.5]));
+        assert!(with_step.iter().all(|p| p.at[0] < 3.0));
+    }
+
+    #[test]
+    fn a_disc_larger_than_the_region_gives_nothing() {
+        let m = map(&[&[0, 0], &[0, 0]]);
+        let region = Region {
+            x0: 0,
+            y0: 0,
+            nx: 2,
+            ny: 2,
+        };
+        assert!(flat_patches(&m, region, 3, 1.5, 0).is_empty());
+        assert_eq!(flat_patches(&m, region, 9, 0.5, 0).len(), 4);
+    }
+}
