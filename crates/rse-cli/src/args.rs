@@ -39,6 +39,9 @@ pub enum Command {
     Mesh(MeshArgs),
     /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
     Batch(BatchArgs),
+    /// Write ONE world whose terrain is a grid of tiles for RL curricula: rows along x are difficulty
+    /// levels, columns along y cycle through the schemes; atlas.json gives every tile's spawn origin.
+    Atlas(AtlasArgs),
     /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes, physics.
     Check(CheckArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
@@ -116,6 +119,73 @@ pub struct BatchArgs {
     pub template: Option<PathBuf>,
 
     /// Replace world folders that hold a different world.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct AtlasArgs {
+    /// The scheme CSV files; column c uses scheme c mod (number of schemes).
+    #[arg(required = true, value_name = "SCHEME")]
+    pub schemes: Vec<PathBuf>,
+
+    /// The world folder to write (its name is the world's).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+
+    /// Tiles along x: difficulty levels, from the range's low end to its high end.
+    #[arg(long, value_name = "R", value_parser = clap::value_parser!(u32).range(1..))]
+    pub rows: u32,
+
+    /// Tiles along y.
+    #[arg(long, value_name = "C", value_parser = clap::value_parser!(u32).range(1..))]
+    pub cols: u32,
+
+    /// Base seed of every tile; tile (r, c) is world r·C + c [default: the first scheme's `seed`, else 0].
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+
+    /// Cells of height 0 between tiles and around the outside.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub border: u32,
+
+    /// Difficulty of the first row and of the last (`LO..HI`, or one value for every row).
+    #[arg(long, value_name = "LO..HI", default_value = "0..1", allow_hyphen_values = true, value_parser = parse_difficulty_range)]
+    pub difficulty: (Difficulty, Difficulty),
+
+    /// A tile's origin z is the highest top within this many metres of its centre.
+    #[arg(long, value_name = "M", default_value_t = 0.3, value_parser = non_negative_metres)]
+    pub spawn_radius: f64,
+
+    /// Flat patches per tile to list in atlas.json (spawn or goal points).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub flat_patches: u32,
+
+    /// Radius in metres of the disc a flat patch must cover.
+    #[arg(long, value_name = "M", default_value_t = 0.3, value_parser = non_negative_metres)]
+    pub patch_radius: f64,
+
+    /// Largest height difference under a flat patch, in steps.
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub max_step: u16,
+
+    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
+    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
+    pub target: Targets,
+
+    /// Terrain model in the simulator files: the single mesh, or merged boxes.
+    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
+    pub mesh: MeshMode,
+
+    /// Worker threads [default: one per core]; the atlas is the same on any number.
+    #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
+    pub jobs: Option<u16>,
+
+    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
+
+    /// Replace the folder if it holds a different world.
     #[arg(long)]
     pub force: bool,
 }
@@ -262,6 +332,17 @@ fn parse_mesh_mode(text: &str) -> Result<MeshMode, String> {
 
 fn parse_shard(text: &str) -> Result<Shard, String> {
     text.parse().map_err(|e: rse_world::Error| e.to_string())
+}
+
+/// `LO..HI`, or one difficulty `D` meaning `D..D`.
+fn parse_difficulty_range(text: &str) -> Result<(Difficulty, Difficulty), String> {
+    let (lo, hi) = text.split_once("..").unwrap_or((text, text));
+    let parse = |s: &str| s.parse::<Difficulty>().map_err(|e| e.to_string());
+    let (lo, hi) = (parse(lo)?, parse(hi)?);
+    if lo > hi {
+        return Err(format!("the range {lo}..{hi} runs backwards"));
+    }
+    Ok((lo, hi))
 }
 
 fn parse_pallets(text: &str) -> Result<PalletsFlag, String> {

@@ -147,6 +147,16 @@ pub enum AtlasError {
 }
 
 impl AtlasOptions {
+    /// The whole map's `[nx, ny]` in cells for tiles of `tile` cells:
+    /// `rows·(tile_nx + border) + border` by `cols·(tile_ny + border) + border`.
+    pub fn map_cells(&self, tile: [u32; 2]) -> [u64; 2] {
+        let b = u64::from(self.border);
+        [
+            u64::from(self.rows) * (u64::from(tile[0]) + b) + b,
+            u64::from(self.cols) * (u64::from(tile[1]) + b) + b,
+        ]
+    }
+
     fn validate(&self) -> Result<(), AtlasError> {
         let bad = |field, reason: &str| {
             Err(AtlasError::BadOption {
@@ -214,9 +224,7 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
             ));
         }
     }
-    let b = u64::from(options.border);
-    let nx = u64::from(options.rows) * (u64::from(tile_grid.nx) + b) + b;
-    let ny = u64::from(options.cols) * (u64::from(tile_grid.ny) + b) + b;
+    let [nx, ny] = options.map_cells([tile_grid.nx, tile_grid.ny]);
     let metres = nx.max(ny) as f64 * units.block_size;
     if nx * ny > MAX_CELLS || metres > MAX_EXTENT || nx > u64::from(u32::MAX) {
         return Err(AtlasError::TooLarge { nx, ny, metres });

@@ -9,7 +9,10 @@ use std::path::Path;
 
 use rse_core::{Scheme, Terrain, generate_at};
 use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
-use rse_world::{MANIFEST, Manifest, MeshMode, Templates, WorldOptions, build_world, sha256_hex};
+use rse_world::{
+    MANIFEST, Manifest, MeshMode, Templates, WorldFiles, WorldOptions, build_atlas_world,
+    build_world, sha256_hex,
+};
 use serde::Serialize;
 
 use crate::fault::{Fault, FaultKind, line_of};
@@ -115,20 +118,14 @@ fn check_against_manifest(
             },
         ));
     }
-    let scheme = match Scheme::from_csv(&manifest.scheme, Some("rse.json scheme")) {
-        Ok(scheme) => scheme,
-        Err(e) => {
-            faults.push(Fault::of(
-                MANIFEST,
-                FaultKind::BadScheme {
-                    reason: e.to_string(),
-                },
-            ));
+    let (terrain, world) = match rebuild(manifest) {
+        Ok(rebuilt) => rebuilt,
+        Err(kind) => {
+            faults.push(Fault::of(MANIFEST, kind));
             return;
         }
     };
-    let terrain = generate_at(&scheme, manifest.seed, manifest.index, manifest.difficulty);
-    let expected = match expected_files(&scheme, manifest) {
+    let expected = match expected_files(world, manifest) {
         Ok(expected) => expected,
         Err(reason) => {
             let reason = format!("the world cannot be rebuilt from it: {reason}");
@@ -274,28 +271,62 @@ struct Expected {
     hashed_only: BTreeSet<String>,
 }
 
-/// Rebuilds the world `manifest` describes. With our own templates (and
-/// this version of `rse`) that is every file, `rse.json` included; with a
-/// user's templates, every file but the rendered ones, whose hashes are
-/// taken from the manifest (so `rse.json` is still rebuilt whole).
-fn expected_files(scheme: &Scheme, manifest: &Manifest) -> Result<Expected, String> {
-    // Parsed once per process, not once per world checked.
+/// Our templates, parsed once per process, not once per world checked.
+fn builtin_templates() -> &'static Templates {
     static BUILTIN: std::sync::OnceLock<Templates> = std::sync::OnceLock::new();
-    let builtin = BUILTIN.get_or_init(Templates::builtin);
+    BUILTIN.get_or_init(Templates::builtin)
+}
+
+/// The terrain and every file of the world `manifest` describes, built
+/// with our templates: a single world from its scheme and seed pair, an
+/// atlas from its schemes and layout.
+fn rebuild(manifest: &Manifest) -> Result<(Terrain, WorldFiles), FaultKind> {
     let options = WorldOptions {
         targets: manifest.targets.clone(),
         mesh: manifest.mesh,
         difficulty: manifest.difficulty,
     };
+    let cannot = |e: rse_world::Error| FaultKind::BadManifest {
+        reason: format!("the world cannot be rebuilt from it: {e}"),
+    };
+    let bad_scheme = |e: rse_core::SchemeError| FaultKind::BadScheme {
+        reason: e.to_string(),
+    };
+    let name = manifest.world.clone();
+    if let Some(record) = &manifest.atlas {
+        let schemes = record.schemes().map_err(bad_scheme)?;
+        let atlas_options = record.options(manifest.seed);
+        let (world, atlas) = build_atlas_world(
+            &schemes,
+            &atlas_options,
+            name,
+            &options,
+            builtin_templates(),
+        )
+        .map_err(cannot)?;
+        return Ok((atlas.terrain().clone(), world));
+    }
+    let scheme = Scheme::from_csv(&manifest.scheme, Some("rse.json scheme")).map_err(bad_scheme)?;
+    let terrain = generate_at(&scheme, manifest.seed, manifest.index, manifest.difficulty);
     let world = build_world(
-        scheme,
+        &scheme,
         manifest.seed,
         manifest.index,
-        manifest.world.clone(),
+        name,
         &options,
-        builtin,
+        builtin_templates(),
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(cannot)?;
+    Ok((terrain, world))
+}
+
+/// What each file of the world must be, given `world` rebuilt with our
+/// templates: with our own templates (and this version of `rse`) that is
+/// every file, `rse.json` included; with a user's templates, every file but
+/// the rendered ones, whose hashes are taken from the manifest (so
+/// `rse.json` is still rebuilt whole).
+fn expected_files(world: WorldFiles, manifest: &Manifest) -> Result<Expected, String> {
+    let builtin = builtin_templates();
     let ours = manifest.version == rse_core::VERSION
         && manifest.templates == "builtin"
         && manifest.templates_sha256 == builtin.digest();

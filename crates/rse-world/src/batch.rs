@@ -262,23 +262,31 @@ pub const WORLD_BYTES_PER_CELL: u64 = 2048;
 /// Linux; elsewhere nothing is refused): better a clear error before
 /// starting than an abort half-way.
 fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
-    let Some(available) = crate::memory::available_bytes() else {
-        return Ok(());
-    };
-    let grid = scheme.grid();
     let threads = options
         .jobs
         .unwrap_or_else(rayon::current_num_threads)
         .max(1) as u64;
     let at_once = threads.min(options.shard.worlds(options.amount)).max(1);
-    let per_world = (grid.cells() as u64).saturating_mul(WORLD_BYTES_PER_CELL);
+    check_memory_for(scheme.grid().cells() as u64, at_once).map_err(|e| match e {
+        Error::TooBig { message } => Error::TooBig {
+            message: format!("{message}; use fewer --jobs or a smaller grid"),
+        },
+        other => other,
+    })
+}
+
+/// Refuses to build `at_once` worlds of `cells` cells at the same time when
+/// they need more than the memory available (where that can be read).
+pub(crate) fn check_memory_for(cells: u64, at_once: u64) -> Result<(), Error> {
+    let Some(available) = crate::memory::available_bytes() else {
+        return Ok(());
+    };
+    let per_world = cells.saturating_mul(WORLD_BYTES_PER_CELL);
     let needed = per_world.saturating_mul(at_once);
     if needed > available {
         return Err(Error::TooBig {
             message: format!(
-                "a {}x{} world needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell), {at_once} at once: {} MiB, but {} MiB are available; use fewer --jobs or a smaller grid",
-                grid.nx,
-                grid.ny,
+                "a world of {cells} cells needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell), {at_once} at once: {} MiB, but {} MiB are available",
                 per_world >> 20,
                 needed >> 20,
                 available >> 20
@@ -322,8 +330,10 @@ fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
 }
 
 /// Puts `world` at `out/<name>`: written into a temporary folder, then
-/// renamed into place, so that the folder appears whole or not at all.
-fn place_world(out: &Path, world: &WorldFiles, force: bool) -> Result<Outcome, Error> {
+/// renamed into place, so that the folder appears whole or not at all. A
+/// folder already holding exactly `world` is left alone; one holding
+/// anything else is an error unless `force`.
+pub fn place_world(out: &Path, world: &WorldFiles, force: bool) -> Result<Outcome, Error> {
     let dest = out.join(&world.name);
     let existing = match std::fs::symlink_metadata(&dest) {
         Ok(_) => true,

@@ -87,6 +87,6 @@ impl WorldContext {
 
 /// `v` rounded to the nanometre, so files read `0.15`, not
 /// `0.15000000000000002`. Exact IEEE arithmetic: the same on every machine.
-fn tidy(v: f64) -> f64 {
+pub(crate) fn tidy(v: f64) -> f64 {
     (v * 1e9).round() / 1e9
 }

@@ -90,6 +90,9 @@ pub enum Error {
         /// The shard, `K/N`.
         shard: String,
     },
+    /// An atlas that cannot be laid out.
+    #[error(transparent)]
+    Atlas(#[from] rse_core::AtlasError),
     /// Encoding a world file failed.
     #[error(transparent)]
     Core(#[from] rse_core::Error),

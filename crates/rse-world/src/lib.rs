@@ -11,6 +11,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod atlas;
 mod batch;
 mod context;
 mod error;
@@ -22,9 +23,13 @@ mod templates;
 mod tree;
 mod world;
 
+pub use atlas::{
+    ATLAS_JSON, AtlasRecord, NamedScheme, PatchRecord, SchemeRecord, atlas_json, build_atlas_world,
+    write_atlas,
+};
 pub use batch::{
-    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, thread_pool,
-    world_name, write_batch, write_batch_until,
+    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, place_world,
+    thread_pool, world_name, write_batch, write_batch_until,
 };
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};

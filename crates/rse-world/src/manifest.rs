@@ -3,11 +3,14 @@
 
 use std::collections::BTreeMap;
 
-use rse_core::{Difficulty, DrawnObstacle, Globals, Grid};
+use rse_core::{Difficulty, DrawnObstacle, Globals, Grid, Terrain};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
+use crate::atlas::AtlasRecord;
 use crate::target::{MeshMode, Targets};
+use crate::templates::Templates;
+use crate::world::{WorldFiles, WorldOptions};
 
 /// The manifest's file name in a world folder.
 pub const MANIFEST: &str = "rse.json";
@@ -42,16 +45,61 @@ pub struct Manifest {
     /// The resolved global parameters (command-line overrides applied).
     pub globals: Globals,
     /// The obstacle table: the whole resolved scheme as canonical CSV,
-    /// enough to regenerate the heightmap with `seed` and `index`.
+    /// enough to regenerate the heightmap with `seed` and `index`. Absent
+    /// for an atlas, whose schemes are in `atlas`.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
     pub scheme: String,
-    /// Every obstacle as drawn for this world.
+    /// Every obstacle as drawn for this world (none for an atlas: its
+    /// tiles are worlds of their own, named in `atlas.json`).
     pub drawn: Vec<DrawnObstacle>,
+    /// For an atlas: everything it was built from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atlas: Option<AtlasRecord>,
     /// SHA-256 (hex) of every other file of the folder, by `/`-separated
     /// relative path.
     pub files: BTreeMap<String, String>,
 }
 
 impl Manifest {
+    /// The manifest of `world` (its files as they are, `rse.json` not
+    /// among them), with no scheme, seed pair or drawn obstacles: the
+    /// caller fills those in.
+    pub(crate) fn of(
+        world: &WorldFiles,
+        terrain: &Terrain,
+        globals: &Globals,
+        options: &WorldOptions,
+        templates: &Templates,
+    ) -> Manifest {
+        Manifest {
+            generator: "rse".to_owned(),
+            version: rse_core::VERSION.to_owned(),
+            world: world.name.clone(),
+            seed: 0,
+            index: 0,
+            difficulty: Difficulty::FULL,
+            targets: options.targets.clone(),
+            mesh: options.mesh,
+            templates: if templates.is_custom() {
+                "custom"
+            } else {
+                "builtin"
+            }
+            .to_owned(),
+            templates_sha256: templates.digest().to_owned(),
+            grid: terrain.grid(),
+            globals: *globals,
+            scheme: String::new(),
+            drawn: Vec::new(),
+            atlas: None,
+            files: world
+                .files
+                .iter()
+                .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
+                .collect(),
+        }
+    }
+
     /// The JSON text of the manifest: pretty, keys in a fixed order, a final
     /// newline.
     ///

@@ -10,7 +10,7 @@ use rse_core::{Difficulty, Scheme, Terrain, generate_at, preview};
 
 use crate::context::{MODEL, WorldContext};
 use crate::error::Error;
-use crate::manifest::{MANIFEST, Manifest, sha256_hex};
+use crate::manifest::{MANIFEST, Manifest};
 use crate::target::{MeshMode, Target, Targets};
 use crate::templates::Templates;
 
@@ -56,8 +56,32 @@ pub fn build_world(
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
     let terrain = generate_at(scheme, seed, index, options.difficulty);
+    let mut world = terrain_files(&terrain, name, options, templates, BTreeMap::new())?;
+    let manifest = Manifest {
+        seed,
+        index,
+        difficulty: options.difficulty,
+        scheme: scheme.to_csv(),
+        drawn: terrain.drawn().to_vec(),
+        ..Manifest::of(&world, &terrain, scheme.globals(), options, templates)
+    };
+    world
+        .files
+        .insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
+    Ok(world)
+}
+
+/// Every file of a world folder of `terrain` but `rse.json`: `extra`
+/// files, heightmap, preview, meshes and the targets' templates.
+pub(crate) fn terrain_files(
+    terrain: &Terrain,
+    name: String,
+    options: &WorldOptions,
+    templates: &Templates,
+    extra: BTreeMap<String, Vec<u8>>,
+) -> Result<WorldFiles, Error> {
     let grid = terrain.grid();
-    let mut files = BTreeMap::new();
+    let mut files = extra;
     files.insert(
         "heightmap.csv".to_owned(),
         terrain.heightmap().to_csv().into_bytes(),
@@ -65,7 +89,7 @@ pub fn build_world(
     let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);
     files.insert(
         "preview.png".to_owned(),
-        preview::encode_png(&preview::render(&terrain, cell_pixels))?,
+        preview::encode_png(&preview::render(terrain, cell_pixels))?,
     );
 
     let boxes = terrain.boxes();
@@ -98,7 +122,7 @@ pub fn build_world(
         }
     }
 
-    let context = WorldContext::new(name.clone(), &terrain, options.mesh, &boxes);
+    let context = WorldContext::new(name.clone(), terrain, options.mesh, &boxes);
     let mut from_templates = BTreeSet::new();
     for target in targets.iter() {
         for (path, bytes) in templates.render(target, &context)? {
@@ -114,32 +138,6 @@ pub fn build_world(
         }
     }
 
-    let manifest = Manifest {
-        generator: "rse".to_owned(),
-        version: rse_core::VERSION.to_owned(),
-        world: name.clone(),
-        seed,
-        index,
-        difficulty: options.difficulty,
-        targets: targets.clone(),
-        mesh: options.mesh,
-        templates: if templates.is_custom() {
-            "custom"
-        } else {
-            "builtin"
-        }
-        .to_owned(),
-        templates_sha256: templates.digest().to_owned(),
-        grid,
-        globals: *scheme.globals(),
-        scheme: scheme.to_csv(),
-        drawn: terrain.drawn().to_vec(),
-        files: files
-            .iter()
-            .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
-            .collect(),
-    };
-    files.insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
     Ok(WorldFiles {
         name,
         files,
@@ -171,6 +169,7 @@ pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::manifest::sha256_hex;
     use rse_core::generate;
 
     fn files(scheme: &str, mesh: MeshMode, targets: &str) -> Vec<String> {

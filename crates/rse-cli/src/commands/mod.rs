@@ -8,6 +8,7 @@ use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme, Terrain};
 use crate::ExitStatus;
 use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
 
+mod atlas;
 mod batch;
 pub mod check;
 pub mod edit;
@@ -22,6 +23,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Preview(args) => preview::run(&args, &cli.overrides),
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
         Command::Batch(args) => batch::run(&args, &cli.overrides),
+        Command::Atlas(args) => atlas::run(&args, &cli.overrides),
         Command::Check(args) => {
             // A world's parameters are in its rse.json: a flag would be
             // silently ignored, so it is refused.

@@ -1,0 +1,291 @@
+//! An atlas as a world folder: the tiled terrain's files as any world's,
+//! plus `atlas.json` (one entry per tile, with its origin and flat patches)
+//! and, in `rse.json`, everything needed to build it again.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use rse_core::{Atlas, AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
+use serde::{Deserialize, Serialize};
+
+use crate::batch::{Outcome, check_memory_for, place_world};
+use crate::context::tidy;
+use crate::error::Error;
+use crate::manifest::{MANIFEST, Manifest, sha256_hex};
+use crate::templates::Templates;
+use crate::world::{WorldFiles, WorldOptions, terrain_files};
+
+/// The tile list's file name in an atlas folder.
+pub const ATLAS_JSON: &str = "atlas.json";
+
+/// A scheme with the file name the atlas records for it (no folder: a
+/// world holds no path of the machine that made it).
+#[derive(Debug, Clone)]
+pub struct NamedScheme {
+    /// The file name, e.g. `six_obstacles.csv`.
+    pub name: String,
+    /// The scheme, overrides applied.
+    pub scheme: Scheme,
+}
+
+/// What `rse.json` keeps of an atlas: enough to build it again.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtlasRecord {
+    /// Tiles along x (difficulty levels).
+    pub rows: u32,
+    /// Tiles along y.
+    pub cols: u32,
+    /// Cells of height 0 between and around the tiles.
+    pub border: u32,
+    /// Difficulty of the first row and of the last.
+    pub difficulty: [Difficulty; 2],
+    /// Spawn disc radius, metres.
+    pub spawn_radius: f64,
+    /// Flat patches asked for per tile.
+    pub flat_patches: PatchRecord,
+    /// The schemes, column `c` using `schemes[c mod len]`.
+    pub schemes: Vec<SchemeRecord>,
+}
+
+/// Flat patch options as recorded.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PatchRecord {
+    /// At most this many per tile.
+    pub count: u32,
+    /// Disc radius, metres.
+    pub radius: f64,
+    /// Largest height difference under a disc, steps.
+    pub max_step: u16,
+}
+
+/// One scheme of an atlas as recorded.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SchemeRecord {
+    /// Its file name.
+    pub name: String,
+    /// SHA-256 of `csv`.
+    pub sha256: String,
+    /// Its canonical CSV (overrides applied).
+    pub csv: String,
+}
+
+impl AtlasRecord {
+    /// The record of an atlas of `schemes` built with `options`.
+    pub fn new(schemes: &[NamedScheme], options: &AtlasOptions) -> Self {
+        AtlasRecord {
+            rows: options.rows,
+            cols: options.cols,
+            border: options.border,
+            difficulty: [options.difficulty.0, options.difficulty.1],
+            spawn_radius: options.spawn_radius,
+            flat_patches: PatchRecord {
+                count: options.patches.count,
+                radius: options.patches.radius,
+                max_step: options.patches.max_step,
+            },
+            schemes: schemes
+                .iter()
+                .map(|s| {
+                    let csv = s.scheme.to_csv();
+                    SchemeRecord {
+                        name: s.name.clone(),
+                        sha256: sha256_hex(csv.as_bytes()),
+                        csv,
+                    }
+                })
+                .collect(),
+        }
+    }
+
+    /// The options, with `seed`.
+    pub fn options(&self, seed: u64) -> AtlasOptions {
+        AtlasOptions {
+            rows: self.rows,
+            cols: self.cols,
+            seed,
+            border: self.border,
+            difficulty: (self.difficulty[0], self.difficulty[1]),
+            spawn_radius: self.spawn_radius,
+            patches: PatchOptions {
+                count: self.flat_patches.count,
+                radius: self.flat_patches.radius,
+                max_step: self.flat_patches.max_step,
+            },
+        }
+    }
+
+    /// The schemes, parsed again from their CSV.
+    pub fn schemes(&self) -> Result<Vec<NamedScheme>, rse_core::SchemeError> {
+        self.schemes
+            .iter()
+            .map(|s| {
+                Ok(NamedScheme {
+                    name: s.name.clone(),
+                    scheme: Scheme::from_csv(&s.csv, Some(&s.name))?,
+                })
+            })
+            .collect()
+    }
+}
+
+/// `atlas.json`: the layout and one entry per tile.
+#[derive(Debug, Serialize)]
+struct AtlasJson<'a> {
+    rows: u32,
+    cols: u32,
+    border: u32,
+    seed: u64,
+    /// The whole map, `[nx, ny]` cells.
+    cells: [u32; 2],
+    /// One tile, `[nx, ny]` cells.
+    tile_cells: [u32; 2],
+    /// One tile, `[x, y]` metres.
+    tile_size: [f64; 2],
+    block_size: f64,
+    step_height: f64,
+    base: f64,
+    spawn_radius: f64,
+    flat_patches: PatchRecord,
+    tiles: Vec<TileJson<'a>>,
+}
+
+#[derive(Debug, Serialize)]
+struct TileJson<'a> {
+    row: u32,
+    col: u32,
+    scheme: &'a str,
+    scheme_sha256: &'a str,
+    seed: u64,
+    index: u64,
+    difficulty: Difficulty,
+    /// The tile's cells in the map: `[x0, y0, x1, y1]`, ends exclusive.
+    cells: [u32; 4],
+    origin: [f64; 3],
+    flat_patches: Vec<[f64; 3]>,
+}
+
+/// The text of `atlas.json` for `atlas` built from `record`.
+pub fn atlas_json(atlas: &Atlas, record: &AtlasRecord) -> String {
+    let terrain = atlas.terrain();
+    let grid = terrain.grid();
+    let first = atlas.tiles().first().map(|t| t.region);
+    let (tnx, tny) = first.map_or((0, 0), |r| (r.nx, r.ny));
+    let s = terrain.block_size();
+    let json = AtlasJson {
+        rows: record.rows,
+        cols: record.cols,
+        border: record.border,
+        seed: atlas.options().seed,
+        cells: [grid.nx, grid.ny],
+        tile_cells: [tnx, tny],
+        tile_size: [f64::from(tnx) * s, f64::from(tny) * s].map(tidy),
+        block_size: s,
+        step_height: terrain.step_height(),
+        base: terrain.base(),
+        spawn_radius: record.spawn_radius,
+        flat_patches: record.flat_patches,
+        tiles: atlas
+            .tiles()
+            .iter()
+            .map(|t| {
+                let scheme = &record.schemes[t.scheme];
+                let r = t.region;
+                TileJson {
+                    row: t.row,
+                    col: t.col,
+                    scheme: &scheme.name,
+                    scheme_sha256: &scheme.sha256,
+                    seed: t.seed,
+                    index: t.index,
+                    difficulty: t.difficulty,
+                    cells: [r.x0, r.y0, r.x0 + r.nx, r.y0 + r.ny],
+                    origin: t.origin.map(tidy),
+                    flat_patches: t.flat_patches.iter().map(|p| p.map(tidy)).collect(),
+                }
+            })
+            .collect(),
+    };
+    let mut text = serde_json::to_string_pretty(&json).expect("atlas.json serialises");
+    text.push('\n');
+    text
+}
+
+/// The world folder of the atlas of `schemes` with `options`, named
+/// `name`, and the atlas itself.
+pub fn build_atlas_world(
+    schemes: &[NamedScheme],
+    atlas_options: &AtlasOptions,
+    name: String,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> Result<(WorldFiles, Atlas), Error> {
+    let plain: Vec<Scheme> = schemes.iter().map(|s| s.scheme.clone()).collect();
+    let atlas = build_atlas(&plain, atlas_options)?;
+    let record = AtlasRecord::new(schemes, atlas_options);
+    let extra = BTreeMap::from([(
+        ATLAS_JSON.to_owned(),
+        atlas_json(&atlas, &record).into_bytes(),
+    )]);
+    let options = WorldOptions {
+        difficulty: Difficulty::FULL,
+        ..options.clone()
+    };
+    let mut world = terrain_files(atlas.terrain(), name, &options, templates, extra)?;
+    let mut globals = *plain[0].globals();
+    let grid = atlas.terrain().grid();
+    globals.size = [grid.nx, grid.ny];
+    globals.pallets = None;
+    globals.amount = 1;
+    globals.seed = atlas_options.seed;
+    let manifest = Manifest {
+        seed: atlas_options.seed,
+        atlas: Some(record),
+        ..Manifest::of(&world, atlas.terrain(), &globals, &options, templates)
+    };
+    world
+        .files
+        .insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
+    Ok((world, atlas))
+}
+
+/// Builds the atlas and writes its world folder at `out` (a folder whose
+/// name is the world's): whole or not at all, left alone when it already
+/// holds this atlas, refused when it holds something else unless `force`.
+/// Refused before building when the machine's free memory is short.
+pub fn write_atlas(
+    schemes: &[NamedScheme],
+    atlas_options: &AtlasOptions,
+    out: &Path,
+    options: &WorldOptions,
+    templates: &Templates,
+    force: bool,
+) -> Result<(Outcome, Atlas), Error> {
+    let name = out
+        .file_name()
+        .and_then(|n| n.to_str())
+        .filter(|n| !n.starts_with('.'))
+        .ok_or_else(|| Error::BadOption {
+            option: "out",
+            message: format!(
+                "{}: an atlas folder needs a UTF-8 name that does not start with '.'",
+                out.display()
+            ),
+        })?
+        .to_owned();
+    if let Some(first) = schemes.first() {
+        let grid = first.scheme.grid();
+        let [nx, ny] = atlas_options.map_cells([grid.nx, grid.ny]);
+        check_memory_for(nx.saturating_mul(ny), 1)?;
+    }
+    let (world, atlas) = build_atlas_world(schemes, atlas_options, name, options, templates)?;
+    let parent = match out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent).map_err(Error::io("create", &parent))?;
+    let outcome = place_world(&parent, &world, force)?;
+    Ok((outcome, atlas))
+}
