@@ -6,6 +6,7 @@ use std::process::{Command, Output, Stdio};
 
 use sha2::{Digest, Sha256};
 
+mod atlas;
 mod batch;
 mod check;
 mod difficulty;
