@@ -48,3 +48,109 @@ def test_bad_difficulties_are_refused(bad: float) -> None:
 def test_a_difficulty_that_is_text_is_a_type_error() -> None:
     with pytest.raises(TypeError):
         rse.Scheme.load(SCHEMES / "wall.csv").generate(difficulty="hard")  # type: ignore[arg-type]
+
+
+# --- atlases ------------------------------------------------------------------
+
+ATLAS_SCHEMES = [SCHEMES / "random.csv", SCHEMES / "gaussian.csv"]
+ATLAS_ARGS = dict(rows=3, cols=4, seed=5, border=2, difficulty=(0.2, 1.0), flat_patches=3, patch_radius=0.2, max_step=1)
+
+
+def cli_atlas(out: Path, *extra: str) -> None:
+    a = ATLAS_ARGS
+    run(
+        "atlas",
+        *map(str, ATLAS_SCHEMES),
+        "--rows", str(a["rows"]), "--cols", str(a["cols"]), "--seed", str(a["seed"]),
+        "--border", str(a["border"]), "--difficulty", "0.2..1",
+        "--flat-patches", "3", "--patch-radius", "0.2", "--max-step", "1",
+        "-o", str(out), *extra,
+    )  # fmt: skip
+
+
+def test_atlas_from_python_is_the_cli_atlas_byte_for_byte(tmp_path: Path) -> None:
+    targets = "obj,gazebo,webots,mujoco,urdf,usd"
+    cli_atlas(tmp_path / "cli" / "atlas", "--target", targets)
+    atlas = rse.Atlas([str(p) for p in ATLAS_SCHEMES], **ATLAS_ARGS)
+    assert atlas.write(tmp_path / "py" / "atlas", targets=targets) == "written"
+    assert atlas.write(tmp_path / "py" / "atlas", targets=targets) == "skipped"
+    cli = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*") if p.is_file())
+    py = sorted(p.relative_to(tmp_path / "py") for p in (tmp_path / "py").rglob("*") if p.is_file())
+    assert cli == py and len(cli) > 10
+    for rel in cli:
+        assert (tmp_path / "cli" / rel).read_bytes() == (tmp_path / "py" / rel).read_bytes(), rel
+    # Scheme objects loaded from the files record the same names.
+    from_objects = rse.Atlas([rse.Scheme.load(p) for p in ATLAS_SCHEMES], **ATLAS_ARGS)
+    assert from_objects.to_json() == atlas.to_json()
+    written = np.loadtxt(tmp_path / "py" / "atlas" / "heightmap.csv", delimiter=",", dtype=np.uint16)
+    np.testing.assert_array_equal(atlas.terrain.heights, written)
+
+
+def test_atlas_origins_tiles_and_patches() -> None:
+    atlas = rse.Atlas(ATLAS_SCHEMES, **ATLAS_ARGS)
+    rows, cols = ATLAS_ARGS["rows"], ATLAS_ARGS["cols"]
+    assert atlas.origins.shape == (rows, cols, 3) and atlas.origins.dtype == np.float64
+    tiles = atlas.tiles
+    assert len(tiles) == rows * cols
+    terrain = atlas.terrain
+    for t in tiles:
+        r, c = t["row"], t["col"]
+        np.testing.assert_allclose(atlas.origins[r, c], t["origin"], atol=1e-9)
+        x0, y0, x1, y1 = t["cells"]
+        scheme = rse.Scheme.load(ATLAS_SCHEMES[c % 2])
+        tile = scheme.generate(seed=5, index=r * cols + c, difficulty=t["difficulty"]).heights
+        np.testing.assert_array_equal(terrain.heights[y0:y1, x0:x1], tile)
+        assert len(t["flat_patches"]) <= 3
+    patches = atlas.flat_patches(5, radius=0.25, max_step=0)
+    assert patches.shape == (rows, cols, 5, 3)
+    s = terrain.block_size
+    found = 0
+    for r in range(rows):
+        for c in range(cols):
+            for x, y, z in patches[r, c]:
+                if np.isnan(x):
+                    assert np.isnan(patches[r, c, :, 0][list(patches[r, c, :, 0]).index(x) :]).all()
+                    break
+                found += 1
+                # Every cell the disc touches has the same height, z on it.
+                xs, ys = np.arange(terrain.heights.shape[1]), np.arange(terrain.heights.shape[0])
+                dx = np.maximum(np.maximum(xs * s - x, x - (xs + 1) * s), 0)
+                dy = np.maximum(np.maximum(ys * s - y, y - (ys + 1) * s), 0)
+                near = dx[None, :] ** 2 + dy[:, None] ** 2 <= (0.25 + 1e-9) ** 2
+                under = terrain.elevation[near]
+                assert under.max() == under.min() == pytest.approx(z)
+    assert found > 0
+    # Borders are 0 all round.
+    h = terrain.heights
+    assert (h[:2] == 0).all() and (h[-2:] == 0).all() and (h[:, :2] == 0).all() and (h[:, -2:] == 0).all()
+
+
+def test_atlas_bad_arguments_name_the_argument(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="rows"):
+        rse.Atlas(ATLAS_SCHEMES, 0, 2)
+    with pytest.raises(ValueError, match="from 0 to 1"):
+        rse.Atlas(ATLAS_SCHEMES, 2, 2, difficulty=(0.0, 2.0))
+    other = tmp_path / "steps.csv"
+    other.write_text("# size: 20x20\n# step_height: 0.05\ntype,height\nrandom,2\n")
+    with pytest.raises(rse.SchemeError, match="step_height") as err:
+        rse.Atlas([ATLAS_SCHEMES[0], other], 2, 2)
+    assert err.value.field == "step_height"
+    with pytest.raises(TypeError, match=r"schemes\[0\]"):
+        rse.Atlas([42], 1, 1)  # type: ignore[list-item]
+
+
+def test_atlas_origins_start_no_body_inside_a_block_in_mujoco() -> None:
+    """Spheres set on every origin touch the terrain without penetrating it."""
+    import mujoco
+
+    atlas = rse.Atlas([SCHEMES / "six_obstacles.csv"], 3, 3, seed=1, spawn_radius=0.05)
+    spec = mujoco.MjSpec.from_string(atlas.terrain.mjcf())
+    radius = 0.05
+    for i, (x, y, z) in enumerate(atlas.origins.reshape(-1, 3)):
+        body = spec.worldbody.add_body(name=f"robot_{i}", pos=[x, y, z + radius + 1e-4])
+        body.add_freejoint()
+        body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], mass=1.0)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert all(data.contact[k].dist > -1e-6 for k in range(data.ncon))

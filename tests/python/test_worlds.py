@@ -27,7 +27,7 @@ AMOUNT = 2
 @pytest.fixture(scope="session")
 def batches(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str], Path]:
     """Two worlds of each scheme in each mesh mode, every target; plus an
-    empty terrain (no obstacles)."""
+    empty terrain (no obstacles) and an atlas."""
     root = tmp_path_factory.mktemp("batches")
     empty = root / "empty.csv"
     empty.write_text("# size: 6x4\ntype,height\n")
@@ -37,6 +37,15 @@ def batches(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, str], P
             out = root / f"{scheme.stem}-{mode}"
             run("batch", str(scheme), "-o", str(out), "--amount", str(AMOUNT), "--target", ALL_TARGETS, "--mesh", mode)
             found[(scheme.stem, mode)] = out
+    # An atlas is a world like any other: every check below applies to it.
+    for mode in MODES:
+        out = root / f"atlas-{mode}"
+        run(
+            "atlas", str(SCHEMES / "six_obstacles.csv"), str(SCHEMES / "curriculum.csv"), "--size", "50x50", "--step-height", "0.1",
+            "--rows", "2", "--cols", "2", "--border", "2", "--flat-patches", "2",
+            "-o", str(out / "world_atlas"), "--target", ALL_TARGETS, "--mesh", mode,
+        )  # fmt: skip
+        found[("atlas", mode)] = out
     return found
 
 

@@ -63,11 +63,27 @@ fn error_chain(e: &dyn std::error::Error) -> String {
     text
 }
 
+/// The Python exception for an atlas that cannot be laid out: schemes
+/// that cannot sit side by side are a `SchemeError` naming the field; a bad
+/// argument a `ValueError` naming it.
+pub fn atlas_error(py: Python<'_>, e: &rse_core::AtlasError) -> PyErr {
+    match e {
+        rse_core::AtlasError::Mismatch { field, .. } => {
+            placed(py, e.to_string(), (None, None, None, Some(field)))
+        }
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
 /// The Python exception for a world-writing error.
 pub fn world_error(py: Python<'_>, e: &rse_world::Error) -> PyErr {
     match e {
         rse_world::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
         rse_world::Error::Core(e) => core_error(py, e),
+        rse_world::Error::Atlas(e) => atlas_error(py, e),
+        rse_world::Error::AtlasMismatch { field, .. } => {
+            placed(py, e.to_string(), (None, None, None, Some(field)))
+        }
         _ => PyValueError::new_err(error_chain(e)),
     }
 }

@@ -8,6 +8,7 @@
 
 use pyo3::prelude::*;
 
+mod atlas;
 mod batch;
 mod check;
 mod errors;
@@ -22,6 +23,7 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scheme::Obstacle>()?;
     m.add_class::<scheme::Scheme>()?;
     m.add_class::<terrain::Terrain>()?;
+    m.add_class::<atlas::Atlas>()?;
     m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;

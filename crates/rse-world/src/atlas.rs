@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use rse_core::{Atlas, AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
+use rse_core::{Atlas, AtlasError, AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
 use serde::{Deserialize, Serialize};
 
 use crate::batch::{Outcome, check_memory_for, place_world};
@@ -213,6 +213,26 @@ pub fn atlas_json(atlas: &Atlas, record: &AtlasRecord) -> String {
     text
 }
 
+/// [`build_atlas`] of named schemes: a mismatch between two names them.
+pub fn atlas_of(schemes: &[NamedScheme], options: &AtlasOptions) -> Result<Atlas, Error> {
+    let plain: Vec<Scheme> = schemes.iter().map(|s| s.scheme.clone()).collect();
+    build_atlas(&plain, options).map_err(|e| match e {
+        AtlasError::Mismatch {
+            field,
+            other,
+            found,
+            expected,
+        } => Error::AtlasMismatch {
+            field,
+            scheme: schemes[other].name.clone(),
+            found,
+            first: schemes[0].name.clone(),
+            expected,
+        },
+        e => Error::Atlas(e),
+    })
+}
+
 /// The world folder of the atlas of `schemes` with `options`, named
 /// `name`, and the atlas itself.
 pub fn build_atlas_world(
@@ -222,8 +242,7 @@ pub fn build_atlas_world(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<(WorldFiles, Atlas), Error> {
-    let plain: Vec<Scheme> = schemes.iter().map(|s| s.scheme.clone()).collect();
-    let atlas = build_atlas(&plain, atlas_options)?;
+    let atlas = atlas_of(schemes, atlas_options)?;
     let record = AtlasRecord::new(schemes, atlas_options);
     let extra = BTreeMap::from([(
         ATLAS_JSON.to_owned(),
@@ -234,7 +253,7 @@ pub fn build_atlas_world(
         ..options.clone()
     };
     let mut world = terrain_files(atlas.terrain(), name, &options, templates, extra)?;
-    let mut globals = *plain[0].globals();
+    let mut globals = *schemes[0].scheme.globals();
     let grid = atlas.terrain().grid();
     globals.size = [grid.nx, grid.ny];
     globals.pallets = None;

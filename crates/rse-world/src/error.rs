@@ -93,6 +93,22 @@ pub enum Error {
     /// An atlas that cannot be laid out.
     #[error(transparent)]
     Atlas(#[from] rse_core::AtlasError),
+    /// Two schemes of an atlas whose tiles cannot sit side by side.
+    #[error(
+        "{scheme} has {field} {found}, but {first} has {expected}: every tile of an atlas must share it"
+    )]
+    AtlasMismatch {
+        /// `block_size`, `step_height`, `base` or `size`.
+        field: &'static str,
+        /// The scheme that differs, by name.
+        scheme: String,
+        /// Its value.
+        found: String,
+        /// The first scheme, by name.
+        first: String,
+        /// The first scheme's value.
+        expected: String,
+    },
     /// Encoding a world file failed.
     #[error(transparent)]
     Core(#[from] rse_core::Error),

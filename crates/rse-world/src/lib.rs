@@ -24,8 +24,8 @@ mod tree;
 mod world;
 
 pub use atlas::{
-    ATLAS_JSON, AtlasRecord, NamedScheme, PatchRecord, SchemeRecord, atlas_json, build_atlas_world,
-    write_atlas,
+    ATLAS_JSON, AtlasRecord, NamedScheme, PatchRecord, SchemeRecord, atlas_json, atlas_of,
+    build_atlas_world, write_atlas,
 };
 pub use batch::{
     BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, place_world,

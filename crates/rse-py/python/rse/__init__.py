@@ -10,6 +10,7 @@ The generator lives in Rust (``rse._rse``); this package re-exports it::
 """
 
 from rse._rse import (
+    Atlas,
     Obstacle,
     Scheme,
     SchemeError,
@@ -21,6 +22,7 @@ from rse._rse import (
 from rse._check import CheckReport, Fault, WorldReport, check
 
 __all__ = [
+    "Atlas",
     "CheckReport",
     "Fault",
     "Obstacle",

@@ -12,6 +12,7 @@ __all__ = [
     "Obstacle",
     "Scheme",
     "Terrain",
+    "Atlas",
     "generate_batch",
     "write_worlds",
     "_time_generate",
@@ -121,6 +122,44 @@ class Terrain:
     def boxes(self) -> npt.NDArray[np.float64]: ...
     def mjcf(self) -> str: ...
     def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
+
+@final
+class Atlas:
+    def __init__(
+        self,
+        schemes: list[Union[Scheme, str, os.PathLike[str]]],
+        rows: int,
+        cols: int,
+        *,
+        seed: Optional[int] = None,
+        border: int = 0,
+        difficulty: tuple[float, float] = (0.0, 1.0),
+        spawn_radius: float = 0.3,
+        flat_patches: int = 0,
+        patch_radius: float = 0.3,
+        max_step: int = 0,
+    ) -> None: ...
+    @property
+    def terrain(self) -> Terrain: ...
+    @property
+    def rows(self) -> int: ...
+    @property
+    def cols(self) -> int: ...
+    @property
+    def origins(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def tiles(self) -> list[dict[str, object]]: ...
+    def to_json(self) -> str: ...
+    def flat_patches(self, n: int, radius: float = 0.3, max_step: int = 0) -> npt.NDArray[np.float64]: ...
+    def write(
+        self,
+        out: Union[str, os.PathLike[str]],
+        *,
+        targets: str = "gazebo",
+        mesh: str = "single",
+        template: Optional[Union[str, os.PathLike[str]]] = None,
+        force: bool = False,
+    ) -> str: ...
 
 def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: float = 1.0

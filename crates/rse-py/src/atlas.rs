@@ -1,0 +1,251 @@
+//! `rse.Atlas`: the tiled terrain of `rse-gen atlas` with its origins, tile
+//! list and flat patches as numpy arrays, and `write()` for the same world
+//! folder, byte for byte.
+
+use numpy::ndarray::{Array3, Array4};
+use numpy::{IntoPyArray, PyArray3, PyArray4};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use rse_core::spawn::flat_patches;
+use rse_core::{AtlasOptions, PatchOptions};
+use rse_world::{AtlasRecord, NamedScheme, Outcome, Templates, WorldOptions, atlas_json};
+
+use crate::errors::{core_error, world_error};
+use crate::scheme::{Scheme, difficulty_arg};
+use crate::terrain::Terrain;
+
+/// A grid of `rows × cols` tiles for curricula: rows run along x and go
+/// from the easiest difficulty to the hardest, columns run along y and
+/// cycle through `schemes`. Tile `(r, c)` is world `r·cols + c` of `seed`.
+#[pyclass(module = "rse", frozen)]
+pub struct Atlas {
+    inner: rse_core::Atlas,
+    schemes: Vec<NamedScheme>,
+    record: AtlasRecord,
+}
+
+/// The schemes given: `Scheme` objects or paths to scheme files. A path's
+/// file name is recorded; a `Scheme` read from a file records that file's
+/// name, one built in Python `scheme_<i>.csv`.
+fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<NamedScheme>> {
+    let file_name = |path: &str| {
+        std::path::Path::new(path)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+    };
+    schemes
+        .iter()
+        .enumerate()
+        .map(|(i, item)| {
+            if let Ok(scheme) = item.cast::<Scheme>() {
+                let scheme = scheme.get().inner.clone();
+                let name = scheme
+                    .file()
+                    .and_then(file_name)
+                    .unwrap_or_else(|| format!("scheme_{i}.csv"));
+                return Ok(NamedScheme { name, scheme });
+            }
+            let path: std::path::PathBuf = item.extract().map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "schemes[{i}]: expected an rse.Scheme or a path, got {}",
+                    item.get_type()
+                        .name()
+                        .map_or_else(|_| "?".into(), |n| n.to_string())
+                ))
+            })?;
+            let scheme = rse_core::Scheme::load(&path).map_err(|e| core_error(py, &e))?;
+            let name = file_name(&path.to_string_lossy()).unwrap_or_default();
+            Ok(NamedScheme { name, scheme })
+        })
+        .collect()
+}
+
+#[pymethods]
+impl Atlas {
+    #[new]
+    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        schemes: Vec<Bound<'_, PyAny>>,
+        rows: u32,
+        cols: u32,
+        seed: Option<u64>,
+        border: u32,
+        difficulty: (f64, f64),
+        spawn_radius: f64,
+        flat_patches: u32,
+        patch_radius: f64,
+        max_step: u16,
+    ) -> PyResult<Self> {
+        let schemes = named_schemes(py, &schemes)?;
+        let seed = seed.unwrap_or_else(|| schemes.first().map_or(0, |s| s.scheme.globals().seed));
+        let options = AtlasOptions {
+            rows,
+            cols,
+            seed,
+            border,
+            difficulty: (difficulty_arg(difficulty.0)?, difficulty_arg(difficulty.1)?),
+            spawn_radius,
+            patches: PatchOptions {
+                count: flat_patches,
+                radius: patch_radius,
+                max_step,
+            },
+        };
+        let inner = py
+            .detach(|| rse_world::atlas_of(&schemes, &options))
+            .map_err(|e| world_error(py, &e))?;
+        let record = AtlasRecord::new(&schemes, &options);
+        Ok(Atlas {
+            inner,
+            schemes,
+            record,
+        })
+    }
+
+    /// The whole map as one `Terrain` (`heights`, `mesh()`, `boxes()`,
+    /// `mjcf()`, `save()`), in the atlas's frame: the outer corner of cell
+    /// (0, 0) at the origin.
+    #[getter]
+    fn terrain(&self) -> Terrain {
+        Terrain {
+            inner: self.inner.terrain().clone(),
+        }
+    }
+
+    #[getter]
+    fn rows(&self) -> u32 {
+        self.inner.options().rows
+    }
+
+    #[getter]
+    fn cols(&self) -> u32 {
+        self.inner.options().cols
+    }
+
+    /// Spawn origins `[x, y, z]` in metres, shape `(rows, cols, 3)`: each
+    /// tile's centre on the highest top within `spawn_radius` of it.
+    #[getter]
+    fn origins<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        let o = self.inner.options();
+        let flat: Vec<f64> = self.inner.tiles().iter().flat_map(|t| t.origin).collect();
+        Array3::from_shape_vec((o.rows as usize, o.cols as usize, 3), flat)
+            .expect("rows × cols × 3")
+            .into_pyarray(py)
+    }
+
+    /// The entries of `atlas.json`, one dict per tile, row by row.
+    #[getter]
+    fn tiles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = atlas_json(&self.inner, &self.record);
+        let json = py.import("json")?.call_method1("loads", (text,))?;
+        json.get_item("tiles")
+    }
+
+    /// `atlas.json` as written by `write()` and `rse-gen atlas`.
+    fn to_json(&self) -> String {
+        atlas_json(&self.inner, &self.record)
+    }
+
+    /// Up to `n` flat patches per tile: centres `[x, y, z]` (metres) of
+    /// discs of `radius` metres inside the tile over which every cell is
+    /// within `max_step` steps of the others, z the highest top under the
+    /// disc. Shape `(rows, cols, n, 3)`; a tile with fewer has NaN rows.
+    #[pyo3(signature = (n, radius=0.3, max_step=0))]
+    fn flat_patches<'py>(
+        &self,
+        py: Python<'py>,
+        n: u32,
+        radius: f64,
+        max_step: u16,
+    ) -> PyResult<Bound<'py, PyArray4<f64>>> {
+        if !(radius.is_finite() && radius >= 0.0) {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "radius: must be a length of 0 m or more",
+            ));
+        }
+        let o = self.inner.options();
+        let terrain = self.inner.terrain();
+        let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
+        let mut out =
+            Array4::from_elem((o.rows as usize, o.cols as usize, n as usize, 3), f64::NAN);
+        let found: Vec<_> = py.detach(|| {
+            self.inner
+                .tiles()
+                .iter()
+                .map(|t| flat_patches(terrain.heightmap(), t.region, n, radius / s, max_step))
+                .collect()
+        });
+        for (tile, patches) in self.inner.tiles().iter().zip(found) {
+            for (k, p) in patches.iter().enumerate() {
+                let point = [p.at[0] * s, p.at[1] * s, base + f64::from(p.top) * step];
+                for (axis, v) in point.into_iter().enumerate() {
+                    out[[tile.row as usize, tile.col as usize, k, axis]] = v;
+                }
+            }
+        }
+        Ok(out.into_pyarray(py))
+    }
+
+    /// Writes the atlas's world folder at `out`, as `rse-gen atlas` does
+    /// (the same bytes): whole or not at all; an identical folder is left
+    /// alone (returns `"skipped"`), a different one refused unless
+    /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
+    #[pyo3(signature = (out, *, targets="gazebo", mesh="single", template=None, force=false))]
+    fn write(
+        &self,
+        py: Python<'_>,
+        out: std::path::PathBuf,
+        targets: &str,
+        mesh: &str,
+        template: Option<std::path::PathBuf>,
+        force: bool,
+    ) -> PyResult<&'static str> {
+        let bad = |e: rse_world::Error| world_error(py, &e);
+        let options = WorldOptions {
+            targets: rse_world::Targets::parse(targets).map_err(bad)?,
+            mesh: mesh.parse().map_err(bad)?,
+            ..WorldOptions::default()
+        };
+        let templates = match &template {
+            Some(dir) => Templates::with_overrides(dir).map_err(bad)?,
+            None => Templates::builtin(),
+        };
+        let atlas_options = *self.inner.options();
+        let (outcome, _) = py
+            .detach(|| {
+                rse_world::write_atlas(
+                    &self.schemes,
+                    &atlas_options,
+                    &out,
+                    &options,
+                    &templates,
+                    force,
+                )
+            })
+            .map_err(bad)?;
+        Ok(match outcome {
+            Outcome::Written(_) => "written",
+            Outcome::Skipped => "skipped",
+            Outcome::Replaced(_) => "replaced",
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        let o = self.inner.options();
+        let grid = self.inner.terrain().grid();
+        format!(
+            "rse.Atlas({} schemes, rows={}, cols={}, seed={}, border={}, difficulty=({}, {}), cells={}x{})",
+            self.schemes.len(),
+            o.rows,
+            o.cols,
+            o.seed,
+            o.border,
+            o.difficulty.0,
+            o.difficulty.1,
+            grid.nx,
+            grid.ny
+        )
+    }
+}
