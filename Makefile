@@ -7,11 +7,16 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test lint bench demo build fuzz
+.PHONY: test lint bench demo build fuzz test-frameworks
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
 	scripts/test.sh
+
+## The RL framework adapters inside the frameworks themselves (mjlab; see docs/frameworks.md).
+## Heavy (torch, MuJoCo 3.11): its own venv, .venv-frameworks, not part of `make test`.
+test-frameworks:
+	scripts/test-frameworks.sh
 
 ## Every fuzz target for FUZZ_SECONDS each (default 12; make test runs this too).
 fuzz:

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import rse
-from conftest import SCHEMES, heights
+from conftest import SCHEMES, heights, run
 
 SAMPLES = sorted(SCHEMES.glob("*.csv"))
 
@@ -101,24 +101,25 @@ def test_atlas_origins_tiles_and_patches() -> None:
         tile = scheme.generate(seed=5, index=r * cols + c, difficulty=t["difficulty"]).heights
         np.testing.assert_array_equal(terrain.heights[y0:y1, x0:x1], tile)
         assert len(t["flat_patches"]) <= 3
-    patches = atlas.flat_patches(5, radius=0.25, max_step=0)
+    patches = atlas.flat_patches(5, radius=0.25, max_step=1)
     assert patches.shape == (rows, cols, 5, 3)
     s = terrain.block_size
     found = 0
     for r in range(rows):
         for c in range(cols):
-            for x, y, z in patches[r, c]:
+            for k, (x, y, z) in enumerate(patches[r, c]):
                 if np.isnan(x):
-                    assert np.isnan(patches[r, c, :, 0][list(patches[r, c, :, 0]).index(x) :]).all()
+                    assert np.isnan(patches[r, c, k:]).all()
                     break
                 found += 1
-                # Every cell the disc touches has the same height, z on it.
+                # Every cell the disc touches is within one step, z on the highest.
                 xs, ys = np.arange(terrain.heights.shape[1]), np.arange(terrain.heights.shape[0])
                 dx = np.maximum(np.maximum(xs * s - x, x - (xs + 1) * s), 0)
                 dy = np.maximum(np.maximum(ys * s - y, y - (ys + 1) * s), 0)
                 near = dx[None, :] ** 2 + dy[:, None] ** 2 <= (0.25 + 1e-9) ** 2
                 under = terrain.elevation[near]
-                assert under.max() == under.min() == pytest.approx(z)
+                assert under.max() - under.min() <= terrain.step_height + 1e-9
+                assert under.max() == pytest.approx(z)
     assert found > 0
     # Borders are 0 all round.
     h = terrain.heights

@@ -27,7 +27,10 @@ fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
 }
 
 fn main() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/six_obstacles.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../schemes/six_obstacles.csv"
+    );
     let scheme = Scheme::load(path).expect("the sample loads");
     let mut globals = *scheme.globals();
     globals.size = [80, 80];
@@ -72,13 +75,18 @@ fn main() {
     let every_cell = 12 * cells;
     let patches: usize = atlas.tiles().iter().map(|t| t.flat_patches.len()).sum();
     let total = with_patches + mesh_time;
-    println!("atlas 10x20 tiles of 80x80 cells, six_obstacles.csv, difficulty 0..1 ({cells} cells)");
+    println!(
+        "atlas 10x20 tiles of 80x80 cells, six_obstacles.csv, difficulty 0..1 ({cells} cells)"
+    );
     println!("  heights + origins                {:>9.1} ms", ms(layout));
     println!(
         "  heights + origins + 10 patches   {:>9.1} ms ({patches} patches found)",
         ms(with_patches)
     );
-    println!("  single mesh                      {:>9.1} ms", ms(mesh_time));
+    println!(
+        "  single mesh                      {:>9.1} ms",
+        ms(mesh_time)
+    );
     println!(
         "  all of it                        {:>9.1} ms   (target < 1000 ms)",
         ms(total)

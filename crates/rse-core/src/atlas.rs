@@ -10,7 +10,7 @@ use crate::generate::{Terrain, generate_at};
 use crate::globals::{Grid, MAX_CELLS, MAX_EXTENT};
 use crate::heightmap::Heightmap;
 use crate::scheme::Scheme;
-use crate::spawn::{Region, flat_patches, highest_under_disc};
+use crate::spawn::Region;
 
 /// Flat patches to find on every tile (none when `count` is 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -270,32 +270,21 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
         }
     }
 
-    let s = units.block_size;
-    let top = |h: u16| units.base + f64::from(h) * units.step_height;
-    let metres3 = |at: [f64; 2], h: u16| [at[0] * s, at[1] * s, top(h)];
-    let tiles: Vec<Tile> = tiles
-        .into_par_iter()
-        .map(|(mut tile, _)| {
-            let centre = tile.region.centre();
-            let highest =
-                highest_under_disc(&heightmap, tile.region, centre, options.spawn_radius / s);
-            tile.origin = metres3(centre, highest);
-            let p = options.patches;
-            tile.flat_patches =
-                flat_patches(&heightmap, tile.region, p.count, p.radius / s, p.max_step)
-                    .into_iter()
-                    .map(|patch| metres3(patch.at, patch.top))
-                    .collect();
-            tile
-        })
-        .collect();
-
     let grid = Grid {
         nx,
         ny,
         frame_period: None,
     };
     let terrain = Terrain::from_heightmap(grid, heightmap, units, options.seed);
+    let p = options.patches;
+    let tiles: Vec<Tile> = tiles
+        .into_par_iter()
+        .map(|(mut tile, _)| {
+            tile.origin = terrain.spawn_origin(tile.region, options.spawn_radius);
+            tile.flat_patches = terrain.flat_patches(tile.region, p.count, p.radius, p.max_step);
+            tile
+        })
+        .collect();
     Ok(Atlas {
         terrain,
         tiles,

@@ -3,7 +3,59 @@
 //! patches, after Isaac Lab's `FlatPatchSamplingCfg`). Everything here is
 //! in cell units: cell `(x, y)` covers `[x, x+1] × [y, y+1]`.
 
+use crate::generate::Terrain;
 use crate::heightmap::Heightmap;
+
+/// How far, in cells, a disc may miss a cell and still touch it, or poke out
+/// of a region and still be inside: radii come in metres, and 0.25 m / 0.1 m
+/// is 2.4999999999999996 cells in f64, so a disc meant to reach a cell's
+/// edge exactly would otherwise miss it.
+const RADIUS_SLACK_CELLS: f64 = 1e-9;
+
+impl Terrain {
+    /// Every cell of the terrain as a region.
+    pub fn region(&self) -> Region {
+        let grid = self.grid();
+        Region {
+            x0: 0,
+            y0: 0,
+            nx: grid.nx,
+            ny: grid.ny,
+        }
+    }
+
+    /// A spawn point `[x, y, z]` in metres for `region`: its centre, on
+    /// the highest top within `radius` metres of it, so a body whose
+    /// footprint fits in that disc starts inside no block.
+    pub fn spawn_origin(&self, region: Region, radius: f64) -> [f64; 3] {
+        let s = self.block_size();
+        let centre = region.centre();
+        let top = highest_under_disc(self.heightmap(), region, centre, radius / s);
+        [centre[0] * s, centre[1] * s, self.top_of(top)]
+    }
+
+    /// Up to `count` flat patches of `region` ([`flat_patches`]) as
+    /// `[x, y, z]` in metres, z the highest top under each disc of `radius`
+    /// metres.
+    pub fn flat_patches(
+        &self,
+        region: Region,
+        count: u32,
+        radius: f64,
+        max_step: u16,
+    ) -> Vec<[f64; 3]> {
+        let s = self.block_size();
+        flat_patches(self.heightmap(), region, count, radius / s, max_step)
+            .into_iter()
+            .map(|p| [p.at[0] * s, p.at[1] * s, self.top_of(p.top)])
+            .collect()
+    }
+
+    /// The top of a cell of `h` steps, metres.
+    fn top_of(&self, h: u16) -> f64 {
+        self.base() + f64::from(h) * self.step_height()
+    }
+}
 
 /// A rectangle of cells: `x0 ≤ x < x0 + nx`, `y0 ≤ y < y0 + ny`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,6 +94,7 @@ pub struct Patch {
 /// (boundary included: a disc of radius 0 on a cell corner touches the four
 /// cells that meet there), as `(y, x_first, x_last)` per row.
 fn disc_rows(region: Region, p: [f64; 2], r: f64) -> impl Iterator<Item = (u32, u32, u32)> {
+    let r = r + RADIUS_SLACK_CELLS;
     // Index of the first and last cell whose band [i, i+1] meets [lo, hi],
     // kept to the region.
     let span = |lo: f64, hi: f64, first: u32, n: u32| -> (u32, u32) {
@@ -117,10 +170,11 @@ pub fn flat_patches(
     for y in region.y0..region.y0 + region.ny {
         for x in region.x0..region.x0 + region.nx {
             let p = [f64::from(x) + 0.5, f64::from(y) + 0.5];
-            let inside = p[0] - r >= f64::from(region.x0)
-                && p[0] + r <= f64::from(region.x0 + region.nx)
-                && p[1] - r >= f64::from(region.y0)
-                && p[1] + r <= f64::from(region.y0 + region.ny);
+            let fits = r - RADIUS_SLACK_CELLS;
+            let inside = p[0] - fits >= f64::from(region.x0)
+                && p[0] + fits <= f64::from(region.x0 + region.nx)
+                && p[1] - fits >= f64::from(region.y0)
+                && p[1] + fits <= f64::from(region.y0 + region.ny);
             if !inside {
                 continue;
             }

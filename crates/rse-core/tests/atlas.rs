@@ -36,7 +36,8 @@ fn cells_near(region: Region, p: [f64; 2], r: f64) -> Vec<(u32, u32)> {
         for x in region.x0..region.x0 + region.nx {
             let dx = (f64::from(x) - p[0]).max(p[0] - f64::from(x + 1)).max(0.0);
             let dy = (f64::from(y) - p[1]).max(p[1] - f64::from(y + 1)).max(0.0);
-            if dx * dx + dy * dy <= r * r {
+            // Touching within 1e-9 cells, as the library counts it.
+            if dx * dx + dy * dy <= (r + 1e-9) * (r + 1e-9) {
                 out.push((x, y));
             }
         }

@@ -6,13 +6,12 @@ use numpy::ndarray::{Array3, Array4};
 use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use rse_core::spawn::flat_patches;
 use rse_core::{AtlasOptions, PatchOptions};
 use rse_world::{AtlasRecord, NamedScheme, Outcome, Templates, WorldOptions, atlas_json};
 
 use crate::errors::{core_error, world_error};
 use crate::scheme::{Scheme, difficulty_arg};
-use crate::terrain::Terrain;
+use crate::terrain::{Terrain, check_radius};
 
 /// A grid of `rows × cols` tiles for curricula: rows run along x and go
 /// from the easiest difficulty to the hardest, columns run along y and
@@ -160,26 +159,20 @@ impl Atlas {
         radius: f64,
         max_step: u16,
     ) -> PyResult<Bound<'py, PyArray4<f64>>> {
-        if !(radius.is_finite() && radius >= 0.0) {
-            return Err(pyo3::exceptions::PyValueError::new_err(
-                "radius: must be a length of 0 m or more",
-            ));
-        }
+        check_radius("radius", radius)?;
         let o = self.inner.options();
         let terrain = self.inner.terrain();
-        let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
         let mut out =
             Array4::from_elem((o.rows as usize, o.cols as usize, n as usize, 3), f64::NAN);
         let found: Vec<_> = py.detach(|| {
             self.inner
                 .tiles()
                 .iter()
-                .map(|t| flat_patches(terrain.heightmap(), t.region, n, radius / s, max_step))
+                .map(|t| terrain.flat_patches(t.region, n, radius, max_step))
                 .collect()
         });
         for (tile, patches) in self.inner.tiles().iter().zip(found) {
-            for (k, p) in patches.iter().enumerate() {
-                let point = [p.at[0] * s, p.at[1] * s, base + f64::from(p.top) * step];
+            for (k, point) in patches.into_iter().enumerate() {
                 for (axis, v) in point.into_iter().enumerate() {
                     out[[tile.row as usize, tile.col as usize, k, axis]] = v;
                 }

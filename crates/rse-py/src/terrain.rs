@@ -2,7 +2,7 @@
 //! set, MJCF and mesh files.
 
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -87,6 +87,46 @@ impl Terrain {
         self.inner.difficulty().get()
     }
 
+    /// A spawn point `[x, y, z]` in metres: the terrain's centre, on the
+    /// highest top within `radius` metres of it (a body whose footprint
+    /// fits in that disc starts inside no block).
+    #[pyo3(signature = (radius=0.3))]
+    fn spawn_origin<'py>(
+        &self,
+        py: Python<'py>,
+        radius: f64,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        check_radius("radius", radius)?;
+        let origin = self.inner.spawn_origin(self.inner.region(), radius);
+        Ok(origin.to_vec().into_pyarray(py))
+    }
+
+    /// Up to `n` flat patches: centres `[x, y, z]` (metres) of discs of
+    /// `radius` metres inside the terrain over which every cell is within
+    /// `max_step` steps of the others, z the highest top under the disc.
+    /// Shape `(n, 3)`; when fewer are found the rest are NaN rows. The same
+    /// points `rse.Atlas` and `rse-gen atlas` give.
+    #[pyo3(signature = (n, radius=0.3, max_step=0))]
+    fn flat_patches<'py>(
+        &self,
+        py: Python<'py>,
+        n: u32,
+        radius: f64,
+        max_step: u16,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        check_radius("radius", radius)?;
+        let found = self
+            .inner
+            .flat_patches(self.inner.region(), n, radius, max_step);
+        let mut out = Array2::from_elem((n as usize, 3), f64::NAN);
+        for (k, point) in found.into_iter().enumerate() {
+            for (axis, v) in point.into_iter().enumerate() {
+                out[[k, axis]] = v;
+            }
+        }
+        Ok(out.into_pyarray(py))
+    }
+
     /// The obstacles as drawn for this world: one dict each (`type`,
     /// `height`, and `angle`, `p1`, `p2`, `sigma` where they apply).
     #[getter]
@@ -164,5 +204,16 @@ impl Terrain {
             self.inner.seed(),
             self.inner.index()
         )
+    }
+}
+
+/// A radius argument: a finite length of 0 m or more, else `ValueError`.
+pub fn check_radius(name: &str, radius: f64) -> PyResult<()> {
+    if radius.is_finite() && radius >= 0.0 {
+        Ok(())
+    } else {
+        Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "{name}: must be a length of 0 m or more, got {radius}"
+        )))
     }
 }

@@ -327,7 +327,26 @@ fn rebuild(manifest: &Manifest) -> Result<(Terrain, WorldFiles), FaultKind> {
 /// `rse.json` is still rebuilt whole).
 fn expected_files(world: WorldFiles, manifest: &Manifest) -> Result<Expected, String> {
     let builtin = builtin_templates();
-    let ours = manifest.version == rse_core::VERSION
+    let same_version = manifest.version == rse_core::VERSION;
+    match manifest.templates.as_str() {
+        // This version's own templates have one digest: any other is a
+        // forged claim, not a world to check by hashes alone.
+        "builtin" if same_version && manifest.templates_sha256 != builtin.digest() => {
+            return Err(format!(
+                "templates_sha256 is {}, but rse {} has built-in templates {}",
+                manifest.templates_sha256,
+                rse_core::VERSION,
+                builtin.digest()
+            ));
+        }
+        "builtin" | "custom" => {}
+        other => {
+            return Err(format!(
+                "templates is {other:?}: expected \"builtin\" or \"custom\""
+            ));
+        }
+    }
+    let ours = same_version
         && manifest.templates == "builtin"
         && manifest.templates_sha256 == builtin.digest();
     if ours {

@@ -206,6 +206,26 @@ fn bad_manifest_truncated_json() {
 }
 
 #[test]
+fn bad_manifest_forged_template_claims() {
+    // Found by the fuzzer: a built-in world whose templates digest was
+    // changed passed, its template files checked by hash alone.
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    edit_manifest(&world, |m| m.templates_sha256.replace_range(0..1, "-"));
+    assert_fault(
+        &check(&world),
+        Some("rse.json"),
+        |k| matches!(k, FaultKind::BadManifest { reason } if reason.contains("templates_sha256")),
+    );
+    edit_manifest(&world, |m| m.templates = "mine".to_owned());
+    assert_fault(
+        &check(&world),
+        Some("rse.json"),
+        |k| matches!(k, FaultKind::BadManifest { reason } if reason.contains("\"mine\"")),
+    );
+}
+
+#[test]
 fn bad_scheme_in_the_manifest() {
     let dir = tempfile::tempdir().unwrap();
     let world = good_world(dir.path());

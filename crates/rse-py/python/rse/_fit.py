@@ -1,0 +1,79 @@
+"""What the framework adapters share: a scheme fitted to a sub-terrain's
+size, the world index a tile draws, and flat patches in a framework's
+terms. Pure Python over ``rse._rse``; no framework is imported here."""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import struct
+from typing import Optional, Union
+
+import numpy as np
+
+from rse._rse import Scheme
+
+SchemeLike = Union[Scheme, str, "os.PathLike[str]"]
+
+
+def load(scheme: SchemeLike) -> Scheme:
+    """A ``Scheme`` as given, or loaded from a path."""
+    return scheme if isinstance(scheme, Scheme) else Scheme.load(scheme)
+
+
+def fit(scheme: Scheme, size: tuple[float, float]) -> Scheme:
+    """``scheme`` with its grid fitted to ``size`` metres: as many cells of
+    the scheme's own block size as fit (``floor(size / block_size)``, at
+    least 1), pallets off. The blocks keep their physical size (a stepfield
+    is 10 cm blocks, whatever the tile); a scheme that already spans
+    ``size`` exactly is returned as it is, pallet frames and all. Obstacles
+    at fixed cells outside the fitted grid raise ``rse.SchemeError``."""
+    s = scheme.block_size
+    nx, ny = (max(1, math.floor(extent / s + 1e-9)) for extent in size)
+    if scheme.grid == (nx, ny):
+        return scheme
+    return Scheme(
+        scheme.obstacles,
+        size=(nx, ny),
+        block_size=s,
+        step_height=scheme.step_height,
+        base=scheme.base,
+        amount=scheme.amount,
+        seed=scheme.seed,
+    )
+
+
+def tile_index(seed: Optional[int], difficulty: float, salt: str = "") -> int:
+    """The world index a tile draws when the framework gives only a seed and
+    a difficulty (Isaac Lab): the first 8 bytes of SHA-256 over the seed,
+    the difficulty's IEEE bits and ``salt``, below 2**63. The same
+    configuration gives the same terrains; two tiles whose difficulties
+    differ (Isaac Lab jitters every curriculum tile's) draw different ones."""
+    key = struct.pack("<qd", -1 if seed is None else int(seed), float(difficulty)) + salt.encode()
+    return int.from_bytes(hashlib.sha256(key).digest()[:8], "little") >> 1
+
+
+def max_step(scheme: Scheme, max_height_diff: float) -> int:
+    """A height tolerance in metres as whole steps (rounded down)."""
+    return max(0, math.floor(max_height_diff / scheme.step_height + 1e-9))
+
+
+def patches_in_ranges(
+    points: np.ndarray,
+    count: int,
+    x_range: tuple[float, float] = (-1e6, 1e6),
+    y_range: tuple[float, float] = (-1e6, 1e6),
+    z_range: tuple[float, float] = (-1e6, 1e6),
+) -> np.ndarray:
+    """The first ``count`` of ``points`` (NaN rows dropped) inside the ranges."""
+    points = points[~np.isnan(points[:, 0])]
+    keep = (
+        (points[:, 0] >= x_range[0])
+        & (points[:, 0] <= x_range[1])
+        & (points[:, 1] >= y_range[0])
+        & (points[:, 1] <= y_range[1])
+        & (points[:, 2] >= z_range[0])
+        & (points[:, 2] <= z_range[1])
+    )
+    return points[keep][:count]

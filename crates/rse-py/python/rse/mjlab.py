@@ -1,0 +1,119 @@
+"""rse as an mjlab sub-terrain: ``RseTerrainCfg`` for
+``mjlab.terrains.TerrainGeneratorCfg.sub_terrains``.
+
+Its ``function(difficulty, spec, rng)`` adds rse's merged boxes (one static
+box geom per rectangle of equal height, the collider MuJoCo handles best)
+and a ground slab under the tile to ``spec.body("terrain")``, in the tile's
+frame (corner at the origin, Z up; mjlab moves the geoms into place), and
+returns mjlab's ``TerrainOutput`` with the spawn origin and flat patches.
+
+Importable without mjlab: with ``mjlab`` installed, ``RseTerrainCfg`` is a
+subclass of ``mjlab.terrains.SubTerrainCfg``; without it, a dataclass with
+the same fields (``function`` then needs mjlab)::
+
+    from mjlab.terrains import TerrainGeneratorCfg
+    from rse.mjlab import RseTerrainCfg
+
+    TERRAIN = TerrainGeneratorCfg(
+        size=(8.0, 8.0), num_rows=10, num_cols=2, curriculum=True,
+        sub_terrains={"stepfield": RseTerrainCfg(scheme="schemes/six_obstacles.csv")},
+    )
+
+The scheme's grid is fitted to the tile's ``size`` (blocks keep their size;
+``rse._fit.fit``). mjlab hands each tile its generator's seeded ``rng``: the
+tile's world index is drawn from it, so the same configuration and seed
+give the same terrains. Flat patches are rse's (deterministic, spread out,
+flat within ``max_height_diff`` rounded down to whole steps), filtered by
+the ranges of each ``FlatPatchSamplingCfg``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Optional
+
+import numpy as np
+
+from rse._fit import SchemeLike, fit, load, max_step, patches_in_ranges
+
+
+def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
+    import mujoco
+    from mjlab.terrains.terrain_generator import TerrainGeometry, TerrainOutput
+
+    if cfg.scheme is None:
+        raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
+    scheme = fit(load(cfg.scheme), tuple(cfg.size))
+    d = min(1.0, max(0.0, float(difficulty)))
+    seed = scheme.seed if cfg.rse_seed is None else cfg.rse_seed
+    index = int(rng.integers(0, 2**62)) if cfg.index is None else cfg.index
+    terrain = scheme.generate(seed=seed, index=index, difficulty=d)
+    body = spec.body("terrain")
+    geometries = []
+    sx, sy = cfg.size
+    t = cfg.ground_thickness
+    ground = body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=(sx / 2, sy / 2, t / 2), pos=(sx / 2, sy / 2, -t / 2))
+    geometries.append(TerrainGeometry(geom=ground, color=(0.5, 0.5, 0.5, 1.0)))
+    top = max(float(terrain.elevation.max()), 1e-9)
+    for cx, cy, cz, hx, hy, hz in terrain.boxes():
+        geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=(hx, hy, hz), pos=(cx, cy, cz))
+        shade = 0.3 + 0.6 * (cz + hz) / top
+        geometries.append(TerrainGeometry(geom=geom, color=(shade, 0.45, 1.0 - shade, 1.0)))
+    flat_patches = None
+    if cfg.flat_patch_sampling:
+        flat_patches = {}
+        for name, p in cfg.flat_patch_sampling.items():
+            # A margin of candidates, so that the ranges can drop some.
+            found = terrain.flat_patches(4 * p.num_patches, p.patch_radius, max_step(scheme, p.max_height_diff))
+            flat_patches[name] = patches_in_ranges(found, p.num_patches, p.x_range, p.y_range, p.z_range)
+    origin = np.asarray(terrain.spawn_origin(cfg.spawn_radius), dtype=np.float64)
+    return TerrainOutput(origin=origin, geometries=geometries, flat_patches=flat_patches)
+
+
+try:  # pragma: no cover - depends on what is installed
+    from mjlab.terrains.terrain_generator import SubTerrainCfg as _SubTerrainCfg
+except ImportError:
+    _SubTerrainCfg = None
+
+
+if _SubTerrainCfg is not None:  # pragma: no cover
+
+    @dataclass(kw_only=True)
+    class RseTerrainCfg(_SubTerrainCfg):  # type: ignore[misc,valid-type]
+        """An rse stepfield tile (see the module's documentation)."""
+
+        scheme: Optional[SchemeLike] = None
+        rse_seed: Optional[int] = None
+        index: Optional[int] = None
+        spawn_radius: float = 0.3
+        ground_thickness: float = 1.0
+
+        def function(self, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
+            return _function(self, difficulty, spec, rng)
+
+else:
+
+    @dataclass
+    class RseTerrainCfg:  # type: ignore[no-redef]
+        """An rse stepfield tile with the fields of mjlab's ``SubTerrainCfg``
+        (see the module's documentation)."""
+
+        proportion: float = 1.0
+        size: tuple[float, float] = (10.0, 10.0)
+        flat_patch_sampling: Optional[dict[str, Any]] = None
+        scheme: Optional[SchemeLike] = None
+        """The scheme: a path to its file, or an ``rse.Scheme``."""
+        rse_seed: Optional[int] = None
+        """The base seed of the rse worlds; default the scheme's ``# seed:``."""
+        index: Optional[int] = None
+        """A fixed world index for every tile; default drawn from mjlab's rng."""
+        spawn_radius: float = 0.3
+        """Metres around the centre whose highest top is the origin's z."""
+        ground_thickness: float = 1.0
+        """Thickness of the ground slab under the tile, metres."""
+
+        def function(self, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
+            return _function(self, difficulty, spec, rng)
+
+
+__all__ = ["RseTerrainCfg"]
