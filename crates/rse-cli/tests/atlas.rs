@@ -144,94 +144,32 @@ fn bad_arguments_exit_2_naming_them_and_write_nothing() {
     )
     .unwrap();
     let out = dir.path().join("atlas");
-    let o = out.to_str().unwrap();
-    let cases: [(Vec<&str>, &str); 6] = [
+    let (six, wall) = ("schemes/six_obstacles.csv", "schemes/wall.csv");
+    let cases: [(&[&str], &[&str], &str); 6] = [
+        (&[wall], &["--rows", "0", "--cols", "2"], "--rows"),
+        (&[wall], &["--rows", "2", "--cols", "0"], "--cols"),
         (
-            vec![
-                "atlas",
-                "schemes/wall.csv",
-                "--rows",
-                "0",
-                "--cols",
-                "2",
-                "-o",
-                o,
-            ],
-            "--rows",
-        ),
-        (
-            vec![
-                "atlas",
-                "schemes/wall.csv",
-                "--rows",
-                "2",
-                "--cols",
-                "0",
-                "-o",
-                o,
-            ],
-            "--cols",
-        ),
-        (
-            vec![
-                "atlas",
-                "schemes/wall.csv",
-                "--rows",
-                "2",
-                "--cols",
-                "2",
-                "--difficulty",
-                "2",
-                "-o",
-                o,
-            ],
+            &[wall],
+            &["--rows", "2", "--cols", "2", "--difficulty", "2"],
             "--difficulty",
         ),
         (
-            vec![
-                "atlas",
-                "schemes/wall.csv",
-                "--rows",
-                "2",
-                "--cols",
-                "2",
-                "--difficulty",
-                "1..0.5",
-                "-o",
-                o,
-            ],
+            &[wall],
+            &["--rows", "2", "--cols", "2", "--difficulty", "1..0.5"],
             "runs backwards",
         ),
         (
-            vec![
-                "atlas",
-                "schemes/six_obstacles.csv",
-                steps.to_str().unwrap(),
-                "--rows",
-                "2",
-                "--cols",
-                "2",
-                "-o",
-                o,
-            ],
+            &[six, steps.to_str().unwrap()],
+            &["--rows", "2", "--cols", "2"],
             "step_height",
         ),
-        (
-            vec![
-                "atlas",
-                "schemes/six_obstacles.csv",
-                "schemes/wall.csv",
-                "--rows",
-                "1",
-                "--cols",
-                "2",
-                "-o",
-                o,
-            ],
-            "size",
-        ),
+        (&[six, wall], &["--rows", "1", "--cols", "2"], "size"),
     ];
-    for (args, needle) in cases {
+    for (schemes, flags, needle) in cases {
+        let mut args = vec!["atlas"];
+        args.extend_from_slice(schemes);
+        args.extend_from_slice(flags);
+        args.extend_from_slice(&["-o", out.to_str().unwrap()]);
         let output = rse_gen(&args);
         assert_eq!(
             output.status.code(),

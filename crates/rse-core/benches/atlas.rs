@@ -2,7 +2,7 @@
 //! tiles (8 m at 0.1 m cells, Isaac Lab's rough-terrain layout, 1.28 M
 //! cells) of `six_obstacles.csv`. Prints the time to build heights,
 //! origins and flat patches, and to mesh the whole map, beside a closed box
-//! on every cell (Isaac Lab's and legged_gym's grids); run with
+//! on every cell (Isaac Lab's and `legged_gym`'s grids); run with
 //! `cargo bench -p rse-core --bench atlas`.
 //!
 //! Targets (issue 12): heights + origins + flat patches + single mesh < 1 s

@@ -1,5 +1,5 @@
 //! An atlas: one terrain made of `rows × cols` tiles for RL curricula, as
-//! Isaac Lab's and legged_gym's terrain generators lay them out — rows run
+//! Isaac Lab's and `legged_gym`'s terrain generators lay them out — rows run
 //! along x and are difficulty levels, columns run along y and cycle through
 //! the schemes — with a spawn origin and flat patches per tile.
 

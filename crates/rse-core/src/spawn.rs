@@ -30,7 +30,7 @@ impl Terrain {
     pub fn spawn_origin(&self, region: Region, radius: f64) -> [f64; 3] {
         let s = self.block_size();
         let centre = region.centre();
-        let top = highest_under_disc(self.heightmap(), region, centre, radius / s);
+        let top = highest_under_disc(self.heightmap(), centre, radius / s);
         [centre[0] * s, centre[1] * s, self.top_of(top)]
     }
 
@@ -90,19 +90,22 @@ pub struct Patch {
     pub top: u16,
 }
 
-/// The cells of `region` that a disc of radius `r` around `p` touches
+/// The cells of the map that a disc of radius `r` around `p` touches
 /// (boundary included: a disc of radius 0 on a cell corner touches the four
 /// cells that meet there), as `(y, x_first, x_last)` per row.
-fn disc_rows(region: Region, p: [f64; 2], r: f64) -> impl Iterator<Item = (u32, u32, u32)> {
+fn disc_rows(map: &Heightmap, p: [f64; 2], r: f64) -> impl Iterator<Item = (u32, u32, u32)> {
+    // The whole map, not a tile: a disc on a tile's edge touches its
+    // neighbour's cells too, and a body there stands on both.
+    let (nx, ny) = (map.nx(), map.ny());
     let r = r + RADIUS_SLACK_CELLS;
     // Index of the first and last cell whose band [i, i+1] meets [lo, hi],
-    // kept to the region.
+    // kept to the map.
     let span = |lo: f64, hi: f64, first: u32, n: u32| -> (u32, u32) {
         let a = ((lo.ceil() - 1.0).max(f64::from(first))) as u32;
         let b = (hi.floor().max(0.0) as u32).min(first + n - 1);
         (a, b)
     };
-    let (y_first, y_last) = span(p[1] - r, p[1] + r, region.y0, region.ny);
+    let (y_first, y_last) = span(p[1] - r, p[1] + r, 0, ny);
     (y_first..=y_last).filter_map(move |y| {
         // Distance from p to the row's band [y, y+1] along y.
         let dy = (f64::from(y) - p[1]).max(p[1] - f64::from(y + 1)).max(0.0);
@@ -111,16 +114,16 @@ fn disc_rows(region: Region, p: [f64; 2], r: f64) -> impl Iterator<Item = (u32, 
             return None;
         }
         let half = left.sqrt();
-        let (x_first, x_last) = span(p[0] - half, p[0] + half, region.x0, region.nx);
+        let (x_first, x_last) = span(p[0] - half, p[0] + half, 0, nx);
         (x_first <= x_last).then_some((y, x_first, x_last))
     })
 }
 
-/// The highest cell of `region` touched by the disc of radius `r` (cells)
+/// The highest cell touched by the disc of radius `r` (cells)
 /// around `p`: a body whose footprint fits in the disc, set on this top,
 /// starts inside no block.
-pub fn highest_under_disc(map: &Heightmap, region: Region, p: [f64; 2], r: f64) -> u16 {
-    disc_rows(region, p, r)
+pub fn highest_under_disc(map: &Heightmap, p: [f64; 2], r: f64) -> u16 {
+    disc_rows(map, p, r)
         .flat_map(|(y, x_lo, x_hi)| map.row(y)[x_lo as usize..=x_hi as usize].iter().copied())
         .max()
         .unwrap_or(0)
@@ -128,15 +131,9 @@ pub fn highest_under_disc(map: &Heightmap, region: Region, p: [f64; 2], r: f64) 
 
 /// Lowest and highest cell under the disc, stopping early once they are
 /// more than `max_step` apart (`None` then).
-fn flat_under_disc(
-    map: &Heightmap,
-    region: Region,
-    p: [f64; 2],
-    r: f64,
-    max_step: u16,
-) -> Option<u16> {
+fn flat_under_disc(map: &Heightmap, p: [f64; 2], r: f64, max_step: u16) -> Option<u16> {
     let (mut lo, mut hi) = (u16::MAX, 0u16);
-    for (y, x_lo, x_hi) in disc_rows(region, p, r) {
+    for (y, x_lo, x_hi) in disc_rows(map, p, r) {
         for &h in &map.row(y)[x_lo as usize..=x_hi as usize] {
             lo = lo.min(h);
             hi = hi.max(h);
@@ -178,7 +175,7 @@ pub fn flat_patches(
             if !inside {
                 continue;
             }
-            if let Some(top) = flat_under_disc(map, region, p, r, max_step) {
+            if let Some(top) = flat_under_disc(map, p, r, max_step) {
                 candidates.push(Patch { at: p, top });
             }
         }
@@ -215,6 +212,7 @@ fn farthest_points(candidates: &[Patch], start: [f64; 2], n: usize) -> Vec<Patch
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // cell centres are exact halves
 mod tests {
     use super::*;
 
@@ -236,12 +234,12 @@ mod tests {
     #[test]
     fn a_point_disc_on_a_corner_touches_its_four_cells() {
         let m = map(&[&[0, 0, 0, 0], &[0, 1, 2, 0], &[0, 3, 4, 0], &[0, 0, 0, 9]]);
-        assert_eq!(highest_under_disc(&m, ALL, [2.0, 2.0], 0.0), 4);
-        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 0.4), 1);
+        assert_eq!(highest_under_disc(&m, [2.0, 2.0], 0.0), 4);
+        assert_eq!(highest_under_disc(&m, [1.5, 1.5], 0.4), 1);
         // Radius 1 from the centre of (1, 1) reaches (2, 2)'s corner? No:
         // its nearest point is (2, 2), √0.5 ≈ 0.71 away — yes, it does.
-        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 1.0), 4);
-        assert_eq!(highest_under_disc(&m, ALL, [1.5, 1.5], 0.7), 3);
+        assert_eq!(highest_under_disc(&m, [1.5, 1.5], 1.0), 4);
+        assert_eq!(highest_under_disc(&m, [1.5, 1.5], 0.7), 3);
     }
 
     #[test]

@@ -168,6 +168,9 @@ struct TileJson<'a> {
 }
 
 /// The text of `atlas.json` for `atlas` built from `record`.
+///
+/// # Panics
+/// Never: every field serialises.
 pub fn atlas_json(atlas: &Atlas, record: &AtlasRecord) -> String {
     let terrain = atlas.terrain();
     let grid = terrain.grid();
