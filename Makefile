@@ -32,6 +32,7 @@ lint:
 bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
+	cargo bench -p rse-core --bench atlas
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
 	bench/check.sh

@@ -62,7 +62,8 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
 #[pymethods]
 impl Atlas {
     #[new]
-    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0))]
+    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0),
+           text_signature = "(schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,

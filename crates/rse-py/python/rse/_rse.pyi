@@ -127,8 +127,8 @@ class Terrain:
 
 @final
 class Atlas:
-    def __init__(
-        self,
+    def __new__(
+        cls,
         schemes: list[Union[Scheme, str, os.PathLike[str]]],
         rows: int,
         cols: int,
@@ -140,7 +140,7 @@ class Atlas:
         flat_patches: int = 0,
         patch_radius: float = 0.3,
         max_step: int = 0,
-    ) -> None: ...
+    ) -> Atlas: ...
     @property
     def terrain(self) -> Terrain: ...
     @property
