@@ -155,3 +155,27 @@ def test_atlas_origins_start_no_body_inside_a_block_in_mujoco() -> None:
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     assert all(data.contact[k].dist > -1e-6 for k in range(data.ncon))
+
+
+def test_atlas_world_loads_in_pybullet_with_no_body_inside_a_block(tmp_path: Path) -> None:
+    """The atlas's URDF (a concave mesh) in PyBullet: spheres set on every
+    origin touch the terrain without sinking into it."""
+    import pybullet as p
+
+    atlas = rse.Atlas([SCHEMES / "six_obstacles.csv"], 2, 3, seed=4, border=1, spawn_radius=0.06)
+    atlas.write(tmp_path / "atlas", targets="urdf")
+    client = p.connect(p.DIRECT)
+    try:
+        terrain = p.loadURDF(str(tmp_path / "atlas" / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
+        assert terrain >= 0
+        shape = p.createCollisionShape(p.GEOM_SPHERE, radius=0.05, physicsClientId=client)
+        bodies = [
+            p.createMultiBody(0.1, shape, basePosition=[x, y, z + 0.05 + 1e-4], physicsClientId=client)
+            for x, y, z in atlas.origins.reshape(-1, 3)
+        ]
+        p.performCollisionDetection(physicsClientId=client)
+        for body in bodies:
+            for contact in p.getContactPoints(bodyA=body, physicsClientId=client):
+                assert contact[8] > -1e-3, contact  # contact distance: no penetration
+    finally:
+        p.disconnect(client)
