@@ -105,9 +105,14 @@ fn the_atlas_checks_good_and_is_the_same_on_any_jobs() {
         );
     }
     stdout(&rse_gen(&["check", one.to_str().unwrap()]));
+    // What a run killed before its rename leaves is removed by the next.
+    let leftover = one.parent().unwrap().join(".atlas.tmp-4242");
+    std::fs::create_dir(&leftover).unwrap();
+    std::fs::write(leftover.join("rse.json"), "{").unwrap();
     // A rerun leaves it alone; another layout is refused without --force.
     let again = atlas(&one, &["--target", all]);
     assert!(stderr(&again).contains("unchanged"), "{}", stderr(&again));
+    assert!(!leftover.exists());
     let other = atlas(&one, &["--target", all, "--border", "0"]);
     assert_eq!(other.status.code(), Some(2), "{}", stderr(&other));
     // A forged tile list is caught even with its hash rewritten.

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use rse_core::{Atlas, AtlasError, AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
 use serde::{Deserialize, Serialize};
 
-use crate::batch::{Outcome, check_memory_for, place_world};
+use crate::batch::{Outcome, check_memory_for, lock_in, place_world};
 use crate::context::tidy;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest, sha256_hex};
@@ -308,6 +308,32 @@ pub fn write_atlas(
         _ => PathBuf::from("."),
     };
     std::fs::create_dir_all(&parent).map_err(Error::io("create", &parent))?;
+    // Held until the folder is in place: a second run on the same folder
+    // waits for nothing and cleans up nothing of ours.
+    let _lock = lock_in(&parent, &format!("world {}", world.name), || {
+        Error::BusyWorld {
+            path: out.to_path_buf(),
+        }
+    })?;
+    remove_leftovers_of(&parent, &world.name)?;
     let outcome = place_world(&parent, &world, force)?;
     Ok((outcome, atlas))
+}
+
+/// Removes `.NAME.tmp-PID` and `.NAME.old-PID` in `parent`: what a run on
+/// the world `name` killed before its rename leaves behind.
+fn remove_leftovers_of(parent: &Path, name: &str) -> Result<(), Error> {
+    let prefix = format!(".{name}.");
+    for entry in std::fs::read_dir(parent).map_err(Error::io("read", parent))? {
+        let entry = entry.map_err(Error::io("read", parent))?;
+        let file_name = entry.file_name();
+        let Some(rest) = file_name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
+            continue;
+        };
+        if rest.starts_with("tmp-") || rest.starts_with("old-") {
+            let path = entry.path();
+            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
+        }
+    }
+    Ok(())
 }

@@ -305,14 +305,26 @@ pub(crate) fn check_memory_for(cells: u64, at_once: u64) -> Result<(), Error> {
 /// system when the process ends, however it ends; it guards runs on one
 /// machine (not several machines writing to one network folder).
 fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
+    lock_in(out, &format!("shard-{}-of-{}", shard.k, shard.n), || {
+        Error::Busy {
+            path: out.to_path_buf(),
+            shard: format!("{}/{}", shard.k, shard.n),
+        }
+    })
+}
+
+/// An exclusive lock on `what` in the folder `out` (a lock file in the
+/// system's temp folder, named after both), or `busy()` when another run
+/// holds it. Dropping the file releases it; so does the process dying.
+pub(crate) fn lock_in(
+    out: &Path,
+    what: &str,
+    busy: impl FnOnce() -> Error,
+) -> Result<std::fs::File, Error> {
     let canonical = out.canonicalize().map_err(Error::io("read", out))?;
     let key = crate::manifest::sha256_hex(canonical.as_os_str().as_encoded_bytes());
-    let path = std::env::temp_dir().join(format!(
-        "rse-batch-{}-shard-{}-of-{}.lock",
-        &key[..16],
-        shard.k,
-        shard.n
-    ));
+    let what = crate::manifest::sha256_hex(what.as_bytes());
+    let path = std::env::temp_dir().join(format!("rse-batch-{}-{}.lock", &key[..16], &what[..16]));
     let file = std::fs::OpenOptions::new()
         .create(true)
         .truncate(false)
@@ -321,10 +333,7 @@ fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
         .map_err(Error::io("create", &path))?;
     match file.try_lock() {
         Ok(()) => Ok(file),
-        Err(std::fs::TryLockError::WouldBlock) => Err(Error::Busy {
-            path: out.to_path_buf(),
-            shard: format!("{}/{}", shard.k, shard.n),
-        }),
+        Err(std::fs::TryLockError::WouldBlock) => Err(busy()),
         Err(std::fs::TryLockError::Error(e)) => Err(Error::io("lock", &path)(e)),
     }
 }

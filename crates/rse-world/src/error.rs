@@ -109,6 +109,12 @@ pub enum Error {
         /// The first scheme's value.
         expected: String,
     },
+    /// Another run is writing the same world folder (an atlas).
+    #[error("another rse-gen is writing {} right now; wait for it to end", path.display())]
+    BusyWorld {
+        /// The world folder.
+        path: PathBuf,
+    },
     /// Encoding a world file failed.
     #[error(transparent)]
     Core(#[from] rse_core::Error),
