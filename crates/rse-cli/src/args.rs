@@ -37,6 +37,9 @@ pub enum Command {
     Preview(PreviewArgs),
     /// Write one world's closed terrain mesh as OBJ (with its .mtl), binary STL or GLB, by suffix.
     Mesh(MeshArgs),
+    /// Write one world as a MuJoCo height field file (int32 nrow, int32 ncol, float32 samples); print
+    /// its nrow, ncol, size and geom pos as JSON on stdout.
+    Hfield(HfieldArgs),
     /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
     Batch(BatchArgs),
     /// Write ONE world whose terrain is a grid of tiles for RL curricula: rows along x are difficulty
@@ -188,6 +191,23 @@ pub struct AtlasArgs {
     /// Replace the folder if it holds a different world.
     #[arg(long)]
     pub force: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct HfieldArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    /// Where to write MuJoCo's binary height field (`<hfield file="…">`).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+
+    /// Samples per cell along each axis: the surface is exact but within half a sample of a step edge.
+    #[arg(long, value_name = "K", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..))]
+    pub oversample: u32,
+
+    #[command(flatten)]
+    pub world: WorldArgs,
 }
 
 #[derive(Debug, Args)]

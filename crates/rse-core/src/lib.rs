@@ -35,6 +35,7 @@ pub mod export;
 mod generate;
 mod globals;
 mod heightmap;
+pub mod hfield;
 pub mod mesh;
 mod obstacle;
 mod param;
@@ -54,6 +55,7 @@ pub use globals::{
     Pallets, format_dims, parse_dims,
 };
 pub use heightmap::{Heightmap, HeightmapCsvError};
+pub use hfield::{HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use obstacle::{
     DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
 };

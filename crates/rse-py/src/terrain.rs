@@ -2,7 +2,8 @@
 //! set, MJCF and mesh files.
 
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -13,6 +14,13 @@ use crate::errors::world_error;
 pub struct Terrain {
     pub inner: rse_core::Terrain,
 }
+
+/// What `Terrain.hfield` returns: samples, MuJoCo's `size`, the geom's `pos`.
+type HFieldTuple<'py> = (
+    Bound<'py, PyArray2<f32>>,
+    (f64, f64, f64, f64),
+    (f64, f64, f64),
+);
 
 /// `array` made read-only: the terrain it shows is immutable.
 fn read_only<T: numpy::Element>(array: Bound<'_, PyArray2<T>>) -> PyResult<Bound<'_, PyArray2<T>>> {
@@ -127,6 +135,59 @@ impl Terrain {
         Ok(out.into_pyarray(py))
     }
 
+    /// The terrain as a MuJoCo height field with `oversample` samples per
+    /// cell along each axis: `(data, size, pos)` — float32 `(nrow, ncol)`
+    /// samples in [0, 1] (row 0 at the lowest y, MuJoCo's layout), MuJoCo's
+    /// `size` `(radius_x, radius_y, elevation, base)` and the hfield geom's
+    /// `pos`, metres. Exact but within half a sample spacing of a step edge.
+    #[pyo3(signature = (oversample=4))]
+    fn hfield<'py>(&self, py: Python<'py>, oversample: u32) -> PyResult<HFieldTuple<'py>> {
+        let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
+        let data = Array2::from_shape_vec((hf.nrow as usize, hf.ncol as usize), hf.data)
+            .expect("nrow × ncol samples");
+        let [rx, ry, elevation, base] = hf.size;
+        let [x, y, z] = hf.pos;
+        Ok((data.into_pyarray(py), (rx, ry, elevation, base), (x, y, z)))
+    }
+
+    /// `(nrow, ncol)` of `hfield(oversample)`.
+    #[pyo3(signature = (oversample=4))]
+    fn hfield_shape(&self, oversample: u32) -> PyResult<(u32, u32)> {
+        self.inner.hfield_shape(oversample).map_err(hfield_error)
+    }
+
+    /// Writes the samples into `out`, a writable C-contiguous float32 array
+    /// of `hfield_shape(oversample)`, for a live height field whose surface
+    /// is `z0` at 0 and `z0 + elevation` at 1: `(top − z0) / elevation`.
+    /// Nothing is allocated; a wrong shape or a top outside that range is a
+    /// `ValueError` and leaves `out` as it was.
+    #[pyo3(signature = (out, oversample=4, z0=0.0, elevation=1.0))]
+    fn hfield_into(
+        &self,
+        py: Python<'_>,
+        out: &Bound<'_, PyArray2<f32>>,
+        oversample: u32,
+        z0: f64,
+        elevation: f64,
+    ) -> PyResult<()> {
+        let (nrow, ncol) = self.inner.hfield_shape(oversample).map_err(hfield_error)?;
+        let shape = out.shape().to_vec();
+        if shape != [nrow as usize, ncol as usize] {
+            return Err(PyValueError::new_err(format!(
+                "out has shape {shape:?}, but the height field of this terrain at oversample {oversample} is ({nrow}, {ncol})"
+            )));
+        }
+        let mut view = out
+            .try_readwrite()
+            .map_err(|e| PyValueError::new_err(format!("out: {e}")))?;
+        let slice = view
+            .as_slice_mut()
+            .map_err(|_| PyValueError::new_err("out must be C-contiguous"))?;
+        let inner = &self.inner;
+        py.detach(|| inner.hfield_into(oversample, z0, elevation, slice))
+            .map_err(hfield_error)
+    }
+
     /// The obstacles as drawn for this world: one dict each (`type`,
     /// `height`, and `angle`, `p1`, `p2`, `sigma` where they apply).
     #[getter]
@@ -216,4 +277,9 @@ pub fn check_radius(name: &str, radius: f64) -> PyResult<()> {
             "{name}: must be a length of 0 m or more, got {radius}"
         )))
     }
+}
+
+/// A height field error as `ValueError`.
+fn hfield_error(e: rse_core::HFieldError) -> PyErr {
+    PyValueError::new_err(e.to_string())
 }

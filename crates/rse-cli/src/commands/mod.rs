@@ -13,6 +13,7 @@ mod batch;
 pub mod check;
 pub mod edit;
 mod heightmap;
+mod hfield;
 mod mesh;
 mod preview;
 
@@ -22,6 +23,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
         Command::Heightmap(args) => heightmap::run(&args, &cli.overrides),
         Command::Preview(args) => preview::run(&args, &cli.overrides),
         Command::Mesh(args) => mesh::run(&args, &cli.overrides),
+        Command::Hfield(args) => hfield::run(&args, &cli.overrides),
         Command::Batch(args) => batch::run(&args, &cli.overrides),
         Command::Atlas(args) => atlas::run(&args, &cli.overrides),
         Command::Check(args) => {

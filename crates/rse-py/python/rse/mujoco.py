@@ -1,0 +1,152 @@
+"""A new rse terrain in a live MuJoCo model, without recompiling it.
+
+A MuJoCo height field keeps its samples in ``model.hfield_data``; MuJoCo
+reads them at every collision check, so overwriting them changes the ground
+under the robot at once. ``set_hfield`` writes a terrain there::
+
+    import mujoco, rse, rse.mujoco
+
+    scheme = rse.Scheme.load("schemes/six_obstacles.csv")
+    model = mujoco.MjModel.from_xml_string(rse.mujoco.hfield_mjcf(scheme))  # starts flat
+    data = mujoco.MjData(model)
+    for episode in range(1000):
+        rse.mujoco.set_hfield(model, "terrain", scheme.generate(index=episode))
+        mujoco.mj_resetData(model, data)
+        ...
+
+After ``set_hfield``:
+
+- the OpenGL renderer keeps its own copy of the field: call
+  ``mujoco.mjr_uploadHField(model, context, hfield_id)`` (``mujoco.viewer``:
+  ``viewer.update_hfield(hfield_id)``);
+- MJX keeps the model on the accelerator: ``mjx.put_model(model)`` again, or
+  ``mjx_model.replace(hfield_data=jax.numpy.asarray(model.hfield_data))``;
+- MuJoCo Warp keeps it in a warp array: copy ``model.hfield_data`` into
+  ``warp_model.hfield_data`` (``wp.copy`` of a ``wp.array`` made from it), or
+  ``mujoco_warp.put_model(model)`` again.
+
+The field's geometry is fixed when the model is compiled: its size, its
+geom's place, its elevation. Every terrain written into it must have the
+same grid and fit that elevation; ``hfield_mjcf`` sizes the elevation for
+every world of a scheme.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Union
+
+from rse._rse import Scheme, Terrain
+
+__all__ = ["hfield_mjcf", "max_top", "set_hfield"]
+
+
+def _hfield_id(model: Any, hfield: Union[int, str]) -> int:
+    import mujoco
+
+    if isinstance(hfield, str):
+        hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, hfield)
+        if hid < 0:
+            names = [model.hfield(i).name for i in range(model.nhfield)]
+            raise KeyError(f"the model has no height field named {hfield!r} (it has {names})")
+        return hid
+    if not 0 <= int(hfield) < model.nhfield:
+        raise KeyError(f"height field {hfield} does not exist: the model has {model.nhfield}")
+    return int(hfield)
+
+
+def _geom_z(model: Any, hid: int) -> float:
+    """The world z of the (one) geom that shows height field ``hid``: its
+    own z plus its bodies' (static bodies, no rotation)."""
+    import mujoco
+
+    geoms = [
+        g
+        for g in range(model.ngeom)
+        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_HFIELD and model.geom_dataid[g] == hid
+    ]
+    if not geoms:
+        raise ValueError(f"no geom uses height field {model.hfield(hid).name or hid}")
+    zs = set()
+    for g in geoms:
+        z, body = float(model.geom_pos[g][2]), int(model.geom_bodyid[g])
+        while body > 0:
+            z += float(model.body_pos[body][2])
+            body = int(model.body_parentid[body])
+        zs.add(round(z, 9))
+    if len(zs) > 1:
+        raise ValueError(f"the geoms of height field {hid} stand at different heights {sorted(zs)}")
+    return zs.pop()
+
+
+def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample: int = 4) -> None:
+    """Writes ``terrain`` into the live ``model``'s height field ``hfield``
+    (its name or number): no recompile, no new model; the only allocation is
+    numpy's view of ``model.hfield_data``. The field must have the terrain's
+    ``hfield_shape(oversample)`` and size, and its elevation must reach the
+    terrain's highest top; otherwise ``ValueError`` naming both, and the
+    model is left as it was."""
+    hid = _hfield_id(model, hfield)
+    nrow, ncol = int(model.hfield_nrow[hid]), int(model.hfield_ncol[hid])
+    want = terrain.hfield_shape(oversample)
+    if (nrow, ncol) != want:
+        raise ValueError(
+            f"height field {hid} of the model has shape ({nrow}, {ncol}), but the terrain at "
+            f"oversample {oversample} has {want}"
+        )
+    rx, ry, elevation, _ = (float(v) for v in model.hfield_size[hid])
+    spacing = terrain.block_size / oversample
+    nx, ny = terrain.heights.shape[1], terrain.heights.shape[0]
+    expect = ((nx * terrain.block_size - spacing) / 2, (ny * terrain.block_size - spacing) / 2)
+    if abs(rx - expect[0]) > 1e-6 or abs(ry - expect[1]) > 1e-6:
+        raise ValueError(
+            f"height field {hid} spans radii ({rx}, {ry}) m, but the terrain's samples need {expect}"
+        )
+    adr = int(model.hfield_adr[hid])
+    view = model.hfield_data[adr : adr + nrow * ncol].reshape(nrow, ncol)
+    terrain.hfield_into(view, oversample, _geom_z(model, hid), elevation)
+
+
+def max_top(scheme: Scheme) -> float:
+    """The highest top any world of ``scheme`` can have, metres:
+    ``base + H·step_height`` with ``H`` the largest obstacle height the
+    scheme allows (its ranges' upper ends; at least 1 step for frames)."""
+    heights = [1]
+    for obstacle in scheme.obstacles:
+        h = obstacle.height
+        heights.append(h[1] if isinstance(h, tuple) else int(h or 0))
+    return scheme.base + max(heights) * scheme.step_height
+
+
+def hfield_mjcf(
+    scheme: Scheme,
+    oversample: int = 4,
+    *,
+    name: str = "terrain",
+    elevation: Union[float, None] = None,
+) -> str:
+    """An MJCF model of a ground for every world of ``scheme``: a height
+    field named ``name`` sized for its grid at ``oversample``, its geom
+    (also ``name``) with the grid's corner at the origin and its surface
+    from z = 0 up to ``elevation`` (default ``max_top(scheme)``), and a
+    light. The field starts flat: compile the model, then ``set_hfield`` a
+    terrain into it (MuJoCo rescales samples given in MJCF to span [0, 1],
+    so they cannot carry a terrain's true heights). Add a robot with
+    ``mujoco.MjSpec.from_string(...)`` or by editing the text."""
+    first = scheme.generate(index=0)
+    nrow, ncol = first.hfield_shape(oversample)
+    s = first.block_size
+    ny, nx = first.heights.shape
+    spacing = s / oversample
+    top = max_top(scheme) if elevation is None else float(elevation)
+    rx, ry = (nx * s - spacing) / 2, (ny * s - spacing) / 2
+    cx, cy = nx * s / 2, ny * s / 2
+    return f"""<mujoco model="rse_hfield">
+  <asset>
+    <hfield name="{name}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {s!r}"/>
+  </asset>
+  <worldbody>
+    <light pos="{cx!r} {cy!r} 5" dir="0 0 -1"/>
+    <geom name="{name}" type="hfield" hfield="{name}" pos="{cx!r} {cy!r} 0" rgba="0.76 0.6 0.42 1"/>
+  </worldbody>
+</mujoco>
+"""

@@ -1,0 +1,149 @@
+"""Height fields (issue 13): rse's terrains as MuJoCo height fields, checked
+in MuJoCo itself — ray casts against the heightmap, a live model rewritten
+in place, bodies resting on the new ground, the file `rse-gen hfield`
+writes, and the documented exactness bound."""
+
+import json
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+import rse
+import rse.mujoco
+from conftest import SCHEMES, heights, run
+
+SAMPLES = sorted(SCHEMES.glob("*.csv"))
+SIX = SCHEMES / "six_obstacles.csv"
+
+
+def ray_down(model, data, x: float, y: float) -> float:
+    geomid = np.zeros(1, dtype=np.int32)
+    dist = mujoco.mj_ray(model, data, np.array([x, y, 20.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, geomid)
+    assert dist >= 0, (x, y)
+    return 20.0 - dist
+
+
+def model_of(hfield_xml_attrs: str, pos: tuple) -> tuple:
+    xml = f"""<mujoco><asset><hfield name="t" {hfield_xml_attrs}/></asset>
+      <worldbody><geom type="hfield" hfield="t" pos="{pos[0]!r} {pos[1]!r} {pos[2]!r}"/></worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+def away_from_steps(h: np.ndarray, x: float, y: float, s: float, r: float) -> bool:
+    """Whether the square of half-side `r` around (x, y) lies inside the grid
+    on cells of one height: no step edge within `r` along x or y."""
+    ny, nx = h.shape
+    x0, x1, y0, y1 = (x - r) / s, (x + r) / s, (y - r) / s, (y + r) / s
+    if x0 < 0 or y0 < 0 or x1 >= nx or y1 >= ny:
+        return False
+    block = h[int(y0) : int(y1) + 1, int(x0) : int(x1) + 1]
+    return bool((block == block[0, 0]).all())
+
+
+@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
+def test_the_file_mujoco_loads_obeys_the_bound_of_the_docs(scheme: Path, tmp_path: Path) -> None:
+    """`rse-gen hfield` → MuJoCo: exact at every cell centre, and at random
+    points farther than half a sample spacing (along x and y) from every
+    step edge and the border."""
+    k = 4
+    info = json.loads(run("hfield", str(scheme), "-o", str(tmp_path / "t.bin"), "--oversample", str(k), "--index", "1"))
+    model, data = model_of(f'file="{tmp_path / "t.bin"}" size="{" ".join(map(repr, info["size"]))}"', info["pos"])
+    assert (model.hfield_nrow[0], model.hfield_ncol[0]) == (info["nrow"], info["ncol"])
+    h = heights(scheme, index=1)
+    terrain = rse.Scheme.load(scheme).generate(index=1)
+    s, top = terrain.block_size, terrain.elevation
+    for y in range(h.shape[0]):
+        for x in range(h.shape[1]):
+            assert ray_down(model, data, (x + 0.5) * s, (y + 0.5) * s) == pytest.approx(top[y, x], abs=1e-5)
+    rng = np.random.default_rng(0)
+    checked = 0
+    for x, y in rng.uniform(0, 1, (3000, 2)) * [h.shape[1] * s, h.shape[0] * s]:
+        if away_from_steps(h, x, y, s, s / k / 2 + 1e-6):
+            assert ray_down(model, data, x, y) == pytest.approx(top[int(y // s), int(x // s)], abs=1e-5)
+            checked += 1
+    assert checked > 300
+
+
+def test_set_hfield_rewrites_a_live_model_in_place() -> None:
+    scheme = rse.Scheme.load(SIX)
+    model = mujoco.MjModel.from_xml_string(rse.mujoco.hfield_mjcf(scheme, 4))
+    data = mujoco.MjData(model)
+    a, b = scheme.generate(index=3), scheme.generate(index=4)
+    s = a.block_size
+    for terrain in [a, b]:
+        rse.mujoco.set_hfield(model, "terrain", terrain, 4)
+        mujoco.mj_forward(model, data)
+        for y in range(0, 50, 3):
+            for x in range(50):
+                assert ray_down(model, data, (x + 0.5) * s, (y + 0.5) * s) == pytest.approx(
+                    terrain.elevation[y, x], abs=1e-3
+                )
+    # A sphere dropped on a flat 3x3 patch of B rests on its top: same model.
+    h = b.heights
+    flat = [(x, y) for y in range(1, 49) for x in range(1, 49) if (h[y - 1 : y + 2, x - 1 : x + 2] == h[y, x]).all()]
+    x, y = max(flat, key=lambda c: h[c[1], c[0]])
+    spec = mujoco.MjSpec.from_string(rse.mujoco.hfield_mjcf(scheme, 4))
+    ball = spec.worldbody.add_body(name="ball", pos=[(x + 0.5) * s, (y + 0.5) * s, b.elevation[y, x] + 0.1])
+    ball.add_freejoint()
+    ball.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.02, 0, 0], mass=0.1)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    rse.mujoco.set_hfield(model, 0, a, 4)
+    rse.mujoco.set_hfield(model, 0, b, 4)
+    for _ in range(1500):
+        mujoco.mj_step(model, data)
+    assert data.body("ball").xpos[2] == pytest.approx(b.elevation[y, x] + 0.02, abs=0.002)
+
+
+def test_hfield_arrays_and_reused_buffers() -> None:
+    terrain = rse.Scheme.load(SIX).generate(index=2)
+    samples, size, pos = terrain.hfield(2)
+    assert samples.dtype == np.float32 and samples.shape == terrain.hfield_shape(2) == (100, 100)
+    assert samples.min() == 0.0 and samples.max() == 1.0
+    # Every sample is its cell's top (k x k blocks).
+    tops = np.kron(terrain.elevation, np.ones((2, 2)))
+    np.testing.assert_allclose(samples * size[2] + pos[2], tops, atol=1e-6)
+    buffer = np.empty((100, 100), dtype=np.float32)
+    for index in range(3):
+        t = rse.Scheme.load(SIX).generate(index=index)
+        t.hfield_into(buffer, 2, 0.0, 1.0)
+        np.testing.assert_allclose(buffer, np.kron(t.elevation, np.ones((2, 2))), atol=1e-6)
+
+
+def test_bad_height_field_input_is_a_clear_error() -> None:
+    scheme = rse.Scheme.load(SIX)
+    terrain = scheme.generate()
+    with pytest.raises(ValueError, match="oversample 0"):
+        terrain.hfield(0)
+    with pytest.raises(ValueError, match="at most"):
+        terrain.hfield(100_000)
+    model = mujoco.MjModel.from_xml_string(rse.mujoco.hfield_mjcf(scheme, 2))
+    with pytest.raises(KeyError, match="no height field named 'ground'"):
+        rse.mujoco.set_hfield(model, "ground", terrain, 2)
+    with pytest.raises(ValueError, match=r"shape \(100, 100\).*\(200, 200\)"):
+        rse.mujoco.set_hfield(model, "terrain", terrain, 4)
+    low = mujoco.MjModel.from_xml_string(rse.mujoco.hfield_mjcf(scheme, 2, elevation=0.1))
+    before = low.hfield_data.copy()
+    with pytest.raises(ValueError, match="tops run from"):
+        rse.mujoco.set_hfield(low, "terrain", terrain, 2)
+    np.testing.assert_array_equal(low.hfield_data, before)
+    with pytest.raises(ValueError, match="shape"):
+        terrain.hfield_into(np.empty((3, 3), dtype=np.float32), 2)
+
+
+def test_rse_gen_hfield_refuses_a_bad_oversample(tmp_path: Path) -> None:
+    import subprocess
+
+    from conftest import rse_gen_path
+
+    done = subprocess.run(
+        [str(rse_gen_path()), "hfield", str(SIX), "-o", str(tmp_path / "t.bin"), "--oversample", "0"],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 2 and "--oversample" in done.stderr
+    assert not (tmp_path / "t.bin").exists()
