@@ -147,3 +147,38 @@ def test_rse_gen_hfield_refuses_a_bad_oversample(tmp_path: Path) -> None:
     )
     assert done.returncode == 2 and "--oversample" in done.stderr
     assert not (tmp_path / "t.bin").exists()
+
+
+@pytest.mark.parametrize("mode", ["single", "blocks"])
+def test_a_batch_with_the_hfield_collider_loads_in_mujoco_and_checks_good(tmp_path: Path, mode: str) -> None:
+    out = tmp_path / "hf"
+    run("batch", str(SIX), "-o", str(out), "--amount", "2", "--target", "obj,mujoco", "--mesh", mode,
+        "--mujoco-collider", "hfield", "--oversample", "2")  # fmt: skip
+    run("check", str(out))
+    # The same bytes from Python.
+    rse.write_worlds(rse.Scheme.load(SIX), tmp_path / "py", amount=2, targets="obj,mujoco", mesh=mode,
+                     mujoco_collider="hfield", oversample=2)  # fmt: skip
+    for world in sorted(out.glob("world_*")):
+        for f in ["rse.json", "mujoco/rse.xml", "mujoco/terrain.bin"]:
+            assert (world / f).read_bytes() == (tmp_path / "py" / world.name / f).read_bytes(), f
+        manifest = json.loads((world / "rse.json").read_text())
+        assert manifest["mujoco_collider"] == {"type": "hfield", "oversample": 2}
+        model = mujoco.MjModel.from_xml_path(str(world / "mujoco" / "rse.xml"))
+        assert model.nhfield == 1 and (model.hfield_nrow[0], model.hfield_ncol[0]) == (100, 100)
+        boxes = sum(model.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX for g in range(model.ngeom))
+        assert boxes == 0
+        data = mujoco.MjData(model)
+        mujoco.mj_forward(model, data)
+        h = heights(SIX, index=manifest["index"])
+        for y in range(0, 50, 2):
+            for x in range(50):
+                # The floor plane is at 0, under the field.
+                assert ray_down(model, data, (x + 0.5) * 0.1, (y + 0.5) * 0.1) == pytest.approx(h[y, x] * 0.1, abs=1e-5)
+
+
+def test_an_oversample_without_the_hfield_collider_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="hfield collider only"):
+        rse.write_worlds(rse.Scheme.load(SIX), tmp_path, amount=1, targets="mujoco", oversample=4)
+    with pytest.raises(ValueError, match="unknown MuJoCo collider"):
+        rse.write_worlds(rse.Scheme.load(SIX), tmp_path, amount=1, targets="mujoco", mujoco_collider="mesh")
+    assert not any(tmp_path.iterdir())

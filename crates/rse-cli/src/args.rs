@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rse_core::Difficulty;
-use rse_world::{MeshMode, Shard, Targets};
+use rse_world::{MeshMode, MujocoCollider, Shard, Targets};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
@@ -109,6 +109,9 @@ pub struct BatchArgs {
     #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
     pub mesh: MeshMode,
 
+    #[command(flatten)]
+    pub collider: ColliderArgs,
+
     /// Worker threads [default: one per core].
     #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
@@ -179,6 +182,9 @@ pub struct AtlasArgs {
     /// Terrain model in the simulator files: the single mesh, or merged boxes.
     #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
     pub mesh: MeshMode,
+
+    #[command(flatten)]
+    pub collider: ColliderArgs,
 
     /// Worker threads [default: one per core]; the atlas is the same on any number.
     #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
@@ -262,6 +268,27 @@ pub struct WorldArgs {
 
     #[command(flatten)]
     pub difficulty: DifficultyArg,
+}
+
+/// What `MuJoCo` worlds collide with.
+#[derive(Debug, Args)]
+pub struct ColliderArgs {
+    /// MuJoCo collision: the merged boxes (exact), or a height field (mujoco/terrain.bin).
+    #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = "boxes",
+          value_parser = ["boxes", "hfield"])]
+    pub name: String,
+
+    /// Height field samples per cell along each axis [default: 4]; needs --mujoco-collider hfield.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
+    pub oversample: Option<u32>,
+}
+
+impl ColliderArgs {
+    /// The collider these flags name.
+    pub fn collider(&self) -> anyhow::Result<MujocoCollider> {
+        MujocoCollider::parse(&self.name, self.oversample)
+            .map_err(|e| anyhow::anyhow!("--oversample: {e}; add --mujoco-collider hfield"))
+    }
 }
 
 /// A difficulty for curricula (schemes/README.md, "Difficulty").

@@ -186,7 +186,8 @@ impl Atlas {
     /// (the same bytes): whole or not at all; an identical folder is left
     /// alone (returns `"skipped"`), a different one refused unless
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
-    #[pyo3(signature = (out, *, targets="gazebo", mesh="single", template=None, force=false))]
+    #[pyo3(signature = (out, *, targets="gazebo", mesh="single", template=None, force=false, mujoco_collider="boxes", oversample=None))]
+    #[allow(clippy::too_many_arguments)]
     fn write(
         &self,
         py: Python<'_>,
@@ -195,11 +196,15 @@ impl Atlas {
         mesh: &str,
         template: Option<std::path::PathBuf>,
         force: bool,
+        mujoco_collider: &str,
+        oversample: Option<u32>,
     ) -> PyResult<&'static str> {
         let bad = |e: rse_world::Error| world_error(py, &e);
         let options = WorldOptions {
             targets: rse_world::Targets::parse(targets).map_err(bad)?,
             mesh: mesh.parse().map_err(bad)?,
+            mujoco_collider: rse_world::MujocoCollider::parse(mujoco_collider, oversample)
+                .map_err(bad)?,
             ..WorldOptions::default()
         };
         let templates = match &template {

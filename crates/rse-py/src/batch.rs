@@ -5,7 +5,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use rse_world::{BatchOptions, MeshMode, Shard, Targets, Templates, WorldOptions};
+use rse_world::{BatchOptions, MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
 
 use crate::errors::world_error;
 use crate::scheme::{Scheme, difficulty_arg};
@@ -50,7 +50,7 @@ pub fn generate_batch(
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="single", jobs=None, shard=None, template=None, force=false, difficulty=1.0))]
+#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="single", jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider="boxes", oversample=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
@@ -65,6 +65,8 @@ pub fn write_worlds<'py>(
     template: Option<std::path::PathBuf>,
     force: bool,
     difficulty: f64,
+    mujoco_collider: &str,
+    oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let bad = |e: rse_world::Error| PyValueError::new_err(e.to_string());
     let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
@@ -75,6 +77,7 @@ pub fn write_worlds<'py>(
             targets: Targets::parse(targets).map_err(bad)?,
             mesh: mesh.parse::<MeshMode>().map_err(bad)?,
             difficulty: difficulty_arg(difficulty)?,
+            mujoco_collider: MujocoCollider::parse(mujoco_collider, oversample).map_err(bad)?,
         },
         jobs,
         shard: shard

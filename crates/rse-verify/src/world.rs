@@ -285,6 +285,7 @@ fn rebuild(manifest: &Manifest) -> Result<(Terrain, WorldFiles), FaultKind> {
         targets: manifest.targets.clone(),
         mesh: manifest.mesh,
         difficulty: manifest.difficulty,
+        mujoco_collider: manifest.mujoco_collider,
     };
     let cannot = |e: rse_world::Error| FaultKind::BadManifest {
         reason: format!("the world cannot be rebuilt from it: {e}"),

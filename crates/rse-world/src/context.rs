@@ -1,7 +1,7 @@
 //! The values a template can use (documented in `templates/README.md`).
 
-use rse_core::Terrain;
 use rse_core::mesh::Block;
+use rse_core::{HField, Terrain};
 use serde::Serialize;
 
 use crate::target::MeshMode;
@@ -34,9 +34,26 @@ pub(crate) struct WorldContext {
     pub extent: [f64; 3],
     /// Centre of its footprint at the ground, metres.
     pub center: [f64; 3],
-    /// The merged box set (always present: `MuJoCo` collides with it in
-    /// both modes).
+    /// The merged box set (`MuJoCo` collides with it in both modes unless
+    /// `collider` is `hfield`).
     pub boxes: Vec<BoxContext>,
+    /// What `MuJoCo` collides with: `boxes` or `hfield`.
+    pub collider: &'static str,
+    /// The height field, when `collider` is `hfield`.
+    pub hfield: Option<HFieldContext>,
+}
+
+/// A `MuJoCo` height field: its file and where it goes.
+#[derive(Debug, Serialize)]
+pub(crate) struct HFieldContext {
+    /// Relative to the MJCF file.
+    pub file: &'static str,
+    pub nrow: u32,
+    pub ncol: u32,
+    /// `[radius_x, radius_y, elevation, base]`.
+    pub size: [f64; 4],
+    /// The geom's position.
+    pub pos: [f64; 3],
 }
 
 /// One box of the block model, metres.
@@ -81,6 +98,23 @@ impl WorldContext {
                     cells: b.cells,
                 })
                 .collect(),
+            collider: "boxes",
+            hfield: None,
+        }
+    }
+
+    /// The same context for a world whose `MuJoCo` file collides `hfield`.
+    pub(crate) fn with_hfield(self, hfield: &HField) -> Self {
+        WorldContext {
+            collider: "hfield",
+            hfield: Some(HFieldContext {
+                file: "terrain.bin",
+                nrow: hfield.nrow,
+                ncol: hfield.ncol,
+                size: hfield.size.map(tidy),
+                pos: hfield.pos.map(tidy),
+            }),
+            ..self
         }
     }
 }

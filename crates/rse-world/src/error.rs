@@ -115,6 +115,9 @@ pub enum Error {
         /// The world folder.
         path: PathBuf,
     },
+    /// A height field that cannot be made.
+    #[error(transparent)]
+    HField(#[from] rse_core::HFieldError),
     /// Encoding a world file failed.
     #[error(transparent)]
     Core(#[from] rse_core::Error),

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::atlas::AtlasRecord;
-use crate::target::{MeshMode, Targets};
+use crate::target::{MeshMode, MujocoCollider, Targets};
 use crate::templates::Templates;
 use crate::world::{WorldFiles, WorldOptions};
 
@@ -36,6 +36,10 @@ pub struct Manifest {
     pub targets: Targets,
     /// The terrain model of the simulator files.
     pub mesh: MeshMode,
+    /// What the `MuJoCo` world collides with; absent for boxes, so worlds
+    /// made before height fields keep their bytes.
+    #[serde(default, skip_serializing_if = "MujocoCollider::is_boxes")]
+    pub mujoco_collider: MujocoCollider,
     /// `"builtin"` or `"custom"`.
     pub templates: String,
     /// SHA-256 of the template files used.
@@ -80,6 +84,7 @@ impl Manifest {
             difficulty: Difficulty::FULL,
             targets: options.targets.clone(),
             mesh: options.mesh,
+            mujoco_collider: options.mujoco_collider,
             templates: if templates.is_custom() {
                 "custom"
             } else {

@@ -143,6 +143,58 @@ impl FromStr for MeshMode {
     }
 }
 
+/// What `MuJoCo` worlds collide with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum MujocoCollider {
+    /// The merged box set, one static box geom each (exact).
+    #[default]
+    Boxes,
+    /// A height field of `oversample` samples per cell along each axis
+    /// (`mujoco/terrain.bin`): exact but within half a sample of a step edge.
+    Hfield {
+        /// Samples per cell along each axis, 1 or more.
+        oversample: u32,
+    },
+}
+
+impl MujocoCollider {
+    /// The default: boxes.
+    pub fn is_boxes(&self) -> bool {
+        *self == MujocoCollider::Boxes
+    }
+
+    /// The collider named `boxes` or `hfield`, with `oversample` for a
+    /// height field (`None`: 4); an oversample with boxes, or 0, is refused.
+    pub fn parse(name: &str, oversample: Option<u32>) -> Result<Self, Error> {
+        let bad = |message: String| Error::BadOption {
+            option: "mujoco_collider",
+            message,
+        };
+        match (name, oversample) {
+            ("boxes", None) => Ok(MujocoCollider::Boxes),
+            ("boxes", Some(_)) => Err(bad(
+                "an oversample applies to the hfield collider only".to_owned()
+            )),
+            ("hfield", Some(0)) => Err(bad("oversample must be 1 or more".to_owned())),
+            ("hfield", k) => Ok(MujocoCollider::Hfield {
+                oversample: k.unwrap_or(4),
+            }),
+            _ => Err(bad(format!(
+                "unknown MuJoCo collider {name:?}: expected boxes or hfield"
+            ))),
+        }
+    }
+
+    /// `boxes` or `hfield`, as templates see it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            MujocoCollider::Boxes => "boxes",
+            MujocoCollider::Hfield { .. } => "hfield",
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,8 +11,11 @@ use rse_core::{Difficulty, Scheme, Terrain, generate_at, preview};
 use crate::context::{MODEL, WorldContext};
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest};
-use crate::target::{MeshMode, Target, Targets};
+use crate::target::{MeshMode, MujocoCollider, Target, Targets};
 use crate::templates::Templates;
+
+/// Where a world's `MuJoCo` height field file goes.
+pub const HFIELD_FILE: &str = "mujoco/terrain.bin";
 
 /// What to put in a world folder.
 #[derive(Debug, Clone, Default)]
@@ -23,6 +26,8 @@ pub struct WorldOptions {
     pub mesh: MeshMode,
     /// The difficulty the heights are scaled to.
     pub difficulty: Difficulty,
+    /// What the `MuJoCo` world collides with.
+    pub mujoco_collider: MujocoCollider,
 }
 
 /// The files of one world folder, by `/`-separated relative path, with the
@@ -122,7 +127,14 @@ pub(crate) fn terrain_files(
         }
     }
 
-    let context = WorldContext::new(name.clone(), terrain, options.mesh, &boxes);
+    let mut context = WorldContext::new(name.clone(), terrain, options.mesh, &boxes);
+    if let (MujocoCollider::Hfield { oversample }, true) =
+        (options.mujoco_collider, targets.contains(Target::Mujoco))
+    {
+        let hfield = terrain.hfield(oversample)?;
+        files.insert(HFIELD_FILE.to_owned(), hfield.to_mujoco_bin());
+        context = context.with_hfield(&hfield);
+    }
     let mut from_templates = BTreeSet::new();
     for target in targets.iter() {
         for (path, bytes) in templates.render(target, &context)? {

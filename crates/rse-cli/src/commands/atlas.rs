@@ -40,6 +40,7 @@ pub fn run(args: &AtlasArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
     let options = WorldOptions {
         targets: args.target.clone(),
         mesh: args.mesh,
+        mujoco_collider: args.collider.collider()?,
         ..WorldOptions::default()
     };
     let pool = thread_pool(args.jobs.map(usize::from))?;

@@ -25,6 +25,7 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
             targets: args.target.clone(),
             mesh: args.mesh,
             difficulty: args.difficulty.value,
+            mujoco_collider: args.collider.collider()?,
         },
         jobs: args.jobs.map(usize::from),
         shard: args.shard.unwrap_or_default(),

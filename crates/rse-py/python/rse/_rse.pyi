@@ -168,6 +168,8 @@ class Atlas:
         mesh: str = "single",
         template: Optional[Union[str, os.PathLike[str]]] = None,
         force: bool = False,
+        mujoco_collider: str = "boxes",
+        oversample: Optional[int] = None,
     ) -> str: ...
 
 def generate_batch(
@@ -186,6 +188,8 @@ def write_worlds(
     template: Optional[Union[str, os.PathLike[str]]] = None,
     force: bool = False,
     difficulty: float = 1.0,
+    mujoco_collider: str = "boxes",
+    oversample: Optional[int] = None,
 ) -> dict[str, int]: ...
 def _time_generate(scheme: Scheme, count: int, seed: int = 0) -> float: ...
 def _check_json(paths: list[Union[str, os.PathLike[str]]], physics: bool = False, jobs: Optional[int] = None) -> str: ...
