@@ -37,6 +37,7 @@ bench:
 	bench/batch.sh
 	bench/check.sh
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
+	.venv/bin/python bench/hfield.py
 	.venv/bin/python bench/editor.py
 
 build:

@@ -35,6 +35,8 @@ from __future__ import annotations
 
 from typing import Any, Union
 
+import numpy as np
+
 from rse._rse import Scheme, Terrain
 
 __all__ = ["hfield_mjcf", "max_top", "set_hfield"]
@@ -55,22 +57,18 @@ def _hfield_id(model: Any, hfield: Union[int, str]) -> int:
 
 
 def _geom_z(model: Any, hid: int) -> float:
-    """The world z of the (one) geom that shows height field ``hid``: its
-    own z plus its bodies' (static bodies, no rotation)."""
+    """The world z of the geom(s) that show height field ``hid``: its own z
+    plus its bodies' (static bodies, no rotation)."""
     import mujoco
 
-    geoms = [
-        g
-        for g in range(model.ngeom)
-        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_HFIELD and model.geom_dataid[g] == hid
-    ]
-    if not geoms:
+    (geoms,) = np.nonzero((model.geom_type == mujoco.mjtGeom.mjGEOM_HFIELD) & (model.geom_dataid == hid))
+    if len(geoms) == 0:
         raise ValueError(f"no geom uses height field {model.hfield(hid).name or hid}")
     zs = set()
     for g in geoms:
-        z, body = float(model.geom_pos[g][2]), int(model.geom_bodyid[g])
+        z, body = float(model.geom_pos[g, 2]), int(model.geom_bodyid[g])
         while body > 0:
-            z += float(model.body_pos[body][2])
+            z += float(model.body_pos[body, 2])
             body = int(model.body_parentid[body])
         zs.add(round(z, 9))
     if len(zs) > 1:
@@ -93,10 +91,9 @@ def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample
             f"height field {hid} of the model has shape ({nrow}, {ncol}), but the terrain at "
             f"oversample {oversample} has {want}"
         )
-    rx, ry, elevation, _ = (float(v) for v in model.hfield_size[hid])
+    rx, ry, elevation, _ = model.hfield_size[hid].tolist()
     spacing = terrain.block_size / oversample
-    nx, ny = terrain.heights.shape[1], terrain.heights.shape[0]
-    expect = ((nx * terrain.block_size - spacing) / 2, (ny * terrain.block_size - spacing) / 2)
+    expect = ((ncol - 1) * spacing / 2, (nrow - 1) * spacing / 2)
     if abs(rx - expect[0]) > 1e-6 or abs(ry - expect[1]) > 1e-6:
         raise ValueError(
             f"height field {hid} spans radii ({rx}, {ry}) m, but the terrain's samples need {expect}"
