@@ -107,6 +107,10 @@ def test_hfield_arrays_and_reused_buffers() -> None:
     # Every sample is its cell's top (k x k blocks).
     tops = np.kron(terrain.elevation, np.ones((2, 2)))
     np.testing.assert_allclose(samples * size[2] + pos[2], tops, atol=1e-6)
+    reused = np.empty((100, 100), dtype=np.float32)
+    again, size_again, pos_again = terrain.hfield(2, out=reused)
+    assert again is reused and (size_again, pos_again) == (size, pos)
+    np.testing.assert_array_equal(reused, samples)
     buffer = np.empty((100, 100), dtype=np.float32)
     for index in range(3):
         t = rse.Scheme.load(SIX).generate(index=index)

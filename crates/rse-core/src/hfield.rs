@@ -107,17 +107,25 @@ impl Terrain {
     /// within half a sample spacing (`S/2k`) of a step edge or of the grid's
     /// border.
     pub fn hfield(&self, oversample: u32) -> Result<HField, HFieldError> {
+        let mut hfield = self.hfield_layout(oversample)?;
+        let (lowest, elevation) = (hfield.pos[2], hfield.size[2]);
+        hfield.data = vec![0.0f32; hfield.nrow as usize * hfield.ncol as usize];
+        self.fill_hfield(oversample, lowest, elevation, &mut hfield.data);
+        Ok(hfield)
+    }
+
+    /// [`Terrain::hfield`] without its samples (`data` empty): the shape,
+    /// `size` and `pos`. With [`Terrain::hfield_into`]`(k, pos[2], size[2],
+    /// buffer)` it fills a caller's buffer with the same samples.
+    pub fn hfield_layout(&self, oversample: u32) -> Result<HField, HFieldError> {
         let (nrow, ncol) = self.hfield_shape(oversample)?;
         let (lowest, highest) = self.top_range();
-        let flat = highest <= lowest;
         // A flat terrain: all samples 0, any positive elevation.
-        let elevation = if flat {
+        let elevation = if highest <= lowest {
             self.step_height()
         } else {
             highest - lowest
         };
-        let mut data = vec![0.0f32; nrow as usize * ncol as usize];
-        self.fill_hfield(oversample, lowest, elevation, &mut data);
         let grid = self.grid();
         let s = self.block_size();
         let spacing = s / f64::from(oversample);
@@ -132,7 +140,7 @@ impl Terrain {
         Ok(HField {
             nrow,
             ncol,
-            data,
+            data: Vec::new(),
             size: [
                 (width - spacing) / 2.0,
                 (depth - spacing) / 2.0,

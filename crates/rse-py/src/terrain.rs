@@ -140,14 +140,32 @@ impl Terrain {
     /// samples in [0, 1] (row 0 at the lowest y, MuJoCo's layout), MuJoCo's
     /// `size` `(radius_x, radius_y, elevation, base)` and the hfield geom's
     /// `pos`, metres. Exact but within half a sample spacing of a step edge.
-    #[pyo3(signature = (oversample=4))]
-    fn hfield<'py>(&self, py: Python<'py>, oversample: u32) -> PyResult<HFieldTuple<'py>> {
-        let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
-        let data = Array2::from_shape_vec((hf.nrow as usize, hf.ncol as usize), hf.data)
-            .expect("nrow × ncol samples");
-        let [rx, ry, elevation, base] = hf.size;
-        let [x, y, z] = hf.pos;
-        Ok((data.into_pyarray(py), (rx, ry, elevation, base), (x, y, z)))
+    /// With `out=` (a writable C-contiguous float32 array of
+    /// `hfield_shape(oversample)`), the samples go there and `out` is
+    /// returned: no allocation, for loops.
+    #[pyo3(signature = (oversample=4, *, out=None))]
+    fn hfield<'py>(
+        &self,
+        py: Python<'py>,
+        oversample: u32,
+        out: Option<Bound<'py, PyArray2<f32>>>,
+    ) -> PyResult<HFieldTuple<'py>> {
+        let layout = self.inner.hfield_layout(oversample).map_err(hfield_error)?;
+        let [rx, ry, elevation, base] = layout.size;
+        let [x, y, z] = layout.pos;
+        let data = match out {
+            Some(out) => {
+                self.hfield_into(py, &out, oversample, z, elevation)?;
+                out
+            }
+            None => {
+                let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
+                Array2::from_shape_vec((hf.nrow as usize, hf.ncol as usize), hf.data)
+                    .expect("nrow × ncol samples")
+                    .into_pyarray(py)
+            }
+        };
+        Ok((data, (rx, ry, elevation, base), (x, y, z)))
     }
 
     /// `(nrow, ncol)` of `hfield(oversample)`.
