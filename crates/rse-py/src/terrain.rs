@@ -153,17 +153,14 @@ impl Terrain {
         let layout = self.inner.hfield_layout(oversample).map_err(hfield_error)?;
         let [rx, ry, elevation, base] = layout.size;
         let [x, y, z] = layout.pos;
-        let data = match out {
-            Some(out) => {
-                self.hfield_into(py, &out, oversample, z, elevation)?;
-                out
-            }
-            None => {
-                let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
-                Array2::from_shape_vec((hf.nrow as usize, hf.ncol as usize), hf.data)
-                    .expect("nrow × ncol samples")
-                    .into_pyarray(py)
-            }
+        let data = if let Some(out) = out {
+            self.hfield_into(py, &out, oversample, z, elevation)?;
+            out
+        } else {
+            let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
+            Array2::from_shape_vec((hf.nrow as usize, hf.ncol as usize), hf.data)
+                .expect("nrow × ncol samples")
+                .into_pyarray(py)
         };
         Ok((data, (rx, ry, elevation, base), (x, y, z)))
     }
