@@ -69,34 +69,32 @@ def test_the_file_mujoco_loads_obeys_the_bound_of_the_docs(scheme: Path, tmp_pat
 
 
 def test_set_hfield_rewrites_a_live_model_in_place() -> None:
+    """One compiled model: rays at every cell centre see terrain A, then B
+    after set_hfield, and a sphere dropped on B rests on B's top."""
     scheme = rse.Scheme.load(SIX)
-    model = mujoco.MjModel.from_xml_string(rse.mujoco.hfield_mjcf(scheme, 4))
-    data = mujoco.MjData(model)
     a, b = scheme.generate(index=3), scheme.generate(index=4)
-    s = a.block_size
+    s, h = a.block_size, b.heights
+    flat = [(x, y) for y in range(1, 49) for x in range(1, 49) if (h[y - 1 : y + 2, x - 1 : x + 2] == h[y, x]).all()]
+    bx, by = max(flat, key=lambda c: h[c[1], c[0]])
+    spec = mujoco.MjSpec.from_string(rse.mujoco.hfield_mjcf(scheme, 4))
+    ball = spec.worldbody.add_body(name="ball", pos=[(bx + 0.5) * s, (by + 0.5) * s, b.elevation[by, bx] + 0.1])
+    ball.add_freejoint()
+    ball.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.02, 0, 0], mass=0.1, group=3)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    terrain_only = np.array([1, 0, 0, 0, 0, 0], dtype=np.uint8)
+    geomid = np.zeros(1, dtype=np.int32)
     for terrain in [a, b]:
         rse.mujoco.set_hfield(model, "terrain", terrain, 4)
         mujoco.mj_forward(model, data)
-        for y in range(0, 50, 3):
+        for y in range(50):
             for x in range(50):
-                assert ray_down(model, data, (x + 0.5) * s, (y + 0.5) * s) == pytest.approx(
-                    terrain.elevation[y, x], abs=1e-3
-                )
-    # A sphere dropped on a flat 3x3 patch of B rests on its top: same model.
-    h = b.heights
-    flat = [(x, y) for y in range(1, 49) for x in range(1, 49) if (h[y - 1 : y + 2, x - 1 : x + 2] == h[y, x]).all()]
-    x, y = max(flat, key=lambda c: h[c[1], c[0]])
-    spec = mujoco.MjSpec.from_string(rse.mujoco.hfield_mjcf(scheme, 4))
-    ball = spec.worldbody.add_body(name="ball", pos=[(x + 0.5) * s, (y + 0.5) * s, b.elevation[y, x] + 0.1])
-    ball.add_freejoint()
-    ball.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.02, 0, 0], mass=0.1)
-    model = spec.compile()
-    data = mujoco.MjData(model)
-    rse.mujoco.set_hfield(model, 0, a, 4)
-    rse.mujoco.set_hfield(model, 0, b, 4)
+                origin = np.array([(x + 0.5) * s, (y + 0.5) * s, 20.0])
+                d = mujoco.mj_ray(model, data, origin, np.array([0, 0, -1.0]), terrain_only, 1, -1, geomid)
+                assert 20.0 - d == pytest.approx(terrain.elevation[y, x], abs=1e-3), (x, y)
     for _ in range(1500):
         mujoco.mj_step(model, data)
-    assert data.body("ball").xpos[2] == pytest.approx(b.elevation[y, x] + 0.02, abs=0.002)
+    assert data.body("ball").xpos[2] == pytest.approx(b.elevation[by, bx] + 0.02, abs=0.002)
 
 
 def test_hfield_arrays_and_reused_buffers() -> None:
