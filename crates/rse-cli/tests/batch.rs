@@ -331,6 +331,10 @@ fn bad_batch_options_exit_2_with_a_reason() {
         (vec!["--target", "gazebo,isaac"], "unknown target"),
         (vec!["--mesh", "voxels"], "unknown mesh mode"),
         (vec!["--jobs", "0"], "--jobs"),
+        (vec!["--oversample", "4"], "hfield collider only"),
+        (vec!["--mujoco-collider", "mesh"], "--mujoco-collider"),
+        (vec!["--mujoco-collider", "hfield", "--oversample", "0"], "--oversample"),
+        (vec!["--difficulty", "1.5"], "--difficulty"),
     ] {
         let out = dir.path().join("out");
         let failed = batch(&out, &args);
