@@ -39,7 +39,7 @@ import numpy as np
 
 from rse._rse import Scheme, Terrain
 
-__all__ = ["hfield_mjcf", "max_top", "set_hfield"]
+__all__ = ["HFieldSlot", "hfield_mjcf", "max_top", "set_hfield"]
 
 
 def _hfield_id(model: Any, hfield: Union[int, str]) -> int:
@@ -61,7 +61,10 @@ def _geom_z(model: Any, hid: int) -> float:
     plus its bodies' (static bodies, no rotation)."""
     import mujoco
 
-    (geoms,) = np.nonzero((model.geom_type == mujoco.mjtGeom.mjGEOM_HFIELD) & (model.geom_dataid == hid))
+    # An int, not the enum: numpy compares an array to a pybind11 enum one
+    # element at a time, in Python (20 us for 15 geoms).
+    hfield_type = int(mujoco.mjtGeom.mjGEOM_HFIELD)
+    (geoms,) = np.nonzero((model.geom_type == hfield_type) & (model.geom_dataid == hid))
     if len(geoms) == 0:
         raise ValueError(f"no geom uses height field {model.hfield(hid).name or hid}")
     zs = set()
@@ -76,31 +79,52 @@ def _geom_z(model: Any, hid: int) -> float:
     return zs.pop()
 
 
+class HFieldSlot:
+    """A live model's height field, checked once, for writing terrain after
+    terrain into it: ``slot.write(terrain)`` costs only the write (a loop of
+    episodes should keep one slot; ``set_hfield`` makes one per call).
+
+    The field must have ``terrain.hfield_shape(oversample)`` samples and the
+    size of the terrain's grid; every terrain written must fit its
+    elevation. ``model`` must outlive the slot: it holds a view of
+    ``model.hfield_data``."""
+
+    def __init__(self, model: Any, hfield: Union[int, str], oversample: int = 4) -> None:
+        self.model = model
+        self.id = _hfield_id(model, hfield)
+        self.oversample = int(oversample)
+        self.shape = (int(model.hfield_nrow[self.id]), int(model.hfield_ncol[self.id]))
+        self.radii = tuple(model.hfield_size[self.id, :2].tolist())
+        self.elevation = float(model.hfield_size[self.id, 2])
+        self.z0 = _geom_z(model, self.id)
+        adr, n = int(model.hfield_adr[self.id]), self.shape[0] * self.shape[1]
+        self.view = model.hfield_data[adr : adr + n].reshape(self.shape)
+
+    def write(self, terrain: Terrain) -> None:
+        """Writes ``terrain`` into the field (see ``set_hfield``)."""
+        want = terrain.hfield_shape(self.oversample)
+        if want != self.shape:
+            raise ValueError(
+                f"height field {self.id} of the model has shape {self.shape}, but the terrain at "
+                f"oversample {self.oversample} has {want}"
+            )
+        spacing = terrain.block_size / self.oversample
+        expect = ((self.shape[1] - 1) * spacing / 2, (self.shape[0] - 1) * spacing / 2)
+        if abs(self.radii[0] - expect[0]) > 1e-6 or abs(self.radii[1] - expect[1]) > 1e-6:
+            raise ValueError(
+                f"height field {self.id} spans radii {self.radii} m, but the terrain's samples need {expect}"
+            )
+        terrain.hfield_into(self.view, self.oversample, self.z0, self.elevation)
+
+
 def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample: int = 4) -> None:
     """Writes ``terrain`` into the live ``model``'s height field ``hfield``
     (its name or number): no recompile, no new model; the only allocation is
     numpy's view of ``model.hfield_data``. The field must have the terrain's
     ``hfield_shape(oversample)`` and size, and its elevation must reach the
     terrain's highest top; otherwise ``ValueError`` naming both, and the
-    model is left as it was."""
-    hid = _hfield_id(model, hfield)
-    nrow, ncol = int(model.hfield_nrow[hid]), int(model.hfield_ncol[hid])
-    want = terrain.hfield_shape(oversample)
-    if (nrow, ncol) != want:
-        raise ValueError(
-            f"height field {hid} of the model has shape ({nrow}, {ncol}), but the terrain at "
-            f"oversample {oversample} has {want}"
-        )
-    rx, ry, elevation, _ = model.hfield_size[hid].tolist()
-    spacing = terrain.block_size / oversample
-    expect = ((ncol - 1) * spacing / 2, (nrow - 1) * spacing / 2)
-    if abs(rx - expect[0]) > 1e-6 or abs(ry - expect[1]) > 1e-6:
-        raise ValueError(
-            f"height field {hid} spans radii ({rx}, {ry}) m, but the terrain's samples need {expect}"
-        )
-    adr = int(model.hfield_adr[hid])
-    view = model.hfield_data[adr : adr + nrow * ncol].reshape(nrow, ncol)
-    terrain.hfield_into(view, oversample, _geom_z(model, hid), elevation)
+    model is left as it was. In a loop, keep an ``HFieldSlot``."""
+    HFieldSlot(model, hfield, oversample).write(terrain)
 
 
 def max_top(scheme: Scheme) -> float:
