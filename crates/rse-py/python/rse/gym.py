@@ -39,7 +39,7 @@ ENV_ID = "rse/AntStepfield-v0"
 try:  # pragma: no cover - depends on what is installed
     from gymnasium.envs.mujoco.ant_v5 import AntEnv as _AntEnv
 except ImportError:  # gymnasium or mujoco absent
-    _AntEnv = None
+    _AntEnv = None  # type: ignore[assignment,misc]
 
 
 def ant_on_hfield_xml(scheme: rse.Scheme, oversample: int, elevation: float) -> str:
