@@ -333,7 +333,10 @@ fn bad_batch_options_exit_2_with_a_reason() {
         (vec!["--jobs", "0"], "--jobs"),
         (vec!["--oversample", "4"], "hfield collider only"),
         (vec!["--mujoco-collider", "mesh"], "--mujoco-collider"),
-        (vec!["--mujoco-collider", "hfield", "--oversample", "0"], "--oversample"),
+        (
+            vec!["--mujoco-collider", "hfield", "--oversample", "0"],
+            "--oversample",
+        ),
         (vec!["--difficulty", "1.5"], "--difficulty"),
     ] {
         let out = dir.path().join("out");
