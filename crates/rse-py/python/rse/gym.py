@@ -32,7 +32,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 import rse
-from rse.mujoco import HFieldSlot, max_top
+from rse.mujoco import HFieldSlot, add_hfield, max_top
 
 ENV_ID = "rse/AntStepfield-v0"
 
@@ -53,28 +53,7 @@ def ant_on_hfield_xml(scheme: rse.Scheme, oversample: int, elevation: float) -> 
 
     ant = Path(ant_v5.__file__).parent / "assets" / "ant.xml"
     spec = mujoco.MjSpec.from_file(str(ant))
-    first = scheme.generate(index=0)
-    ny, nx = first.heights.shape
-    s = first.block_size
-    spacing = s / oversample
-    nrow, ncol = first.hfield_shape(oversample)
-    spec.add_hfield(
-        name="terrain",
-        nrow=nrow,
-        ncol=ncol,
-        size=[(nx * s - spacing) / 2, (ny * s - spacing) / 2, elevation, s],
-        userdata=[0.0] * (nrow * ncol),
-    )
-    spec.worldbody.add_geom(
-        name="terrain",
-        type=mujoco.mjtGeom.mjGEOM_HFIELD,
-        hfieldname="terrain",
-        pos=[0.0, 0.0, 0.0],
-        rgba=[0.76, 0.6, 0.42, 1.0],
-        conaffinity=1,
-        condim=3,
-        group=2,  # its own group, so ray casts can pick the terrain alone
-    )
+    add_hfield(spec, scheme, oversample, name="terrain", elevation=elevation)
     return spec.to_xml()
 
 

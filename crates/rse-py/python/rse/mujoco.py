@@ -39,7 +39,7 @@ import numpy as np
 
 from rse._rse import Scheme, Terrain
 
-__all__ = ["HFieldSlot", "hfield_mjcf", "max_top", "set_hfield"]
+__all__ = ["HFieldSlot", "add_hfield", "hfield_mjcf", "max_top", "set_hfield"]
 
 
 def _hfield_id(model: Any, hfield: Union[int, str]) -> int:
@@ -136,6 +136,48 @@ def max_top(scheme: Scheme) -> float:
         h = obstacle.height
         heights.append(h[1] if isinstance(h, tuple) else int(h or 0))
     return scheme.base + max(heights) * scheme.step_height
+
+
+def add_hfield(
+    spec: Any,
+    scheme: Scheme,
+    oversample: int = 4,
+    *,
+    name: str = "terrain",
+    elevation: Union[float, None] = None,
+    centre: tuple[float, float] = (0.0, 0.0),
+    group: int = 2,
+) -> None:
+    """Adds to ``spec`` (a ``mujoco.MjSpec``) a height field for every world
+    of ``scheme`` and its geom in the world body, both named ``name``: the
+    grid's centre at ``centre``, surface from z = 0 to ``elevation``
+    (default ``max_top(scheme)``), in geom group ``group`` (2: drawn by
+    default, and rays can select it alone). The field starts flat:
+    ``set_hfield`` a terrain into the compiled model."""
+    import mujoco
+
+    first = scheme.generate(index=0)
+    nrow, ncol = first.hfield_shape(oversample)
+    s = first.block_size
+    spacing = s / oversample
+    top = max_top(scheme) if elevation is None else float(elevation)
+    spec.add_hfield(
+        name=name,
+        nrow=nrow,
+        ncol=ncol,
+        size=[(ncol - 1) * spacing / 2, (nrow - 1) * spacing / 2, top, s],
+        userdata=[0.0] * (nrow * ncol),
+    )
+    spec.worldbody.add_geom(
+        name=name,
+        type=mujoco.mjtGeom.mjGEOM_HFIELD,
+        hfieldname=name,
+        pos=[centre[0], centre[1], 0.0],
+        rgba=[0.76, 0.6, 0.42, 1.0],
+        conaffinity=1,
+        condim=3,
+        group=group,
+    )
 
 
 def hfield_mjcf(
