@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use rse_core::Difficulty;
-use rse_world::{MeshMode, MujocoCollider, Shard, Targets};
+use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
@@ -101,16 +101,8 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub difficulty: DifficultyArg,
 
-    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
-    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
-    pub target: Targets,
-
-    /// Terrain model in the simulator files: the single mesh, or merged boxes.
-    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
-    pub mesh: MeshMode,
-
     #[command(flatten)]
-    pub collider: ColliderArgs,
+    pub files: WorldFilesArgs,
 
     /// Worker threads [default: one per core].
     #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
@@ -119,10 +111,6 @@ pub struct BatchArgs {
     /// Write only the worlds with index ≡ K (mod N), for N machines or processes (K from 0).
     #[arg(long, value_name = "K/N", value_parser = parse_shard)]
     pub shard: Option<Shard>,
-
-    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
-    #[arg(long, value_name = "DIR")]
-    pub template: Option<PathBuf>,
 
     /// Replace world folders that hold a different world.
     #[arg(long)]
@@ -175,24 +163,12 @@ pub struct AtlasArgs {
     #[arg(long, value_name = "K", default_value_t = 0)]
     pub max_step: u16,
 
-    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
-    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
-    pub target: Targets,
-
-    /// Terrain model in the simulator files: the single mesh, or merged boxes.
-    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
-    pub mesh: MeshMode,
-
     #[command(flatten)]
-    pub collider: ColliderArgs,
+    pub files: WorldFilesArgs,
 
     /// Worker threads [default: one per core]; the atlas is the same on any number.
     #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
-
-    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
-    #[arg(long, value_name = "DIR")]
-    pub template: Option<PathBuf>,
 
     /// Replace the folder if it holds a different world.
     #[arg(long)]
@@ -268,6 +244,46 @@ pub struct WorldArgs {
 
     #[command(flatten)]
     pub difficulty: DifficultyArg,
+}
+
+/// What goes in a world folder: targets, terrain model, colliders,
+/// templates (`batch` and `atlas` alike).
+#[derive(Debug, Args)]
+pub struct WorldFilesArgs {
+    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
+    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
+    pub target: Targets,
+
+    /// Terrain model in the simulator files: the single mesh, or merged boxes.
+    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
+    pub mesh: MeshMode,
+
+    #[command(flatten)]
+    pub collider: ColliderArgs,
+
+    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
+}
+
+impl WorldFilesArgs {
+    /// The world options these flags give, at `difficulty`.
+    pub fn options(&self, difficulty: Difficulty) -> anyhow::Result<WorldOptions> {
+        Ok(WorldOptions {
+            targets: self.target.clone(),
+            mesh: self.mesh,
+            difficulty,
+            mujoco_collider: self.collider.collider()?,
+        })
+    }
+
+    /// The templates: ours, or ours overlaid by `--template DIR`.
+    pub fn templates(&self) -> anyhow::Result<Templates> {
+        Ok(match &self.template {
+            Some(dir) => Templates::with_overrides(dir)?,
+            None => Templates::builtin(),
+        })
+    }
 }
 
 /// What `MuJoCo` worlds collide with.

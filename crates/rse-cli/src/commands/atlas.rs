@@ -3,7 +3,7 @@
 
 use anyhow::Context as _;
 use rse_core::{AtlasOptions, PatchOptions};
-use rse_world::{NamedScheme, Outcome, Templates, WorldOptions, thread_pool, write_atlas};
+use rse_world::{NamedScheme, Outcome, thread_pool, write_atlas};
 
 use crate::ExitStatus;
 use crate::args::{AtlasArgs, SchemeOverrides};
@@ -33,16 +33,9 @@ pub fn run(args: &AtlasArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
             max_step: args.max_step,
         },
     };
-    let templates = match &args.template {
-        Some(dir) => Templates::with_overrides(dir)?,
-        None => Templates::builtin(),
-    };
-    let options = WorldOptions {
-        targets: args.target.clone(),
-        mesh: args.mesh,
-        mujoco_collider: args.collider.collider()?,
-        ..WorldOptions::default()
-    };
+    let templates = args.files.templates()?;
+    // An atlas's tiles carry their own difficulties; the map is as drawn.
+    let options = args.files.options(rse_core::Difficulty::FULL)?;
     let pool = thread_pool(args.jobs.map(usize::from))?;
     let (outcome, atlas) = pool
         .install(|| {

@@ -6,27 +6,19 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
-use rse_world::{BatchOptions, Templates, WorldOptions, write_batch_until};
+use rse_world::{BatchOptions, write_batch_until};
 
 use crate::ExitStatus;
 use crate::args::{BatchArgs, SchemeOverrides};
 
 pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let scheme = super::load_scheme(&args.scheme, overrides)?;
-    let templates = match &args.template {
-        Some(dir) => Templates::with_overrides(dir)?,
-        None => Templates::builtin(),
-    };
+    let templates = args.files.templates()?;
     let scheme_batch = BatchOptions::for_scheme(&scheme, &args.output);
     let options = BatchOptions {
         amount: args.amount.unwrap_or(scheme_batch.amount),
         seed: args.seed.unwrap_or(scheme_batch.seed),
-        world: WorldOptions {
-            targets: args.target.clone(),
-            mesh: args.mesh,
-            difficulty: args.difficulty.value,
-            mujoco_collider: args.collider.collider()?,
-        },
+        world: args.files.options(args.difficulty.value)?,
         jobs: args.jobs.map(usize::from),
         shard: args.shard.unwrap_or_default(),
         force: args.force,

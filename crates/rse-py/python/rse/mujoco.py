@@ -108,8 +108,7 @@ class HFieldSlot:
                 f"height field {self.id} of the model has shape {self.shape}, but the terrain at "
                 f"oversample {self.oversample} has {want}"
             )
-        spacing = terrain.block_size / self.oversample
-        expect = ((self.shape[1] - 1) * spacing / 2, (self.shape[0] - 1) * spacing / 2)
+        expect = _radii(self.shape, terrain.block_size, self.oversample)
         if abs(self.radii[0] - expect[0]) > 1e-6 or abs(self.radii[1] - expect[1]) > 1e-6:
             raise ValueError(
                 f"height field {self.id} spans radii {self.radii} m, but the terrain's samples need {expect}"
@@ -138,6 +137,27 @@ def max_top(scheme: Scheme) -> float:
     return scheme.base + max(heights) * scheme.step_height
 
 
+def _radii(shape: tuple[int, int], block_size: float, oversample: int) -> tuple[float, float]:
+    """MuJoCo's radii of a field of ``shape`` samples, ``oversample`` per
+    cell: half the span from the first sample to the last."""
+    spacing = block_size / oversample
+    return (shape[1] - 1) * spacing / 2, (shape[0] - 1) * spacing / 2
+
+
+def _field(
+    scheme: Scheme, oversample: int, elevation: Union[float, None]
+) -> tuple[tuple[int, int], tuple[float, float, float, float], tuple[float, float]]:
+    """A field for every world of ``scheme``: its shape, MuJoCo's size
+    (elevation ``max_top(scheme)`` unless given, base one block) and the
+    grid's centre."""
+    first = scheme.generate(index=0)
+    shape = first.hfield_shape(oversample)
+    s = first.block_size
+    rx, ry = _radii(shape, s, oversample)
+    top = max_top(scheme) if elevation is None else float(elevation)
+    return shape, (rx, ry, top, s), (shape[1] / oversample * s / 2, shape[0] / oversample * s / 2)
+
+
 def add_hfield(
     spec: Any,
     scheme: Scheme,
@@ -156,16 +176,12 @@ def add_hfield(
     ``set_hfield`` a terrain into the compiled model."""
     import mujoco
 
-    first = scheme.generate(index=0)
-    nrow, ncol = first.hfield_shape(oversample)
-    s = first.block_size
-    spacing = s / oversample
-    top = max_top(scheme) if elevation is None else float(elevation)
+    (nrow, ncol), size, _ = _field(scheme, oversample, elevation)
     spec.add_hfield(
         name=name,
         nrow=nrow,
         ncol=ncol,
-        size=[(ncol - 1) * spacing / 2, (nrow - 1) * spacing / 2, top, s],
+        size=list(size),
         userdata=[0.0] * (nrow * ncol),
     )
     spec.worldbody.add_geom(
@@ -195,14 +211,7 @@ def hfield_mjcf(
     terrain into it (MuJoCo rescales samples given in MJCF to span [0, 1],
     so they cannot carry a terrain's true heights). Add a robot with
     ``mujoco.MjSpec.from_string(...)`` or by editing the text."""
-    first = scheme.generate(index=0)
-    nrow, ncol = first.hfield_shape(oversample)
-    s = first.block_size
-    ny, nx = first.heights.shape
-    spacing = s / oversample
-    top = max_top(scheme) if elevation is None else float(elevation)
-    rx, ry = (nx * s - spacing) / 2, (ny * s - spacing) / 2
-    cx, cy = nx * s / 2, ny * s / 2
+    (nrow, ncol), (rx, ry, top, s), (cx, cy) = _field(scheme, oversample, elevation)
     return f"""<mujoco model="rse_hfield">
   <asset>
     <hfield name="{name}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {s!r}"/>
