@@ -15,12 +15,18 @@ if [ "${CI:-}" = "true" ]; then
 fi
 
 # Debian packages the tests need: libsdformat (`ign sdf -k`, and
-# tests/sdf_check built against it) and Chromium (the editor's browser
-# tests; Playwright drives it, never downloads one). Installed only when
-# missing.
+# tests/sdf_check built against it), gz-physics 5 with its DART and Bullet
+# engines (tests/gz_physics/harness.cc: Gazebo's own physics on our worlds)
+# and Chromium (the editor's browser tests; Playwright drives it, never
+# downloads one). Installed only when missing.
 apt_packages=()
 command -v ign >/dev/null || apt_packages+=(ignition-tools)
 pkg-config --exists sdformat12 2>/dev/null || apt_packages+=(libsdformat-dev pkg-config)
+pkg-config --exists ignition-physics5 ignition-common4 2>/dev/null \
+    && compgen -G "/usr/lib/*/ign-physics-5/engine-plugins/libignition-physics-dartsim-plugin.so" >/dev/null \
+    && compgen -G "/usr/lib/*/ign-physics-5/engine-plugins/libignition-physics-bullet-plugin.so" >/dev/null \
+    || apt_packages+=(libignition-physics-dev libignition-physics5-dartsim-plugin5
+        libignition-physics5-bullet-plugin5 libignition-common-dev)
 command -v g++ >/dev/null || apt_packages+=(g++)
 command -v chromium >/dev/null || apt_packages+=(chromium)  # the editor's browser tests
 if [ ${#apt_packages[@]} -gt 0 ]; then
@@ -48,7 +54,7 @@ cargo test --workspace --locked -- --include-ignored 2>&1 | tee "$log"
 say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
 scripts/fuzz.sh
 
-say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat)"
+say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat; gz-physics)"
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi

@@ -71,8 +71,11 @@ def test_physics_reports_the_smoke_test(tmp_path: Path) -> None:
     batch = write(tmp_path / "b", amount=1)
     report = rse.check(batch, physics=True)
     assert report.ok, [str(f) for w in report.worlds for f in w.faults]
+    # obj and gazebo collide the mesh (one file's bytes, tested once), mujoco
+    # and urdf (auto: boxes) the box set: each exact collider is tested.
     physics = report.worlds[0].physics
-    assert physics is not None and physics["bodies"] == 20 and physics["errors"] == []
+    assert [p["collider"] for p in physics] == ["mesh gazebo/rse_terrain/meshes/terrain.obj", "boxes"]
+    assert all(p["bodies"] == 20 and p["errors"] == [] for p in physics)
 
 
 def test_batch_faults_and_bad_paths(tmp_path: Path) -> None:

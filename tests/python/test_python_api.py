@@ -60,9 +60,19 @@ def test_arrays_are_read_only_and_typed() -> None:
     assert faces.dtype == np.uint32 and faces.shape[1] == 3
     boxes = terrain.boxes()
     assert boxes.dtype == np.float64 and boxes.shape[1] == 6
-    # The boxes fill the solid: their volume is the heightmap's.
-    volume = np.sum(8 * boxes[:, 3] * boxes[:, 4] * boxes[:, 5])
-    assert volume == pytest.approx(np.sum(terrain.elevation) * terrain.block_size**2)
+    # The boxes' union is the solid (they may overlap inside it): each stands
+    # on z = 0, none rises above a cell under it, and over every cell the
+    # highest box reaches the cell's top.
+    assert len(boxes) < np.count_nonzero(terrain.heights)
+    np.testing.assert_allclose(boxes[:, 2], boxes[:, 5])
+    highest = np.zeros_like(terrain.elevation)
+    s = terrain.block_size
+    for cx, cy, _, hx, hy, hz in boxes:
+        x0, x1, y0, y1 = (round(v / s) for v in (cx - hx, cx + hx, cy - hy, cy + hy))
+        under = terrain.elevation[y0:y1, x0:x1]
+        assert under.size == (x1 - x0) * (y1 - y0) and np.all(2 * hz <= under + 1e-9)
+        highest[y0:y1, x0:x1] = np.maximum(highest[y0:y1, x0:x1], 2 * hz)
+    np.testing.assert_allclose(highest, terrain.elevation, atol=1e-9)
 
 
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)

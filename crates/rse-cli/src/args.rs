@@ -254,8 +254,9 @@ pub struct WorldFilesArgs {
     #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
     pub target: Targets,
 
-    /// Terrain model in the simulator files: the single mesh, or merged boxes.
-    #[arg(long, value_name = "single|blocks", default_value = "single", value_parser = parse_mesh_mode)]
+    /// Terrain model in the simulator files: each target's fastest exact one (auto: boxes for
+    /// URDF, the mesh elsewhere), the single mesh everywhere, or boxes everywhere.
+    #[arg(long, value_name = "auto|single|blocks", default_value = "auto", value_parser = parse_mesh_mode)]
     pub mesh: MeshMode,
 
     #[command(flatten)]

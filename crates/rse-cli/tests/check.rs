@@ -269,7 +269,7 @@ fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
     std::fs::write(&obj, holed).unwrap();
     let (code, text) = check_with(&["--physics"], &out);
     assert_eq!(code, Some(1), "{text}");
-    assert!(text.contains("physics: body"), "{text}");
+    assert!(text.contains("physics: mesh: body"), "{text}");
     assert!(text.contains("sank into the terrain"), "{text}");
 }
 
@@ -285,5 +285,8 @@ fn physics_runs_on_the_box_set_of_block_worlds() {
     let done = rse_gen(&["check", "--physics", "--json", out.to_str().unwrap()]);
     let report: serde_json::Value = serde_json::from_slice(&done.stdout).unwrap();
     assert_eq!(report["failed"], 0, "{report:#}");
-    assert_eq!(report["worlds"][0]["physics"]["bodies"], 20);
+    let physics = report["worlds"][0]["physics"].as_array().unwrap();
+    assert_eq!(physics.len(), 1, "{physics:?}");
+    assert_eq!(physics[0]["collider"], "boxes");
+    assert_eq!(physics[0]["bodies"], 20);
 }

@@ -4,7 +4,7 @@
 
 use rse_core::{Difficulty, Scheme, generate, generate_at};
 
-use crate::samples::sample_paths;
+use crate::util::sample_paths;
 
 const LEVELS: [f64; 6] = [0.0, 0.2, 0.35, 0.5, 0.8, 1.0];
 

@@ -11,8 +11,8 @@ use rse_core::export::{glb, obj, stl};
 use rse_core::{Scheme, generate};
 use sha2::{Digest, Sha256};
 
-use crate::samples::sample_paths;
 use crate::util::repo;
+use crate::util::sample_paths;
 
 /// The worlds of each sample that the table pins.
 const WORLDS: [(u64, u64); 3] = [(0, 0), (0, 1), (12_345, 7)];

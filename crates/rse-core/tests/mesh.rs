@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use rse_core::mesh::{MeshUnits, TriMesh, build_mesh, check};
 use rse_core::{Heightmap, Scheme, generate};
 
-use crate::util::repo;
+use crate::util::{repo, sample_paths};
 
 /// Asserts closedness, orientation, area, no T-junction, exact volume and box.
 fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
@@ -152,11 +152,7 @@ fn a_large_mesh_is_the_same_on_one_thread_and_on_several() {
 
 #[test]
 fn every_sample_meshes_exactly() {
-    for entry in std::fs::read_dir(repo().join("schemes")).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "csv") {
-            continue;
-        }
+    for path in sample_paths() {
         let scheme = Scheme::load(&path).unwrap();
         for index in 0..3 {
             let terrain = generate(&scheme, 0, index);
@@ -204,37 +200,46 @@ proptest! {
     }
 }
 
-/// Every cell is covered by exactly one box, of that cell's height.
+/// The union of the boxes is the solid: every box stands on z = 0 with its
+/// corners on the grid, no box rises above a cell under it, and over every
+/// cell with solid the highest box reaches that cell's top exactly.
 fn assert_boxes_fill(map: &Heightmap, units: MeshUnits) {
     let blocks = rse_core::mesh::boxes(map, units);
-    let mut covered = vec![0u8; map.cells().len()];
+    let mut highest = vec![f64::NAN; map.cells().len()];
+    let top = |x: u32, y: u32| units.base + f64::from(map.get(x, y)) * units.step_height;
+    let s = units.block_size;
     for b in &blocks {
         let [x0, y0, x1, y1] = b.cells;
         assert!(
             x0 < x1 && y0 < y1 && x1 <= map.nx() && y1 <= map.ny(),
             "{b:?}"
         );
+        assert!(
+            (b.center[2] - b.half_size[2]).abs() < 1e-9,
+            "boxes stand on z = 0"
+        );
+        assert!((b.center[0] - b.half_size[0] - f64::from(x0) * s).abs() < 1e-9);
+        assert!((b.center[0] + b.half_size[0] - f64::from(x1) * s).abs() < 1e-9);
+        assert!((b.center[1] - b.half_size[1] - f64::from(y0) * s).abs() < 1e-9);
+        assert!((b.center[1] + b.half_size[1] - f64::from(y1) * s).abs() < 1e-9);
+        let roof = b.center[2] + b.half_size[2];
         for y in y0..y1 {
             for x in x0..x1 {
-                covered[(y * map.nx() + x) as usize] += 1;
-                let top = units.base + f64::from(map.get(x, y)) * units.step_height;
-                assert!(
-                    (b.center[2] + b.half_size[2] - top).abs() < 1e-9,
-                    "cell ({x}, {y})"
-                );
-                assert!(
-                    (b.center[2] - b.half_size[2]).abs() < 1e-9,
-                    "boxes stand on z = 0"
-                );
+                assert!(roof <= top(x, y) + 1e-9, "{b:?} rises over cell ({x}, {y})");
+                let i = (y * map.nx() + x) as usize;
+                highest[i] = highest[i].max(roof);
             }
         }
-        let s = units.block_size;
-        assert!((b.center[0] - b.half_size[0] - f64::from(x0) * s).abs() < 1e-9);
-        assert!((b.center[1] + b.half_size[1] - f64::from(y1) * s).abs() < 1e-9);
     }
-    for (i, &n) in covered.iter().enumerate() {
-        let solid = map.cells()[i] > 0 || units.base > 0.0;
-        assert_eq!(n, u8::from(solid), "cell {i}");
+    for y in 0..map.ny() {
+        for x in 0..map.nx() {
+            let i = (y * map.nx() + x) as usize;
+            if map.get(x, y) > 0 || units.base > 0.0 {
+                assert!((highest[i] - top(x, y)).abs() < 1e-9, "cell ({x}, {y})");
+            } else {
+                assert!(highest[i].is_nan(), "a box over empty cell ({x}, {y})");
+            }
+        }
     }
 }
 
@@ -266,6 +271,35 @@ fn boxes_merge_equal_heights_and_fill_the_solid() {
         blocks.len()
     );
     assert_boxes_fill(wall.heightmap(), wall.mesh_units());
+}
+
+/// A tower in a ring: a partition into rectangles of equal height needs
+/// five boxes, the cover two (the ring's box runs under the tower).
+#[test]
+fn boxes_overlap_under_higher_cells() {
+    #[rustfmt::skip]
+    let ring = map(3, 3, vec![
+        1, 1, 1,
+        1, 3, 1,
+        1, 1, 1,
+    ]);
+    let blocks = rse_core::mesh::boxes(&ring, UNITS);
+    assert_eq!(
+        blocks.iter().map(|b| b.cells).collect::<Vec<_>>(),
+        [[0, 0, 3, 3], [1, 1, 2, 2]]
+    );
+    assert_boxes_fill(&ring, UNITS);
+}
+
+#[test]
+fn boxes_fill_every_sample() {
+    for path in sample_paths() {
+        let scheme = Scheme::load(&path).unwrap();
+        for index in 0..3 {
+            let terrain = generate(&scheme, 0, index);
+            assert_boxes_fill(terrain.heightmap(), terrain.mesh_units());
+        }
+    }
 }
 
 proptest! {

@@ -2,17 +2,7 @@
 
 use rse_core::{Scheme, generate, preview};
 
-use crate::util::repo;
-
-pub fn sample_paths() -> Vec<std::path::PathBuf> {
-    let mut paths: Vec<_> = std::fs::read_dir(repo().join("schemes"))
-        .expect("schemes/ exists")
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "csv"))
-        .collect();
-    paths.sort();
-    paths
-}
+use crate::util::{repo, sample_paths};
 
 #[test]
 fn every_sample_loads_generates_and_round_trips() {

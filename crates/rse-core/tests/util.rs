@@ -9,6 +9,17 @@ pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
+/// The sample schemes in `schemes/`, sorted.
+pub fn sample_paths() -> Vec<std::path::PathBuf> {
+    let mut paths: Vec<_> = std::fs::read_dir(repo().join("schemes"))
+        .expect("schemes/ exists")
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "csv"))
+        .collect();
+    paths.sort();
+    paths
+}
+
 /// A scheme from CSV text, panicking with the error if it is refused.
 pub fn scheme(text: &str) -> Scheme {
     Scheme::from_csv(text, None).unwrap_or_else(|e| panic!("{e}\n{text}"))

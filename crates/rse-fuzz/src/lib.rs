@@ -101,7 +101,7 @@ fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
         .expect("the scheme loads");
         let options = WorldOptions {
             targets: Targets::parse("obj,gazebo,webots,mujoco,urdf,usd").expect("targets"),
-            mesh: MeshMode::Single,
+            mesh: MeshMode::Auto,
             ..WorldOptions::default()
         };
         let world = build_world(

@@ -2,8 +2,10 @@
 //! "`rse-gen check`"): drop a fixed, seeded set of robot-part-sized bodies
 //! on the terrain, simulate, and report the mean step time beside the same
 //! bodies on a flat plane (the paper's RTF vs control RTF, §4) and every
-//! physics error — a body that sank into the terrain, one still fast after
-//! settling, one that left the RSE without being pushed.
+//! physics error — the kinds `bench/robots.py` counts for robots (a contact
+//! deeper than 1 cm, a body faster than 10 m/s, a state that is not finite)
+//! and a dropped body's own: one that sank into the terrain, one still fast
+//! after settling, one that left the RSE without being pushed, one thrown.
 
 mod bodies;
 
@@ -28,6 +30,13 @@ pub enum TerrainModel {
     /// Static boxes: `(centre, half size)` in metres.
     Boxes(Vec<([f64; 3], [f64; 3])>),
 }
+
+/// A contact deeper than this is a physics error, metres (as in
+/// `bench/robots.py`).
+pub const PENETRATION_LIMIT: f64 = 0.01;
+/// A body faster than this at any step is a physics error, m/s (as in
+/// `bench/robots.py`): nothing dropped a few centimetres gets near it.
+pub const SPEED_LIMIT: f64 = 10.0;
 
 impl TerrainModel {
     /// The single mesh of `terrain`.
@@ -84,6 +93,8 @@ impl Default for SmokeTest {
 /// What the smoke test measured.
 #[derive(Debug, Clone, Serialize)]
 pub struct PhysicsReport {
+    /// The collider tested: `mesh` (with the file, in a world) or `boxes`.
+    pub collider: String,
     /// Mean wall time of one step with the RSE, microseconds.
     pub rse_step_us: f64,
     /// Mean wall time of one step with the same bodies on a plane.
@@ -135,8 +146,14 @@ const EDGE_MARGIN: f64 = 0.5;
 /// of fall, metres: contact resolution may push a body up a little.
 const ENERGY_SLACK_HEIGHT: f64 = 0.02;
 
-/// Runs the smoke test of `model`, the terrain of `terrain`.
-pub fn smoke_test(model: &TerrainModel, terrain: &Terrain, test: SmokeTest) -> PhysicsReport {
+/// Runs the smoke test of `model`, the terrain of `terrain`; the report
+/// names the collider `collider`.
+pub fn smoke_test(
+    model: &TerrainModel,
+    collider: &str,
+    terrain: &Terrain,
+    test: SmokeTest,
+) -> PhysicsReport {
     let drops = drop_set(terrain, test.bodies);
     let steps = (test.seconds * test.rate_hz).round() as usize;
     let dt = (1.0 / test.rate_hz) as f32;
@@ -146,24 +163,26 @@ pub fn smoke_test(model: &TerrainModel, terrain: &Terrain, test: SmokeTest) -> P
     // Energy no body may exceed: what it had at the start plus what it
     // gained by falling. A solver that throws a body out breaks this.
     let mut gain = vec![0.0f64; handles.len()];
+    let mut top_speed = vec![0.0f64; handles.len()];
     let mut watch_energy = |world: &PhysicsWorld| {
-        for ((&h, drop), gain) in handles.iter().zip(&drops).zip(&mut gain) {
+        for (i, (&(h, _), drop)) in handles.iter().zip(&drops).enumerate() {
             let body = &world.bodies[h];
             let fallen = drop.start[2] - f64::from(body.translation().z);
             let budget = f64::from(body.mass()) * 9.81 * (fallen + ENERGY_SLACK_HEIGHT);
-            *gain = gain.max(f64::from(body.kinetic_energy()) - budget);
+            gain[i] = gain[i].max(f64::from(body.kinetic_energy()) - budget);
+            top_speed[i] = top_speed[i].max(f64::from(body.linvel().length()));
         }
     };
     let mut rse_time = simulate(&mut world, steps - last_second, &mut watch_energy);
     let before: Vec<Vector> = handles
         .iter()
-        .map(|&h| world.bodies[h].translation())
+        .map(|&(h, _)| world.bodies[h].translation())
         .collect();
     rse_time += simulate(&mut world, last_second, &mut watch_energy);
     let moved: Vec<Moved> = handles
         .iter()
         .zip(&before)
-        .map(|(&h, &p)| {
+        .map(|(&(h, _), &p)| {
             let d = world.bodies[h].translation() - p;
             Moved {
                 distance: f64::from(d.length()),
@@ -173,11 +192,19 @@ pub fn smoke_test(model: &TerrainModel, terrain: &Terrain, test: SmokeTest) -> P
         .collect();
     let window = last_second as f64 / test.rate_hz;
     let mut errors = judge(&world, &handles, &moved, window, &drops, terrain);
-    for (i, (&g, drop)) in gain.iter().zip(&drops).enumerate() {
-        if g > 0.0 {
+    for (i, drop) in drops.iter().enumerate() {
+        if gain[i] > 0.0 {
             errors.push(format!(
-                "{}: gained {g:.3} J more kinetic energy than its fall gives (thrown by the solver)",
-                drop.label(i)
+                "{}: gained {:.3} J more kinetic energy than its fall gives (thrown by the solver)",
+                drop.label(i),
+                gain[i]
+            ));
+        }
+        if top_speed[i] > SPEED_LIMIT {
+            errors.push(format!(
+                "{}: reached {:.1} m/s (limit {SPEED_LIMIT} m/s)",
+                drop.label(i),
+                top_speed[i]
             ));
         }
     }
@@ -197,6 +224,7 @@ pub fn smoke_test(model: &TerrainModel, terrain: &Terrain, test: SmokeTest) -> P
     let per_step = |t: Duration| t.as_secs_f64() * 1e6 / steps.max(1) as f64;
     let (rse_step_us, plane_step_us) = (per_step(rse_time), per_step(plane_time));
     PhysicsReport {
+        collider: collider.to_owned(),
         rse_step_us: round(rse_step_us, 0.01),
         plane_step_us: round(plane_step_us, 0.01),
         ratio: round(rse_step_us / plane_step_us.max(1e-9), 0.001),
@@ -213,7 +241,7 @@ fn scene(
     drops: &[Body],
     dt: f32,
     terrain: &Terrain,
-) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
+) -> (PhysicsWorld, Vec<(RigidBodyHandle, ColliderHandle)>) {
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::new(0.0, 0.0, -9.81);
     world.integration_parameters.dt = dt;
@@ -284,7 +312,7 @@ fn scene(
             }
             .density(500.0)
             .friction(0.8);
-            world.insert(body, collider).0
+            world.insert(body, collider)
         })
         .collect();
     (world, handles)
@@ -307,12 +335,11 @@ fn simulate(
     spent
 }
 
-/// The physics errors of the bodies at the end of the run.
 /// The physics errors of the bodies at the end of the run; `moved` is how
 /// each moved in the last `window` seconds.
 fn judge(
     world: &PhysicsWorld,
-    handles: &[RigidBodyHandle],
+    handles: &[(RigidBodyHandle, ColliderHandle)],
     moved: &[Moved],
     window: f64,
     drops: &[Body],
@@ -330,7 +357,9 @@ fn judge(
         terrain.elevation(cx as u32, cy as u32)
     };
     let mut errors = Vec::new();
-    for (i, ((&handle, drop), &moved)) in handles.iter().zip(drops).zip(moved).enumerate() {
+    for (i, ((&(handle, collider), drop), &moved)) in
+        handles.iter().zip(drops).zip(moved).enumerate()
+    {
         let p = world.bodies[handle].translation();
         let [x, y, z] = [p.x, p.y, p.z].map(f64::from);
         let name = drop.label(i);
@@ -347,6 +376,14 @@ fn judge(
                 "{name}: sank into the terrain: centre at ({x:.3}, {y:.3}, {z:.3}) m under a surface at {under:.3} m"
             ));
         }
+        let depth = penetration(world, collider);
+        if depth > PENETRATION_LIMIT {
+            errors.push(format!(
+                "{name}: a contact {:.1} mm deep (limit {:.0} mm)",
+                depth * 1e3,
+                PENETRATION_LIMIT * 1e3
+            ));
+        }
         if moved.unsettled(window) {
             errors.push(format!(
                 "{name}: still moving after settling: {:.2} m in the last {window:.1} s",
@@ -361,6 +398,23 @@ fn judge(
         }
     }
     errors
+}
+
+/// The deepest contact of `collider` with anything fixed (the terrain or
+/// the floor), metres: 0 when none overlaps.
+fn penetration(world: &PhysicsWorld, collider: ColliderHandle) -> f64 {
+    let fixed = |c: ColliderHandle| {
+        world.colliders[c]
+            .parent()
+            .is_some_and(|b| world.bodies[b].is_fixed())
+    };
+    world
+        .contact_pairs_with(collider)
+        .filter(|pair| fixed(pair.collider1) || fixed(pair.collider2))
+        .flat_map(ContactPair::manifolds)
+        .flat_map(|manifold| &manifold.points)
+        .map(|point| f64::from(-point.dist))
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]

@@ -186,7 +186,7 @@ impl Atlas {
     /// (the same bytes): whole or not at all; an identical folder is left
     /// alone (returns `"skipped"`), a different one refused unless
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
-    #[pyo3(signature = (out, *, targets="gazebo", mesh="single", template=None, force=false, mujoco_collider="boxes", oversample=None))]
+    #[pyo3(signature = (out, *, targets="gazebo", mesh="auto", template=None, force=false, mujoco_collider="boxes", oversample=None))]
     #[allow(clippy::too_many_arguments)]
     fn write(
         &self,

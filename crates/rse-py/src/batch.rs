@@ -50,7 +50,7 @@ pub fn generate_batch(
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="single", jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider="boxes", oversample=None))]
+#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="auto", jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider="boxes", oversample=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_worlds<'py>(
     py: Python<'py>,

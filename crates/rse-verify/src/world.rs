@@ -10,7 +10,7 @@ use std::path::Path;
 use rse_core::{Scheme, Terrain, generate_at};
 use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
 use rse_world::{
-    MANIFEST, Manifest, MeshMode, Templates, WorldFiles, WorldOptions, build_atlas_world,
+    Collider, MANIFEST, Manifest, Templates, WorldFiles, WorldOptions, build_atlas_world,
     build_world, sha256_hex,
 };
 use serde::Serialize;
@@ -45,10 +45,10 @@ pub struct WorldReport {
     /// The world's index in its batch, when `rse.json` could be read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub index: Option<u64>,
-    /// The physics smoke test, when asked for and the terrain could be
-    /// rebuilt.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub physics: Option<PhysicsReport>,
+    /// The physics smoke test of each exact collider the world's simulators
+    /// load, when asked for and the terrain could be rebuilt.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub physics: Vec<PhysicsReport>,
 }
 
 /// Checks the world folder `path`. Never panics on what is in the folder,
@@ -63,7 +63,7 @@ pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
         hashed_only: Vec::new(),
         seed: None,
         index: None,
-        physics: None,
+        physics: Vec::new(),
     };
     match read_manifest(&folder) {
         Err(kind) => {
@@ -199,21 +199,32 @@ fn check_against_manifest(
     }
     report.hashed_only = expected.hashed_only.iter().cloned().collect();
     if options.physics {
-        physics(manifest.mesh, meshes, &terrain, report, faults);
+        physics(manifest, meshes, &terrain, report, faults);
     }
 }
 
-/// The physics smoke test of each distinct mesh the simulators would load
-/// (`meshes` holds one of each set of copies), or of the box set in block worlds.
+/// The physics smoke test of each exact collider the world's targets load:
+/// each distinct mesh file (`meshes` holds one of each set of copies) where
+/// a target collides the mesh, the box set where one collides boxes.
+/// `MuJoCo`'s height field is approximate by design: not tested here.
 fn physics(
-    mode: MeshMode,
+    manifest: &Manifest,
     meshes: Vec<(&str, terrain::ObjMesh)>,
     terrain: &Terrain,
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) {
+    let colliders: BTreeSet<Collider> = manifest
+        .targets
+        .iter()
+        .map(|t| Collider::of(t, manifest.mesh, manifest.mujoco_collider))
+        .collect();
     let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
-    if mode == MeshMode::Single && !meshes.is_empty() {
+    if colliders.contains(&Collider::Mesh) {
+        if meshes.is_empty() {
+            // An empty terrain: no mesh file, the floor alone.
+            runs.push((None, TerrainModel::mesh_of(terrain)));
+        }
         for (path, mesh) in meshes {
             runs.push((
                 Some(path),
@@ -223,20 +234,26 @@ fn physics(
                 },
             ));
         }
-    } else {
+    }
+    if colliders.contains(&Collider::Boxes) {
         runs.push((None, TerrainModel::boxes_of(terrain)));
     }
     for (path, model) in runs {
-        let physics = smoke_test(&model, terrain, SmokeTest::default());
+        let kind = match model {
+            TerrainModel::Mesh { .. } => "mesh",
+            TerrainModel::Boxes(_) => "boxes",
+        };
+        let collider = path.map_or(kind.to_owned(), |path| format!("{kind} {path}"));
+        let physics = smoke_test(&model, &collider, terrain, SmokeTest::default());
         faults.extend(physics.errors.iter().map(|error| {
             Fault::new(
                 path,
                 FaultKind::Physics {
-                    error: error.clone(),
+                    error: format!("{kind}: {error}"),
                 },
             )
         }));
-        report.physics.get_or_insert(physics);
+        report.physics.push(physics);
     }
 }
 

@@ -21,7 +21,8 @@ pub(crate) struct WorldContext {
     /// Seed pair.
     pub seed: u64,
     pub index: u64,
-    /// `single` or `blocks`.
+    /// `single` or `blocks`: the mode of the target being rendered
+    /// (`auto` resolved per target).
     pub mesh: &'static str,
     /// `false` when the terrain is empty (no mesh, no boxes).
     pub solid: bool,

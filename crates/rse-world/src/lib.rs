@@ -34,7 +34,7 @@ pub use batch::{
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
-pub use target::{MeshMode, MujocoCollider, Target, Targets};
+pub use target::{Collider, MeshMode, MujocoCollider, Target, Targets};
 pub use templates::Templates;
 pub use tree::list_files;
 pub use world::{HFIELD_FILE, WorldFiles, WorldOptions, build_world, mjcf};

@@ -111,19 +111,37 @@ impl Default for Targets {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MeshMode {
-    /// The single closed mesh of SPEC §6.
+    /// Each target's fastest exact collider, as measured (README "Which
+    /// collider each simulator gets"): the box set for URDF (`PyBullet`
+    /// collides boxes faster than a concave mesh), the single mesh for every
+    /// other target (`MuJoCo` collides boxes whatever the mode, and draws the
+    /// mesh).
     #[default]
+    Auto,
+    /// The single closed mesh of SPEC §6, for every target.
     Single,
-    /// Merged axis-aligned boxes, for engines that collide boxes better.
+    /// The box set, for every target.
     Blocks,
 }
 
 impl MeshMode {
-    /// The name on the command line and in templates.
+    /// The name on the command line and in `rse.json`.
     pub fn name(self) -> &'static str {
         match self {
+            MeshMode::Auto => "auto",
             MeshMode::Single => "single",
             MeshMode::Blocks => "blocks",
+        }
+    }
+
+    /// What `target`'s files get: `Single` or `Blocks`, never `Auto` (the
+    /// `mesh` value templates see).
+    #[must_use]
+    pub fn for_target(self, target: Target) -> MeshMode {
+        match (self, target) {
+            (MeshMode::Auto, Target::Urdf) => MeshMode::Blocks,
+            (MeshMode::Auto, _) => MeshMode::Single,
+            (mode, _) => mode,
         }
     }
 }
@@ -133,12 +151,39 @@ impl FromStr for MeshMode {
 
     fn from_str(s: &str) -> Result<Self, Error> {
         match s {
+            "auto" => Ok(MeshMode::Auto),
             "single" => Ok(MeshMode::Single),
             "blocks" => Ok(MeshMode::Blocks),
             _ => Err(Error::BadOption {
                 option: "mesh",
-                message: format!("unknown mesh mode {s:?}: expected single or blocks"),
+                message: format!("unknown mesh mode {s:?}: expected auto, single or blocks"),
             }),
+        }
+    }
+}
+
+/// What a target's simulator collides with in a world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Collider {
+    /// The single mesh (`obj` is the mesh itself).
+    Mesh,
+    /// The box set.
+    Boxes,
+    /// `MuJoCo`'s height field.
+    Hfield,
+}
+
+impl Collider {
+    /// What `target` collides with in a world of `mesh` mode and `mujoco`
+    /// collider.
+    pub fn of(target: Target, mesh: MeshMode, mujoco: MujocoCollider) -> Collider {
+        match (target, mujoco, mesh.for_target(target)) {
+            (Target::Obj, ..) => Collider::Mesh,
+            (Target::Mujoco, MujocoCollider::Hfield { .. }, _) => Collider::Hfield,
+            (Target::Mujoco, MujocoCollider::Boxes, _) | (_, _, MeshMode::Blocks) => {
+                Collider::Boxes
+            }
+            _ => Collider::Mesh,
         }
     }
 }
@@ -198,6 +243,30 @@ impl MujocoCollider {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_target_collides_what_its_files_hold() {
+        let of = |t, m| Collider::of(t, m, MujocoCollider::Boxes);
+        let auto: Vec<Collider> = Target::ALL.iter().map(|&t| of(t, MeshMode::Auto)).collect();
+        assert_eq!(
+            auto,
+            Target::ALL
+                .iter()
+                .map(|&t| match t {
+                    Target::Urdf | Target::Mujoco => Collider::Boxes,
+                    _ => Collider::Mesh,
+                })
+                .collect::<Vec<_>>()
+        );
+        assert_eq!(of(Target::Gazebo, MeshMode::Blocks), Collider::Boxes);
+        assert_eq!(of(Target::Urdf, MeshMode::Single), Collider::Mesh);
+        assert_eq!(of(Target::Obj, MeshMode::Blocks), Collider::Mesh);
+        let hfield = MujocoCollider::Hfield { oversample: 2 };
+        assert_eq!(
+            Collider::of(Target::Mujoco, MeshMode::Single, hfield),
+            Collider::Hfield
+        );
+    }
 
     #[test]
     fn lists_parse_sorted_without_repeats() {

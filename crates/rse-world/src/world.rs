@@ -99,14 +99,16 @@ pub(crate) fn terrain_files(
 
     let boxes = terrain.boxes();
     let targets = &options.targets;
-    let single = options.mesh == MeshMode::Single && !boxes.is_empty();
+    // The targets whose files use the single mesh (per target under `auto`).
+    let meshed = |t: Target| {
+        !boxes.is_empty() && targets.contains(t) && options.mesh.for_target(t) == MeshMode::Single
+    };
     let shared_mesh = targets.contains(Target::Obj)
-        || (single
-            && [Target::Webots, Target::Mujoco, Target::Urdf]
-                .into_iter()
-                .any(|t| targets.contains(t)));
-    let gazebo_mesh = single && targets.contains(Target::Gazebo);
-    let usd_mesh = single && targets.contains(Target::Usd);
+        || [Target::Webots, Target::Mujoco, Target::Urdf]
+            .into_iter()
+            .any(meshed);
+    let gazebo_mesh = meshed(Target::Gazebo);
+    let usd_mesh = meshed(Target::Usd);
     if shared_mesh || gazebo_mesh || usd_mesh {
         let mesh = terrain.mesh();
         let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
@@ -137,6 +139,7 @@ pub(crate) fn terrain_files(
     }
     let mut from_templates = BTreeSet::new();
     for target in targets.iter() {
+        context.mesh = options.mesh.for_target(target).name();
         for (path, bytes) in templates.render(target, &context)? {
             let path = format!("{target}/{path}");
             if files.contains_key(&path) {
@@ -241,6 +244,40 @@ mod tests {
         );
         let with_obj = files(WALL, MeshMode::Blocks, "obj,mujoco");
         assert!(with_obj.contains(&"meshes/terrain.obj".to_owned()));
+    }
+
+    /// `auto`: URDF collides the box set (faster in `PyBullet`), every other
+    /// target keeps the mesh; a URDF-only world carries no mesh at all.
+    #[test]
+    fn auto_gives_urdf_boxes_and_the_others_the_mesh() {
+        let text = |targets: &str, path: &str| {
+            let options = WorldOptions {
+                targets: Targets::parse(targets).unwrap(),
+                ..WorldOptions::default()
+            };
+            let scheme = Scheme::from_csv(WALL, None).unwrap();
+            let world =
+                build_world(&scheme, 0, 3, "w".into(), &options, &Templates::builtin()).unwrap();
+            world
+                .files
+                .get(path)
+                .map(|b| String::from_utf8(b.clone()).unwrap())
+        };
+        let urdf = text(ALL, "urdf/rse.urdf").unwrap();
+        assert!(
+            urdf.contains("<box ") && !urdf.contains("terrain.obj"),
+            "{urdf}"
+        );
+        let sdf = text(ALL, "gazebo/rse_terrain/model.sdf").unwrap();
+        assert!(
+            sdf.contains("terrain.obj") && !sdf.contains("<box>"),
+            "{sdf}"
+        );
+        assert!(text("urdf", "meshes/terrain.obj").is_none());
+        assert_eq!(
+            files(WALL, MeshMode::Auto, ALL),
+            files(WALL, MeshMode::Single, ALL)
+        );
     }
 
     #[test]

@@ -48,26 +48,25 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
     })
 }
 
-/// The physics summary line, when the smoke test ran.
+/// The physics summary, one line per kind of collider tested (`mesh`,
+/// `boxes`), when the smoke test ran.
 fn print_physics(report: &CheckReport) {
-    let physics: Vec<&PhysicsReport> = report
-        .worlds
-        .iter()
-        .filter_map(|r| r.physics.as_ref())
-        .collect();
-    if physics.is_empty() {
-        return;
+    let runs = || report.worlds.iter().flat_map(|r| &r.physics);
+    let kind = |p: &PhysicsReport| p.collider.split(' ').next().unwrap_or_default().to_owned();
+    let kinds: std::collections::BTreeSet<String> = runs().map(kind).collect();
+    for k in kinds.iter().rev() {
+        let physics: Vec<&PhysicsReport> = runs().filter(|p| kind(p) == *k).collect();
+        let mean = |f: fn(&PhysicsReport) -> f64| {
+            physics.iter().map(|p| f(p)).sum::<f64>() / physics.len() as f64
+        };
+        let errors: usize = physics.iter().map(|p| p.errors.len()).sum();
+        eprintln!(
+            "rse-gen: physics ({k}): {errors} errors; mean step {:.1} µs on the RSE, {:.1} µs on a plane (ratio {:.2})",
+            mean(|p| p.rse_step_us),
+            mean(|p| p.plane_step_us),
+            mean(|p| p.ratio),
+        );
     }
-    let mean = |f: fn(&PhysicsReport) -> f64| {
-        physics.iter().map(|p| f(p)).sum::<f64>() / physics.len() as f64
-    };
-    let errors: usize = physics.iter().map(|p| p.errors.len()).sum();
-    eprintln!(
-        "rse-gen: physics: {errors} errors; mean step {:.1} µs on the RSE, {:.1} µs on a plane (ratio {:.2})",
-        mean(|p| p.rse_step_us),
-        mean(|p| p.plane_step_us),
-        mean(|p| p.ratio),
-    );
 }
 
 /// The one-line `check` verdict on the worlds in `folder` (no physics), as

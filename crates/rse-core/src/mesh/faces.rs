@@ -156,19 +156,6 @@ impl Levels {
             self.at(x, y),
         ]
     }
-
-    /// Cells of equal level with solid on them, merged into rectangles:
-    /// `emit([x0, y0, x1, y1], level)`. The boxes of the block model (the
-    /// mesh's tops are [`monotone_pieces`], which need no point on a
-    /// straight edge).
-    pub(crate) fn top_rectangles(&self, emit: impl FnMut([u32; 4], u32)) {
-        greedy_rectangles(
-            self.nx,
-            self.ny,
-            |x, y| Some(self.get(x, y)).filter(|&l| l > 0),
-            emit,
-        );
-    }
 }
 
 /// Every face of the boundary, `emit`ted in order: tops, the bottom, and
@@ -480,46 +467,6 @@ fn wall(corners: [Key; 4], faces_positive: bool, normals: [Normal; 2]) -> Rect {
         Rect {
             corners: [a, d, c, b],
             normal: normals[1],
-        }
-    }
-}
-
-/// Greedy meshing: covers the cells where `value` is `Some` with rectangles
-/// of equal value, each grown along x first, then along y.
-/// `emit([x0, y0, x1, y1], value)` with `x1`, `y1` exclusive.
-fn greedy_rectangles(
-    nx: u32,
-    ny: u32,
-    value: impl Fn(u32, u32) -> Option<u32>,
-    mut emit: impl FnMut([u32; 4], u32),
-) {
-    let width = nx as usize;
-    let mut used = vec![false; width * ny as usize];
-    for y in 0..ny {
-        let mut x = 0;
-        while x < nx {
-            let start = y as usize * width + x as usize;
-            let Some(v) = value(x, y).filter(|_| !used[start]) else {
-                x += 1;
-                continue;
-            };
-            let free = |x: u32, y: u32, used: &[bool]| {
-                !used[y as usize * width + x as usize] && value(x, y) == Some(v)
-            };
-            let mut x1 = x + 1;
-            while x1 < nx && free(x1, y, &used) {
-                x1 += 1;
-            }
-            let mut y1 = y + 1;
-            while y1 < ny && (x..x1).all(|xx| free(xx, y1, &used)) {
-                y1 += 1;
-            }
-            for yy in y..y1 {
-                let row = yy as usize * width;
-                used[row + x as usize..row + x1 as usize].fill(true);
-            }
-            emit([x, y, x1, y1], v);
-            x = x1;
         }
     }
 }

@@ -2,6 +2,7 @@
 
 mod boxes;
 pub mod check;
+mod cover;
 mod faces;
 pub mod naive;
 mod staircase;
@@ -87,7 +88,7 @@ impl Terrain {
         build_mesh(self.heightmap(), self.mesh_units())
     }
 
-    /// The block model of this terrain: merged boxes filling the solid.
+    /// The block model of this terrain: boxes whose union is the solid.
     pub fn boxes(&self) -> Vec<Block> {
         boxes(self.heightmap(), self.mesh_units())
     }

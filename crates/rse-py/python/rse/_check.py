@@ -47,7 +47,10 @@ class WorldReport:
     hashed_only: list[str]
     seed: Optional[int] = None
     index: Optional[int] = None
-    physics: Optional[dict[str, Any]] = None
+    physics: list[dict[str, Any]] = field(default_factory=list)
+    """The rapier smoke test of each exact collider the world's simulators
+    load (``collider``: ``"mesh <file>"`` or ``"boxes"``), with
+    ``physics=True``."""
 
     def __bool__(self) -> bool:
         return self.ok
@@ -94,7 +97,7 @@ def check(
             hashed_only=w["hashed_only"],
             seed=w.get("seed"),
             index=w.get("index"),
-            physics=w.get("physics"),
+            physics=w.get("physics", []),
         )
         for w in raw["worlds"]
     ]

@@ -1,0 +1,111 @@
+"""Gazebo's physics (gz-physics 5, Debian's libignition-physics) on rse
+worlds: builds `harness.cc`, drops seeded bodies on cell centres, and judges
+where they came to rest. Used by tests/python/test_gz_physics.py and
+bench/gz_physics.py."""
+
+from __future__ import annotations
+
+import glob
+import json
+import math
+import subprocess
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+PACKAGES = [
+    "ignition-physics5",
+    "ignition-physics5-sdf",
+    "ignition-physics5-mesh",
+    "ignition-common4-graphics",
+    "ignition-plugin1-loader",
+    "ignition-math6-eigen3",
+    "sdformat12",
+]
+# The engines gz-sim can load from Debian's packages.
+ENGINES = ("dartsim", "bullet")
+# A body off the top under it by more than this is a physics error, metres
+# (as in bench/robots.py and the rapier smoke test).
+TOLERANCE = 0.01
+SPEED_LIMIT = 10.0
+SPHERE_RADIUS = 0.03
+BOX_HALF = 0.02
+
+
+def build(out: Path) -> Path:
+    """Compiles the harness into `out`; its path."""
+    flags = subprocess.run(["pkg-config", "--cflags", "--libs", *PACKAGES], capture_output=True, text=True, check=True)
+    binary = out / "gz_harness"
+    subprocess.run(
+        ["g++", "-std=c++17", "-O2", str(HERE / "harness.cc"), "-o", str(binary), *flags.stdout.split()],
+        check=True,
+    )
+    return binary
+
+
+def plugin(engine: str) -> Path:
+    """The engine's plugin library as Debian installs it."""
+    found = sorted(glob.glob(f"/usr/lib/*/ign-physics-5/engine-plugins/libignition-physics-{engine}-plugin.so"))
+    if not found:
+        raise FileNotFoundError(f"no gz-physics 5 {engine} plugin: install libignition-physics5-{engine}-plugin5")
+    return Path(found[0])
+
+
+@dataclass(frozen=True)
+class Drop:
+    """A body dropped on the centre of cell `cell`; `rest` is where its
+    centre must come to rest (the cell's top plus its half height)."""
+
+    line: str
+    cell: tuple[int, int]
+    rest: float
+
+
+def drops(elevation: np.ndarray, block_size: float, count: int, seed: int) -> list[Drop]:
+    """`count` spheres and boxes (in turn) over distinct seeded cells, each
+    5 cm above the top it must land on; the same bodies 5 cm above the
+    ground for the flat control. Both fit inside a cell (radius 3 cm, half
+    size 2 cm, cells of 5 cm half size), so they land on one top."""
+    ny, nx = elevation.shape
+    rng = np.random.default_rng(seed)
+    cells = rng.choice(nx * ny, size=min(count, nx * ny), replace=False)
+    out = []
+    for i, c in enumerate(cells):
+        y, x = divmod(int(c), nx)
+        top = float(elevation[y, x])
+        cx, cy = (x + 0.5) * block_size, (y + 0.5) * block_size
+        if i % 2 == 0:
+            half, shape = SPHERE_RADIUS, f"sphere {SPHERE_RADIUS}"
+        else:
+            half, shape = BOX_HALF, f"box {BOX_HALF} {BOX_HALF} {BOX_HALF}"
+        out.append(Drop(f"{shape} {cx!r} {cy!r} {top + half + 0.05!r} {half + 0.05!r}", (x, y), top + half))
+    return out
+
+
+def run(harness: Path, engine: str, model_sdf: Path, bodies: list[Drop], seconds: float, flat: bool = False) -> dict:
+    """Runs the harness; its JSON report."""
+    listing = model_sdf.parent / "drops.txt"
+    listing.write_text("".join(d.line + "\n" for d in bodies))
+    args = [str(harness), str(plugin(engine)), str(model_sdf), str(listing), str(seconds)]
+    done = subprocess.run(args + (["--flat"] if flat else []), capture_output=True, text=True)
+    listing.unlink()
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)}: exit {done.returncode}\n{done.stderr}")
+    return json.loads(done.stdout)
+
+
+def errors(report: dict, bodies: list[Drop]) -> list[str]:
+    """The physics errors in `report`: a body not finite, faster than
+    10 m/s, or off the top it was dropped on by more than 1 cm."""
+    found = []
+    for i, ((x, y, z, speed), drop) in enumerate(zip(report["bodies"], bodies)):
+        name = f"body {i} over cell {drop.cell}"
+        if not all(math.isfinite(v) for v in (x, y, z, speed)):
+            found.append(f"{name}: its state is not finite")
+        elif speed > SPEED_LIMIT:
+            found.append(f"{name}: {speed:.1f} m/s")
+        elif abs(z - drop.rest) > TOLERANCE:
+            found.append(f"{name}: rests at z = {z:.4f} m, its top puts it at {drop.rest:.4f} m")
+    return found
