@@ -7,7 +7,7 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test lint bench demo build fuzz test-frameworks
+.PHONY: test lint bench bench-robots demo build fuzz test-frameworks
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
@@ -39,6 +39,12 @@ bench:
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 	.venv/bin/python bench/hfield.py
 	.venv/bin/python bench/editor.py
+
+## Robots and dropped bodies in MuJoCo, PyBullet and gz-physics, per collider (issue 14; ~25 min).
+bench-robots:
+	.venv/bin/python -m pip install --quiet ./crates/rse-py
+	.venv/bin/python bench/robots.py
+	.venv/bin/python bench/gz_physics.py
 
 build:
 	cargo build --release --locked -p rse-cli

@@ -290,7 +290,7 @@ impl WorldFilesArgs {
 /// What `MuJoCo` worlds collide with.
 #[derive(Debug, Args)]
 pub struct ColliderArgs {
-    /// MuJoCo collision: the merged boxes (exact), or a height field (mujoco/terrain.bin).
+    /// MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin).
     #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = "boxes",
           value_parser = ["boxes", "hfield"])]
     pub name: String,

@@ -2,10 +2,11 @@
 //! "`rse-gen check`"): drop a fixed, seeded set of robot-part-sized bodies
 //! on the terrain, simulate, and report the mean step time beside the same
 //! bodies on a flat plane (the paper's RTF vs control RTF, §4) and every
-//! physics error — the kinds `bench/robots.py` counts for robots (a contact
-//! deeper than 1 cm, a body faster than 10 m/s, a state that is not finite)
-//! and a dropped body's own: one that sank into the terrain, one still fast
-//! after settling, one that left the RSE without being pushed, one thrown.
+//! physics error — those `bench/robots.py` counts for robots (a state that
+//! is not finite, a body faster than 10 m/s), a contact deeper than 1 cm (a
+//! body at rest inside the terrain), and a dropped body's own: one that sank
+//! into the terrain, one still fast after settling, one that left the RSE
+//! without being pushed, one thrown.
 
 mod bodies;
 
@@ -31,8 +32,8 @@ pub enum TerrainModel {
     Boxes(Vec<([f64; 3], [f64; 3])>),
 }
 
-/// A contact deeper than this is a physics error, metres (as in
-/// `bench/robots.py`).
+/// A contact deeper than this is a physics error, metres (the tolerance of
+/// `tests/python/test_gz_physics.py` for bodies at rest).
 pub const PENETRATION_LIMIT: f64 = 0.01;
 /// A body faster than this at any step is a physics error, m/s (as in
 /// `bench/robots.py`): nothing dropped a few centimetres gets near it.
@@ -56,7 +57,7 @@ impl TerrainModel {
         }
     }
 
-    /// The merged box set of `terrain`.
+    /// The box set of `terrain`.
     pub fn boxes_of(terrain: &Terrain) -> Self {
         TerrainModel::Boxes(
             terrain

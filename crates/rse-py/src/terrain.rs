@@ -242,8 +242,9 @@ impl Terrain {
         )
     }
 
-    /// The merged box set: float64 `(n, 6)` rows `cx, cy, cz, hx, hy, hz`
-    /// (centre and half sizes, metres); boxes stand on `z = 0`.
+    /// The box set: float64 `(n, 6)` rows `cx, cy, cz, hx, hy, hz`
+    /// (centre and half sizes, metres); boxes stand on `z = 0`, their union
+    /// is the solid, and they may overlap inside it.
     fn boxes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let boxes = self.inner.boxes();
         rows(

@@ -35,7 +35,7 @@ pub(crate) struct WorldContext {
     pub extent: [f64; 3],
     /// Centre of its footprint at the ground, metres.
     pub center: [f64; 3],
-    /// The merged box set (`MuJoCo` collides with it in both modes unless
+    /// The box set (`MuJoCo` collides with it in both modes unless
     /// `collider` is `hfield`).
     pub boxes: Vec<BoxContext>,
     /// What `MuJoCo` collides with: `boxes` or `hfield`.

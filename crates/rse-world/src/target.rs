@@ -192,7 +192,7 @@ impl Collider {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase")]
 pub enum MujocoCollider {
-    /// The merged box set, one static box geom each (exact).
+    /// The box set, one static box geom each (exact).
     #[default]
     Boxes,
     /// A height field of `oversample` samples per cell along each axis

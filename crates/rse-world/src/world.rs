@@ -161,7 +161,7 @@ pub(crate) fn terrain_files(
 }
 
 /// An MJCF model of `terrain` alone, for `mujoco.MjModel.from_xml_string`:
-/// our `MuJoCo` template in block mode (floor, light, the merged boxes as
+/// our `MuJoCo` template in block mode (floor, light, the box set as
 /// static geoms), so it needs no mesh file.
 ///
 /// # Panics

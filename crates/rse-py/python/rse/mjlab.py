@@ -1,7 +1,7 @@
 """rse as an mjlab sub-terrain: ``RseTerrainCfg`` for
 ``mjlab.terrains.TerrainGeneratorCfg.sub_terrains``.
 
-Its ``function(difficulty, spec, rng)`` adds rse's merged boxes (one static
+Its ``function(difficulty, spec, rng)`` adds rse's box set (one static
 box geom per rectangle of equal height, the collider MuJoCo handles best)
 and a ground slab under the tile to ``spec.body("terrain")``, in the tile's
 frame (corner at the origin, Z up; mjlab moves the geoms into place), and

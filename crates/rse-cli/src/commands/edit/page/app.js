@@ -1,6 +1,6 @@
 // rse scheme editor: the page keeps the scheme as typed, asks the server
 // (rse-core) for every preview, and draws the answer: a top-down PNG and a
-// WebGL view of the merged boxes. No third-party script.
+// WebGL view of the box set. No third-party script.
 "use strict";
 
 const COLUMNS = ["height", "angle", "x1", "y1", "x2", "y2", "sigma"];
@@ -145,7 +145,7 @@ async function refresh() {
   $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
 }
 
-// --- the 3D view: merged boxes in WebGL -------------------------------------------
+// --- the 3D view: the box set in WebGL -------------------------------------------
 
 const gl = $("blocks").getContext("webgl", { preserveDrawingBuffer: true });
 const program = (() => {
