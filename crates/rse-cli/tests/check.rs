@@ -208,9 +208,10 @@ fn a_folder_without_worlds_is_a_usage_error() {
     );
 }
 
-/// Every sample scheme, 20 worlds each, through `check --physics`. Most
-/// of the whole suite's time (85 s of 112 s in debug): plain `cargo test`
-/// leaves it out, `make test` runs it (`--include-ignored`).
+/// Every sample scheme, 20 worlds each, through `check --physics`, with
+/// the mesh (obj) and the box set (urdf). Most of the whole suite's time:
+/// plain `cargo test` leaves it out, `make test` runs it
+/// (`--include-ignored`).
 #[test]
 #[ignore = "slow (85 s): make test runs it with --include-ignored"]
 fn physics_finds_no_error_on_any_sample() {
@@ -223,7 +224,7 @@ fn physics_finds_no_error_on_any_sample() {
             write_batch(
                 path.to_str().unwrap(),
                 &out,
-                &["--amount", "20", "--target", "obj"],
+                &["--amount", "20", "--target", "obj,urdf"],
             );
             batches.push(out);
         }
@@ -243,10 +244,18 @@ fn physics_finds_no_error_on_any_sample() {
     assert!(failures.is_empty(), "{failures:#?}");
     assert_eq!(report["checked"], 20 * batches.len());
     for world in report["worlds"].as_array().unwrap() {
-        let physics = &world["physics"];
-        assert_eq!(physics["bodies"], 20);
-        assert_eq!(physics["steps"], 5000);
-        assert!(physics["rse_step_us"].as_f64().unwrap() > 0.0);
+        // obj collides the mesh, urdf (by default) the box set: both run.
+        let runs = world["physics"].as_array().unwrap();
+        let colliders: Vec<&str> = runs
+            .iter()
+            .map(|r| r["collider"].as_str().unwrap())
+            .collect();
+        assert_eq!(colliders, ["mesh meshes/terrain.obj", "boxes"], "{world}");
+        for physics in runs {
+            assert_eq!(physics["bodies"], 20);
+            assert_eq!(physics["steps"], 5000);
+            assert!(physics["rse_step_us"].as_f64().unwrap() > 0.0);
+        }
     }
 }
 

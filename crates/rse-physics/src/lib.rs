@@ -235,6 +235,18 @@ pub fn smoke_test(
     }
 }
 
+/// The floor the pallets stand on, a slab whose top is `z = 0` reaching
+/// well past them: its centre and half size.
+fn floor(terrain: &Terrain) -> (Vector, Vector) {
+    let grid = terrain.grid();
+    let size = [grid.nx, grid.ny].map(|n| f64::from(n) * terrain.block_size());
+    let half = (size[0].max(size[1]) + 10.0) as f32;
+    (
+        Vector::new(size[0] as f32 / 2.0, size[1] as f32 / 2.0, -0.5),
+        Vector::new(half, half, 0.5),
+    )
+}
+
 /// A world with a ground plane at `z = 0`, the terrain (none: the flat
 /// control) and the bodies.
 fn scene(
@@ -246,17 +258,10 @@ fn scene(
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::new(0.0, 0.0, -9.81);
     world.integration_parameters.dt = dt;
-    let grid = terrain.grid();
-    let size = [grid.nx, grid.ny].map(|n| f64::from(n) * terrain.block_size());
-    // The floor the pallets stand on, reaching well past them.
-    let floor_half = (size[0].max(size[1]) + 10.0) as f32;
+    let (centre, half) = floor(terrain);
     world.insert(
-        RigidBodyBuilder::fixed().translation(Vector::new(
-            size[0] as f32 / 2.0,
-            size[1] as f32 / 2.0,
-            -0.5,
-        )),
-        ColliderBuilder::cuboid(floor_half, floor_half, 0.5).friction(0.8),
+        RigidBodyBuilder::fixed().translation(centre),
+        ColliderBuilder::cuboid(half.x, half.y, half.z).friction(0.8),
     );
     // The flat control (`None`) and an empty terrain: the floor alone.
     match model.filter(|m| !m.is_empty()) {
@@ -346,6 +351,7 @@ fn judge(
     drops: &[Body],
     terrain: &Terrain,
 ) -> Vec<String> {
+    let solid = Solid::of(terrain);
     let grid = terrain.grid();
     let s = terrain.block_size();
     let size = [f64::from(grid.nx) * s, f64::from(grid.ny) * s];
@@ -377,7 +383,7 @@ fn judge(
                 "{name}: sank into the terrain: centre at ({x:.3}, {y:.3}, {z:.3}) m under a surface at {under:.3} m"
             ));
         }
-        let depth = penetration(world, collider);
+        let depth = solid.depth(world, collider);
         if depth > PENETRATION_LIMIT {
             errors.push(format!(
                 "{name}: a contact {:.1} mm deep (limit {:.0} mm)",
@@ -401,26 +407,72 @@ fn judge(
     errors
 }
 
-/// The deepest contact of `collider` with anything fixed (the terrain or
-/// the floor), metres: 0 when none overlaps.
-fn penetration(world: &PhysicsWorld, collider: ColliderHandle) -> f64 {
-    let fixed = |c: ColliderHandle| {
-        world.colliders[c]
-            .parent()
-            .is_some_and(|b| world.bodies[b].is_fixed())
-    };
-    world
-        .contact_pairs_with(collider)
-        .filter(|pair| fixed(pair.collider1) || fixed(pair.collider2))
-        .flat_map(ContactPair::manifolds)
-        .flat_map(|manifold| &manifold.points)
-        .map(|point| f64::from(-point.dist))
-        .fold(0.0, f64::max)
+/// The solid a body must stay out of, whatever collider simulated it: the
+/// terrain's box set (its union is exactly the solid, so the depth inside
+/// any one box never exceeds the depth inside the solid) and the floor.
+/// Judging by contacts with the simulated collider would not do: a mesh is
+/// a surface, and the contact of a capsule with one of its triangles can
+/// be deeper than the capsule is inside the solid (28 mm was seen on a
+/// capsule lying across a step edge), and the `dist` cached in rapier's
+/// contact manifolds can lag behind (a sphere resting on a top was
+/// reported 21 mm deep).
+struct Solid {
+    parts: Vec<(Pose, Cuboid)>,
+}
+
+impl Solid {
+    fn of(terrain: &Terrain) -> Self {
+        let cuboid = |c: Vector, h: Vector| (Pose::from_translation(c), Cuboid::new(h));
+        let (centre, half) = floor(terrain);
+        let mut parts = vec![cuboid(centre, half)];
+        parts.extend(terrain.boxes().iter().map(|b| {
+            let [c, h] =
+                [b.center, b.half_size].map(|v| Vector::new(v[0] as f32, v[1] as f32, v[2] as f32));
+            cuboid(c, h)
+        }));
+        Solid { parts }
+    }
+
+    /// How deep `collider` is inside the solid, metres (0: outside).
+    fn depth(&self, world: &PhysicsWorld, collider: ColliderHandle) -> f64 {
+        let body = &world.colliders[collider];
+        let near = body.compute_aabb();
+        self.parts
+            .iter()
+            .filter(|(pose, part)| part.aabb(pose).intersects(&near))
+            .filter_map(|(pose, part)| {
+                rapier3d::parry::query::contact(pose, part, body.position(), body.shape(), 0.0)
+                    .ok()
+                    .flatten()
+            })
+            .map(|contact| f64::from(-contact.dist))
+            .fold(0.0, f64::max)
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::Moved;
+    use super::{Moved, Solid};
+    use rapier3d::prelude::*;
+
+    /// A ball sunk 3 cm into the solid is 3 cm deep; resting on it, 0.
+    #[test]
+    fn depth_is_how_far_a_body_is_inside_the_solid() {
+        let solid = Solid {
+            parts: vec![(Pose::IDENTITY, Cuboid::new(Vector::new(1.0, 1.0, 0.5)))],
+        };
+        let depth_at = |z: f32| {
+            let mut world = PhysicsWorld::new();
+            let (_, ball) = world.insert(
+                RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.0, z)),
+                ColliderBuilder::ball(0.1),
+            );
+            solid.depth(&world, ball)
+        };
+        assert!((depth_at(0.57) - 0.03).abs() < 1e-4, "{}", depth_at(0.57));
+        assert!(depth_at(0.6) < 1e-4);
+        assert!(depth_at(0.8) == 0.0);
+    }
 
     #[test]
     fn a_body_is_unsettled_only_when_it_moves_fast_without_going_down() {
