@@ -49,6 +49,24 @@ pub enum Command {
     Check(CheckArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
     Edit(EditArgs),
+    /// Our world templates, to start your own from (`--template DIR` overlays them file by file).
+    Templates(TemplatesArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct TemplatesArgs {
+    #[command(subcommand)]
+    pub action: TemplatesAction,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum TemplatesAction {
+    /// Write the built-in templates into DIR/<target>/… (refuses to overwrite a file).
+    Export {
+        /// The folder to write them into (created if missing).
+        #[arg(value_name = "DIR")]
+        dir: PathBuf,
+    },
 }
 
 #[derive(Debug, Args)]

@@ -241,7 +241,7 @@ fn a_different_world_is_replaced_only_with_force() {
 }
 
 #[test]
-fn user_templates_replace_ours_and_their_files_reach_every_world() {
+fn user_templates_overlay_ours_and_their_files_reach_every_world() {
     let dir = tempfile::tempdir().unwrap();
     let templates = dir.path().join("templates");
     let gazebo = templates.join("gazebo");
@@ -268,13 +268,96 @@ fn user_templates_replace_ours_and_their_files_reach_every_world() {
             text.starts_with(&format!("world {world} of 50x50 cells, ")),
             "{text}"
         );
-        // Our model templates are replaced with the whole gazebo folder.
+        // Overlaid file by file: our model templates are kept.
         assert!(
-            !out.join(world)
+            out.join(world)
                 .join("gazebo/rse_terrain/model.sdf")
                 .exists()
         );
     }
+}
+
+/// A folder holding one edited template is a whole template set: the
+/// other files are ours, and `check` finds the worlds good.
+#[test]
+fn one_edited_template_overlays_ours_and_the_worlds_check_good() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    std::fs::create_dir_all(templates.join("gazebo")).unwrap();
+    let ours = std::fs::read_to_string(repo().join("templates/gazebo/rse.world.j2")).unwrap();
+    let edited = ours.replace("</world>", "  <!-- our lab -->\n  </world>");
+    assert_ne!(edited, ours);
+    std::fs::write(templates.join("gazebo/rse.world.j2"), &edited).unwrap();
+    let out = dir.path().join("out");
+    stdout(&batch(
+        &out,
+        &["--amount", "2", "--template", templates.to_str().unwrap()],
+    ));
+    let world = out.join("world_0001");
+    for file in ["rse_terrain/model.config", "rse_terrain/model.sdf"] {
+        assert!(world.join("gazebo").join(file).is_file(), "{file}");
+    }
+    let text = std::fs::read_to_string(world.join("gazebo/rse.world")).unwrap();
+    assert!(text.contains("<!-- our lab -->"), "{text}");
+    let checked = rse_gen(&["check", out.to_str().unwrap()]);
+    assert_eq!(checked.status.code(), Some(0), "{}", stderr(&checked));
+}
+
+/// `templates export` writes ours; used as `--template`, they give the same
+/// world files as the built-in ones; a second export refuses to overwrite.
+#[test]
+fn exported_templates_are_ours() {
+    let dir = tempfile::tempdir().unwrap();
+    let exported = dir.path().join("exported");
+    let listed = stdout(&rse_gen(&[
+        "templates",
+        "export",
+        exported.to_str().unwrap(),
+    ]));
+    assert_eq!(listed.lines().count(), 7, "{listed}");
+    for target in ["gazebo", "mujoco", "urdf", "usd", "webots"] {
+        assert_same_tree(
+            &exported.join(target),
+            &repo().join("templates").join(target),
+        );
+    }
+    let again = rse_gen(&["templates", "export", exported.to_str().unwrap()]);
+    assert_eq!(again.status.code(), Some(2));
+    assert!(
+        stderr(&again).contains("exists already"),
+        "{}",
+        stderr(&again)
+    );
+
+    let [builtin, custom] = ["builtin", "custom"].map(|n| dir.path().join(n));
+    let targets = ["--target", ALL_TARGETS];
+    stdout(&batch(&builtin, &targets));
+    stdout(&batch(
+        &custom,
+        &[&targets[..], &["--template", exported.to_str().unwrap()]].concat(),
+    ));
+    let (a, b) = (tree(&builtin), tree(&custom));
+    assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
+    for (path, bytes) in &a {
+        if !path.ends_with("rse.json") {
+            assert!(b[path] == *bytes, "{path} differs");
+        }
+    }
+}
+
+#[test]
+fn a_template_folder_that_is_not_there_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let missing = dir.path().join("nonexistent");
+    let failed = batch(&out, &["--template", missing.to_str().unwrap()]);
+    assert_eq!(failed.status.code(), Some(2));
+    let message = stderr(&failed);
+    assert!(
+        message.contains("nonexistent") && message.contains("does not exist"),
+        "{message}"
+    );
+    assert!(!out.exists());
 }
 
 #[test]
@@ -300,7 +383,10 @@ fn a_template_error_names_file_and_line_and_writes_no_world() {
     assert_eq!(failed.status.code(), Some(2));
     let message = stderr(&failed);
     assert!(message.contains("mujoco/rse.xml.j2:3:"), "{message}");
-    assert!(message.contains("undefined"), "{message}");
+    assert!(
+        message.contains("undefined value 'no_such_value'"),
+        "{message}"
+    );
     assert!(!out.join("world_0000").exists());
 
     std::fs::write(templates.join("mujoco/rse.xml.j2"), "ok\n{% if %}\n").unwrap();

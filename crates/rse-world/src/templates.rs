@@ -93,10 +93,23 @@ impl Templates {
         Self::new(files, false).expect("the built-in templates parse")
     }
 
-    /// Ours, with every target folder present in `dir` (`dir/gazebo/`, …)
-    /// replacing ours whole: a user can override one simulator and add
-    /// their own files (a robot model, say) to every world.
+    /// Ours, overlaid file by file with the target folders present in
+    /// `dir` (`dir/gazebo/`, …): a user's file replaces ours of the same
+    /// output path (`rse.world` and `rse.world.j2` both replace our
+    /// `rse.world.j2`), and their other files (a robot model, say) are
+    /// added to every world; our files they do not name are kept. So a
+    /// folder holding one edited template is a whole template set.
     pub fn with_overrides(dir: &Path) -> Result<Self, Error> {
+        if !dir.is_dir() {
+            return Err(Error::BadTemplateFolder {
+                path: dir.to_owned(),
+                reason: if dir.exists() {
+                    "it is not a folder".to_owned()
+                } else {
+                    "it does not exist".to_owned()
+                },
+            });
+        }
         let mut files = Self::builtin().files;
         let mut any = false;
         for target in Target::ALL {
@@ -105,7 +118,15 @@ impl Templates {
                 continue;
             }
             any = true;
-            files.insert(target, read_tree(&folder)?);
+            let theirs = read_tree(&folder)?;
+            let ours = files.entry(target).or_default();
+            ours.retain(|file| {
+                !theirs
+                    .iter()
+                    .any(|t| output_path(&t.path) == output_path(&file.path))
+            });
+            ours.extend(theirs);
+            ours.sort_by(|a, b| a.path.cmp(&b.path));
         }
         if !any {
             return Err(Error::BadTemplateFolder {
@@ -117,6 +138,33 @@ impl Templates {
             });
         }
         Self::new(files, true)
+    }
+
+    /// Writes our templates into `dir/<target>/…`, to copy and edit
+    /// (`rse-gen templates export`); refuses to overwrite a file.
+    ///
+    /// # Panics
+    /// Never: every path it writes is `dir/<target>/<file>`, with a parent.
+    pub fn export_builtin(dir: &Path) -> Result<Vec<std::path::PathBuf>, Error> {
+        let paths: Vec<_> = BUILTIN
+            .iter()
+            .map(|&(target, path, _)| dir.join(target.name()).join(path))
+            .collect();
+        if let Some(existing) = paths.iter().find(|p| p.exists()) {
+            return Err(Error::BadTemplateFolder {
+                path: dir.to_owned(),
+                reason: format!(
+                    "{} exists already: export into an empty folder",
+                    existing.display()
+                ),
+            });
+        }
+        for (path, &(_, _, source)) in paths.iter().zip(BUILTIN) {
+            let parent = path.parent().expect("a target folder");
+            std::fs::create_dir_all(parent).map_err(Error::io("create", parent))?;
+            std::fs::write(path, source).map_err(Error::io("write", path))?;
+        }
+        Ok(paths)
     }
 
     fn new(files: BTreeMap<Target, Vec<TemplateFile>>, custom: bool) -> Result<Self, Error> {
@@ -151,7 +199,7 @@ impl Templates {
                         message: "not UTF-8 text".to_owned(),
                     })?;
                 env.add_template_owned(file.origin.clone(), source)
-                    .map_err(|e| template_error(&file.origin, &e))?;
+                    .map_err(|e| template_error(&file.origin, &file.bytes, &e))?;
             }
         }
         let digest = sha256_hex(&all);
@@ -193,24 +241,39 @@ impl Templates {
                 let template = self
                     .env
                     .get_template(&file.origin)
-                    .map_err(|e| template_error(&file.origin, &e))?;
+                    .map_err(|e| template_error(&file.origin, &file.bytes, &e))?;
                 let text = template
                     .render(&value)
-                    .map_err(|e| template_error(&file.origin, &e))?;
+                    .map_err(|e| template_error(&file.origin, &file.bytes, &e))?;
                 Ok((path.to_owned(), text.into_bytes()))
             })
             .collect()
     }
 }
 
-/// Our error for a minijinja error in `file`, with its line.
-fn template_error(file: &str, e: &minijinja::Error) -> Error {
+/// The path a template file gets in a world: `.j2` files lose the suffix.
+fn output_path(path: &str) -> &str {
+    path.strip_suffix(TEMPLATE_SUFFIX).unwrap_or(path)
+}
+
+/// Our error for a minijinja error in `file` (its text `source`), with its
+/// line; an undefined value is named (`undefined value 'spawn_height'`),
+/// which minijinja itself does not do.
+fn template_error(file: &str, source: &[u8], e: &minijinja::Error) -> Error {
+    let named = (e.kind() == minijinja::ErrorKind::UndefinedError)
+        .then(|| e.range())
+        .flatten()
+        .and_then(|range| source.get(range))
+        .and_then(|text| std::str::from_utf8(text).ok())
+        .map(str::trim)
+        .filter(|name| !name.is_empty());
     Error::Template {
         file: file.to_owned(),
         line: e.line().unwrap_or(1),
-        message: match e.detail() {
-            Some(detail) => format!("{}: {detail}", e.kind()),
-            None => e.kind().to_string(),
+        message: match (named, e.detail()) {
+            (Some(name), _) => format!("undefined value '{name}'"),
+            (None, Some(detail)) => format!("{}: {detail}", e.kind()),
+            (None, None) => e.kind().to_string(),
         },
     }
 }
@@ -234,6 +297,35 @@ fn read_tree(dir: &Path) -> Result<Vec<TemplateFile>, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A plain file replaces our `.j2` of the same output path; the rest of
+    /// ours stays.
+    #[test]
+    fn a_users_file_replaces_ours_of_the_same_output_path() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("gazebo")).unwrap();
+        std::fs::write(dir.path().join("gazebo/rse.world"), "plain\n").unwrap();
+        let templates = Templates::with_overrides(dir.path()).unwrap();
+        let paths: Vec<&str> = templates.files[&Target::Gazebo]
+            .iter()
+            .map(|f| f.path.as_str())
+            .collect();
+        assert_eq!(
+            paths,
+            [
+                "rse.world",
+                "rse_terrain/model.config.j2",
+                "rse_terrain/model.sdf.j2"
+            ]
+        );
+        assert!(templates.is_custom());
+        let missing = Templates::with_overrides(&dir.path().join("nowhere"));
+        assert!(
+            matches!(&missing, Err(Error::BadTemplateFolder { reason, .. }) if reason == "it does not exist"),
+            "{:?}",
+            missing.err()
+        );
+    }
 
     #[test]
     fn builtin_templates_match_the_folder() {

@@ -16,6 +16,7 @@ mod heightmap;
 mod hfield;
 mod mesh;
 mod preview;
+mod templates;
 
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
@@ -37,6 +38,12 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
             check::run(&args)
         }
         Command::Edit(args) => edit::run(&args, &cli.overrides),
+        Command::Templates(args) => {
+            if let Some(flag) = cli.overrides.first_set() {
+                anyhow::bail!("{flag} does not apply to templates");
+            }
+            templates::run(&args)
+        }
     }
 }
 
