@@ -182,9 +182,11 @@ def quiet_stdout():
 
 
 def pybullet_terrain(client: int, field: Field, collider: str, tmp: Path) -> int:
-    """Loads the ground and the terrain; returns the terrain's collision shapes."""
-    p.loadURDF("plane.urdf", physicsClientId=client)
+    """Loads the ground and the terrain; returns the terrain's collision shapes.
+    rse's URDF brings its own ground: pybullet_data's plane only without it."""
     terrain = field.terrain
+    if terrain is None or collider not in ("mesh", "boxes"):
+        p.loadURDF("plane.urdf", physicsClientId=client)
     if terrain is None:
         return 0
     cx, cy = half_extent(terrain)

@@ -70,8 +70,6 @@ def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Pat
     client = p.connect(p.DIRECT)
     try:
         p.setGravity(0, 0, -9.81, physicsClientId=client)
-        ground = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
-        p.createMultiBody(0, ground, physicsClientId=client)
         p.loadURDF(str(folder / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
         ids = []
         for drop in bodies:
@@ -96,6 +94,42 @@ def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Pat
     finally:
         p.disconnect(client)
     assert gz.errors(report, bodies) == []
+
+
+@pytest.mark.parametrize("target", ["urdf", "mujoco"])
+def test_worlds_bring_their_own_ground(target: str, tmp_path: Path) -> None:
+    """Loaded alone, a world holds a body dropped on an empty cell and one
+    dropped 20 m past its edge at z = its radius (before the URDF had a
+    ground, PyBullet let them fall to z = -22 m)."""
+    terrain, folder = world(SCHEMES / "six_obstacles.csv", tmp_path, target)
+    ys, xs = np.nonzero(terrain.heights == 0)
+    s = terrain.block_size
+    points = [((xs[0] + 0.5) * s, (ys[0] + 0.5) * s), (-20.0, 1.0)]
+    radius = 0.03
+    if target == "urdf":
+        client = p.connect(p.DIRECT)
+        try:
+            p.setGravity(0, 0, -9.81, physicsClientId=client)
+            p.loadURDF(str(folder / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
+            shape = p.createCollisionShape(p.GEOM_SPHERE, radius=radius, physicsClientId=client)
+            ids = [p.createMultiBody(0.1, shape, basePosition=[x, y, 0.1], physicsClientId=client) for x, y in points]
+            for _ in range(480):
+                p.stepSimulation(physicsClientId=client)
+            rests = [p.getBasePositionAndOrientation(i, physicsClientId=client)[0][2] for i in ids]
+        finally:
+            p.disconnect(client)
+    else:
+        spec = mujoco.MjSpec.from_file(str(folder / "mujoco" / "rse.xml"))
+        for i, (x, y) in enumerate(points):
+            body = spec.worldbody.add_body(name=f"drop_{i}", pos=[x, y, 0.1])
+            body.add_freejoint()
+            body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], mass=0.1)
+        model = spec.compile()
+        data = mujoco.MjData(model)
+        for _ in range(round(2.0 / model.opt.timestep)):
+            mujoco.mj_step(model, data)
+        rests = [data.body(f"drop_{i}").xpos[2] for i in range(len(points))]
+    assert rests == pytest.approx([radius] * len(points), abs=0.002)
 
 
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)

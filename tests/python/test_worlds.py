@@ -237,7 +237,7 @@ def test_pybullet_urdf_bodies_rest_at_their_cells_height(batches, mode: str) -> 
 
 def test_urdf_collision_is_a_concave_mesh_in_single_mode(batches) -> None:
     for world in sorted(batches[("wall", "single")].glob("world_*")):
-        collisions = ET.parse(world / "urdf/rse.urdf").getroot().findall("link/collision")
+        collisions = ET.parse(world / "urdf/rse.urdf").getroot().findall("link[@name='terrain']/collision")
         assert len(collisions) == 1 and collisions[0].get("concave") == "yes"
         mesh = collisions[0].find("geometry/mesh").get("filename")
         assert (world / "urdf" / mesh).resolve().is_file()
@@ -253,7 +253,16 @@ def test_usd_stage_opens_with_valid_meshes_and_collision(batches, mode: str) -> 
         assert UsdGeom.GetStageUpAxis(stage) == UsdGeom.Tokens.z
         assert UsdGeom.GetStageMetersPerUnit(stage) == 1.0
         colliders = [prim for prim in stage.Traverse() if prim.HasAPI(UsdPhysics.CollisionAPI)]
+        # The ground: a slab whose top is z = 0, under the whole terrain and 50 m past it.
+        ground = stage.GetPrimAtPath("/World/ground")
+        assert ground in colliders and ground.IsA(UsdGeom.Cube)
+        colliders.remove(ground)
+        box = UsdGeom.Cube(ground).ComputeWorldBound(Usd.TimeCode.Default(), "default").ComputeAlignedRange()
         h = np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2)
+        size = np.array(h.shape[::-1]) * manifest(world)["globals"]["block_size"]
+        assert box.GetMax()[2] == pytest.approx(0, abs=1e-9)
+        # float3 scale: float32 precision.
+        assert np.all(np.array(box.GetMin())[:2] <= -50 + 1e-4) and np.all(np.array(box.GetMax())[:2] >= size + 50 - 1e-4)
         if not (h > 0).any():
             assert colliders == []
             continue
