@@ -55,12 +55,23 @@ def plugin(engine: str) -> Path:
 
 @dataclass(frozen=True)
 class Drop:
-    """A body dropped on the centre of cell `cell`; `rest` is where its
-    centre must come to rest (the cell's top plus its half height)."""
+    """A body dropped from `start` over the centre of cell `cell`: a sphere
+    of radius `half` or a cube of half size `half`; `flat_z` is its start
+    on a plane, `rest` where its centre must come to rest (the cell's top
+    plus `half`)."""
 
-    line: str
+    shape: str
+    half: float
+    start: tuple[float, float, float]
+    flat_z: float
     cell: tuple[int, int]
     rest: float
+
+    @property
+    def line(self) -> str:
+        """The harness's line for it: `sphere R X Y Z ZFLAT` or `box HX HY HZ X Y Z ZFLAT`."""
+        size = [self.half] * (1 if self.shape == "sphere" else 3)
+        return " ".join([self.shape, *map(repr, [*size, *self.start, self.flat_z])])
 
 
 def drops(elevation: np.ndarray, block_size: float, count: int, seed: int) -> list[Drop]:
@@ -75,12 +86,9 @@ def drops(elevation: np.ndarray, block_size: float, count: int, seed: int) -> li
     for i, c in enumerate(cells):
         y, x = divmod(int(c), nx)
         top = float(elevation[y, x])
-        cx, cy = (x + 0.5) * block_size, (y + 0.5) * block_size
-        if i % 2 == 0:
-            half, shape = SPHERE_RADIUS, f"sphere {SPHERE_RADIUS}"
-        else:
-            half, shape = BOX_HALF, f"box {BOX_HALF} {BOX_HALF} {BOX_HALF}"
-        out.append(Drop(f"{shape} {cx!r} {cy!r} {top + half + 0.05!r} {half + 0.05!r}", (x, y), top + half))
+        shape, half = ("sphere", SPHERE_RADIUS) if i % 2 == 0 else ("box", BOX_HALF)
+        start = ((x + 0.5) * block_size, (y + 0.5) * block_size, top + half + 0.05)
+        out.append(Drop(shape, half, start, half + 0.05, (x, y), top + half))
     return out
 
 

@@ -34,55 +34,46 @@ def world(scheme: Path, out: Path, targets: str, mesh: str = "auto") -> tuple[rs
     return loaded.generate(index=0), out / "world_0000"
 
 
-@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
-def test_mujoco_bodies_rest_on_the_tops(scheme: Path, tmp_path: Path) -> None:
-    terrain, folder = world(scheme, tmp_path, "mujoco")
-    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
-    spec = mujoco.MjSpec.from_file(str(folder / "mujoco" / "rse.xml"))
+def rest_in_mujoco(mjcf: Path, bodies: list[gz.Drop]) -> dict:
+    """`bodies` dropped into the world `mjcf` and stepped 2 s: a report as
+    the gz-physics harness gives one (`bodies`: x, y, z, speed)."""
+    spec = mujoco.MjSpec.from_file(str(mjcf))
     for i, drop in enumerate(bodies):
-        words = drop.line.split()
-        x, y, z = map(float, words[-4:-1])
-        body = spec.worldbody.add_body(name=f"drop_{i}", pos=[x, y, z])
+        body = spec.worldbody.add_body(name=f"drop_{i}", pos=list(drop.start))
         body.add_freejoint()
-        if words[0] == "sphere":
-            body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[gz.SPHERE_RADIUS, 0, 0], mass=0.1)
+        if drop.shape == "sphere":
+            body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[drop.half, 0, 0], mass=0.1)
         else:
-            body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[gz.BOX_HALF] * 3, mass=0.1)
+            body.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[drop.half] * 3, mass=0.1)
     model = spec.compile()
     data = mujoco.MjData(model)
     for _ in range(round(2.0 / model.opt.timestep)):
         mujoco.mj_step(model, data)
-    report = {
+    return {
         "bodies": [
             [*data.body(f"drop_{i}").xpos, float(np.linalg.norm(data.body(f"drop_{i}").cvel[3:]))]
             for i in range(len(bodies))
         ]
     }
-    assert gz.errors(report, bodies) == []
 
 
-@pytest.mark.parametrize("mesh", ["auto", "single"])
-@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
-def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Path) -> None:
-    """The URDF's box set (the default) and its concave mesh alike."""
-    terrain, folder = world(scheme, tmp_path, "urdf", mesh)
-    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+def rest_in_pybullet(urdf: Path, bodies: list[gz.Drop]) -> dict:
+    """`bodies` dropped on the world `urdf` alone (no other ground) and
+    stepped 2 s at PyBullet's 240 Hz: a report as `rest_in_mujoco`'s."""
     client = p.connect(p.DIRECT)
     try:
         p.setGravity(0, 0, -9.81, physicsClientId=client)
-        p.loadURDF(str(folder / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
+        p.loadURDF(str(urdf), useFixedBase=True, physicsClientId=client)
         ids = []
         for drop in bodies:
-            words = drop.line.split()
-            if words[0] == "sphere":
-                shape = p.createCollisionShape(p.GEOM_SPHERE, radius=gz.SPHERE_RADIUS, physicsClientId=client)
+            if drop.shape == "sphere":
+                shape = p.createCollisionShape(p.GEOM_SPHERE, radius=drop.half, physicsClientId=client)
             else:
-                shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=[gz.BOX_HALF] * 3, physicsClientId=client)
-            position = [float(v) for v in words[-4:-1]]
-            ids.append(p.createMultiBody(0.1, shape, basePosition=position, physicsClientId=client))
-        for _ in range(480):  # 2 s at PyBullet's 240 Hz
+                shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=[drop.half] * 3, physicsClientId=client)
+            ids.append(p.createMultiBody(0.1, shape, basePosition=list(drop.start), physicsClientId=client))
+        for _ in range(480):
             p.stepSimulation(physicsClientId=client)
-        report = {
+        return {
             "bodies": [
                 [
                     *p.getBasePositionAndOrientation(i, physicsClientId=client)[0],
@@ -93,7 +84,22 @@ def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Pat
         }
     finally:
         p.disconnect(client)
-    assert gz.errors(report, bodies) == []
+
+
+@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
+def test_mujoco_bodies_rest_on_the_tops(scheme: Path, tmp_path: Path) -> None:
+    terrain, folder = world(scheme, tmp_path, "mujoco")
+    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+    assert gz.errors(rest_in_mujoco(folder / "mujoco" / "rse.xml", bodies), bodies) == []
+
+
+@pytest.mark.parametrize("mesh", ["auto", "single"])
+@pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
+def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Path) -> None:
+    """The URDF's box set (the default) and its concave mesh alike."""
+    terrain, folder = world(scheme, tmp_path, "urdf", mesh)
+    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+    assert gz.errors(rest_in_pybullet(folder / "urdf" / "rse.urdf", bodies), bodies) == []
 
 
 @pytest.mark.parametrize("target", ["urdf", "mujoco"])
@@ -104,32 +110,17 @@ def test_worlds_bring_their_own_ground(target: str, tmp_path: Path) -> None:
     terrain, folder = world(SCHEMES / "six_obstacles.csv", tmp_path, target)
     ys, xs = np.nonzero(terrain.heights == 0)
     s = terrain.block_size
-    points = [((xs[0] + 0.5) * s, (ys[0] + 0.5) * s), (-20.0, 1.0)]
     radius = 0.03
+    bodies = [
+        gz.Drop("sphere", radius, (x, y, 0.1), 0.1, cell, radius)
+        for x, y, cell in [((xs[0] + 0.5) * s, (ys[0] + 0.5) * s, (int(xs[0]), int(ys[0]))), (-20.0, 1.0, (-200, 10))]
+    ]
     if target == "urdf":
-        client = p.connect(p.DIRECT)
-        try:
-            p.setGravity(0, 0, -9.81, physicsClientId=client)
-            p.loadURDF(str(folder / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
-            shape = p.createCollisionShape(p.GEOM_SPHERE, radius=radius, physicsClientId=client)
-            ids = [p.createMultiBody(0.1, shape, basePosition=[x, y, 0.1], physicsClientId=client) for x, y in points]
-            for _ in range(480):
-                p.stepSimulation(physicsClientId=client)
-            rests = [p.getBasePositionAndOrientation(i, physicsClientId=client)[0][2] for i in ids]
-        finally:
-            p.disconnect(client)
+        report = rest_in_pybullet(folder / "urdf" / "rse.urdf", bodies)
     else:
-        spec = mujoco.MjSpec.from_file(str(folder / "mujoco" / "rse.xml"))
-        for i, (x, y) in enumerate(points):
-            body = spec.worldbody.add_body(name=f"drop_{i}", pos=[x, y, 0.1])
-            body.add_freejoint()
-            body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], mass=0.1)
-        model = spec.compile()
-        data = mujoco.MjData(model)
-        for _ in range(round(2.0 / model.opt.timestep)):
-            mujoco.mj_step(model, data)
-        rests = [data.body(f"drop_{i}").xpos[2] for i in range(len(points))]
-    assert rests == pytest.approx([radius] * len(points), abs=0.002)
+        report = rest_in_mujoco(folder / "mujoco" / "rse.xml", bodies)
+    rests = [z for _, _, z, _ in report["bodies"]]
+    assert rests == pytest.approx([radius] * len(bodies), abs=0.002)
 
 
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)

@@ -280,7 +280,7 @@ pub struct WorldFilesArgs {
     #[command(flatten)]
     pub collider: ColliderArgs,
 
-    /// A folder of templates: each target folder in it (DIR/gazebo/, …) replaces ours.
+    /// A folder of templates overlaying ours file by file (DIR/gazebo/rse.world.j2, …).
     #[arg(long, value_name = "DIR")]
     pub template: Option<PathBuf>,
 }

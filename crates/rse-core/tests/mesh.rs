@@ -150,18 +150,16 @@ fn a_large_mesh_is_the_same_on_one_thread_and_on_several() {
     assert_exact(terrain.heightmap(), terrain.mesh_units(), &one);
 }
 
+/// The mesh and the box set of three worlds of every sample are exact.
 #[test]
-fn every_sample_meshes_exactly() {
+fn every_sample_meshes_and_boxes_exactly() {
     for path in sample_paths() {
         let scheme = Scheme::load(&path).unwrap();
         for index in 0..3 {
             let terrain = generate(&scheme, 0, index);
-            let units = MeshUnits {
-                block_size: terrain.block_size(),
-                step_height: terrain.step_height(),
-                base: terrain.base(),
-            };
+            let units = terrain.mesh_units();
             assert_exact(terrain.heightmap(), units, &terrain.mesh());
+            assert_boxes_fill(terrain.heightmap(), units);
         }
     }
 }
@@ -289,17 +287,6 @@ fn boxes_overlap_under_higher_cells() {
         [[0, 0, 3, 3], [1, 1, 2, 2]]
     );
     assert_boxes_fill(&ring, UNITS);
-}
-
-#[test]
-fn boxes_fill_every_sample() {
-    for path in sample_paths() {
-        let scheme = Scheme::load(&path).unwrap();
-        for index in 0..3 {
-            let terrain = generate(&scheme, 0, index);
-            assert_boxes_fill(terrain.heightmap(), terrain.mesh_units());
-        }
-    }
 }
 
 proptest! {

@@ -3,8 +3,8 @@
 //! on the terrain, simulate, and report the mean step time beside the same
 //! bodies on a flat plane (the paper's RTF vs control RTF, §4) and every
 //! physics error — those `bench/robots.py` counts for robots (a state that
-//! is not finite, a body faster than 10 m/s), a contact deeper than 1 cm (a
-//! body at rest inside the terrain), and a dropped body's own: one that sank
+//! is not finite, a body faster than 10 m/s), a body more than 1 cm inside
+//! the solid, and a dropped body's own: one that sank
 //! into the terrain, one still fast after settling, one that left the RSE
 //! without being pushed, one thrown.
 
@@ -32,8 +32,8 @@ pub enum TerrainModel {
     Boxes(Vec<([f64; 3], [f64; 3])>),
 }
 
-/// A contact deeper than this is a physics error, metres (the tolerance of
-/// `tests/python/test_gz_physics.py` for bodies at rest).
+/// A body deeper than this inside the solid is a physics error, metres (the
+/// tolerance of `tests/python/test_gz_physics.py` for bodies at rest).
 pub const PENETRATION_LIMIT: f64 = 0.01;
 /// A body faster than this at any step is a physics error, m/s (as in
 /// `bench/robots.py`): nothing dropped a few centimetres gets near it.
@@ -386,7 +386,7 @@ fn judge(
         let depth = solid.depth(world, collider);
         if depth > PENETRATION_LIMIT {
             errors.push(format!(
-                "{name}: a contact {:.1} mm deep (limit {:.0} mm)",
+                "{name}: {:.1} mm inside the solid (limit {:.0} mm)",
                 depth * 1e3,
                 PENETRATION_LIMIT * 1e3
             ));
