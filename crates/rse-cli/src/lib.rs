@@ -2,10 +2,15 @@
 //! subcommand), for the binary and for the fuzz targets that drive the
 //! editor's JSON API without a socket.
 
+use std::ffi::OsString;
+use std::io::Write as _;
 use std::process::ExitCode;
+
+use clap::Parser as _;
 
 mod args;
 mod commands;
+mod hints;
 
 pub use args::Cli;
 pub use commands::run;
@@ -37,6 +42,41 @@ impl From<ExitStatus> for ExitCode {
             ExitStatus::Failure => ExitCode::from(1),
             ExitStatus::Error => ExitCode::from(2),
             ExitStatus::Interrupted => ExitCode::from(130),
+        }
+    }
+}
+
+/// The whole `rse-gen` program on `args` (the program's name first): parse,
+/// run, and print an error as `rse-gen: …` with what to do about it. The
+/// binary and the Python wheel's `rse-gen` command both run this.
+pub fn main_with<I, T>(args: I) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with status 0, usage errors
+            // to stderr with status 2, as clap's own `parse` does.
+            let _ = e.print();
+            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2));
+        }
+    };
+    match run(cli) {
+        Ok(status) => status.into(),
+        Err(error) => {
+            // A closed pipe (`rse-gen heightmap … | head`) is not a failure.
+            if hints::is_broken_pipe(&error) {
+                return ExitCode::SUCCESS;
+            }
+            let mut line = format!("rse-gen: {error:#}");
+            if let Some(hint) = hints::hint(&error) {
+                line.push_str("; ");
+                line.push_str(hint);
+            }
+            let _ = writeln!(std::io::stderr(), "{line}");
+            ExitStatus::Error.into()
         }
     }
 }

@@ -21,9 +21,7 @@ pub enum Error {
         source: std::io::Error,
     },
     /// A preview larger than [`preview::MAX_PIXELS`](crate::preview::MAX_PIXELS).
-    #[error(
-        "a {width}x{height} pixel preview is more than the {max} pixels drawn at most: use fewer --cell-pixels"
-    )]
+    #[error("a {width}x{height} pixel preview is more than the {max} pixels drawn at most")]
     PreviewTooLarge {
         /// Width asked for, pixels.
         width: u64,
@@ -123,13 +121,17 @@ pub enum SchemeErrorKind {
     #[error("given twice")]
     DuplicateGlobal,
     /// A global parameter has a value it cannot take.
-    #[error("invalid value `{value}`: {reason}")]
+    #[error("{}: {reason}", if value.is_empty() { "no value".to_owned() } else { format!("invalid value `{value}`") })]
     BadGlobal {
         /// The text found.
         value: String,
         /// What is expected.
         reason: String,
     },
+    /// A pallet setting (`pallet_size`, `pallet_boundary`) in a scheme
+    /// without pallets.
+    #[error("is set but pallets are off; add e.g. `# pallets: 2x3`")]
+    PalletsOff,
     /// The header names a column that does not exist.
     #[error("unknown column `{0}` (known: type, height, angle, x1, y1, x2, y2, sigma)")]
     UnknownColumn(String),

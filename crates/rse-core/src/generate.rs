@@ -1,6 +1,6 @@
 //! Generating one world: draw the ranges, apply the obstacles in order, frame the pallets.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::difficulty::Difficulty;
 use crate::globals::{Globals, Grid};
@@ -12,10 +12,13 @@ use crate::scheme::Scheme;
 use crate::stamp::{self, Units};
 
 /// One generated RSE: the heightmap, its units, and what was drawn for it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// Serialises without its heightmap (the cells go apart, as raw data):
+/// [`Terrain::from_parts`] puts the two back together.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Terrain {
     grid: Grid,
-    #[serde(skip)]
+    #[serde(skip, default = "no_cells")]
     heightmap: Heightmap,
     block_size: f64,
     step_height: f64,
@@ -24,6 +27,11 @@ pub struct Terrain {
     index: u64,
     difficulty: Difficulty,
     drawn: Vec<DrawnObstacle>,
+}
+
+/// The heightmap of a deserialised terrain until its cells are put in.
+fn no_cells() -> Heightmap {
+    Heightmap::zeros(0, 0)
 }
 
 /// Generates world `index` of a batch with base seed `seed` (SPEC §3–4).
@@ -153,6 +161,23 @@ impl Terrain {
             difficulty: Difficulty::FULL,
             drawn: Vec::new(),
         }
+    }
+
+    /// A terrain from its JSON (serde, without heightmap) and its cells,
+    /// row by row from y = 0: what a Python pickle carries. `None` when
+    /// the JSON does not parse or the cells do not fill its grid.
+    pub fn from_parts(json: &str, cells: Vec<u16>) -> Option<Terrain> {
+        let mut terrain: Terrain = serde_json::from_str(json).ok()?;
+        terrain.heightmap = Heightmap::from_cells(terrain.grid.nx, terrain.grid.ny, cells)?;
+        Some(terrain)
+    }
+
+    /// The JSON of [`Terrain::from_parts`].
+    ///
+    /// # Panics
+    /// Never: every field serialises.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("a terrain serialises")
     }
 
     /// The grid, with where its pallet frames are.

@@ -40,6 +40,7 @@ pub mod mesh;
 mod obstacle;
 mod param;
 pub mod preview;
+mod probe;
 mod rng;
 mod scheme;
 mod scheme_csv;

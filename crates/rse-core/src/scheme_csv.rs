@@ -126,13 +126,9 @@ impl GlobalLines {
             None => {
                 for key in ["pallet_size", "pallet_boundary"] {
                     if let Some((_, line)) = self.lines.iter().find(|(k, _)| *k == key) {
-                        return Err(SchemeError::new(SchemeErrorKind::BadGlobal {
-                            value: String::new(),
-                            reason: "is set but pallets are off; add e.g. `# pallets: 2x3`"
-                                .to_owned(),
-                        })
-                        .with_field(key)
-                        .at_line(*line));
+                        return Err(SchemeError::new(SchemeErrorKind::PalletsOff)
+                            .with_field(key)
+                            .at_line(*line));
                     }
                 }
             }

@@ -7,8 +7,9 @@ use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use rse_core::{AtlasOptions, PatchOptions};
-use rse_world::{AtlasRecord, NamedScheme, Outcome, Templates, WorldOptions, atlas_json};
+use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 
+use crate::batch::{outcome_name, templates, world_options};
 use crate::errors::{core_error, world_error};
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, check_radius};
@@ -37,7 +38,7 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
         .enumerate()
         .map(|(i, item)| {
             if let Ok(scheme) = item.cast::<Scheme>() {
-                let scheme = scheme.get().inner.clone();
+                let scheme = rse_core::Scheme::clone(&scheme.get().inner);
                 let name = scheme
                     .file()
                     .and_then(file_name)
@@ -111,6 +112,7 @@ impl Atlas {
     fn terrain(&self) -> Terrain {
         Terrain {
             inner: self.inner.terrain().clone(),
+            scheme: None,
         }
     }
 
@@ -199,18 +201,8 @@ impl Atlas {
         mujoco_collider: &str,
         oversample: Option<u32>,
     ) -> PyResult<&'static str> {
-        let bad = |e: rse_world::Error| world_error(py, &e);
-        let options = WorldOptions {
-            targets: rse_world::Targets::parse(targets).map_err(bad)?,
-            mesh: mesh.parse().map_err(bad)?,
-            mujoco_collider: rse_world::MujocoCollider::parse(mujoco_collider, oversample)
-                .map_err(bad)?,
-            ..WorldOptions::default()
-        };
-        let templates = match &template {
-            Some(dir) => Templates::with_overrides(dir).map_err(bad)?,
-            None => Templates::builtin(),
-        };
+        let options = world_options(py, targets, mesh, 1.0, mujoco_collider, oversample)?;
+        let templates = templates(py, template.as_deref())?;
         let atlas_options = *self.inner.options();
         let (outcome, _) = py
             .detach(|| {
@@ -223,12 +215,8 @@ impl Atlas {
                     force,
                 )
             })
-            .map_err(bad)?;
-        Ok(match outcome {
-            Outcome::Written(_) => "written",
-            Outcome::Skipped => "skipped",
-            Outcome::Replaced(_) => "replaced",
-        })
+            .map_err(|e| world_error(py, &e))?;
+        Ok(outcome_name(outcome))
     }
 
     fn __repr__(&self) -> String {

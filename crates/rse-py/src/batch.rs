@@ -5,7 +5,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use rse_world::{BatchOptions, MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
+use rse_world::{
+    BatchOptions, MeshMode, MujocoCollider, Outcome, Shard, Targets, Templates, WorldOptions,
+};
 
 use crate::errors::world_error;
 use crate::scheme::{Scheme, difficulty_arg};
@@ -33,18 +35,14 @@ pub fn generate_batch(
     let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
     let seed = seed.unwrap_or(scheme.globals().seed);
-    let terrains: Vec<rse_core::Terrain> = py.detach(|| {
+    Ok(py.detach(|| {
         pool.install(|| {
             (0..amount)
                 .into_par_iter()
-                .map(|index| rse_core::generate_at(scheme, seed, index, difficulty))
+                .map(|index| Terrain::generate(scheme, seed, index, difficulty))
                 .collect()
         })
-    });
-    Ok(terrains
-        .into_iter()
-        .map(|inner| Terrain { inner })
-        .collect())
+    }))
 }
 
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
@@ -68,30 +66,21 @@ pub fn write_worlds<'py>(
     mujoco_collider: &str,
     oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bad = |e: rse_world::Error| PyValueError::new_err(e.to_string());
     let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
     let options = BatchOptions {
         amount: amount.unwrap_or(scheme_batch.amount),
         seed: seed.unwrap_or(scheme_batch.seed),
-        world: WorldOptions {
-            targets: Targets::parse(targets).map_err(bad)?,
-            mesh: mesh.parse::<MeshMode>().map_err(bad)?,
-            difficulty: difficulty_arg(difficulty)?,
-            mujoco_collider: MujocoCollider::parse(mujoco_collider, oversample).map_err(bad)?,
-        },
+        world: world_options(py, targets, mesh, difficulty, mujoco_collider, oversample)?,
         jobs,
         shard: shard
             .map(str::parse::<Shard>)
             .transpose()
-            .map_err(bad)?
+            .map_err(|e| world_error(py, &e))?
             .unwrap_or_default(),
         force,
         ..scheme_batch
     };
-    let templates = match &template {
-        Some(dir) => Templates::with_overrides(dir).map_err(|e| world_error(py, &e))?,
-        None => Templates::builtin(),
-    };
+    let templates = templates(py, template.as_deref())?;
     let scheme = &scheme.inner;
     let summary = py
         .detach(|| rse_world::write_batch(scheme, &templates, &options, &|_| {}))
@@ -102,6 +91,91 @@ pub fn write_worlds<'py>(
     dict.set_item("replaced", summary.replaced)?;
     dict.set_item("bytes", summary.bytes)?;
     Ok(dict)
+}
+
+/// Writes `terrain` as the world folder `out` (named after it), as
+/// `rse-gen batch` writes each world: the same files, an `rse.json` that
+/// `rse.check` and `rse-gen check` verify, whole or not at all. An identical
+/// folder is left alone (`"skipped"`), a different one refused unless
+/// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
+#[pyfunction]
+#[pyo3(signature = (terrain, out, *, targets="gazebo", mesh="auto", template=None, force=false, mujoco_collider="boxes", oversample=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn write_world(
+    py: Python<'_>,
+    terrain: &Terrain,
+    out: std::path::PathBuf,
+    targets: &str,
+    mesh: &str,
+    template: Option<std::path::PathBuf>,
+    force: bool,
+    mujoco_collider: &str,
+    oversample: Option<u32>,
+) -> PyResult<&'static str> {
+    let Some(scheme) = &terrain.scheme else {
+        return Err(PyValueError::new_err(
+            "this terrain is an atlas's map: write it with Atlas.write",
+        ));
+    };
+    let t = &terrain.inner;
+    let options = world_options(
+        py,
+        targets,
+        mesh,
+        t.difficulty().get(),
+        mujoco_collider,
+        oversample,
+    )?;
+    let templates = templates(py, template.as_deref())?;
+    let outcome = py
+        .detach(|| {
+            rse_world::write_world_at(
+                scheme,
+                t.seed(),
+                t.index(),
+                &out,
+                &options,
+                &templates,
+                force,
+            )
+        })
+        .map_err(|e| world_error(py, &e))?;
+    Ok(outcome_name(outcome))
+}
+
+/// The world options of the keyword arguments every writer takes.
+pub fn world_options(
+    py: Python<'_>,
+    targets: &str,
+    mesh: &str,
+    difficulty: f64,
+    mujoco_collider: &str,
+    oversample: Option<u32>,
+) -> PyResult<WorldOptions> {
+    let bad = |e: rse_world::Error| world_error(py, &e);
+    Ok(WorldOptions {
+        targets: Targets::parse(targets).map_err(bad)?,
+        mesh: mesh.parse::<MeshMode>().map_err(bad)?,
+        difficulty: difficulty_arg(difficulty)?,
+        mujoco_collider: MujocoCollider::parse(mujoco_collider, oversample).map_err(bad)?,
+    })
+}
+
+/// Our templates, overlaid by the folder `template` when given.
+pub fn templates(py: Python<'_>, template: Option<&std::path::Path>) -> PyResult<Templates> {
+    match template {
+        Some(dir) => Templates::with_overrides(dir).map_err(|e| world_error(py, &e)),
+        None => Ok(Templates::builtin()),
+    }
+}
+
+/// What a writer returns for one world folder.
+pub fn outcome_name(outcome: Outcome) -> &'static str {
+    match outcome {
+        Outcome::Written(_) => "written",
+        Outcome::Skipped => "skipped",
+        Outcome::Replaced(_) => "replaced",
+    }
 }
 
 /// Seconds `scheme.generate(seed, i)` takes for `i` in `0..count`, timed

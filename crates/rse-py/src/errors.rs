@@ -1,7 +1,7 @@
 //! Rust errors as Python exceptions: `rse.SchemeError` (a `ValueError`
 //! carrying file, line, column and field) and `OSError`.
 
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyFileExistsError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
@@ -47,6 +47,9 @@ pub fn core_error(py: Python<'_>, e: &rse_core::Error) -> PyErr {
     match e {
         rse_core::Error::Scheme(e) => scheme_error(py, e),
         rse_core::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
+        rse_core::Error::PreviewTooLarge { .. } => {
+            PyValueError::new_err(format!("{e}: pass a smaller cell_pixels"))
+        }
         _ => PyValueError::new_err(error_chain(e)),
     }
 }
@@ -75,9 +78,13 @@ pub fn atlas_error(py: Python<'_>, e: &rse_core::AtlasError) -> PyErr {
     }
 }
 
-/// The Python exception for a world-writing error.
+/// The Python exception for a world-writing error, with the keyword that
+/// fixes it where there is one.
 pub fn world_error(py: Python<'_>, e: &rse_world::Error) -> PyErr {
     match e {
+        rse_world::Error::Conflict { .. } => {
+            PyFileExistsError::new_err(format!("{e}; pass force=True to replace it"))
+        }
         rse_world::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
         rse_world::Error::Core(e) => core_error(py, e),
         rse_world::Error::Atlas(e) => atlas_error(py, e),

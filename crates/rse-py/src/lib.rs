@@ -8,6 +8,7 @@
 
 use pyo3::prelude::*;
 
+mod args;
 mod atlas;
 mod batch;
 mod check;
@@ -26,6 +27,7 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<atlas::Atlas>()?;
     m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
     Ok(())

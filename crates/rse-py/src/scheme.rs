@@ -1,53 +1,17 @@
 //! `rse.Obstacle` and `rse.Scheme`: the obstacle table and global
 //! parameters, built from keyword arguments or read from CSV.
 
+use std::sync::Arc;
+
 use pyo3::IntoPyObjectExt as _;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::PyInt;
+use pyo3::types::{PyDict, PyTuple};
 use rse_core::{Globals, ObstacleFields, ObstacleKind, Pallets, Param};
 
+use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
 use crate::terrain::Terrain;
-
-/// A value or an inclusive `(lo, hi)` range drawn per world.
-#[derive(FromPyObject)]
-pub enum ParamArg<T> {
-    Range((T, T)),
-    Fixed(T),
-}
-
-impl<T> From<ParamArg<T>> for Param<T> {
-    fn from(arg: ParamArg<T>) -> Self {
-        match arg {
-            ParamArg::Fixed(v) => Param::Fixed(v),
-            ParamArg::Range((lo, hi)) => Param::Range(lo, hi),
-        }
-    }
-}
-
-/// A whole-number field (height, points) from Python ints of any size, so
-/// that a negative or huge value is a `SchemeError` naming the field rather
-/// than Python's `OverflowError`.
-fn whole<'py>(
-    py: Python<'py>,
-    field: &str,
-    arg: Option<ParamArg<Bound<'py, PyInt>>>,
-) -> PyResult<Option<Param<u32>>> {
-    let convert = |v: &Bound<'py, PyInt>| {
-        v.extract::<u32>().map_err(|_| {
-            scheme_error_at(
-                py,
-                field,
-                &format!("{v} is not a whole number from 0 to {}", u32::MAX),
-            )
-        })
-    };
-    Ok(match arg {
-        None => None,
-        Some(ParamArg::Fixed(v)) => Some(Param::Fixed(convert(&v)?)),
-        Some(ParamArg::Range((lo, hi))) => Some(Param::Range(convert(&lo)?, convert(&hi)?)),
-    })
-}
 
 /// Python's view of a parameter: an int/float or a `(lo, hi)` tuple.
 fn param_to_py<'py, T: IntoPyObject<'py> + Copy>(
@@ -68,33 +32,49 @@ pub struct Obstacle {
     pub inner: rse_core::Obstacle,
 }
 
+impl Obstacle {
+    /// The fields but `type`, by name, in the constructor's order.
+    fn keywords(&self, py: Python<'_>) -> PyResult<Vec<(&'static str, Py<PyAny>)>> {
+        let f = self.inner.fields();
+        Ok(vec![
+            ("height", param_to_py(py, f.height)?),
+            ("angle", param_to_py(py, f.angle)?),
+            ("x1", param_to_py(py, f.x1)?),
+            ("y1", param_to_py(py, f.y1)?),
+            ("x2", param_to_py(py, f.x2)?),
+            ("y2", param_to_py(py, f.y2)?),
+            ("sigma", param_to_py(py, f.sigma)?),
+        ])
+    }
+}
+
 #[pymethods]
 impl Obstacle {
     #[new]
     #[pyo3(signature = (r#type, height=None, angle=None, x1=None, y1=None, x2=None, y2=None, sigma=None))]
     #[allow(clippy::too_many_arguments)]
-    fn new<'py>(
-        py: Python<'py>,
+    fn new(
+        py: Python<'_>,
         r#type: &str,
-        height: Option<ParamArg<Bound<'py, PyInt>>>,
-        angle: Option<ParamArg<f64>>,
-        x1: Option<ParamArg<Bound<'py, PyInt>>>,
-        y1: Option<ParamArg<Bound<'py, PyInt>>>,
-        x2: Option<ParamArg<Bound<'py, PyInt>>>,
-        y2: Option<ParamArg<Bound<'py, PyInt>>>,
-        sigma: Option<ParamArg<f64>>,
+        height: Option<Bound<'_, PyAny>>,
+        angle: Option<Bound<'_, PyAny>>,
+        x1: Option<Bound<'_, PyAny>>,
+        y1: Option<Bound<'_, PyAny>>,
+        x2: Option<Bound<'_, PyAny>>,
+        y2: Option<Bound<'_, PyAny>>,
+        sigma: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let kind: ObstacleKind = r#type
             .parse()
             .map_err(|e| scheme_error_at(py, "type", &format!("{e}")))?;
         let fields = ObstacleFields {
-            height: whole(py, "height", height)?,
-            angle: angle.map(Into::into),
-            x1: whole(py, "x1", x1)?,
-            y1: whole(py, "y1", y1)?,
-            x2: whole(py, "x2", x2)?,
-            y2: whole(py, "y2", y2)?,
-            sigma: sigma.map(Into::into),
+            height: args::whole_param("height", height.as_ref())?,
+            angle: args::real_param("angle", angle.as_ref())?,
+            x1: args::whole_param("x1", x1.as_ref())?,
+            y1: args::whole_param("y1", y1.as_ref())?,
+            x2: args::whole_param("x2", x2.as_ref())?,
+            y2: args::whole_param("y2", y2.as_ref())?,
+            sigma: args::real_param("sigma", sigma.as_ref())?,
         };
         let inner = rse_core::Obstacle::new(kind, fields).map_err(|e| scheme_error(py, &e))?;
         Ok(Obstacle { inner })
@@ -141,62 +121,174 @@ impl Obstacle {
         param_to_py(py, self.inner.fields().sigma)
     }
 
-    fn __repr__(&self) -> String {
-        format!(
-            "rse.Obstacle({:?}, {:?})",
-            self.inner.kind().name(),
-            self.inner.fields()
-        )
+    /// `rse.Obstacle('wall', height=3, ...)`: the call that makes it.
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let mut parts = vec![self.r#type().into_pyobject(py)?.repr()?.to_string()];
+        for (name, value) in self.keywords(py)? {
+            if !value.is_none(py) {
+                parts.push(format!("{name}={}", value.bind(py).repr()?));
+            }
+        }
+        Ok(format!("rse.Obstacle({})", parts.join(", ")))
+    }
+
+    /// For pickle and `copy`: the constructor and its arguments.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let mut args = vec![self.r#type().into_py_any(py)?];
+        args.extend(self.keywords(py)?.into_iter().map(|(_, v)| v));
+        Ok((
+            py.get_type::<Obstacle>().into_any(),
+            PyTuple::new(py, args)?,
+        ))
     }
 }
 
 /// A scheme: global parameters and an ordered obstacle table (SPEC §2–5).
 #[pyclass(module = "rse", frozen)]
 pub struct Scheme {
-    pub inner: rse_core::Scheme,
+    pub inner: Arc<rse_core::Scheme>,
 }
 
 #[pymethods]
 impl Scheme {
     #[new]
-    #[pyo3(signature = (obstacles=Vec::new(), *, size=(10, 10), pallets=None, pallet_size=None, pallet_boundary=true, block_size=0.1, step_height=0.1, base=0.0, amount=1, seed=0))]
+    #[pyo3(signature = (obstacles=Vec::new(), *, size=None, pallets=None, pallet_size=None, pallet_boundary=None, block_size=None, step_height=None, base=None, amount=None, seed=None),
+           text_signature = "(obstacles=[], *, size=(10, 10), pallets=None, pallet_size=None, pallet_boundary=None, block_size=0.1, step_height=0.1, base=0.0, amount=1, seed=0)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         obstacles: Vec<Bound<'_, Obstacle>>,
-        size: (u32, u32),
-        pallets: Option<(u32, u32)>,
-        pallet_size: Option<u32>,
-        pallet_boundary: bool,
-        block_size: f64,
-        step_height: f64,
-        base: f64,
-        amount: u64,
-        seed: u64,
+        size: Option<Bound<'_, PyAny>>,
+        pallets: Option<Bound<'_, PyAny>>,
+        pallet_size: Option<Bound<'_, PyAny>>,
+        pallet_boundary: Option<bool>,
+        block_size: Option<Bound<'_, PyAny>>,
+        step_height: Option<Bound<'_, PyAny>>,
+        base: Option<Bound<'_, PyAny>>,
+        amount: Option<Bound<'_, PyAny>>,
+        seed: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        let defaults = Globals::default();
+        let real = |field, v: Option<Bound<'_, PyAny>>, default| {
+            v.map_or(Ok(default), |v| args::number(field, &v))
+        };
+        let pallets = if let Some(count) = &pallets {
+            Some(Pallets {
+                size: pallet_size
+                    .as_ref()
+                    .map_or(Ok(rse_core::DEFAULT_PALLET_SIZE), |s| {
+                        args::whole("pallet_size", s)
+                    })?,
+                count: args::whole_pair("pallets", count)?.into(),
+                boundary: pallet_boundary.unwrap_or(true),
+            })
+        } else {
+            // As in a scheme file: pallet settings without pallets are a mistake.
+            let set = [
+                ("pallet_size", pallet_size.is_some()),
+                ("pallet_boundary", pallet_boundary.is_some()),
+            ];
+            if let Some((field, _)) = set.into_iter().find(|(_, is_set)| *is_set) {
+                return Err(scheme_error_at(
+                    py,
+                    field,
+                    "is set but pallets are off; pass pallets too, e.g. pallets=(2, 3)",
+                ));
+            }
+            None
+        };
         let globals = Globals {
-            size: [size.0, size.1],
-            pallets: pallets.map(|(px, py)| Pallets {
-                size: pallet_size.unwrap_or(rse_core::DEFAULT_PALLET_SIZE),
-                count: [px, py],
-                boundary: pallet_boundary,
-            }),
-            block_size,
-            step_height,
-            base,
-            amount,
-            seed,
+            size: size
+                .as_ref()
+                .map_or(Ok(defaults.size.into()), |s| args::whole_pair("size", s))?
+                .into(),
+            pallets,
+            block_size: real("block_size", block_size, defaults.block_size)?,
+            step_height: real("step_height", step_height, defaults.step_height)?,
+            base: real("base", base, defaults.base)?,
+            amount: amount
+                .as_ref()
+                .map_or(Ok(defaults.amount), |a| args::whole("amount", a))?,
+            seed: seed
+                .as_ref()
+                .map_or(Ok(defaults.seed), |s| args::whole("seed", s))?,
         };
         let table = obstacles.iter().map(|o| o.get().inner.clone()).collect();
         let inner = rse_core::Scheme::new(globals, table).map_err(|e| scheme_error(py, &e))?;
-        Ok(Scheme { inner })
+        Ok(Scheme {
+            inner: Arc::new(inner),
+        })
+    }
+
+    /// A copy with some fields changed, for curricula:
+    /// `scheme.replace(size=(20, 20), step_height=0.05)`. Takes the
+    /// constructor's keywords (`obstacles` too); validated as a new scheme.
+    /// `pallets=None` turns pallets off with their size and boundary.
+    #[pyo3(signature = (**fields))]
+    fn replace<'py>(
+        &self,
+        py: Python<'py>,
+        fields: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let current = self.fields(py)?;
+        if let Some(fields) = fields {
+            for key in fields.keys() {
+                if !current.contains(&key)? {
+                    let names: Vec<String> = current.keys().iter().map(|k| k.to_string()).collect();
+                    return Err(PyTypeError::new_err(format!(
+                        "replace() got an unexpected keyword argument {}: the fields are {}",
+                        key.repr()?,
+                        names.join(", ")
+                    )));
+                }
+            }
+            let pallets_off = fields.get_item("pallets")?.is_some_and(|p| p.is_none());
+            for key in ["pallet_size", "pallet_boundary"] {
+                if pallets_off && !fields.contains(key)? {
+                    current.del_item(key)?;
+                }
+            }
+            current.update(fields.as_mapping())?;
+        }
+        let obstacles = current
+            .get_item("obstacles")?
+            .expect("fields has obstacles");
+        current.del_item("obstacles")?;
+        for key in ["pallets", "pallet_size", "pallet_boundary"] {
+            if current.get_item(key)?.is_some_and(|v| v.is_none()) {
+                current.del_item(key)?;
+            }
+        }
+        py.get_type::<Scheme>().call((obstacles,), Some(&current))
+    }
+
+    /// The constructor's keywords with this scheme's values.
+    fn fields<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let g = self.inner.globals();
+        let dict = PyDict::new(py);
+        dict.set_item("obstacles", self.obstacles())?;
+        dict.set_item("size", (g.size[0], g.size[1]))?;
+        dict.set_item("pallets", g.pallets.map(|p| (p.count[0], p.count[1])))?;
+        dict.set_item("pallet_size", g.pallets.map(|p| p.size))?;
+        dict.set_item("pallet_boundary", g.pallets.map(|p| p.boundary))?;
+        dict.set_item("block_size", g.block_size)?;
+        dict.set_item("step_height", g.step_height)?;
+        dict.set_item("base", g.base)?;
+        dict.set_item("amount", g.amount)?;
+        dict.set_item("seed", g.seed)?;
+        Ok(dict)
     }
 
     /// Reads a scheme CSV file.
     #[staticmethod]
     fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         let inner = rse_core::Scheme::load(&path).map_err(|e| core_error(py, &e))?;
-        Ok(Scheme { inner })
+        Ok(Scheme {
+            inner: Arc::new(inner),
+        })
     }
 
     /// Parses scheme CSV text.
@@ -204,7 +296,9 @@ impl Scheme {
     #[pyo3(signature = (text, file=None))]
     fn from_csv(py: Python<'_>, text: &str, file: Option<&str>) -> PyResult<Self> {
         let inner = rse_core::Scheme::from_csv(text, file).map_err(|e| scheme_error(py, &e))?;
-        Ok(Scheme { inner })
+        Ok(Scheme {
+            inner: Arc::new(inner),
+        })
     }
 
     /// The canonical CSV text.
@@ -269,21 +363,45 @@ impl Scheme {
         let difficulty = difficulty_arg(difficulty)?;
         let scheme = &self.inner;
         let seed = seed.unwrap_or(scheme.globals().seed);
-        Ok(Terrain {
-            inner: py.detach(|| rse_core::generate_at(scheme, seed, index, difficulty)),
-        })
+        Ok(py.detach(|| Terrain::generate(scheme, seed, index, difficulty)))
     }
 
     fn __eq__(&self, other: &Scheme) -> bool {
         self.inner.to_csv() == other.inner.to_csv()
     }
 
-    fn __repr__(&self) -> String {
-        let (nx, ny) = self.grid();
-        format!(
-            "<rse.Scheme {nx}x{ny}, {} obstacles>",
-            self.inner.obstacles().len()
-        )
+    /// `rse.Scheme([...], size=(10, 10), ...)`: the call that makes it
+    /// (notes aside), fields at their defaults left out.
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let defaults = Scheme {
+            inner: Arc::new(
+                rse_core::Scheme::new(Globals::default(), Vec::new())
+                    .expect("the default scheme is valid"),
+            ),
+        }
+        .fields(py)?;
+        let mut parts = vec![
+            self.fields(py)?
+                .get_item("obstacles")?
+                .expect("obstacles")
+                .repr()?
+                .to_string(),
+        ];
+        for (key, value) in self.fields(py)?.iter().skip(1) {
+            let default = defaults.get_item(&key)?.expect("same keys");
+            if !value.eq(default)? {
+                parts.push(format!("{key}={}", value.repr()?));
+            }
+        }
+        Ok(format!("rse.Scheme({})", parts.join(", ")))
+    }
+
+    /// For pickle and `copy`: the canonical CSV (notes included), which
+    /// reads back to an equal scheme.
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let from_csv = py.get_type::<Scheme>().getattr("from_csv")?;
+        let args = (self.inner.to_csv(), self.inner.file().map(str::to_owned));
+        (from_csv, args).into_py_any(py)
     }
 }
 

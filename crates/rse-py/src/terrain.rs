@@ -3,16 +3,46 @@
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::IntoPyObjectExt as _;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::PyBytes;
+use std::sync::Arc;
 
-use crate::errors::world_error;
+use crate::errors::{core_error, world_error};
 
 /// One generated RSE.
 #[pyclass(module = "rse", frozen)]
 pub struct Terrain {
     pub inner: rse_core::Terrain,
+    /// The scheme it was generated from (none for an atlas's map): what
+    /// `rse.write_world` builds its world folder from.
+    pub scheme: Option<Arc<rse_core::Scheme>>,
+}
+
+impl Terrain {
+    /// World `index` of `seed` at `difficulty`, keeping its scheme.
+    pub fn generate(
+        scheme: &Arc<rse_core::Scheme>,
+        seed: u64,
+        index: u64,
+        difficulty: rse_core::Difficulty,
+    ) -> Terrain {
+        Terrain {
+            inner: rse_core::generate_at(scheme, seed, index, difficulty),
+            scheme: Some(Arc::clone(scheme)),
+        }
+    }
+
+    /// The heights as numpy `(ny, nx)` of `T`, the layout of `heights`.
+    fn grid_array<T: numpy::Element>(&self, value: impl Fn(u32, u32) -> T) -> Array2<T> {
+        let grid = self.inner.grid();
+        let values = (0..grid.ny)
+            .flat_map(|y| (0..grid.nx).map(move |x| (x, y)))
+            .map(|(x, y)| value(x, y))
+            .collect();
+        Array2::from_shape_vec((grid.ny as usize, grid.nx as usize), values).expect("ny × nx cells")
+    }
 }
 
 /// What `Terrain.hfield` returns: samples, MuJoCo's `size`, the geom's `pos`.
@@ -42,26 +72,99 @@ fn rows<T: numpy::Element, const N: usize>(
 
 #[pymethods]
 impl Terrain {
+    /// For pickle only: make terrains with `Scheme.generate`. `state` is
+    /// the terrain's JSON, `cells` its heights (little-endian uint16, row by
+    /// row), `scheme` the scheme's CSV.
+    #[new]
+    #[pyo3(signature = (state, cells, scheme=None))]
+    fn restore(state: &str, cells: &[u8], scheme: Option<&str>) -> PyResult<Self> {
+        let not_ours = || {
+            PyValueError::new_err(
+                "not the state of a pickled rse.Terrain: make terrains with Scheme.generate",
+            )
+        };
+        let cells = cells
+            .chunks_exact(2)
+            .map(|b| u16::from_le_bytes([b[0], b[1]]))
+            .collect();
+        let inner = rse_core::Terrain::from_parts(state, cells).ok_or_else(not_ours)?;
+        let scheme = scheme
+            .map(|csv| rse_core::Scheme::from_csv(csv, None).map_err(|_| not_ours()))
+            .transpose()?
+            .map(Arc::new);
+        Ok(Terrain { inner, scheme })
+    }
+
+    /// For pickle and `copy`: the constructor and the terrain's state.
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let cells: Vec<u8> = self
+            .inner
+            .heightmap()
+            .cells()
+            .iter()
+            .flat_map(|h| h.to_le_bytes())
+            .collect();
+        let state = (
+            self.inner.to_json(),
+            PyBytes::new(py, &cells),
+            self.scheme.as_ref().map(|s| s.to_csv()),
+        );
+        (py.get_type::<Terrain>(), state).into_py_any(py)
+    }
+
     /// Heights in steps, shape `(ny, nx)`, `heights[y, x]`; read-only.
     #[getter]
     fn heights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u16>>> {
         let map = self.inner.heightmap();
-        let shape = (map.ny() as usize, map.nx() as usize);
-        let array = Array2::from_shape_vec(shape, map.cells().to_vec()).expect("ny × nx cells");
-        read_only(array.into_pyarray(py))
+        read_only(self.grid_array(|x, y| map.get(x, y)).into_pyarray(py))
     }
 
     /// Top of every cell in metres (`base + h·step`), shape `(ny, nx)`; read-only.
     #[getter]
     fn elevation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let grid = self.inner.grid();
-        let values = (0..grid.ny)
-            .flat_map(|y| (0..grid.nx).map(move |x| (x, y)))
-            .map(|(x, y)| self.inner.elevation(x, y))
+        read_only(
+            self.grid_array(|x, y| self.inner.elevation(x, y))
+                .into_pyarray(py),
+        )
+    }
+
+    /// The top under points `(x, y)` in metres, in the terrain's frame
+    /// (cell `(i, j)` covers `[i·s, (i+1)·s] × [j·s, (j+1)·s]`): a float
+    /// for numbers, an array of their broadcast shape for arrays. On an
+    /// edge shared by cells, the highest of them; off the terrain,
+    /// `outside` (default 0.0: the ground every world has; pass `nan` to
+    /// spot such points).
+    #[pyo3(signature = (x, y, *, outside=0.0))]
+    fn height_at<'py>(
+        &self,
+        py: Python<'py>,
+        x: Bound<'py, PyAny>,
+        y: Bound<'py, PyAny>,
+        outside: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let np = py.import("numpy")?;
+        let as_array = |v: Bound<'py, PyAny>| np.call_method1("asarray", (v, "float64"));
+        let both = np.call_method1("broadcast_arrays", (as_array(x)?, as_array(y)?))?;
+        let (xs, ys): (Bound<'py, PyAny>, Bound<'py, PyAny>) = both.extract()?;
+        let shape = xs.getattr("shape")?;
+        let flat = |a: &Bound<'py, PyAny>| -> PyResult<Vec<f64>> {
+            np.call_method1("ravel", (a,))?
+                .call_method0("tolist")?
+                .extract()
+        };
+        let (xs, ys) = (flat(&xs)?, flat(&ys)?);
+        let tops: Vec<f64> = xs
+            .iter()
+            .zip(&ys)
+            .map(|(&x, &y)| self.inner.height_at(x, y).unwrap_or(outside))
             .collect();
-        let array = Array2::from_shape_vec((grid.ny as usize, grid.nx as usize), values)
-            .expect("ny × nx cells");
-        read_only(array.into_pyarray(py))
+        let tops = np
+            .call_method1("asarray", (tops, "float64"))?
+            .call_method1("reshape", (&shape,))?;
+        if shape.len()? == 0 {
+            return tops.call_method0("item");
+        }
+        Ok(tops)
     }
 
     #[getter]
@@ -203,32 +306,13 @@ impl Terrain {
             .map_err(hfield_error)
     }
 
-    /// The obstacles as drawn for this world: one dict each (`type`,
-    /// `height`, and `angle`, `p1`, `p2`, `sigma` where they apply).
+    /// The obstacles as drawn for this world, one dict each, with the
+    /// keys of `drawn` in `rse.json`: `kind`, `height`, and `angle`, `p1`,
+    /// `p2`, `sigma` where they apply.
     #[getter]
-    fn drawn<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        self.inner
-            .drawn()
-            .iter()
-            .map(|d| {
-                let dict = PyDict::new(py);
-                dict.set_item("type", d.kind.name())?;
-                dict.set_item("height", d.height)?;
-                if let Some(angle) = d.angle {
-                    dict.set_item("angle", angle)?;
-                }
-                if let Some([x, y]) = d.p1 {
-                    dict.set_item("p1", (x, y))?;
-                }
-                if let Some([x, y]) = d.p2 {
-                    dict.set_item("p2", (x, y))?;
-                }
-                if let Some(sigma) = d.sigma {
-                    dict.set_item("sigma", sigma)?;
-                }
-                Ok(dict)
-            })
-            .collect()
+    fn drawn<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let json = serde_json::to_string(self.inner.drawn()).expect("drawn obstacles serialise");
+        py.import("json")?.call_method1("loads", (json,))
     }
 
     /// The closed terrain mesh (SPEC §6): `(vertices, faces)`, float32
@@ -260,16 +344,73 @@ impl Terrain {
     }
 
     /// An MJCF model of the terrain (floor, light, the boxes as static
-    /// geoms) for `mujoco.MjModel.from_xml_string`.
-    fn mjcf(&self, py: Python<'_>) -> PyResult<String> {
-        rse_world::mjcf(&self.inner).map_err(|e| world_error(py, &e))
+    /// geoms) for `mujoco.MjModel.from_xml_string`. To fit it into a
+    /// robot's model: `fragment=True` leaves out the globals (compiler,
+    /// options, visual, light, floor: the robot's model has its own),
+    /// `prefix` goes before every name, `offset` moves the terrain (metres),
+    /// `friction` sets the geoms' (one number: sliding; three: MuJoCo's
+    /// sliding, torsional, rolling). Attach it with `mujoco.MjSpec`:
+    /// `robot.attach(mujoco.MjSpec.from_string(terrain.mjcf(fragment=True)),
+    /// prefix="terrain/", frame=robot.worldbody.add_frame())`.
+    #[pyo3(signature = (*, fragment=false, prefix="", offset=(0.0, 0.0, 0.0), friction=None),
+           text_signature = "($self, *, fragment=False, prefix='', offset=(0.0, 0.0, 0.0), friction=None)")]
+    fn mjcf<'py>(
+        &self,
+        py: Python<'py>,
+        fragment: bool,
+        prefix: &str,
+        offset: (f64, f64, f64),
+        friction: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let xml = rse_world::mjcf(&self.inner).map_err(|e| world_error(py, &e))?;
+        py.import("rse._mjcf")?
+            .getattr("adapt")?
+            .call1((xml, fragment, prefix, offset, friction))
     }
 
-    /// Writes the mesh as OBJ (with its `.mtl` beside it), STL or GLB, by
-    /// the path's suffix.
+    /// The preview as PNG bytes (the world folder's `preview.png`):
+    /// `cell_pixels` pixels per cell, by default as many as keep the image
+    /// near 512 pixels wide.
+    #[pyo3(signature = (cell_pixels=None))]
+    fn preview<'py>(
+        &self,
+        py: Python<'py>,
+        cell_pixels: Option<u32>,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let grid = self.inner.grid();
+        let cell_pixels =
+            cell_pixels.unwrap_or_else(|| rse_core::preview::auto_cell_pixels(grid.nx, grid.ny));
+        let png = rse_core::preview::check_size(grid.nx, grid.ny, cell_pixels)
+            .and_then(|()| {
+                rse_core::preview::encode_png(&rse_core::preview::render(&self.inner, cell_pixels))
+            })
+            .map_err(|e| core_error(py, &e))?;
+        Ok(PyBytes::new(py, &png))
+    }
+
+    /// The heightmap as CSV text (the world folder's `heightmap.csv`, what
+    /// `rse-gen heightmap` prints): one row per y from 0, heights in steps.
+    fn heightmap_csv(&self) -> String {
+        self.inner.heightmap().to_csv()
+    }
+
+    /// Writes the terrain to `path`, by its suffix: the mesh as OBJ (with
+    /// its `.mtl` beside it), STL or GLB; the preview as PNG; the
+    /// heightmap as CSV.
     fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
-        let mesh = self.inner.mesh();
-        rse_world::write_mesh(&mesh, &path).map_err(|e| world_error(py, &e))
+        let suffix = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let text = match suffix.as_deref() {
+            Some("png") => Some(self.preview(py, None)?.as_bytes().to_vec()),
+            Some("csv") => Some(self.heightmap_csv().into_bytes()),
+            _ => None,
+        };
+        match text {
+            Some(bytes) => rse_world::write_atomically(&path, &bytes),
+            None => rse_world::write_mesh(&self.inner.mesh(), &path),
+        }
+        .map_err(|e| world_error(py, &e))
     }
 
     fn __repr__(&self) -> String {

@@ -3,15 +3,16 @@
 //! and, in `rse.json`, everything needed to build it again.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rse_core::{Atlas, AtlasError, AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
 use serde::{Deserialize, Serialize};
 
-use crate::batch::{Outcome, check_memory_for, lock_in, place_world};
+use crate::batch::{Outcome, check_memory_for};
 use crate::context::tidy;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest, sha256_hex};
+use crate::single::place_folder;
 use crate::templates::Templates;
 use crate::world::{WorldFiles, WorldOptions, terrain_files};
 
@@ -285,55 +286,12 @@ pub fn write_atlas(
     templates: &Templates,
     force: bool,
 ) -> Result<(Outcome, Atlas), Error> {
-    let name = out
-        .file_name()
-        .and_then(|n| n.to_str())
-        .filter(|n| !n.starts_with('.'))
-        .ok_or_else(|| Error::BadOption {
-            option: "out",
-            message: format!(
-                "{}: an atlas folder needs a UTF-8 name that does not start with '.'",
-                out.display()
-            ),
-        })?
-        .to_owned();
     if let Some(first) = schemes.first() {
         let grid = first.scheme.grid();
         let [nx, ny] = atlas_options.map_cells([grid.nx, grid.ny]);
         check_memory_for(nx.saturating_mul(ny), 1)?;
     }
-    let (world, atlas) = build_atlas_world(schemes, atlas_options, name, options, templates)?;
-    let parent = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
-        _ => PathBuf::from("."),
-    };
-    std::fs::create_dir_all(&parent).map_err(Error::io("create", &parent))?;
-    // Held until the folder is in place: a second run on the same folder
-    // waits for nothing and cleans up nothing of ours.
-    let _lock = lock_in(&parent, &format!("world {}", world.name), || {
-        Error::BusyWorld {
-            path: out.to_path_buf(),
-        }
-    })?;
-    remove_leftovers_of(&parent, &world.name)?;
-    let outcome = place_world(&parent, &world, force)?;
-    Ok((outcome, atlas))
-}
-
-/// Removes `.NAME.tmp-PID` and `.NAME.old-PID` in `parent`: what a run on
-/// the world `name` killed before its rename leaves behind.
-fn remove_leftovers_of(parent: &Path, name: &str) -> Result<(), Error> {
-    let prefix = format!(".{name}.");
-    for entry in std::fs::read_dir(parent).map_err(Error::io("read", parent))? {
-        let entry = entry.map_err(Error::io("read", parent))?;
-        let file_name = entry.file_name();
-        let Some(rest) = file_name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
-            continue;
-        };
-        if rest.starts_with("tmp-") || rest.starts_with("old-") {
-            let path = entry.path();
-            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
-        }
-    }
-    Ok(())
+    place_folder(out, force, |name| {
+        build_atlas_world(schemes, atlas_options, name, options, templates)
+    })
 }

@@ -269,7 +269,7 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
     let at_once = threads.min(options.shard.worlds(options.amount)).max(1);
     check_memory_for(scheme.grid().cells() as u64, at_once).map_err(|e| match e {
         Error::TooBig { message } => Error::TooBig {
-            message: format!("{message}; use fewer --jobs or a smaller grid"),
+            message: format!("{message}; use fewer worker threads (jobs) or a smaller grid"),
         },
         other => other,
     })

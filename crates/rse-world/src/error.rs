@@ -69,7 +69,7 @@ pub enum Error {
         source: std::io::Error,
     },
     /// A world folder already holds something else.
-    #[error("{} holds a different world ({reason}); rerun with --force to replace it", path.display())]
+    #[error("{} holds a different world: {reason}", path.display())]
     Conflict {
         /// The world folder.
         path: PathBuf,

@@ -18,6 +18,7 @@ mod error;
 mod files;
 mod manifest;
 mod memory;
+mod single;
 mod target;
 mod templates;
 mod tree;
@@ -34,6 +35,7 @@ pub use batch::{
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};
 pub use manifest::{MANIFEST, Manifest, sha256_hex};
+pub use single::{place_folder, write_world_at};
 pub use target::{Collider, MeshMode, MujocoCollider, Target, Targets};
 pub use templates::Templates;
 pub use tree::list_files;

@@ -17,6 +17,7 @@ from rse._rse import (
     Terrain,
     __version__,
     generate_batch,
+    write_world,
     write_worlds,
 )
 from rse._check import CheckReport, Fault, WorldReport, check
@@ -33,5 +34,6 @@ __all__ = [
     "__version__",
     "check",
     "generate_batch",
+    "write_world",
     "write_worlds",
 ]

@@ -14,6 +14,7 @@ __all__ = [
     "Terrain",
     "Atlas",
     "generate_batch",
+    "write_world",
     "write_worlds",
     "_time_generate",
     "_check_json",
@@ -21,9 +22,14 @@ __all__ = [
 
 __version__: str
 
-# A value, or an inclusive (lo, hi) range drawn per world.
-_IntParam = Union[int, tuple[int, int]]
-_FloatParam = Union[float, tuple[float, float]]
+# A value, or an inclusive (lo, hi) range drawn per world; numpy scalars
+# and length-2 arrays are taken too.
+_Int = Union[int, np.integer]
+_Float = Union[float, int, np.floating, np.integer]
+_IntParam = Union[_Int, tuple[_Int, _Int], list[_Int], npt.NDArray[np.integer]]
+_FloatParam = Union[_Float, tuple[_Float, _Float], list[_Float], npt.NDArray[np.number]]
+_Pair = Union[tuple[_Int, _Int], list[_Int], npt.NDArray[np.integer]]
+_Coords = Union[float, npt.ArrayLike]
 
 class SchemeError(ValueError):
     file: Optional[str]
@@ -60,23 +66,27 @@ class Obstacle:
     def y2(self) -> Optional[_IntParam]: ...
     @property
     def sigma(self) -> Optional[_FloatParam]: ...
+    def __reduce__(self) -> tuple[object, tuple[object, ...]]: ...
 
 @final
 class Scheme:
     def __new__(
         cls,
-        obstacles: list[Obstacle] = ...,
+        obstacles: list[Obstacle] = [],
         *,
-        size: tuple[int, int] = ...,
-        pallets: Optional[tuple[int, int]] = None,
-        pallet_size: Optional[int] = None,
-        pallet_boundary: bool = True,
-        block_size: float = 0.1,
-        step_height: float = 0.1,
-        base: float = 0.0,
-        amount: int = 1,
-        seed: int = 0,
+        size: _Pair = (10, 10),
+        pallets: Optional[_Pair] = None,
+        pallet_size: Optional[_Int] = None,
+        pallet_boundary: Optional[bool] = None,
+        block_size: _Float = 0.1,
+        step_height: _Float = 0.1,
+        base: _Float = 0.0,
+        amount: _Int = 1,
+        seed: _Int = 0,
     ) -> Scheme: ...
+    def replace(self, **fields: object) -> Scheme: ...
+    def fields(self) -> dict[str, object]: ...
+    def __reduce__(self) -> tuple[object, tuple[str, Optional[str]]]: ...
     @staticmethod
     def load(path: Union[str, os.PathLike[str]]) -> Scheme: ...
     @staticmethod
@@ -100,6 +110,11 @@ class Scheme:
 
 @final
 class Terrain:
+    def __new__(cls, state: str, cells: bytes, scheme: Optional[str] = None) -> Terrain: ...
+    def __reduce__(self) -> tuple[object, tuple[str, bytes, Optional[str]]]: ...
+    def height_at(self, x: _Coords, y: _Coords, *, outside: float = 0.0) -> Union[float, npt.NDArray[np.float64]]: ...
+    def preview(self, cell_pixels: Optional[int] = None) -> bytes: ...
+    def heightmap_csv(self) -> str: ...
     @property
     def heights(self) -> npt.NDArray[np.uint16]: ...
     @property
@@ -129,7 +144,14 @@ class Terrain:
     def flat_patches(self, n: int, radius: float = 0.3, max_step: int = 0) -> npt.NDArray[np.float64]: ...
     def mesh(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]: ...
     def boxes(self) -> npt.NDArray[np.float64]: ...
-    def mjcf(self) -> str: ...
+    def mjcf(
+        self,
+        *,
+        fragment: bool = False,
+        prefix: str = "",
+        offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        friction: Optional[Union[float, tuple[float, ...], list[float]]] = None,
+    ) -> str: ...
     def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
 
 @final
@@ -191,5 +213,16 @@ def write_worlds(
     mujoco_collider: str = "boxes",
     oversample: Optional[int] = None,
 ) -> dict[str, int]: ...
+def write_world(
+    terrain: Terrain,
+    out: Union[str, os.PathLike[str]],
+    *,
+    targets: str = "gazebo",
+    mesh: str = "auto",
+    template: Optional[Union[str, os.PathLike[str]]] = None,
+    force: bool = False,
+    mujoco_collider: str = "boxes",
+    oversample: Optional[int] = None,
+) -> str: ...
 def _time_generate(scheme: Scheme, count: int, seed: int = 0) -> float: ...
 def _check_json(paths: list[Union[str, os.PathLike[str]]], physics: bool = False, jobs: Optional[int] = None) -> str: ...

@@ -1,0 +1,91 @@
+//! One world folder at a path the user names (an atlas, a terrain written
+//! from Python), placed as a batch places its worlds: built in a hidden
+//! folder beside it, renamed into place, never half-written.
+
+use std::path::{Path, PathBuf};
+
+use rse_core::Scheme;
+
+use crate::batch::{Outcome, check_memory_for, lock_in, place_world};
+use crate::error::Error;
+use crate::templates::Templates;
+use crate::world::{WorldFiles, WorldOptions, build_world};
+
+/// Writes the world `build` makes (given the folder's name) at `out`: the
+/// same world already there is left alone, a different one is replaced
+/// only with `force`. Returns the outcome and what `build` returned beside
+/// the files.
+pub fn place_folder<T>(
+    out: &Path,
+    force: bool,
+    build: impl FnOnce(String) -> Result<(WorldFiles, T), Error>,
+) -> Result<(Outcome, T), Error> {
+    let name = out
+        .file_name()
+        .and_then(|n| n.to_str())
+        .filter(|n| !n.starts_with('.'))
+        .ok_or_else(|| Error::BadOption {
+            option: "out",
+            message: format!(
+                "{}: a world folder needs a UTF-8 name that does not start with '.'",
+                out.display()
+            ),
+        })?
+        .to_owned();
+    let (world, built) = build(name)?;
+    let parent = match out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent).map_err(Error::io("create", &parent))?;
+    // Held until the folder is in place: a second run on the same folder
+    // waits for nothing and cleans up nothing of ours.
+    let _lock = lock_in(&parent, &format!("world {}", world.name), || {
+        Error::BusyWorld {
+            path: out.to_path_buf(),
+        }
+    })?;
+    remove_leftovers_of(&parent, &world.name)?;
+    Ok((place_world(&parent, &world, force)?, built))
+}
+
+/// Writes world `index` of seed `seed` as the folder `out` (its name is
+/// the world's), with `rse.json` as a batch writes it: `rse-gen check`
+/// verifies it like any batch world.
+pub fn write_world_at(
+    scheme: &Scheme,
+    seed: u64,
+    index: u64,
+    out: &Path,
+    options: &WorldOptions,
+    templates: &Templates,
+    force: bool,
+) -> Result<Outcome, Error> {
+    let grid = scheme.grid();
+    check_memory_for(grid.cells() as u64, 1)?;
+    let (outcome, ()) = place_folder(out, force, |name| {
+        Ok((
+            build_world(scheme, seed, index, name, options, templates)?,
+            (),
+        ))
+    })?;
+    Ok(outcome)
+}
+
+/// Removes `.NAME.tmp-PID` and `.NAME.old-PID` in `parent`: what a run on
+/// the world `name` killed before its rename leaves behind.
+fn remove_leftovers_of(parent: &Path, name: &str) -> Result<(), Error> {
+    let prefix = format!(".{name}.");
+    for entry in std::fs::read_dir(parent).map_err(Error::io("read", parent))? {
+        let entry = entry.map_err(Error::io("read", parent))?;
+        let file_name = entry.file_name();
+        let Some(rest) = file_name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
+            continue;
+        };
+        if rest.starts_with("tmp-") || rest.starts_with("old-") {
+            let path = entry.path();
+            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
+        }
+    }
+    Ok(())
+}
