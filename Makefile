@@ -7,7 +7,7 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test lint bench bench-robots demo build fuzz test-frameworks
+.PHONY: test lint bench bench-robots demo build fuzz test-frameworks wheel
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
@@ -49,6 +49,12 @@ bench-robots:
 
 build:
 	cargo build --release --locked -p rse-cli
+
+## The Python wheel (distribution rse-gen, import rse, the rse-gen command inside) into dist/: one abi3 wheel for Python 3.9+.
+wheel:
+	[ -x target/wheel-venv/bin/pip ] || python3 -m venv target/wheel-venv
+	target/wheel-venv/bin/pip wheel --quiet --disable-pip-version-check --no-deps -w dist ./crates/rse-py
+	@ls dist/rse_gen-*.whl
 
 ## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ for TARGETS (rse-gen batch; a rerun resumes).
 demo: build

@@ -60,6 +60,11 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
 say "the Python package (pip install ./crates/rse-py: maturin, release build)"
+# The distribution was named `rse` before it became `rse-gen`: an old venv's
+# copy would share the `rse/` folder with the new one.
+if .venv/bin/python -m pip show --quiet rse >/dev/null 2>&1; then
+    .venv/bin/python -m pip uninstall --quiet --yes rse
+fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
 cargo build --release --locked --quiet -p rse-cli  # the editor tests time the optimised binary
 RSE_GEN="$PWD/target/debug/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \

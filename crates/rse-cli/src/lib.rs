@@ -35,21 +35,29 @@ pub enum ExitStatus {
     Interrupted,
 }
 
-impl From<ExitStatus> for ExitCode {
-    fn from(status: ExitStatus) -> Self {
-        match status {
-            ExitStatus::Success => ExitCode::SUCCESS,
-            ExitStatus::Failure => ExitCode::from(1),
-            ExitStatus::Error => ExitCode::from(2),
-            ExitStatus::Interrupted => ExitCode::from(130),
+impl ExitStatus {
+    /// The process exit status.
+    pub fn code(self) -> u8 {
+        match self {
+            ExitStatus::Success => 0,
+            ExitStatus::Failure => 1,
+            ExitStatus::Error => 2,
+            ExitStatus::Interrupted => 130,
         }
     }
 }
 
+impl From<ExitStatus> for ExitCode {
+    fn from(status: ExitStatus) -> Self {
+        ExitCode::from(status.code())
+    }
+}
+
 /// The whole `rse-gen` program on `args` (the program's name first): parse,
-/// run, and print an error as `rse-gen: …` with what to do about it. The
-/// binary and the Python wheel's `rse-gen` command both run this.
-pub fn main_with<I, T>(args: I) -> ExitCode
+/// run, and print an error as `rse-gen: …` with what to do about it;
+/// returns the exit status. The binary and the Python wheel's `rse-gen`
+/// command both run this.
+pub fn main_with<I, T>(args: I) -> u8
 where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
@@ -60,15 +68,15 @@ where
             // Help and version go to stdout with status 0, usage errors
             // to stderr with status 2, as clap's own `parse` does.
             let _ = e.print();
-            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2));
+            return u8::try_from(e.exit_code()).unwrap_or(2);
         }
     };
     match run(cli) {
-        Ok(status) => status.into(),
+        Ok(status) => status.code(),
         Err(error) => {
             // A closed pipe (`rse-gen heightmap … | head`) is not a failure.
             if hints::is_broken_pipe(&error) {
-                return ExitCode::SUCCESS;
+                return ExitStatus::Success.code();
             }
             let mut line = format!("rse-gen: {error:#}");
             if let Some(hint) = hints::hint(&error) {
@@ -76,7 +84,7 @@ where
                 line.push_str(hint);
             }
             let _ = writeln!(std::io::stderr(), "{line}");
-            ExitStatus::Error.into()
+            ExitStatus::Error.code()
         }
     }
 }

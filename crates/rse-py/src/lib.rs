@@ -12,6 +12,7 @@ mod args;
 mod atlas;
 mod batch;
 mod check;
+mod cli;
 mod errors;
 mod scheme;
 mod terrain;
@@ -30,5 +31,6 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::_main, m)?)?;
     Ok(())
 }
