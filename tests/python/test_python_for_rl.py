@@ -82,6 +82,7 @@ def test_a_wrong_type_is_a_type_error_naming_the_field(kwargs: dict, field: str)
         (dict(pallet_size=3), "pallet_size"),
         (dict(pallet_boundary=False), "pallet_boundary"),
         (dict(size=(0, 10)), "size"),
+        (dict(amount=0), "amount"),
     ],
 )
 def test_a_value_out_of_range_is_a_scheme_error_naming_the_field(kwargs: dict, field: str) -> None:

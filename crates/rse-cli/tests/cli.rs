@@ -10,6 +10,7 @@ mod atlas;
 mod batch;
 mod check;
 mod difficulty;
+mod messages;
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")

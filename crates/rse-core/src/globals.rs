@@ -133,6 +133,9 @@ impl Globals {
                 "must be a length in metres ≥ 0",
             );
         }
+        if self.amount == 0 {
+            return bad("amount", "0".into(), "needs at least one world");
+        }
         // Frames and any cell of one step reach `base + step_height`.
         let lowest_top = self.base + self.step_height;
         if lowest_top > MAX_TOP_IN_BLOCKS * self.block_size {

@@ -39,8 +39,9 @@ impl CheckReport {
     /// when there are any: the verdict the CLI and the editor print.
     pub fn verdict(&self) -> String {
         let mut line = format!(
-            "checked {} worlds: {} good, {} failed",
+            "checked {} {}: {} good, {} failed",
             self.checked,
+            if self.checked == 1 { "world" } else { "worlds" },
             self.checked - self.failed,
             self.failed
         );

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use rse_core::Scheme;
 
 use crate::error::Error;
+use crate::manifest::{MANIFEST, Manifest, what_differs};
 use crate::target::Targets;
 use crate::templates::Templates;
 use crate::tree::list_files;
@@ -205,9 +206,24 @@ pub fn write_batch_until(
     on_world: &(dyn Fn(Outcome) + Sync),
     stop: &AtomicBool,
 ) -> Result<Summary, Error> {
+    if options.amount == 0 {
+        return Err(Error::BadOption {
+            option: "amount",
+            message: "amount is 0: a batch needs at least one world".to_owned(),
+        });
+    }
     let pool = thread_pool(options.jobs)?;
     check_memory(scheme, options)?;
     let out = &options.out;
+    if out.exists() && !out.is_dir() {
+        return Err(Error::BadOption {
+            option: "out",
+            message: format!(
+                "{} is a file: worlds go into a folder (made when missing)",
+                out.display()
+            ),
+        });
+    }
     std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
     // Held until this function returns; the system drops it if the process dies.
     let _lock = lock_shard(out, options.shard)?;
@@ -397,8 +413,32 @@ fn write_tree(root: &Path, world: &WorldFiles) -> Result<(), Error> {
 }
 
 /// How the folder `dest` differs from `world`, or `None` if it holds
-/// exactly its files with exactly their bytes.
+/// exactly its files with exactly their bytes: the setting its `rse.json`
+/// records differently when there is one (`targets gazebo there,
+/// gazebo,mujoco now`), else the first file that differs.
 fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
+    let Some(file) = file_difference(dest, world)? else {
+        return Ok(None);
+    };
+    let manifest = |bytes: &[u8]| {
+        std::str::from_utf8(bytes)
+            .ok()
+            .and_then(|text| Manifest::from_json(text).ok())
+    };
+    let there = std::fs::read(dest.join(MANIFEST))
+        .ok()
+        .and_then(|b| manifest(&b));
+    let now = world.files.get(MANIFEST).and_then(|b| manifest(b));
+    Ok(Some(match (there, now) {
+        (Some(there), Some(now)) => what_differs(&there, &now).unwrap_or_else(|| {
+            format!("{file}, though it was made with the same settings (changed since?)")
+        }),
+        _ => file,
+    }))
+}
+
+/// The first file of the folder `dest` that is not `world`'s, or `None`.
+fn file_difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
     if !dest.is_dir() {
         return Ok(Some("not a folder".to_owned()));
     }

@@ -22,7 +22,9 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     // Temporary files are private (0600); the output is an ordinary file.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut file = builder.tempfile_in(dir).map_err(Error::io("write", path))?;
+    let mut file = builder
+        .tempfile_in(dir)
+        .map_err(|e| Error::io("write", path)(without_temp_path(&e)))?;
     file.write_all(bytes).map_err(Error::io("write", path))?;
     file.as_file()
         .sync_all()
@@ -30,6 +32,21 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     file.persist(path)
         .map_err(|e| Error::io("write", path)(e.error))?;
     Ok(())
+}
+
+/// `e` without the name of the temporary file `tempfile` adds to it
+/// (`… at path "/out/.tmpyWYUw0"`): a name the user never gave, of a file
+/// that does not exist. The system's error is kept.
+fn without_temp_path(e: &std::io::Error) -> std::io::Error {
+    let os_error = e
+        .get_ref()
+        .and_then(|inner| inner.source())
+        .and_then(|source| source.downcast_ref::<std::io::Error>())
+        .and_then(std::io::Error::raw_os_error);
+    match os_error {
+        Some(code) => std::io::Error::from_raw_os_error(code),
+        None => std::io::Error::from(e.kind()),
+    }
 }
 
 /// Writes `mesh` to `path` in the format its suffix names (`.obj`, `.stl`,

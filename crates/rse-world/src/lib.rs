@@ -34,7 +34,7 @@ pub use batch::{
 };
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};
-pub use manifest::{MANIFEST, Manifest, sha256_hex};
+pub use manifest::{MANIFEST, Manifest, sha256_hex, what_differs};
 pub use single::{place_folder, write_world_at};
 pub use target::{Collider, MeshMode, MujocoCollider, Target, Targets};
 pub use templates::Templates;

@@ -122,6 +122,42 @@ impl Manifest {
     }
 }
 
+/// Why the world of manifest `now` is not the one of manifest `there`, in
+/// a user's terms (`targets gazebo there, gazebo,mujoco now`): the first
+/// setting that differs, or `None` when they were made alike (then their
+/// files differ: edited by hand, or a different generator build).
+pub fn what_differs(there: &Manifest, now: &Manifest) -> Option<String> {
+    if there.scheme != now.scheme || there.globals != now.globals {
+        return Some("it was made from another scheme or other global settings".to_owned());
+    }
+    let targets = |m: &Manifest| {
+        m.targets
+            .iter()
+            .map(crate::target::Target::name)
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let templates = |m: &Manifest| format!("{} ({:.12}…)", m.templates, m.templates_sha256);
+    let settings: [(&str, Show); 8] = [
+        ("seed", |m| m.seed.to_string()),
+        ("index", |m| m.index.to_string()),
+        ("difficulty", |m| m.difficulty.to_string()),
+        ("targets", targets),
+        ("mesh", |m| m.mesh.name().to_owned()),
+        ("mujoco collider", |m| m.mujoco_collider.name().to_owned()),
+        ("rse version", |m| m.version.clone()),
+        ("templates", templates),
+    ];
+    if let Some((what, show)) = settings.iter().find(|(_, show)| show(there) != show(now)) {
+        return Some(format!("{what} {} there, {} now", show(there), show(now)));
+    }
+    (there.templates_sha256 != now.templates_sha256)
+        .then(|| "it was made with other templates".to_owned())
+}
+
+/// How [`what_differs`] shows one setting of a manifest.
+type Show = fn(&Manifest) -> String;
+
 /// For serde: whether a manifest's difficulty is left out.
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
 fn is_full(d: &Difficulty) -> bool {

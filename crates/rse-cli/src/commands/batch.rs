@@ -65,9 +65,10 @@ pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
     }
     let seconds = start.elapsed().as_secs_f64();
     let done = summary.written + summary.replaced;
+    let total = summary.written + summary.skipped + summary.replaced;
     eprintln!(
-        "rse-gen: {} worlds in {}: {} written, {} already there, {} replaced; {:.2} s, {:.1} worlds/s, {:.1} MB/s",
-        summary.written + summary.skipped + summary.replaced,
+        "rse-gen: {total} {} in {}: {} written, {} already there, {} replaced; {:.2} s, {:.1} worlds/s, {:.1} MB/s",
+        if total == 1 { "world" } else { "worlds" },
         options.out.display(),
         summary.written,
         summary.skipped,

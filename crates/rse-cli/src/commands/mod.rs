@@ -1,5 +1,6 @@
 //! One module per subcommand, and what they share: loading a scheme with overrides.
 
+use std::io::Write as _;
 use std::path::Path;
 
 use anyhow::{Context as _, bail};
@@ -67,6 +68,15 @@ pub fn load_world(
 /// Reads the scheme at `path` and applies the command-line overrides.
 pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
     let scheme = Scheme::load(path)?;
+    if scheme.obstacles().is_empty() {
+        // Allowed (a flat field is a fair baseline), but an empty file or a
+        // table lost to a bad paste deserves a word.
+        let _ = writeln!(
+            std::io::stderr(),
+            "rse-gen: note: {} has no obstacles: every world is flat (pallet frames aside)",
+            path.display()
+        );
+    }
     let mut globals = *scheme.globals();
     let SchemeOverrides {
         size,
