@@ -3,6 +3,8 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+
+use crate::examples;
 use rse_core::Difficulty;
 use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
 
@@ -16,7 +18,10 @@ use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOption
     name = "rse-gen",
     version,
     propagate_version = true,
-    max_term_width = 100
+    max_term_width = 100,
+    after_help = "Scheme overrides go after the subcommand (or before it) and apply to the subcommands \
+                  that read a scheme: heightmap, preview, mesh, hfield, batch, atlas, edit.\n\
+                  Every subcommand's --help ends with examples: rse-gen batch --help"
 )]
 pub struct Cli {
     // Plain comments: clap would show doc comments in the help.
@@ -24,6 +29,7 @@ pub struct Cli {
     #[allow(missing_docs)]
     pub command: Command,
 
+    // Before the subcommand: for any subcommand that reads a scheme.
     #[command(flatten)]
     #[allow(missing_docs)]
     pub overrides: SchemeOverrides,
@@ -32,22 +38,30 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Print the heightmap of one world as CSV: one line per y from 0, one column per x, heights in steps.
+    #[command(after_help = examples::HEIGHTMAP)]
     Heightmap(HeightmapArgs),
     /// Draw one world seen from above as a PNG (blue lowest, green, red highest; pallet frames brown).
+    #[command(after_help = examples::PREVIEW)]
     Preview(PreviewArgs),
     /// Write one world's closed terrain mesh as OBJ (with its .mtl), binary STL or GLB, by suffix.
+    #[command(after_help = examples::MESH)]
     Mesh(MeshArgs),
     /// Write one world as a MuJoCo height field file (int32 nrow, int32 ncol, float32 samples); print
     /// its nrow, ncol, size and geom pos as JSON on stdout.
+    #[command(after_help = examples::HFIELD)]
     Hfield(HfieldArgs),
     /// Write a batch of simulator worlds, one folder each (`OUT/world_0000`, …); a rerun resumes.
+    #[command(after_help = examples::BATCH)]
     Batch(BatchArgs),
     /// Write ONE world whose terrain is a grid of tiles for RL curricula: rows along x are difficulty
     /// levels, columns along y cycle through the schemes; atlas.json gives every tile's spawn origin.
+    #[command(after_help = examples::ATLAS)]
     Atlas(AtlasArgs),
     /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes, physics.
+    #[command(after_help = examples::CHECK)]
     Check(CheckArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
+    #[command(after_help = examples::EDIT)]
     Edit(EditArgs),
     /// Our world templates, to start your own from (`--template DIR` overlays them file by file).
     Templates(TemplatesArgs),
@@ -62,6 +76,7 @@ pub struct TemplatesArgs {
 #[derive(Debug, Subcommand)]
 pub enum TemplatesAction {
     /// Write the built-in templates into DIR/<target>/… (refuses to overwrite a file).
+    #[command(after_help = examples::TEMPLATES_EXPORT)]
     Export {
         /// The folder to write them into (created if missing).
         #[arg(value_name = "DIR")]
@@ -75,12 +90,15 @@ pub struct EditArgs {
     pub scheme: Option<PathBuf>,
 
     /// Port on 127.0.0.1 [default: a free one].
-    #[arg(long, value_name = "P", default_value_t = 0)]
-    pub port: u16,
+    #[arg(long, value_name = "P")]
+    pub port: Option<u16>,
 
     /// Open the page in the desktop's browser.
     #[arg(long)]
     pub open: bool,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -133,6 +151,9 @@ pub struct BatchArgs {
     /// Replace world folders that hold a different world.
     #[arg(long)]
     pub force: bool,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -191,6 +212,9 @@ pub struct AtlasArgs {
     /// Replace the folder if it holds a different world.
     #[arg(long)]
     pub force: bool,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -208,6 +232,9 @@ pub struct HfieldArgs {
 
     #[command(flatten)]
     pub world: WorldArgs,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -221,6 +248,9 @@ pub struct MeshArgs {
 
     #[command(flatten)]
     pub world: WorldArgs,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -230,6 +260,9 @@ pub struct HeightmapArgs {
 
     #[command(flatten)]
     pub world: WorldArgs,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]
@@ -241,12 +274,15 @@ pub struct PreviewArgs {
     #[arg(short, long, value_name = "FILE.png")]
     pub output: PathBuf,
 
-    /// Pixels per cell [default: about 512 pixels across, 1 to 32 per cell].
+    /// Pixels per cell, 1 to 256 [default: as many as make about 512 pixels across, at most 32].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=256))]
     pub cell_pixels: Option<u32>,
 
     #[command(flatten)]
     pub world: WorldArgs,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 /// Which world of the batch: world `index` of base seed `seed`.
@@ -310,7 +346,7 @@ impl WorldFilesArgs {
 pub struct ColliderArgs {
     /// MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin).
     #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = "boxes",
-          value_parser = ["boxes", "hfield"])]
+          value_parser = ["boxes", "hfield"], hide_possible_values = true)]
     pub name: String,
 
     /// Height field samples per cell along each axis [default: 4]; needs --mujoco-collider hfield.
@@ -339,40 +375,55 @@ pub struct DifficultyArg {
     pub value: Difficulty,
 }
 
-/// Global parameters that override the scheme's (SPEC §2).
-#[derive(Debug, Args)]
+/// Global parameters that override the scheme's, on the subcommands that
+/// read a scheme (after the subcommand, or before it for all of them).
+#[derive(Debug, Clone, Copy, Default, Args)]
 #[command(next_help_heading = "Scheme overrides")]
 pub struct SchemeOverrides {
     /// Grid size in cells, used when pallets are off.
-    #[arg(long, global = true, value_name = "NXxNY", value_parser = parse_dims)]
+    #[arg(long, value_name = "NXxNY", value_parser = parse_dims)]
     pub size: Option<[u32; 2]>,
 
     /// Pallets along x and y, or `off`.
-    #[arg(long, global = true, value_name = "PXxPY|off", value_parser = parse_pallets)]
+    #[arg(long, value_name = "PXxPY|off", value_parser = parse_pallets)]
     pub pallets: Option<PalletsFlag>,
 
     /// Pallet side in cells (needs pallets).
-    #[arg(long, global = true, value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))]
     pub pallet_size: Option<u32>,
 
     /// A 1-cell, 1-step frame around every pallet (needs pallets).
-    #[arg(long, global = true, value_name = "true|false", action = clap::ArgAction::Set)]
+    #[arg(long, value_name = "true|false", action = clap::ArgAction::Set, hide_possible_values = true)]
     pub pallet_boundary: Option<bool>,
 
     /// Cell side in metres.
-    #[arg(long, global = true, value_name = "M", value_parser = positive_metres)]
+    #[arg(long, value_name = "M", value_parser = positive_metres)]
     pub block_size: Option<f64>,
 
     /// Height of one step in metres.
-    #[arg(long, global = true, value_name = "M", value_parser = positive_metres)]
+    #[arg(long, value_name = "M", value_parser = positive_metres)]
     pub step_height: Option<f64>,
 
     /// Slab under the whole grid in metres (0 for none).
-    #[arg(long, global = true, value_name = "M", value_parser = non_negative_metres)]
+    #[arg(long, value_name = "M", value_parser = non_negative_metres)]
     pub base: Option<f64>,
 }
 
 impl SchemeOverrides {
+    /// These flags, each unset one taken from `outer` (the same flags given
+    /// before the subcommand).
+    pub fn or(self, outer: SchemeOverrides) -> SchemeOverrides {
+        SchemeOverrides {
+            size: self.size.or(outer.size),
+            pallets: self.pallets.or(outer.pallets),
+            pallet_size: self.pallet_size.or(outer.pallet_size),
+            pallet_boundary: self.pallet_boundary.or(outer.pallet_boundary),
+            block_size: self.block_size.or(outer.block_size),
+            step_height: self.step_height.or(outer.step_height),
+            base: self.base.or(outer.base),
+        }
+    }
+
     /// The first global flag given, as typed (`--size`), if any.
     pub fn first_set(&self) -> Option<&'static str> {
         [
@@ -456,5 +507,29 @@ mod tests {
     #[test]
     fn the_command_line_is_well_formed() {
         super::Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn every_example_in_the_help_parses() {
+        let mut parsed = 0;
+        for text in crate::examples::ALL {
+            for line in text.lines().map(str::trim) {
+                let Some(rest) = line.strip_prefix("rse-gen ") else {
+                    continue;
+                };
+                // A redirection is the shell's, not ours.
+                let words = rest.split(" > ").next().unwrap_or(rest).split_whitespace();
+                let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+                for scheme in words.clone().filter(|w| w.starts_with("schemes/")) {
+                    assert!(repo.join(scheme).exists(), "{line}: no {scheme}");
+                }
+                let args = std::iter::once("rse-gen").chain(words);
+                if let Err(e) = <super::Cli as clap::Parser>::try_parse_from(args) {
+                    panic!("{line}: {e}");
+                }
+                parsed += 1;
+            }
+        }
+        assert!(parsed >= 18, "{parsed} examples");
     }
 }

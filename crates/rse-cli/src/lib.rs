@@ -10,6 +10,7 @@ use clap::Parser as _;
 
 mod args;
 mod commands;
+mod examples;
 mod hints;
 
 pub use args::Cli;

@@ -10,6 +10,7 @@ mod atlas;
 mod batch;
 mod check;
 mod difficulty;
+mod help;
 mod messages;
 
 fn repo() -> PathBuf {
@@ -308,14 +309,6 @@ fn usage_and_io_errors_exit_2() {
         stderr(&out)
     );
     assert!(!batch.exists());
-    // A global flag the subcommand would ignore is refused.
-    let out = rse_gen(&["check", "schemes", "--size", "5x5"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("--size does not apply to check"),
-        "{}",
-        stderr(&out)
-    );
 }
 
 #[test]

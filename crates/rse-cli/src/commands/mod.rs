@@ -21,13 +21,14 @@ mod templates;
 
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
+    let outer = cli.overrides;
     match cli.command {
-        Command::Heightmap(args) => heightmap::run(&args, &cli.overrides),
-        Command::Preview(args) => preview::run(&args, &cli.overrides),
-        Command::Mesh(args) => mesh::run(&args, &cli.overrides),
-        Command::Hfield(args) => hfield::run(&args, &cli.overrides),
-        Command::Batch(args) => batch::run(&args, &cli.overrides),
-        Command::Atlas(args) => atlas::run(&args, &cli.overrides),
+        Command::Heightmap(args) => heightmap::run(&args, &args.overrides.or(outer)),
+        Command::Preview(args) => preview::run(&args, &args.overrides.or(outer)),
+        Command::Mesh(args) => mesh::run(&args, &args.overrides.or(outer)),
+        Command::Hfield(args) => hfield::run(&args, &args.overrides.or(outer)),
+        Command::Batch(args) => batch::run(&args, &args.overrides.or(outer)),
+        Command::Atlas(args) => atlas::run(&args, &args.overrides.or(outer)),
         Command::Check(args) => {
             // A world's parameters are in its rse.json: a flag would be
             // silently ignored, so it is refused.
@@ -38,7 +39,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
             }
             check::run(&args)
         }
-        Command::Edit(args) => edit::run(&args, &cli.overrides),
+        Command::Edit(args) => edit::run(&args, &args.overrides.or(outer)),
         Command::Templates(args) => {
             if let Some(flag) = cli.overrides.first_set() {
                 anyhow::bail!("{flag} does not apply to templates");

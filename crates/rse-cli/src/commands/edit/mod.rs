@@ -49,10 +49,11 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
             .expect("the starting scheme is valid");
         editor.initial = PageScheme::from_scheme(&scheme);
     }
-    let server = listener(args.port)
+    let asked = args.port.unwrap_or(0);
+    let server = listener(asked)
         .map_err(anyhow::Error::from)
         .and_then(|l| Server::from_listener(l, None).map_err(|e| anyhow::anyhow!("{e}")))
-        .with_context(|| format!("cannot listen on 127.0.0.1:{}", args.port))?;
+        .with_context(|| format!("cannot listen on 127.0.0.1:{asked}"))?;
     let port = server
         .server_addr()
         .to_ip()
@@ -65,8 +66,7 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
     drop(stdout);
     eprintln!("rse-gen: the editor is at {url} (Ctrl-C to stop)");
     if args.open {
-        // Best effort: without a desktop the URL above is the way in.
-        let _ = std::process::Command::new("xdg-open").arg(&url).spawn();
+        open_in_browser(url.clone());
     }
     for mut request in server.incoming_requests() {
         let reply = match http::refusal(&request, port) {
@@ -77,6 +77,32 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
         let _ = request.respond(reply);
     }
     Ok(ExitStatus::Success)
+}
+
+/// Opens `url` with the desktop's opener, in the background; when there is
+/// none, or it fails (no display), says so in one line: the URL printed
+/// above is the way in then.
+fn open_in_browser(url: String) {
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    std::thread::spawn(move || {
+        let status = std::process::Command::new(opener)
+            .arg(&url)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status();
+        let why = match status {
+            Ok(s) if s.success() => return,
+            Ok(s) => format!("{opener} failed ({s})"),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => format!("no {opener} here"),
+            Err(e) => format!("{opener}: {e}"),
+        };
+        eprintln!("rse-gen: --open: cannot open a browser ({why}); open {url} yourself");
+    });
 }
 
 fn route(editor: &Editor, request: &mut tiny_http::Request) -> http::Reply {
