@@ -3,7 +3,11 @@ Playwright): build a scheme by clicking, watch the preview change, save,
 reload, generate, and the editor's defences (issue "`rse-gen edit`")."""
 
 import io
+import json
+import os
 import statistics
+import subprocess
+import time
 import urllib.error
 import urllib.request
 from pathlib import Path
@@ -168,3 +172,75 @@ def test_oversized_requests_get_413(editor) -> None:
         urllib.request.urlopen(request)
     assert refused.value.code == 413
     refused.value.close()
+
+
+# --- issue 15, item 7 ---------------------------------------------------------
+
+
+def post(url: str, path: str, body: dict) -> dict:
+    request = urllib.request.Request(
+        url + path, data=json.dumps(body).encode(), method="POST", headers={"Content-Type": "application/json"}
+    )
+    with urllib.request.urlopen(request, timeout=60) as answer:
+        return json.loads(answer.read())
+
+
+def test_saving_keeps_the_schemes_notes(tmp_path: Path, page: Page) -> None:
+    """The notes of the file opened are on the page and in the file saved;
+    notes edited on the page are saved too."""
+    scheme = tmp_path / "noted.csv"
+    scheme.write_text("# A stepfield for the Husky tests\n# (see lab wiki, 2026)\n# size: 12x10\ntype,height\nrandom,2\n")
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
+        page.goto(url)
+        page.wait_for_function("window.rseEditor.previews >= 1")
+        assert page.input_value("#notes") == "A stepfield for the Husky tests\n(see lab wiki, 2026)"
+        saved = tmp_path / "saved.csv"
+        page.fill("#save-path", str(saved))
+        page.click("#save")
+        page.wait_for_function("document.querySelector('#status').textContent.includes('saved')")
+        assert rse.Scheme.load(saved) == rse.Scheme.load(scheme), "notes and all"
+        assert saved.read_text().startswith("# A stepfield for the Husky tests\n# (see lab wiki, 2026)\n")
+        page.fill("#notes", "Husky, run 2")
+        page.evaluate("document.querySelector('#status').textContent = ''")
+        page.click("#save")
+        page.wait_for_function("document.querySelector('#status').textContent.includes('saved')")
+        assert saved.read_text().startswith("# Husky, run 2\n# size: 12x10\n"), saved.read_text()
+        # A note that would read back as a global parameter is refused, by field.
+        answer = post(url, "api/save", {"scheme": {"globals": {}, "obstacles": [], "notes": "Author: me"}, "path": str(saved)})
+        assert not answer["ok"] and answer["error"]["field"] == "notes", answer
+
+
+def test_a_huge_preview_is_refused_quickly(editor) -> None:
+    url, _ = editor
+    scheme = {"globals": {"size": "5000x5000"}, "obstacles": [{"type": "random", "height": "2"}]}
+    started = time.monotonic()
+    answer = post(url, "api/preview", {"scheme": scheme})
+    assert time.monotonic() - started < 2.0
+    assert not answer["ok"] and answer["error"]["field"] == "size"
+    assert "more than the editor previews" in answer["error"]["message"] and "rse-gen preview" in answer["error"]["message"]
+    scheme["globals"]["size"] = "500x500"
+    assert post(url, "api/preview", {"scheme": scheme})["ok"], "the largest previewed grid"
+
+
+def test_open_without_a_browser_says_so_in_one_line(tmp_path: Path) -> None:
+    """No xdg-open on PATH: one line on stderr; the editor keeps serving."""
+    process = subprocess.Popen(
+        [str(rse_gen_release_path()), "edit", "--open"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+        env={**os.environ, "PATH": str(tmp_path)},
+    )
+    try:
+        url = process.stdout.readline().strip()
+        lines = [process.stderr.readline(), process.stderr.readline()]
+        assert lines[0].startswith("rse-gen: the editor is at "), lines
+        assert lines[1] == f"rse-gen: --open: cannot open a browser (no xdg-open here); open {url} yourself\n", lines
+        with urllib.request.urlopen(url + "api/state", timeout=10) as ok:
+            assert ok.status == 200
+    finally:
+        process.terminate()
+        process.wait(timeout=10)
+        process.stdout.close()
+        process.stderr.close()

@@ -75,11 +75,33 @@ struct PreviewRequest {
     index: u64,
 }
 
+/// The largest grid the editor previews, in cells (500×500): its answer
+/// carries every box of the world to draw, tens of megabytes beyond this
+/// (a 5000×5000 grid gave 795 MB of JSON after 18 s).
+pub const MAX_PREVIEW_CELLS: u64 = 250_000;
+
 /// `POST /api/preview`: the world's heights, boxes and top-down PNG.
 pub fn preview(body: &[u8]) -> Answer {
     let start = Instant::now();
     let request: PreviewRequest = request(body)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
+    let grid = scheme.grid();
+    let cells = u64::from(grid.nx) * u64::from(grid.ny);
+    if cells > MAX_PREVIEW_CELLS {
+        let field = if scheme.globals().pallets.is_some() {
+            "pallets"
+        } else {
+            "size"
+        };
+        return Err(error(&FieldError {
+            row: None,
+            field: Some(field.to_owned()),
+            message: format!(
+                "a {}x{} grid ({cells} cells) is more than the editor previews ({MAX_PREVIEW_CELLS} cells, e.g. 500x500); save the scheme and use `rse-gen preview` or `rse-gen batch`, which take any size",
+                grid.nx, grid.ny
+            ),
+        }));
+    }
     let terrain = rse_core::generate(&scheme, request.seed, request.index);
     let grid = terrain.grid();
     let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);

@@ -14,6 +14,9 @@ pub struct PageScheme {
     pub globals: std::collections::BTreeMap<String, String>,
     /// Table rows: `type`, `height`, `angle`, `x1`, `y1`, `x2`, `y2`, `sigma`.
     pub obstacles: Vec<std::collections::BTreeMap<String, String>>,
+    /// The free-text notes atop the file, one per line (kept on save).
+    #[serde(default)]
+    pub notes: String,
 }
 
 /// Where a fault is, for the page to mark the field.
@@ -71,17 +74,37 @@ impl PageScheme {
     /// The validated scheme, or the field to mark.
     pub fn scheme(&self) -> Result<Scheme, FieldError> {
         let (text, places) = self.to_csv()?;
-        Scheme::from_csv(&text, None).map_err(|e| locate(&e, &places))
+        let notes = self.notes.lines().map(|l| l.trim().to_owned()).collect();
+        let scheme = Scheme::from_csv(&text, None)
+            .map_err(|e| locate(&e, &places))?
+            .with_notes(notes);
+        // A note must read back as a note: `Author: me` would be taken for
+        // a global parameter (and refused) the next time the file is read.
+        if let Err(e) = Scheme::from_csv(&scheme.to_csv(), None) {
+            return Err(FieldError {
+                row: None,
+                field: Some("notes".to_owned()),
+                message: format!(
+                    "a note would be read back as a global parameter ({}): reword the `word:` at its start",
+                    e.kind
+                ),
+            });
+        }
+        Ok(scheme)
     }
 
     /// The page's view of a scheme.
     pub fn from_scheme(scheme: &Scheme) -> Self {
         // Read back through the canonical CSV: the page shows what a file holds.
         let csv = scheme.to_csv();
-        let mut page = PageScheme::default();
+        let mut page = PageScheme {
+            notes: scheme.notes().join("\n"),
+            ..PageScheme::default()
+        };
         let mut header: Vec<String> = Vec::new();
         for line in csv.lines() {
             if let Some(global) = line.strip_prefix('#') {
+                // Notes come first in the canonical text; they are in `notes`.
                 if let Some((key, value)) = global.split_once(':') {
                     let key = key.trim();
                     if GLOBAL_KEYS.contains(&key) {

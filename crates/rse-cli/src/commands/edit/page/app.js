@@ -38,11 +38,12 @@ function pageScheme() {
     }
     return out;
   });
-  return { globals, obstacles };
+  return { globals, obstacles, notes: $("notes").value };
 }
 
 function loadScheme(scheme) {
   document.querySelectorAll("[data-global]").forEach((input) => { input.value = scheme.globals[input.dataset.global] ?? ""; });
+  $("notes").value = scheme.notes ?? "";
   state.rows = scheme.obstacles.map((o) => {
     const row = { type: o.type };
     for (const c of COLUMNS) { const [lo, hi] = splitRange(o[c]); row[c + ".lo"] = lo; row[c + ".hi"] = hi; }
@@ -100,6 +101,7 @@ function move(by) {
 $("up").onclick = () => edit(() => move(-1));
 $("down").onclick = () => edit(() => move(1));
 document.querySelectorAll("[data-global]").forEach((input) => input.addEventListener("input", refresh));
+$("notes").addEventListener("input", refresh);
 $("seed").addEventListener("input", refresh);
 $("index").addEventListener("input", refresh);
 $("redraw").onclick = () => { $("index").value = String((Number($("index").value) || 0) + 1); refresh(); };
