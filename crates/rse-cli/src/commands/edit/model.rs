@@ -185,6 +185,7 @@ mod tests {
                         .collect()
                 })
                 .collect(),
+            notes: "a note\n\nwith a blank line".to_owned(),
         }
     }
 
@@ -205,6 +206,8 @@ mod tests {
         let back = PageScheme::from_scheme(&scheme);
         assert_eq!(back.obstacles[0]["height"], "2..4");
         assert_eq!(back.globals["size"], "20x10");
+        assert_eq!(back.notes, "a note\n\nwith a blank line");
+        assert_eq!(scheme.notes(), ["a note", "", "with a blank line"]);
         assert_eq!(back.scheme().unwrap().to_csv(), scheme.to_csv());
     }
 
