@@ -10,7 +10,7 @@ use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOption
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
-/// A scheme CSV (see schemes/README.md) lists global parameters and an ordered
+/// A scheme CSV (see docs/schemes.md) lists global parameters and an ordered
 /// table of obstacles; every world drawn from it is reproducible from the
 /// scheme and the seed pair (seed, index).
 #[derive(Debug, Parser)]
@@ -362,7 +362,7 @@ impl ColliderArgs {
     }
 }
 
-/// A difficulty for curricula (schemes/README.md, "Difficulty").
+/// A difficulty for curricula (docs/schemes.md, "Difficulty").
 #[derive(Debug, Args)]
 pub struct DifficultyArg {
     /// Scale every obstacle height h to floor(D·h + 0.5) steps, 0 ≤ D ≤ 1; the layout stays, frames stay 1 step.

@@ -1,5 +1,5 @@
 //! `--difficulty` on heightmap, preview, mesh and batch: the contract of
-//! schemes/README.md through the binary, and bad values refused.
+//! docs/schemes.md through the binary, and bad values refused.
 
 use super::{rse_gen, stderr, stdout};
 

@@ -1,6 +1,6 @@
 //! Difficulty: a factor in `[0, 1]` that scales every obstacle height of a
-//! world while keeping its layout, for curricula (SPEC addendum in
-//! `schemes/README.md`, "Difficulty").
+//! world while keeping its layout, for curricula (the rule in
+//! `docs/schemes.md`, "Difficulty").
 
 use std::fmt;
 use std::str::FromStr;

@@ -34,7 +34,7 @@ fn no_cells() -> Heightmap {
     Heightmap::zeros(0, 0)
 }
 
-/// Generates world `index` of a batch with base seed `seed` (SPEC §3–4).
+/// Generates world `index` of a batch with base seed `seed` (docs/schemes.md).
 ///
 /// The result depends on `(scheme, seed, index)` alone: not on how many worlds
 /// are generated, in which order, or on which thread.
@@ -85,7 +85,7 @@ pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficult
             .for_each(|h| *h = difficulty.scale(*h));
     }
     if let Some(period) = grid.frame_period {
-        // Frames are exactly one step, whatever the obstacles did (SPEC §2).
+        // Frames are exactly one step, whatever the obstacles did (docs/schemes.md).
         for y in 0..grid.ny {
             let row = heightmap.row_mut(y);
             if y % period == 0 {

@@ -1,11 +1,11 @@
-//! Global parameters of a scheme (SPEC §2) and the grid they define.
+//! Global parameters of a scheme (docs/schemes.md) and the grid they define.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
 
-/// Largest grid the generator accepts, in cells (SPEC §5: "a grid too large
-/// for memory"). 10⁸ cells is a 1 km square at 10 cm blocks: 200 MB of
+/// Largest grid the generator accepts, in cells (docs/schemes.md,
+/// "Errors"). 10⁸ cells is a 1 km square at 10 cm blocks: 200 MB of
 /// heights, and several GB once meshed.
 pub const MAX_CELLS: u64 = 100_000_000;
 
@@ -49,7 +49,7 @@ pub struct Pallets {
     pub boundary: bool,
 }
 
-/// The global parameters of SPEC §2. Lengths in metres.
+/// The global parameters of a scheme (docs/schemes.md). Lengths in metres.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Globals {
     /// `[nx, ny]` in cells, used when `pallets` is `None`.

@@ -1,4 +1,4 @@
-//! A grid of cell heights in whole steps, and its CSV text (SPEC §1).
+//! A grid of cell heights in whole steps, and its CSV text (docs/schemes.md).
 
 use std::fmt::Write as _;
 
@@ -99,7 +99,7 @@ impl Heightmap {
         self.cells.iter().copied().max().unwrap_or(0)
     }
 
-    /// The CSV text of SPEC §1: one line per `y` from 0, one column per `x`.
+    /// The heightmap CSV text (docs/schemes.md): one line per `y` from 0, one column per `x`.
     pub fn to_csv(&self) -> String {
         let mut out = String::with_capacity(self.cells.len() * 3);
         for y in 0..self.ny {

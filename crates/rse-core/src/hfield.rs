@@ -1,6 +1,6 @@
 //! A terrain as a MuJoCo height field: `k` samples per cell along each
 //! axis, placed inside the cells so that every sample has its cell's exact
-//! top (schemes/README.md, "Height fields").
+//! top (docs/schemes.md, "Height fields").
 //!
 //! MuJoCo's layout: samples row by row, row 0 at the lowest y, column 0 at
 //! the lowest x; the field spans `[-radius_x, radius_x] × [-radius_y,

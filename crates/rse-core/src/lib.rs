@@ -25,8 +25,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! The contract (grid, units, obstacle maths, seeding, scheme files) is the
-//! project's `SPEC.md`; `schemes/README.md` documents the file format.
+//! The grid, units, obstacle math, seeding and scheme files are documented
+//! in the repository's `docs/schemes.md`, the mesh guarantees in
+//! `docs/meshes.md`.
 
 mod atlas;
 mod difficulty;

@@ -3,7 +3,7 @@
 //! World `i` of a batch with base seed `B` uses `ChaCha8` (from `rand_chacha`,
 //! which promises a stable stream) keyed with `B` as 8 little-endian bytes
 //! followed by 24 zero bytes, on stream (nonce) `i`, from block 0. So world `i`
-//! depends on `(B, i)` alone (SPEC §4).
+//! depends on `(B, i)` alone (docs/schemes.md).
 //!
 //! The samplers are written here rather than taken from `rand`'s
 //! distributions on purpose: `rand` reserves the right to change how a

@@ -102,7 +102,7 @@ impl Scheme {
         })
     }
 
-    /// Reads a scheme CSV file (SPEC §5). Errors name the path as given.
+    /// Reads a scheme CSV file (docs/schemes.md). Errors name the path as given.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
         let path = path.as_ref();
         let name = path.display().to_string();

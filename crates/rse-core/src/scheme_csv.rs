@@ -1,4 +1,4 @@
-//! Reading and writing scheme CSV files (SPEC §5).
+//! Reading and writing scheme CSV files (docs/schemes.md).
 //!
 //! Layout: leading `# key: value` comment lines set global parameters (other
 //! leading comment lines are kept as free-text notes), then a header row, then

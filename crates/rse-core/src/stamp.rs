@@ -1,4 +1,4 @@
-//! How each obstacle changes the heightmap (SPEC §3, paper §3.3).
+//! How each obstacle changes the heightmap (docs/schemes.md).
 //!
 //! Every obstacle yields a height per cell, quantised to whole steps, which is
 //! combined with the map by the maximum rule (raising obstacles) or subtracted
@@ -56,7 +56,7 @@ pub(crate) fn apply(
             let from = obstacle
                 .p1
                 .expect("a validated peak, pit, wall or long pit has p1");
-            // A peak is a wall whose segment has no length (SPEC §3).
+            // A peak is a wall whose segment has no length (docs/schemes.md).
             let to = obstacle.p2.unwrap_or(from);
             let angle = obstacle
                 .angle
@@ -103,7 +103,7 @@ impl Slope {
         if z <= 0.0 {
             return 0;
         }
-        // The highest whole step not above the sloped surface (SPEC §3).
+        // The highest whole step not above the sloped surface (docs/schemes.md).
         let steps = (z / self.units.step_height + 1e-9).floor();
         (steps as u32).min(self.height)
     }

@@ -1,4 +1,4 @@
-//! The single mesh against every invariant of SPEC §6, on samples and on
+//! The single mesh against every invariant of docs/meshes.md, on samples and on
 //! property-test heightmaps (checkerboards, single cells, all-zero, base > 0).
 
 use proptest::prelude::*;

@@ -1,4 +1,4 @@
-//! Each obstacle against values worked out by hand from SPEC §3.
+//! Each obstacle against values worked out by hand from docs/schemes.md.
 //!
 //! With S = 0.1 m and step = 0.1 m, a cell `d` cells from the top gets
 //! `floor((H·0.1 − d·0.1·tan a) / 0.1)` steps, i.e. `floor(H − d·tan a)`.

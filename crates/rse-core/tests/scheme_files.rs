@@ -1,4 +1,4 @@
-//! Scheme CSV: reading, aliases, canonical writing, and every refusal of SPEC §5.
+//! Scheme CSV: reading, aliases, canonical writing, and every refusal of docs/schemes.md.
 
 use rse_core::{
     Globals, Obstacle, ObstacleFields, ObstacleKind, Param, Scheme, SchemeError, SchemeErrorKind,

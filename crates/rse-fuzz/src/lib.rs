@@ -40,7 +40,7 @@ pub const TARGETS: &[(&str, Body)] = &[
 
 /// The scheme parser: any bytes load or give an error; a scheme that
 /// loads saves and loads back to the same text, and a small one generates
-/// a terrain whose mesh keeps every invariant of SPEC §6 and reads back.
+/// a terrain whose mesh keeps every invariant of docs/meshes.md and reads back.
 pub fn scheme(data: &[u8]) {
     let Ok(scheme) = Scheme::from_csv_bytes(data, Some("fuzz.csv")) else {
         return;
@@ -60,7 +60,7 @@ pub fn scheme(data: &[u8]) {
     let faults = rse_core::mesh::check::faults(mesh.vertices(), mesh.triangles());
     assert!(
         faults.is_empty(),
-        "generated mesh breaks SPEC §6: {faults:?}"
+        "generated mesh breaks the mesh invariants: {faults:?}"
     );
     let obj = rse_core::export::obj(&mesh, None);
     let read = read_obj(obj.as_bytes()).expect("our OBJ reads back");

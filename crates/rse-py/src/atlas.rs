@@ -116,11 +116,13 @@ impl Atlas {
         }
     }
 
+    /// Tiles along x: the difficulty levels.
     #[getter]
     fn rows(&self) -> u32 {
         self.inner.options().rows
     }
 
+    /// Tiles along y.
     #[getter]
     fn cols(&self) -> u32 {
         self.inner.options().cols

@@ -86,36 +86,43 @@ impl Obstacle {
         self.inner.kind().name()
     }
 
+    /// Height in steps: a whole number, a `(lo, hi)` range, or None.
     #[getter]
     fn height(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().height)
     }
 
+    /// Slope angle in degrees (0 to 90), a `(lo, hi)` range, or None.
     #[getter]
     fn angle(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().angle)
     }
 
+    /// First point, x cell (a value, a `(lo, hi)` range, or None).
     #[getter]
     fn x1(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().x1)
     }
 
+    /// First point, y cell (a value, a `(lo, hi)` range, or None).
     #[getter]
     fn y1(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().y1)
     }
 
+    /// Second point, x cell (a value, a `(lo, hi)` range, or None).
     #[getter]
     fn x2(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().x2)
     }
 
+    /// Second point, y cell (a value, a `(lo, hi)` range, or None).
     #[getter]
     fn y2(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().y2)
     }
 
+    /// Standard deviation of a gaussian, in steps (a value, a range, or None).
     #[getter]
     fn sigma(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().sigma)
@@ -146,7 +153,7 @@ impl Obstacle {
     }
 }
 
-/// A scheme: global parameters and an ordered obstacle table (SPEC §2–5).
+/// A scheme: global parameters and an ordered obstacle table (docs/schemes.md).
 #[pyclass(module = "rse", frozen)]
 pub struct Scheme {
     pub inner: Arc<rse_core::Scheme>,
@@ -323,26 +330,31 @@ impl Scheme {
         (grid.nx, grid.ny)
     }
 
+    /// Cell side in metres.
     #[getter]
     fn block_size(&self) -> f64 {
         self.inner.globals().block_size
     }
 
+    /// Height of one step in metres.
     #[getter]
     fn step_height(&self) -> f64 {
         self.inner.globals().step_height
     }
 
+    /// Slab under the whole grid in metres (0: none).
     #[getter]
     fn base(&self) -> f64 {
         self.inner.globals().base
     }
 
+    /// Worlds in a batch of this scheme (`# amount:`, else 1).
     #[getter]
     fn amount(&self) -> u64 {
         self.inner.globals().amount
     }
 
+    /// Base seed of a batch of this scheme (`# seed:`, else 0).
     #[getter]
     fn seed(&self) -> u64 {
         self.inner.globals().seed

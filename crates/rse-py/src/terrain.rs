@@ -167,26 +167,31 @@ impl Terrain {
         Ok(tops)
     }
 
+    /// Cell side in metres.
     #[getter]
     fn block_size(&self) -> f64 {
         self.inner.block_size()
     }
 
+    /// Height of one step in metres.
     #[getter]
     fn step_height(&self) -> f64 {
         self.inner.step_height()
     }
 
+    /// Slab under the whole grid in metres (0: none).
     #[getter]
     fn base(&self) -> f64 {
         self.inner.base()
     }
 
+    /// Base seed of the batch this world belongs to.
     #[getter]
     fn seed(&self) -> u64 {
         self.inner.seed()
     }
 
+    /// Index of this world in its batch.
     #[getter]
     fn index(&self) -> u64 {
         self.inner.index()
@@ -315,7 +320,7 @@ impl Terrain {
         py.import("json")?.call_method1("loads", (json,))
     }
 
-    /// The closed terrain mesh (SPEC §6): `(vertices, faces)`, float32
+    /// The closed terrain mesh (docs/meshes.md): `(vertices, faces)`, float32
     /// `(n, 3)` metres and uint32 `(m, 3)`, counter-clockwise from outside.
     fn mesh<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {
         let terrain = &self.inner;

@@ -144,7 +144,7 @@ pub enum FaultKind {
         /// What is wrong.
         reason: String,
     },
-    /// An OBJ mesh that breaks SPEC §6 (holes, flips, T-junctions, …).
+    /// An OBJ mesh that breaks the mesh invariants of docs/meshes.md (holes, flips, T-junctions, …).
     BadMesh {
         /// How many faults the mesh check found.
         faults: usize,

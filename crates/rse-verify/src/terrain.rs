@@ -1,6 +1,6 @@
 //! A world's terrain files against the terrain regenerated from its
 //! manifest: the heightmap cell by cell, and every OBJ re-read against
-//! SPEC §6 and the heightmap (closed, exact, volume, bounding box, tops).
+//! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
 use rse_core::mesh::check::{bounding_box, faults as mesh_faults, volume};
 use rse_core::{Heightmap, Terrain};
@@ -130,7 +130,7 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
     Ok(mesh)
 }
 
-/// Faults of `mesh` as the mesh of `terrain`: SPEC §6 first; then, for a
+/// Faults of `mesh` as the mesh of `terrain`: docs/meshes.md first; then, for a
 /// sound mesh, volume, bounding box and top heights.
 pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> {
     let broken = mesh_faults(&mesh.vertices, &mesh.triangles);

@@ -1,4 +1,4 @@
-//! Simulator worlds from Random Step Environments (SPEC §7): the files of a
+//! Simulator worlds from Random Step Environments (docs/worlds.md): the files of a
 //! world folder built in memory from templates, the `rse.json` manifest, and
 //! batches written in parallel, atomically and resumably.
 //!

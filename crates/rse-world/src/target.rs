@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
 
-/// A simulator (or file) a world is written for (SPEC §7).
+/// A simulator (or file) a world is written for (docs/worlds.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Target {
@@ -118,7 +118,7 @@ pub enum MeshMode {
     /// mesh).
     #[default]
     Auto,
-    /// The single closed mesh of SPEC §6, for every target.
+    /// The single closed mesh of docs/meshes.md, for every target.
     Single,
     /// The box set, for every target.
     Blocks,

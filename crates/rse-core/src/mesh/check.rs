@@ -1,4 +1,4 @@
-//! Checking a triangle mesh against the invariants of SPEC §6: closed and
+//! Checking a triangle mesh against the invariants of docs/meshes.md: closed and
 //! consistently oriented, no zero-area triangle, no T-junction; and measuring
 //! its volume and bounding box. Works on any mesh, ours or one read from disk.
 

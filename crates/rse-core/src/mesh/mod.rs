@@ -1,4 +1,4 @@
-//! The single mesh of a world (SPEC §6): the closed solid under the heightmap.
+//! The single mesh of a world (docs/meshes.md): the closed solid under the heightmap.
 
 mod boxes;
 pub mod check;
@@ -83,7 +83,7 @@ impl Terrain {
         }
     }
 
-    /// The single mesh of this terrain (SPEC §6).
+    /// The single mesh of this terrain (docs/meshes.md).
     pub fn mesh(&self) -> TriMesh {
         build_mesh(self.heightmap(), self.mesh_units())
     }
