@@ -6,7 +6,10 @@
    (both cores used when CPU / wall is near 2);
 3. the numpy way RL frameworks build a random-grid terrain and its mesh
    (per-cell boxes concatenated, as Isaac Lab's random grid does) against
-   scheme.generate() + terrain.mesh() (aim: 50x faster).
+   scheme.generate() + terrain.mesh() (aim: 50x faster);
+4. a height scan as RL code takes one (4096 robots x 187 rays, Isaac Lab's
+   default grid scanner): Terrain.height_at against the numpy lookup
+   people write by hand on Terrain.elevation (cell index, clip, gather).
 
 Run: .venv/bin/python bench/python.py   (make bench runs it)
 """
@@ -72,6 +75,21 @@ def main() -> None:
     mesh = naive_random_grid(50, 50, 0.1, 0.1, 4, np.random.default_rng(1))
     print(f"50x50 random grid + mesh: numpy per-cell boxes {naive * 1e3:.1f} ms ({len(mesh.faces)} triangles), "
           f"rse generate + mesh {ours * 1e3:.2f} ms ({len(f)} triangles): {naive / ours:.0f}x faster (aim 50x)")
+
+    terrain = scheme.generate(index=3)
+    points = np.random.default_rng(2).uniform(-0.5, 5.5, size=(2, 4096, 187))
+    ours = best_per_call(lambda i: terrain.height_at(points[0], points[1]), 5)
+    elevation, s = terrain.elevation, terrain.block_size
+
+    def by_hand(i: int) -> np.ndarray:
+        ix = np.floor(points[0] / s).astype(np.int64)
+        iy = np.floor(points[1] / s).astype(np.int64)
+        inside = (ix >= 0) & (iy >= 0) & (ix < elevation.shape[1]) & (iy < elevation.shape[0])
+        return np.where(inside, elevation[np.clip(iy, 0, elevation.shape[0] - 1), np.clip(ix, 0, elevation.shape[1] - 1)], 0.0)
+
+    naive = best_per_call(by_hand, 5)
+    print(f"height scan 4096x187 points: Terrain.height_at {ours * 1e3:.1f} ms, numpy gather by hand "
+          f"{naive * 1e3:.1f} ms: ratio {ours / naive:.2f} (height_at also takes the higher cell on an edge)")
 
 
 if __name__ == "__main__":

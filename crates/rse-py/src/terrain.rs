@@ -142,25 +142,29 @@ impl Terrain {
         y: Bound<'py, PyAny>,
         outside: f64,
     ) -> PyResult<Bound<'py, PyAny>> {
+        // numpy does the conversions and the broadcasting; the loop runs
+        // over contiguous float64 buffers without the GIL.
         let np = py.import("numpy")?;
         let as_array = |v: Bound<'py, PyAny>| np.call_method1("asarray", (v, "float64"));
         let both = np.call_method1("broadcast_arrays", (as_array(x)?, as_array(y)?))?;
         let (xs, ys): (Bound<'py, PyAny>, Bound<'py, PyAny>) = both.extract()?;
         let shape = xs.getattr("shape")?;
-        let flat = |a: &Bound<'py, PyAny>| -> PyResult<Vec<f64>> {
-            np.call_method1("ravel", (a,))?
-                .call_method0("tolist")?
-                .extract()
+        let flat = |a: &Bound<'py, PyAny>| -> PyResult<Bound<'py, PyArray1<f64>>> {
+            Ok(np
+                .call_method1("ascontiguousarray", (np.call_method1("ravel", (a,))?,))?
+                .cast_into::<PyArray1<f64>>()?)
         };
         let (xs, ys) = (flat(&xs)?, flat(&ys)?);
-        let tops: Vec<f64> = xs
-            .iter()
-            .zip(&ys)
-            .map(|(&x, &y)| self.inner.height_at(x, y).unwrap_or(outside))
-            .collect();
-        let tops = np
-            .call_method1("asarray", (tops, "float64"))?
-            .call_method1("reshape", (&shape,))?;
+        let (xs, ys) = (xs.readonly(), ys.readonly());
+        let (xs, ys) = (xs.as_slice()?, ys.as_slice()?);
+        let terrain = &self.inner;
+        let tops: Vec<f64> = py.detach(|| {
+            xs.iter()
+                .zip(ys)
+                .map(|(&x, &y)| terrain.height_at(x, y).unwrap_or(outside))
+                .collect()
+        });
+        let tops = tops.into_pyarray(py).call_method1("reshape", (&shape,))?;
         if shape.len()? == 0 {
             return tops.call_method0("item");
         }
