@@ -56,6 +56,27 @@ def test_numpy_scalars_and_arrays_are_taken_wherever_numbers_are() -> None:
     assert pallets.grid == (9, 13)
 
 
+def test_numpy_numbers_reach_every_call_rl_code_makes() -> None:
+    scheme = rse.Scheme.load(SIX)
+    plain = scheme.generate(seed=3, index=2, difficulty=0.5)
+    terrain = scheme.generate(seed=np.uint64(3), index=np.int64(2), difficulty=np.float32(0.5))
+    np.testing.assert_array_equal(terrain.heights, plain.heights)
+    assert len(rse.generate_batch(scheme, np.int64(3), seed=np.int32(3), jobs=np.int64(2))) == 3
+    np.testing.assert_array_equal(terrain.spawn_origin(np.float32(0.25)), plain.spawn_origin(0.25))
+    assert terrain.flat_patches(np.int64(2), np.float64(0.3), np.int8(0)).shape == (2, 3)
+    assert terrain.hfield_shape(np.uint8(2)) == plain.hfield_shape(2)
+    assert terrain.preview(np.int64(2)) == plain.preview(2)
+    assert terrain.mjcf(offset=np.array([1.0, 2.0, 3.0]), friction=np.float32(0.5)) == plain.mjcf(
+        offset=(1, 2, 3), friction=0.5
+    )
+    atlas = rse.Atlas([scheme], np.int64(2), np.int64(2), seed=np.uint64(1), difficulty=np.array([0.2, 0.8]))
+    assert atlas.to_json() == rse.Atlas([scheme], 2, 2, seed=1, difficulty=(0.2, 0.8)).to_json()
+    with pytest.raises(TypeError, match="offset: expected 3 numbers"):
+        terrain.mjcf(offset=(1.0, 2.0))
+    with pytest.raises(TypeError, match="difficulty: expected 2 numbers"):
+        rse.Atlas([scheme], 1, 1, difficulty="easy")
+
+
 @pytest.mark.parametrize(
     ("kwargs", "field"),
     [

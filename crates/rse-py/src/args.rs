@@ -49,13 +49,39 @@ fn is_text(obj: &Bound<'_, PyAny>) -> bool {
     obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>()
 }
 
-/// The two items of a `(lo, hi)` pair: a tuple, list or array of length 2.
-fn pair<'py>(obj: &Bound<'py, PyAny>) -> Option<[Bound<'py, PyAny>; 2]> {
+/// The `N` items of a tuple, list or array of length `N`.
+fn items<'py, const N: usize>(obj: &Bound<'py, PyAny>) -> Option<[Bound<'py, PyAny>; N]> {
     if is_text(obj) {
         return None;
     }
     let items: Vec<Bound<'py, PyAny>> = obj.try_iter().ok()?.collect::<PyResult<_>>().ok()?;
-    <[Bound<'py, PyAny>; 2]>::try_from(items).ok()
+    <[Bound<'py, PyAny>; N]>::try_from(items).ok()
+}
+
+/// The two items of a `(lo, hi)` pair.
+fn pair<'py>(obj: &Bound<'py, PyAny>) -> Option<[Bound<'py, PyAny>; 2]> {
+    items(obj)
+}
+
+/// `N` real numbers `field` (a tuple, list or array), e.g. an offset
+/// `(x, y, z)`; `example` shows the shape in the message.
+pub fn reals<const N: usize>(
+    field: &str,
+    obj: &Bound<'_, PyAny>,
+    example: &str,
+) -> PyResult<[f64; N]> {
+    let wrong = || {
+        PyTypeError::new_err(format!(
+            "{field}: expected {N} numbers such as {example}, got {}",
+            describe(obj)
+        ))
+    };
+    let found = items::<N>(obj).ok_or_else(wrong)?;
+    let mut out = [0.0; N];
+    for (slot, item) in out.iter_mut().zip(&found) {
+        *slot = real(item).ok_or_else(wrong)?;
+    }
+    Ok(out)
 }
 
 /// A whole number of type `T` for `field`, or a `SchemeError` saying the

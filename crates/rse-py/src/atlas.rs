@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 use rse_core::{AtlasOptions, PatchOptions};
 use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 
+use crate::args;
 use crate::batch::{outcome_name, templates, world_options};
 use crate::errors::{core_error, world_error};
 use crate::scheme::{Scheme, difficulty_arg};
@@ -63,7 +64,7 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
 #[pymethods]
 impl Atlas {
     #[new]
-    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0),
+    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=None, spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0),
            text_signature = "(schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -73,12 +74,15 @@ impl Atlas {
         cols: u32,
         seed: Option<u64>,
         border: u32,
-        difficulty: (f64, f64),
+        difficulty: Option<Bound<'_, PyAny>>,
         spawn_radius: f64,
         flat_patches: u32,
         patch_radius: f64,
         max_step: u16,
     ) -> PyResult<Self> {
+        let [easiest, hardest] = difficulty.map_or(Ok([0.0, 1.0]), |d| {
+            args::reals("difficulty", &d, "(0.0, 1.0)")
+        })?;
         let schemes = named_schemes(py, &schemes)?;
         let seed = seed.unwrap_or_else(|| schemes.first().map_or(0, |s| s.scheme.globals().seed));
         let options = AtlasOptions {
@@ -86,7 +90,7 @@ impl Atlas {
             cols,
             seed,
             border,
-            difficulty: (difficulty_arg(difficulty.0)?, difficulty_arg(difficulty.1)?),
+            difficulty: (difficulty_arg(easiest)?, difficulty_arg(hardest)?),
             spawn_radius,
             patches: PatchOptions {
                 count: flat_patches,

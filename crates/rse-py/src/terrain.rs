@@ -361,20 +361,27 @@ impl Terrain {
     /// sliding, torsional, rolling). Attach it with `mujoco.MjSpec`:
     /// `robot.attach(mujoco.MjSpec.from_string(terrain.mjcf(fragment=True)),
     /// prefix="terrain/", frame=robot.worldbody.add_frame())`.
-    #[pyo3(signature = (*, fragment=false, prefix="", offset=(0.0, 0.0, 0.0), friction=None),
+    #[pyo3(signature = (*, fragment=false, prefix="", offset=None, friction=None),
            text_signature = "($self, *, fragment=False, prefix='', offset=(0.0, 0.0, 0.0), friction=None)")]
     fn mjcf<'py>(
         &self,
         py: Python<'py>,
         fragment: bool,
         prefix: &str,
-        offset: (f64, f64, f64),
+        offset: Option<Bound<'py, PyAny>>,
         friction: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let offset = offset.map_or(Ok([0.0; 3]), |o| {
+            crate::args::reals::<3>("offset", &o, "(1.0, -2.0, 0.0)")
+        })?;
         let xml = rse_world::mjcf(&self.inner).map_err(|e| world_error(py, &e))?;
-        py.import("rse._mjcf")?
-            .getattr("adapt")?
-            .call1((xml, fragment, prefix, offset, friction))
+        py.import("rse._mjcf")?.getattr("adapt")?.call1((
+            xml,
+            fragment,
+            prefix,
+            (offset[0], offset[1], offset[2]),
+            friction,
+        ))
     }
 
     /// The preview as PNG bytes (the world folder's `preview.png`):

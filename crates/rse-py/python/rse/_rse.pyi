@@ -150,7 +150,7 @@ class Terrain:
         *,
         fragment: bool = False,
         prefix: str = "",
-        offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        offset: Union[tuple[_Float, _Float, _Float], list[_Float], npt.NDArray[np.floating]] = (0.0, 0.0, 0.0),
         friction: Optional[Union[float, tuple[float, ...], list[float]]] = None,
     ) -> str: ...
     def save(self, path: Union[str, os.PathLike[str]]) -> None: ...
@@ -165,7 +165,7 @@ class Atlas:
         *,
         seed: Optional[int] = None,
         border: int = 0,
-        difficulty: tuple[float, float] = (0.0, 1.0),
+        difficulty: Union[tuple[_Float, _Float], list[_Float], npt.NDArray[np.floating]] = (0.0, 1.0),
         spawn_radius: float = 0.3,
         flat_patches: int = 0,
         patch_radius: float = 0.3,
