@@ -23,7 +23,7 @@ within 1 cm where that is meaningful: the rapier smoke test (`check
 and the sphere tests of tests/python/test_worlds.py and test_curricula.py
 (MuJoCo, PyBullet).
 
-Run: .venv/bin/python bench/robots.py [--steps N] [--repeats R]
+Run: .venv/bin/python bench/robots.py [--steps N] [--repeats R] [--engine MuJoCo|PyBullet]
 """
 
 from __future__ import annotations
@@ -267,9 +267,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--steps", type=int, default=2000)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--engine", choices=sorted(ENGINES), help="one engine's rows only [default: both]")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         for engine, (robots, colliders) in ENGINES.items():
+            if args.engine not in (None, engine):
+                continue
             for robot in robots:
                 print(f"\n{engine} {robot}: steps/s median [min-max] of {args.repeats}, x plane, contacts/step, "
                       f"physics errors, terrain shapes, deepest contact mm")  # fmt: skip
