@@ -106,6 +106,17 @@ pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
     Preview { width, height, rgb }
 }
 
+/// The PNG of `terrain` with `cell_pixels` pixels per cell (default:
+/// [`auto_cell_pixels`]), refused past [`MAX_PIXELS`] before anything is
+/// drawn: what a world's `preview.png`, `rse-gen preview`, the editor and
+/// Python's `Terrain.preview()` hold.
+pub fn png(terrain: &Terrain, cell_pixels: Option<u32>) -> Result<Vec<u8>, Error> {
+    let grid = terrain.grid();
+    let cell_pixels = cell_pixels.unwrap_or_else(|| auto_cell_pixels(grid.nx, grid.ny));
+    check_size(grid.nx, grid.ny, cell_pixels)?;
+    encode_png(&render(terrain, cell_pixels))
+}
+
 /// Encodes a preview as PNG bytes.
 pub fn encode_png(preview: &Preview) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();

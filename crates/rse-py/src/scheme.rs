@@ -392,14 +392,11 @@ impl Scheme {
             ),
         }
         .fields(py)?;
-        let mut parts = vec![
-            self.fields(py)?
-                .get_item("obstacles")?
-                .expect("obstacles")
-                .repr()?
-                .to_string(),
-        ];
-        for (key, value) in self.fields(py)?.iter().skip(1) {
+        // `obstacles` first, positional; then what differs from the default.
+        let mut entries = self.fields(py)?.iter();
+        let (_, obstacles) = entries.next().expect("fields start with obstacles");
+        let mut parts = vec![obstacles.repr()?.to_string()];
+        for (key, value) in entries {
             let default = defaults.get_item(&key)?.expect("same keys");
             if !value.eq(default)? {
                 parts.push(format!("{key}={}", value.repr()?));

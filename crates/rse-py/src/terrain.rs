@@ -393,14 +393,8 @@ impl Terrain {
         py: Python<'py>,
         cell_pixels: Option<u32>,
     ) -> PyResult<Bound<'py, PyBytes>> {
-        let grid = self.inner.grid();
-        let cell_pixels =
-            cell_pixels.unwrap_or_else(|| rse_core::preview::auto_cell_pixels(grid.nx, grid.ny));
-        let png = rse_core::preview::check_size(grid.nx, grid.ny, cell_pixels)
-            .and_then(|()| {
-                rse_core::preview::encode_png(&rse_core::preview::render(&self.inner, cell_pixels))
-            })
-            .map_err(|e| core_error(py, &e))?;
+        let png =
+            rse_core::preview::png(&self.inner, cell_pixels).map_err(|e| core_error(py, &e))?;
         Ok(PyBytes::new(py, &png))
     }
 

@@ -420,11 +420,7 @@ fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> 
     let Some(file) = file_difference(dest, world)? else {
         return Ok(None);
     };
-    let manifest = |bytes: &[u8]| {
-        std::str::from_utf8(bytes)
-            .ok()
-            .and_then(|text| Manifest::from_json(text).ok())
-    };
+    let manifest = |bytes: &[u8]| serde_json::from_slice::<Manifest>(bytes).ok();
     let there = std::fs::read(dest.join(MANIFEST))
         .ok()
         .and_then(|b| manifest(&b));

@@ -85,17 +85,12 @@ pub(crate) fn terrain_files(
     templates: &Templates,
     extra: BTreeMap<String, Vec<u8>>,
 ) -> Result<WorldFiles, Error> {
-    let grid = terrain.grid();
     let mut files = extra;
     files.insert(
         "heightmap.csv".to_owned(),
         terrain.heightmap().to_csv().into_bytes(),
     );
-    let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);
-    files.insert(
-        "preview.png".to_owned(),
-        preview::encode_png(&preview::render(terrain, cell_pixels))?,
-    );
+    files.insert("preview.png".to_owned(), preview::png(terrain, None)?);
 
     let boxes = terrain.boxes();
     let targets = &options.targets;

@@ -13,7 +13,7 @@ pub fn run(args: &PreviewArgs, overrides: &SchemeOverrides) -> anyhow::Result<Ex
     // Refused before the world is generated, let alone drawn.
     preview::check_size(grid.nx, grid.ny, cell_pixels)?;
     let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
-    let png = preview::encode_png(&preview::render(&terrain, cell_pixels))?;
+    let png = preview::png(&terrain, Some(cell_pixels))?;
     rse_world::write_atomically(&args.output, &png)?;
     Ok(ExitStatus::Success)
 }

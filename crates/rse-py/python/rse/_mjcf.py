@@ -76,7 +76,7 @@ def adapt(xml: str, fragment: bool, prefix: str, offset: tuple, friction: Any) -
         root.set("model", prefix + root.get("model", "rse"))
         for element in root.iter():
             for key in ("name", "material", "texture", "mesh", "hfield"):
-                if key in element.attrib and not (element.tag == "mujoco" and key == "name"):
+                if key in element.attrib:
                     element.set(key, prefix + element.attrib[key])
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"

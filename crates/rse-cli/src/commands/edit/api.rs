@@ -103,10 +103,7 @@ pub fn preview(body: &[u8]) -> Answer {
         }));
     }
     let terrain = rse_core::generate(&scheme, request.seed, request.index);
-    let grid = terrain.grid();
-    let cell_pixels = preview::auto_cell_pixels(grid.nx, grid.ny);
-    let png = preview::encode_png(&preview::render(&terrain, cell_pixels))
-        .map_err(|e| bad(e.to_string()))?;
+    let png = preview::png(&terrain, None).map_err(|e| bad(e.to_string()))?;
     let boxes: Vec<[f64; 6]> = terrain
         .boxes()
         .iter()
