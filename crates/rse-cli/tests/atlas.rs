@@ -109,6 +109,17 @@ fn the_atlas_checks_good_and_is_the_same_on_any_jobs() {
     let leftover = one.parent().unwrap().join(".atlas.tmp-4242");
     std::fs::create_dir(&leftover).unwrap();
     std::fs::write(leftover.join("rse.json"), "{").unwrap();
+    // check reports it, given the atlas or the folder it is in.
+    for path in [one.as_path(), one.parent().unwrap()] {
+        let check = rse_gen(&["check", path.to_str().unwrap()]);
+        assert_eq!(check.status.code(), Some(1), "{}", stderr(&check));
+        let said = format!(
+            "{}{}",
+            String::from_utf8_lossy(&check.stdout),
+            stderr(&check)
+        );
+        assert!(said.contains(".atlas.tmp-4242"), "{said}");
+    }
     // A rerun leaves it alone; another layout is refused without --force.
     let again = atlas(&one, &["--target", all]);
     assert!(stderr(&again).contains("unchanged"), "{}", stderr(&again));

@@ -15,6 +15,11 @@ use crate::generate::Terrain;
 /// At most this many samples (`nx·ny·k²`): 2^27 float32 are 512 MiB.
 pub const MAX_HFIELD_SAMPLES: u64 = 1 << 27;
 
+/// Samples per cell along each axis when none is asked for: every front
+/// end's default (`rse-gen hfield`, `--mujoco-collider hfield`, Python's
+/// `Terrain.hfield`). Four keeps a step edge within an eighth of a cell.
+pub const DEFAULT_OVERSAMPLE: u32 = 4;
+
 /// A terrain's height field, ready for MuJoCo.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HField {

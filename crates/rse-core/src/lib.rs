@@ -57,7 +57,7 @@ pub use globals::{
     Pallets, format_dims, parse_dims,
 };
 pub use heightmap::{Heightmap, HeightmapCsvError};
-pub use hfield::{HField, HFieldError, MAX_HFIELD_SAMPLES};
+pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use obstacle::{
     DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
 };

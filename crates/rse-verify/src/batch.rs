@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use rse_world::MANIFEST;
+use rse_world::{Leftover, MANIFEST};
 use serde::Serialize;
 
 use crate::fault::{Fault, FaultKind};
@@ -93,6 +93,8 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
             return Err(DiscoverError::NotAFolder(path.clone()));
         }
         if path.join(MANIFEST).exists() {
+            // A world named directly: its own leftovers lie beside it.
+            faults.extend(leftovers_of_world(path));
             worlds.push(path.clone());
             continue;
         }
@@ -106,7 +108,7 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
             let entry = entry.map_err(unreadable)?;
             let name = entry.file_name().to_string_lossy().into_owned();
             let is_dir = entry.file_type().map_err(unreadable)?.is_dir();
-            if is_dir && rse_world::leftover_index(&name).is_some() {
+            if is_dir && Leftover::world_of(&name).is_some() {
                 leftovers.push(name);
             } else if is_dir && entry.path().join(MANIFEST).exists() {
                 found.push(entry.path());
@@ -126,6 +128,41 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
         worlds.extend(found);
     }
     Ok((worlds, faults))
+}
+
+/// The leftover temporary folders of the world folder `world` in its parent
+/// (`.atlas.tmp-PID` beside `atlas`), as faults.
+fn leftovers_of_world(world: &Path) -> Vec<Fault> {
+    let (Some(parent), Some(name)) = (world.parent(), world.file_name()) else {
+        return Vec::new();
+    };
+    let parent = if parent.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        parent
+    };
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return Vec::new();
+    };
+    let mut found: Vec<PathBuf> = entries
+        .filter_map(Result::ok)
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+        .filter(|e| {
+            let of = e
+                .file_name()
+                .to_str()
+                .and_then(Leftover::world_of)
+                .map(str::to_owned);
+            name.to_str()
+                .is_some_and(|name| of.as_deref() == Some(name))
+        })
+        .map(|e| world.with_file_name(e.file_name()))
+        .collect();
+    found.sort();
+    found
+        .into_iter()
+        .map(|path| Fault::of(&path.display().to_string(), FaultKind::Leftover))
+        .collect()
 }
 
 /// Checks every world under `paths` in parallel (on rayon's current pool),

@@ -181,7 +181,8 @@ pub enum FaultKind {
         /// The smoke test's words.
         error: String,
     },
-    /// A temporary folder left by a batch that was cut short.
+    /// A temporary folder left by a run (a batch, an atlas, a single world)
+    /// that was cut short.
     Leftover,
     /// Two world folders of one batch are the same world.
     Duplicate {
@@ -265,7 +266,7 @@ impl std::fmt::Display for FaultKind {
             ),
             FaultKind::Physics { error } => write!(f, "physics: {error}"),
             FaultKind::Leftover => f.write_str(
-                "a temporary folder of a batch that was cut short: rerun the batch to finish it",
+                "a temporary folder of a run that was cut short: rerun it to finish (it removes the folder)",
             ),
             FaultKind::Duplicate { of } => write!(f, "the same world (seed, index) as {of}"),
         }

@@ -7,6 +7,8 @@ use std::collections::BTreeMap;
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
+pub use rse_world::inside;
+
 use crate::fault::{Fault, FaultKind};
 
 /// The regular files of a world folder, by `/`-separated relative path,
@@ -125,17 +127,6 @@ impl Folder {
         }
         Ok(bytes)
     }
-}
-
-/// `path` if it is a plain relative path inside a folder: `/`-separated,
-/// no empty, `.` or `..` part, no backslash, no drive or NUL. Such a path
-/// names a file under the folder on every system.
-pub fn inside(path: &str) -> bool {
-    !path.is_empty()
-        && !path.contains(['\\', ':', '\0'])
-        && path
-            .split('/')
-            .all(|part| !part.is_empty() && part != "." && part != "..")
 }
 
 /// The world-relative path that `reference`, written in a file in

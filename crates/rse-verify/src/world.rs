@@ -7,12 +7,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use rse_core::{Scheme, Terrain, generate_at};
+use rse_core::Terrain;
 use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
-use rse_world::{
-    Collider, MANIFEST, Manifest, Templates, WorldFiles, WorldOptions, build_atlas_world,
-    build_world, sha256_hex,
-};
+use rse_world::{Collider, MANIFEST, Manifest, RebuildError, Rebuilt, Templates, sha256_hex};
 use serde::Serialize;
 
 use crate::fault::{Fault, FaultKind, line_of};
@@ -118,24 +115,20 @@ fn check_against_manifest(
             },
         ));
     }
-    let (terrain, world) = match rebuild(manifest) {
+    let Rebuilt {
+        terrain,
+        files: expected,
+        hashed_only,
+    } = match manifest.rebuild(builtin_templates()) {
         Ok(rebuilt) => rebuilt,
-        Err(kind) => {
-            faults.push(Fault::of(MANIFEST, kind));
-            return;
-        }
-    };
-    let expected = match expected_files(world, manifest) {
-        Ok(expected) => expected,
-        Err(reason) => {
-            let reason = format!("the world cannot be rebuilt from it: {reason}");
-            faults.push(Fault::of(MANIFEST, FaultKind::BadManifest { reason }));
+        Err(e) => {
+            faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
             return;
         }
     };
     let cells = u64::from(terrain.grid().nx) * u64::from(terrain.grid().ny);
     let mut contents: BTreeMap<&str, Vec<u8>> = BTreeMap::new();
-    for (path, want) in &expected.files {
+    for (path, want) in &expected {
         // A file longer than the rebuilt one is read up to the cap all the
         // same, so the checks below can say what is wrong with it.
         match folder.read(path, file_cap(cells).max(want.len() as u64)) {
@@ -148,7 +141,7 @@ fn check_against_manifest(
             Err(kind) => faults.push(Fault::of(path, kind)),
         }
     }
-    for path in &expected.hashed_only {
+    for path in &hashed_only {
         let Some(digest) = manifest.files.get(path) else {
             continue;
         };
@@ -163,7 +156,7 @@ fn check_against_manifest(
         }
     }
     for path in folder.paths() {
-        if !expected.files.contains_key(path) && !expected.hashed_only.contains(path) {
+        if !expected.contains_key(path) && !hashed_only.contains(path) {
             faults.push(Fault::of(path, FaultKind::Unexpected));
         }
     }
@@ -197,7 +190,7 @@ fn check_against_manifest(
         faults.extend(found.iter().map(|kind| Fault::of(path, kind.clone())));
         checked.push((bytes, found));
     }
-    report.hashed_only = expected.hashed_only.iter().cloned().collect();
+    report.hashed_only = hashed_only.iter().cloned().collect();
     if options.physics {
         physics(manifest, meshes, &terrain, report, faults);
     }
@@ -215,9 +208,10 @@ fn physics(
     faults: &mut Vec<Fault>,
 ) {
     let colliders: BTreeSet<Collider> = manifest
+        .options
         .targets
         .iter()
-        .map(|t| Collider::of(t, manifest.mesh, manifest.mujoco_collider))
+        .map(|t| Collider::of(t, manifest.options.mesh, manifest.options.mujoco_collider))
         .collect();
     let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
     if colliders.contains(&Collider::Mesh) {
@@ -281,123 +275,20 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
     })
 }
 
-/// The world's files as `check` can rebuild them, and the paths it can
-/// only hash.
-struct Expected {
-    files: BTreeMap<String, Vec<u8>>,
-    hashed_only: BTreeSet<String>,
-}
-
 /// Our templates, parsed once per process, not once per world checked.
 fn builtin_templates() -> &'static Templates {
     static BUILTIN: std::sync::OnceLock<Templates> = std::sync::OnceLock::new();
     BUILTIN.get_or_init(Templates::builtin)
 }
 
-/// The terrain and every file of the world `manifest` describes, built
-/// with our templates: a single world from its scheme and seed pair, an
-/// atlas from its schemes and layout.
-fn rebuild(manifest: &Manifest) -> Result<(Terrain, WorldFiles), FaultKind> {
-    let options = WorldOptions {
-        targets: manifest.targets.clone(),
-        mesh: manifest.mesh,
-        difficulty: manifest.difficulty,
-        mujoco_collider: manifest.mujoco_collider,
-    };
-    let cannot = |e: rse_world::Error| FaultKind::BadManifest {
-        reason: format!("the world cannot be rebuilt from it: {e}"),
-    };
-    let bad_scheme = |e: rse_core::SchemeError| FaultKind::BadScheme {
-        reason: e.to_string(),
-    };
-    let name = manifest.world.clone();
-    if let Some(record) = &manifest.atlas {
-        let schemes = record.schemes().map_err(bad_scheme)?;
-        let atlas_options = record.options(manifest.seed);
-        let (world, atlas) = build_atlas_world(
-            &schemes,
-            &atlas_options,
-            name,
-            &options,
-            builtin_templates(),
-        )
-        .map_err(cannot)?;
-        return Ok((atlas.terrain().clone(), world));
+/// The fault of a manifest whose world cannot be rebuilt.
+fn rebuild_fault(e: RebuildError) -> FaultKind {
+    match e {
+        RebuildError::Scheme(e) => FaultKind::BadScheme {
+            reason: e.to_string(),
+        },
+        other => FaultKind::BadManifest {
+            reason: other.to_string(),
+        },
     }
-    let scheme = Scheme::from_csv(&manifest.scheme, Some("rse.json scheme")).map_err(bad_scheme)?;
-    let terrain = generate_at(&scheme, manifest.seed, manifest.index, manifest.difficulty);
-    let world = build_world(
-        &scheme,
-        manifest.seed,
-        manifest.index,
-        name,
-        &options,
-        builtin_templates(),
-    )
-    .map_err(cannot)?;
-    Ok((terrain, world))
-}
-
-/// What each file of the world must be, given `world` rebuilt with our
-/// templates: with our own templates (and this version of `rse`) that is
-/// every file, `rse.json` included; with a user's templates, every file but
-/// the rendered ones, whose hashes are taken from the manifest (so
-/// `rse.json` is still rebuilt whole).
-fn expected_files(world: WorldFiles, manifest: &Manifest) -> Result<Expected, String> {
-    let builtin = builtin_templates();
-    let same_version = manifest.version == rse_core::VERSION;
-    match manifest.templates.as_str() {
-        // This version's own templates have one digest: any other is a
-        // forged claim, not a world to check by hashes alone.
-        "builtin" if same_version && manifest.templates_sha256 != builtin.digest() => {
-            return Err(format!(
-                "templates_sha256 is {}, but rse {} has built-in templates {}",
-                manifest.templates_sha256,
-                rse_core::VERSION,
-                builtin.digest()
-            ));
-        }
-        "builtin" | "custom" => {}
-        other => {
-            return Err(format!(
-                "templates is {other:?}: expected \"builtin\" or \"custom\""
-            ));
-        }
-    }
-    let ours = same_version
-        && manifest.templates == "builtin"
-        && manifest.templates_sha256 == builtin.digest();
-    if ours {
-        return Ok(Expected {
-            files: world.files,
-            hashed_only: BTreeSet::new(),
-        });
-    }
-    let mut files = world.files;
-    for path in &world.from_templates {
-        files.remove(path);
-    }
-    let rebuilt = files.remove(MANIFEST).expect("build_world writes rse.json");
-    let mut rebuilt =
-        Manifest::from_json(std::str::from_utf8(&rebuilt).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())?;
-    let hashed_only: BTreeSet<String> = manifest
-        .files
-        .keys()
-        .filter(|p| !files.contains_key(*p) && inside(p))
-        .cloned()
-        .collect();
-    rebuilt.templates.clone_from(&manifest.templates);
-    rebuilt
-        .templates_sha256
-        .clone_from(&manifest.templates_sha256);
-    rebuilt.version.clone_from(&manifest.version);
-    rebuilt.files.retain(|p, _| files.contains_key(p));
-    for path in &hashed_only {
-        rebuilt
-            .files
-            .insert(path.clone(), manifest.files[path].clone());
-    }
-    files.insert(MANIFEST.to_owned(), rebuilt.to_json().into_bytes());
-    Ok(Expected { files, hashed_only })
 }

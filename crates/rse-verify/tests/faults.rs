@@ -217,11 +217,14 @@ fn bad_manifest_forged_template_claims() {
         Some("rse.json"),
         |k| matches!(k, FaultKind::BadManifest { reason } if reason.contains("templates_sha256")),
     );
-    edit_manifest(&world, |m| m.templates = "mine".to_owned());
+    // A template set that does not exist: refused as the manifest is read.
+    let path = world.join("rse.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, text.replace("\"builtin\"", "\"mine\"")).unwrap();
     assert_fault(
         &check(&world),
         Some("rse.json"),
-        |k| matches!(k, FaultKind::BadManifest { reason } if reason.contains("\"mine\"")),
+        |k| matches!(k, FaultKind::BadManifest { reason } if reason.contains("`mine`")),
     );
 }
 

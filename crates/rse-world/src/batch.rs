@@ -1,8 +1,6 @@
 //! Writing a batch of worlds: in parallel, each world whole or absent, and
 //! resumable — a rerun skips the worlds already written and redoes the rest.
 
-use std::collections::BTreeSet;
-use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -11,11 +9,11 @@ use rayon::prelude::*;
 use rse_core::Scheme;
 
 use crate::error::Error;
-use crate::manifest::{MANIFEST, Manifest, what_differs};
-use crate::target::Targets;
+use crate::memory::check_memory_for;
+use crate::options::{Targets, WorldOptions};
+use crate::place::{Outcome, lock_in, place_world, remove_leftovers};
 use crate::templates::Templates;
-use crate::tree::list_files;
-use crate::world::{WorldFiles, WorldOptions, build_world};
+use crate::world::build_world;
 
 /// Which worlds of a batch this run writes: those with `index % n == k`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,17 +139,6 @@ pub fn thread_pool(jobs: Option<usize>) -> Result<rayon::ThreadPool, Error> {
         })
 }
 
-/// What happened to one world.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Outcome {
-    /// Written anew; with its size in bytes.
-    Written(u64),
-    /// Already there, identical: left alone.
-    Skipped,
-    /// Held something else and `force` was set; with the new size in bytes.
-    Replaced(u64),
-}
-
 /// Counts of a finished batch run.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Summary {
@@ -176,6 +163,14 @@ pub struct Summary {
 /// length, then text (as `rse-gen check` does).
 pub fn world_name(index: u64) -> String {
     format!("world_{index:04}")
+}
+
+/// The index of the batch world named `name` (`world_0007` → 7), the
+/// inverse of [`world_name`]; `None` for any other name.
+pub fn world_index(name: &str) -> Option<u64> {
+    let digits = name.strip_prefix("world_")?;
+    let index: u64 = digits.parse().ok()?;
+    (world_name(index) == name).then_some(index)
 }
 
 /// Writes the worlds of `options.shard` into `options.out`, calling
@@ -227,8 +222,10 @@ pub fn write_batch_until(
     std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
     // Held until this function returns; the system drops it if the process dies.
     let _lock = lock_shard(out, options.shard)?;
-    remove_leftovers(out, options)?;
+    // Leftovers of this shard's interrupted runs; other shards' are theirs:
+    // they may be running right now into the same folder.
     let Shard { k, n } = options.shard;
+    remove_leftovers(out, |world| world_index(world).is_some_and(|i| i % n == k))?;
     let count = options.shard.worlds(options.amount);
     let [written, skipped, replaced, bytes, not_started] = [(); 5].map(|()| AtomicU64::new(0));
     pool.install(|| {
@@ -267,12 +264,6 @@ pub fn write_batch_until(
     })
 }
 
-/// Memory one world may take while it is built, per cell of its grid:
-/// heightmap, mesh, box set and every file in memory. Measured at about
-/// 1.4 KiB (single mesh) and 1.8 KiB (blocks) per cell on a 1000×1000
-/// random field of height 4 with every target, the worst case there is.
-pub const WORLD_BYTES_PER_CELL: u64 = 2048;
-
 /// Refuses a batch whose worlds, as many at once as it has threads, would
 /// need more memory than the machine has available (`MemAvailable` on
 /// Linux; elsewhere nothing is refused): better a clear error before
@@ -291,27 +282,6 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
     })
 }
 
-/// Refuses to build `at_once` worlds of `cells` cells at the same time when
-/// they need more than the memory available (where that can be read).
-pub(crate) fn check_memory_for(cells: u64, at_once: u64) -> Result<(), Error> {
-    let Some(available) = crate::memory::available_bytes() else {
-        return Ok(());
-    };
-    let per_world = cells.saturating_mul(WORLD_BYTES_PER_CELL);
-    let needed = per_world.saturating_mul(at_once);
-    if needed > available {
-        return Err(Error::TooBig {
-            message: format!(
-                "a world of {cells} cells needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell), {at_once} at once: {} MiB, but {} MiB are available",
-                per_world >> 20,
-                needed >> 20,
-                available >> 20
-            ),
-        });
-    }
-    Ok(())
-}
-
 /// Locks shard `shard` of the output folder `out` for this run, or says
 /// another run holds it: two identical batches at once raced (one renamed
 /// a world onto the other's and failed with "Directory not empty"). The
@@ -327,163 +297,6 @@ fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
             shard: format!("{}/{}", shard.k, shard.n),
         }
     })
-}
-
-/// An exclusive lock on `what` in the folder `out` (a lock file in the
-/// system's temp folder, named after both), or `busy()` when another run
-/// holds it. Dropping the file releases it; so does the process dying.
-pub(crate) fn lock_in(
-    out: &Path,
-    what: &str,
-    busy: impl FnOnce() -> Error,
-) -> Result<std::fs::File, Error> {
-    let canonical = out.canonicalize().map_err(Error::io("read", out))?;
-    let key = crate::manifest::sha256_hex(canonical.as_os_str().as_encoded_bytes());
-    let what = crate::manifest::sha256_hex(what.as_bytes());
-    let path = std::env::temp_dir().join(format!("rse-batch-{}-{}.lock", &key[..16], &what[..16]));
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&path)
-        .map_err(Error::io("create", &path))?;
-    match file.try_lock() {
-        Ok(()) => Ok(file),
-        Err(std::fs::TryLockError::WouldBlock) => Err(busy()),
-        Err(std::fs::TryLockError::Error(e)) => Err(Error::io("lock", &path)(e)),
-    }
-}
-
-/// Puts `world` at `out/<name>`: written into a temporary folder, then
-/// renamed into place, so that the folder appears whole or not at all. A
-/// folder already holding exactly `world` is left alone; one holding
-/// anything else is an error unless `force`.
-pub fn place_world(out: &Path, world: &WorldFiles, force: bool) -> Result<Outcome, Error> {
-    let dest = out.join(&world.name);
-    let existing = match std::fs::symlink_metadata(&dest) {
-        Ok(_) => true,
-        Err(e) if e.kind() == ErrorKind::NotFound => false,
-        Err(e) => return Err(Error::io("read", &dest)(e)),
-    };
-    if existing {
-        match difference(&dest, world)? {
-            None => return Ok(Outcome::Skipped),
-            Some(reason) if !force => return Err(Error::Conflict { path: dest, reason }),
-            Some(_) => {}
-        }
-    }
-    let pid = std::process::id();
-    let temp = out.join(format!(".{}.tmp-{pid}", world.name));
-    if let Err(e) = write_tree(&temp, world) {
-        // Best effort: the error being reported matters more.
-        let _ = std::fs::remove_dir_all(&temp);
-        return Err(e);
-    }
-    let size = world.bytes();
-    if !existing {
-        std::fs::rename(&temp, &dest).map_err(Error::io("rename into place", &dest))?;
-        return Ok(Outcome::Written(size));
-    }
-    // Replace: move the old folder aside first, since a folder cannot be
-    // renamed over a non-empty one. A crash in between leaves the world
-    // absent (and the leftovers are removed by the next run), never mixed.
-    let old = out.join(format!(".{}.old-{pid}", world.name));
-    std::fs::rename(&dest, &old).map_err(Error::io("move aside", &dest))?;
-    std::fs::rename(&temp, &dest).map_err(Error::io("rename into place", &dest))?;
-    std::fs::remove_dir_all(&old).map_err(Error::io("remove", &old))?;
-    Ok(Outcome::Replaced(size))
-}
-
-/// Writes every file of `world` under `root`.
-fn write_tree(root: &Path, world: &WorldFiles) -> Result<(), Error> {
-    std::fs::create_dir(root).map_err(Error::io("create", root))?;
-    let mut made = BTreeSet::new();
-    for (relative, bytes) in &world.files {
-        let path = root.join(relative);
-        if let Some(parent) = Path::new(relative).parent()
-            && !parent.as_os_str().is_empty()
-            && made.insert(parent.to_owned())
-        {
-            let dir = root.join(parent);
-            std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
-        }
-        std::fs::write(&path, bytes).map_err(Error::io("write", &path))?;
-    }
-    Ok(())
-}
-
-/// How the folder `dest` differs from `world`, or `None` if it holds
-/// exactly its files with exactly their bytes: the setting its `rse.json`
-/// records differently when there is one (`targets gazebo there,
-/// gazebo,mujoco now`), else the first file that differs.
-fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
-    let Some(file) = file_difference(dest, world)? else {
-        return Ok(None);
-    };
-    let manifest = |bytes: &[u8]| serde_json::from_slice::<Manifest>(bytes).ok();
-    let there = std::fs::read(dest.join(MANIFEST))
-        .ok()
-        .and_then(|b| manifest(&b));
-    let now = world.files.get(MANIFEST).and_then(|b| manifest(b));
-    Ok(Some(match (there, now) {
-        (Some(there), Some(now)) => what_differs(&there, &now).unwrap_or_else(|| {
-            format!("{file}, though it was made with the same settings (changed since?)")
-        }),
-        _ => file,
-    }))
-}
-
-/// The first file of the folder `dest` that is not `world`'s, or `None`.
-fn file_difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
-    if !dest.is_dir() {
-        return Ok(Some("not a folder".to_owned()));
-    }
-    for path in &list_files(dest).map_err(Error::io("read", dest))? {
-        if !world.files.contains_key(path) {
-            return Ok(Some(format!("unexpected file {path}")));
-        }
-    }
-    for (path, bytes) in &world.files {
-        let file = dest.join(path);
-        match std::fs::read(&file) {
-            Ok(on_disk) if on_disk == *bytes => {}
-            Ok(_) => return Ok(Some(format!("{path} differs"))),
-            Err(e) if e.kind() == ErrorKind::NotFound => {
-                return Ok(Some(format!("{path} is missing")));
-            }
-            Err(e) => return Err(Error::io("read", file)(e)),
-        }
-    }
-    Ok(None)
-}
-
-/// Removes the temporary folders an interrupted run of this shard left
-/// (`.world_0007.tmp-PID`, `.world_0007.old-PID`). Other shards' leftovers
-/// are theirs: they may be running right now into the same folder.
-fn remove_leftovers(out: &Path, options: &BatchOptions) -> Result<(), Error> {
-    for entry in std::fs::read_dir(out).map_err(Error::io("read", out))? {
-        let entry = entry.map_err(Error::io("read", out))?;
-        let name = entry.file_name().to_string_lossy().into_owned();
-        let Some(index) = leftover_index(&name) else {
-            continue;
-        };
-        if index % options.shard.n == options.shard.k {
-            let path = entry.path();
-            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
-        }
-    }
-    Ok(())
-}
-
-/// The world index of the name of a temporary folder a batch writes in
-/// (`.world_0007.tmp-PID`, `.world_0007.old-PID`); `None` for any other
-/// name. One left behind is what a cut-short run leaves.
-pub fn leftover_index(name: &str) -> Option<u64> {
-    let rest = name.strip_prefix(".world_")?;
-    let (index, kind) = rest.split_once('.')?;
-    (kind.starts_with("tmp-") || kind.starts_with("old-"))
-        .then(|| index.parse().ok())
-        .flatten()
 }
 
 #[cfg(test)]
@@ -548,10 +361,12 @@ mod tests {
     }
 
     #[test]
-    fn leftovers_are_recognised() {
-        assert_eq!(leftover_index(".world_0007.tmp-123"), Some(7));
-        assert_eq!(leftover_index(".world_0012.old-9"), Some(12));
-        assert_eq!(leftover_index("world_0007"), None);
-        assert_eq!(leftover_index(".world_x.tmp-1"), None);
+    fn world_indices_read_back_from_names() {
+        for index in [0, 7, 9999, 12_345] {
+            assert_eq!(world_index(&world_name(index)), Some(index));
+        }
+        for other in ["world_7", "world_x", "atlas", "world_-001", "world_00123"] {
+            assert_eq!(world_index(other), None, "{other}");
+        }
     }
 }

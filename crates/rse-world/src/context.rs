@@ -4,7 +4,7 @@ use rse_core::mesh::Block;
 use rse_core::{HField, Terrain};
 use serde::Serialize;
 
-use crate::target::MeshMode;
+use crate::options::MeshMode;
 
 /// The name of the terrain model in every target.
 pub(crate) const MODEL: &str = "rse_terrain";

@@ -2,41 +2,52 @@
 //! world folder built in memory from templates, the `rse.json` manifest, and
 //! batches written in parallel, atomically and resumably.
 //!
+//! Modules, each using only those above it (a test keeps it so):
+//! `digest`, `error`, `tree`, `memory`, `options` → `atlas_record` →
+//! `manifest` → `context` → `templates` → `world` → `files`, `place` →
+//! `single`, `batch` → `atlas` → `rebuild`.
+//!
 //! ```no_run
 //! use rse_world::{BatchOptions, Targets, Templates, write_batch};
 //! let scheme = rse_core::Scheme::load("schemes/wall.csv")?;
-//! let options = BatchOptions::new("out", 10, 0, Targets::parse("gazebo,mujoco")?);
+//! let options = BatchOptions::new("out", 10, 0, "gazebo,mujoco".parse::<Targets>()?);
 //! let summary = write_batch(&scheme, &Templates::builtin(), &options, &|_| {})?;
 //! println!("{} worlds written", summary.written);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod atlas;
+mod atlas_record;
 mod batch;
 mod context;
+mod digest;
 mod error;
 mod files;
 mod manifest;
 mod memory;
+mod options;
+mod place;
+mod rebuild;
 mod single;
-mod target;
 mod templates;
 mod tree;
 mod world;
 
-pub use atlas::{
-    ATLAS_JSON, AtlasRecord, NamedScheme, PatchRecord, SchemeRecord, atlas_json, atlas_of,
-    build_atlas_world, write_atlas,
-};
+pub use atlas::{ATLAS_JSON, atlas_json, atlas_of, build_atlas_world, write_atlas};
+pub use atlas_record::{AtlasRecord, NamedScheme, PatchRecord, SchemeRecord};
 pub use batch::{
-    BatchOptions, Outcome, Shard, Summary, WORLD_BYTES_PER_CELL, leftover_index, place_world,
-    thread_pool, world_name, write_batch, write_batch_until,
+    BatchOptions, Shard, Summary, thread_pool, world_index, world_name, write_batch,
+    write_batch_until,
 };
+pub use digest::sha256_hex;
 pub use error::Error;
 pub use files::{write_atomically, write_mesh};
-pub use manifest::{MANIFEST, Manifest, sha256_hex, what_differs};
+pub use manifest::{MANIFEST, Manifest, TemplateSet, what_differs};
+pub use memory::WORLD_BYTES_PER_CELL;
+pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
+pub use place::{Leftover, Outcome, place_world};
+pub use rebuild::{RebuildError, Rebuilt};
 pub use single::{place_folder, write_world_at};
-pub use target::{Collider, MeshMode, MujocoCollider, Target, Targets};
 pub use templates::Templates;
-pub use tree::list_files;
-pub use world::{HFIELD_FILE, WorldFiles, WorldOptions, build_world, mjcf};
+pub use tree::{inside, list_files};
+pub use world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

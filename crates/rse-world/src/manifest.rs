@@ -1,21 +1,23 @@
-//! `rse.json`: what a world is (generator, parameters, seed pair, drawn
-//! obstacles) and the SHA-256 of every other file in its folder.
+//! `rse.json`, as data: what a world is (generator, options, seed pair,
+//! drawn obstacles or an atlas recipe) and the SHA-256 of every other file
+//! in its folder. Built by `world` (and `atlas`), read back by `rebuild`.
 
 use std::collections::BTreeMap;
 
-use rse_core::{Difficulty, DrawnObstacle, Globals, Grid, Terrain};
+use rse_core::{DrawnObstacle, Globals, Grid};
 use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 
-use crate::atlas::AtlasRecord;
-use crate::target::{MeshMode, MujocoCollider, Targets};
-use crate::templates::Templates;
-use crate::world::{WorldFiles, WorldOptions};
+use crate::atlas_record::AtlasRecord;
+use crate::options::{Target, WorldOptions};
 
 /// The manifest's file name in a world folder.
 pub const MANIFEST: &str = "rse.json";
 
 /// The contents of `rse.json`.
+///
+/// Keys are written in field order; `options` is flattened into the
+/// object, so a world option added to [`WorldOptions`] is recorded, compared
+/// by `check` and rebuilt with no edit here.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Manifest {
     /// Always `"rse"`.
@@ -28,20 +30,12 @@ pub struct Manifest {
     pub seed: u64,
     /// Index of the world in the batch.
     pub index: u64,
-    /// The difficulty the heights were scaled to; absent at 1, so worlds
-    /// of full difficulty keep the bytes they had before difficulties.
-    #[serde(default, skip_serializing_if = "is_full")]
-    pub difficulty: Difficulty,
-    /// The targets written.
-    pub targets: Targets,
-    /// The terrain model of the simulator files.
-    pub mesh: MeshMode,
-    /// What the `MuJoCo` world collides with; absent for boxes, so worlds
-    /// made before height fields keep their bytes.
-    #[serde(default, skip_serializing_if = "MujocoCollider::is_boxes")]
-    pub mujoco_collider: MujocoCollider,
-    /// `"builtin"` or `"custom"`.
-    pub templates: String,
+    /// What was written: difficulty, targets, terrain model, `MuJoCo`
+    /// collider.
+    #[serde(flatten)]
+    pub options: WorldOptions,
+    /// Which template set rendered the simulator files.
+    pub templates: TemplateSet,
     /// SHA-256 of the template files used.
     pub templates_sha256: String,
     /// The grid.
@@ -64,47 +58,28 @@ pub struct Manifest {
     pub files: BTreeMap<String, String>,
 }
 
-impl Manifest {
-    /// The manifest of `world` (its files as they are, `rse.json` not
-    /// among them), with no scheme, seed pair or drawn obstacles: the
-    /// caller fills those in.
-    pub(crate) fn of(
-        world: &WorldFiles,
-        terrain: &Terrain,
-        globals: &Globals,
-        options: &WorldOptions,
-        templates: &Templates,
-    ) -> Manifest {
-        Manifest {
-            generator: "rse".to_owned(),
-            version: rse_core::VERSION.to_owned(),
-            world: world.name.clone(),
-            seed: 0,
-            index: 0,
-            difficulty: Difficulty::FULL,
-            targets: options.targets.clone(),
-            mesh: options.mesh,
-            mujoco_collider: options.mujoco_collider,
-            templates: if templates.is_custom() {
-                "custom"
-            } else {
-                "builtin"
-            }
-            .to_owned(),
-            templates_sha256: templates.digest().to_owned(),
-            grid: terrain.grid(),
-            globals: *globals,
-            scheme: String::new(),
-            drawn: Vec::new(),
-            atlas: None,
-            files: world
-                .files
-                .iter()
-                .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
-                .collect(),
+/// The template set a world's simulator files were rendered from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TemplateSet {
+    /// Ours, built into the generator: `check` rebuilds every file.
+    Builtin,
+    /// Ours overlaid by a user's folder: `check` compares the rendered
+    /// files with their recorded hashes only.
+    Custom,
+}
+
+impl TemplateSet {
+    /// `builtin` or `custom`, as `rse.json` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            TemplateSet::Builtin => "builtin",
+            TemplateSet::Custom => "custom",
         }
     }
+}
 
+impl Manifest {
     /// The JSON text of the manifest: pretty, keys in a fixed order, a final
     /// newline.
     ///
@@ -131,20 +106,23 @@ pub fn what_differs(there: &Manifest, now: &Manifest) -> Option<String> {
         return Some("it was made from another scheme or other global settings".to_owned());
     }
     let targets = |m: &Manifest| {
-        m.targets
+        m.options
+            .targets
             .iter()
-            .map(crate::target::Target::name)
+            .map(Target::name)
             .collect::<Vec<_>>()
             .join(",")
     };
-    let templates = |m: &Manifest| format!("{} ({:.12}…)", m.templates, m.templates_sha256);
+    let templates = |m: &Manifest| format!("{} ({:.12}…)", m.templates.name(), m.templates_sha256);
     let settings: [(&str, Show); 8] = [
         ("seed", |m| m.seed.to_string()),
         ("index", |m| m.index.to_string()),
-        ("difficulty", |m| m.difficulty.to_string()),
+        ("difficulty", |m| m.options.difficulty.to_string()),
         ("targets", targets),
-        ("mesh", |m| m.mesh.name().to_owned()),
-        ("mujoco collider", |m| m.mujoco_collider.name().to_owned()),
+        ("mesh", |m| m.options.mesh.name().to_owned()),
+        ("mujoco collider", |m| {
+            m.options.mujoco_collider.name().to_owned()
+        }),
         ("rse version", |m| m.version.clone()),
         ("templates", templates),
     ];
@@ -157,20 +135,3 @@ pub fn what_differs(there: &Manifest, now: &Manifest) -> Option<String> {
 
 /// How [`what_differs`] shows one setting of a manifest.
 type Show = fn(&Manifest) -> String;
-
-/// For serde: whether a manifest's difficulty is left out.
-#[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
-fn is_full(d: &Difficulty) -> bool {
-    d.is_full()
-}
-
-/// The SHA-256 of `bytes` as lower-case hex.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes)
-        .iter()
-        .fold(String::with_capacity(64), |mut s, b| {
-            use std::fmt::Write as _;
-            write!(s, "{b:02x}").expect("writing to a String cannot fail");
-            s
-        })
-}

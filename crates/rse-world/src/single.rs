@@ -6,10 +6,12 @@ use std::path::{Path, PathBuf};
 
 use rse_core::Scheme;
 
-use crate::batch::{Outcome, check_memory_for, lock_in, place_world};
 use crate::error::Error;
+use crate::memory::check_memory_for;
+use crate::options::WorldOptions;
+use crate::place::{Outcome, lock_in, place_world, remove_leftovers};
 use crate::templates::Templates;
-use crate::world::{WorldFiles, WorldOptions, build_world};
+use crate::world::{WorldFiles, build_world};
 
 /// Writes the world `build` makes (given the folder's name) at `out`: the
 /// same world already there is left alone, a different one is replaced
@@ -45,7 +47,7 @@ pub fn place_folder<T>(
             path: out.to_path_buf(),
         }
     })?;
-    remove_leftovers_of(&parent, &world.name)?;
+    remove_leftovers(&parent, |leftover| leftover == world.name)?;
     Ok((place_world(&parent, &world, force)?, built))
 }
 
@@ -70,22 +72,4 @@ pub fn write_world_at(
         ))
     })?;
     Ok(outcome)
-}
-
-/// Removes `.NAME.tmp-PID` and `.NAME.old-PID` in `parent`: what a run on
-/// the world `name` killed before its rename leaves behind.
-fn remove_leftovers_of(parent: &Path, name: &str) -> Result<(), Error> {
-    let prefix = format!(".{name}.");
-    for entry in std::fs::read_dir(parent).map_err(Error::io("read", parent))? {
-        let entry = entry.map_err(Error::io("read", parent))?;
-        let file_name = entry.file_name();
-        let Some(rest) = file_name.to_str().and_then(|n| n.strip_prefix(&prefix)) else {
-            continue;
-        };
-        if rest.starts_with("tmp-") || rest.starts_with("old-") {
-            let path = entry.path();
-            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
-        }
-    }
-    Ok(())
 }

@@ -8,9 +8,10 @@ use std::path::Path;
 use minijinja::{AutoEscape, Environment, UndefinedBehavior};
 
 use crate::context::WorldContext;
+use crate::digest::sha256_hex;
 use crate::error::Error;
-use crate::manifest::sha256_hex;
-use crate::target::Target;
+use crate::manifest::TemplateSet;
+use crate::options::Target;
 use crate::tree::list_files;
 
 /// Suffix of the files that are rendered rather than copied.
@@ -214,6 +215,15 @@ impl Templates {
     /// `true` when a user's folder replaced some of ours.
     pub fn is_custom(&self) -> bool {
         self.custom
+    }
+
+    /// The set `rse.json` records: built-in or custom.
+    pub fn set(&self) -> TemplateSet {
+        if self.custom {
+            TemplateSet::Custom
+        } else {
+            TemplateSet::Builtin
+        }
     }
 
     /// SHA-256 over every template file (paths and bytes): what the

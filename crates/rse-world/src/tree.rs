@@ -1,5 +1,6 @@
-//! Listing a folder's files the way worlds name them: `/`-separated paths
-//! relative to the folder, sorted, so that every machine sees one order.
+//! Paths the way worlds name their files: `/`-separated, relative to the
+//! world folder; listing a folder's files so, sorted, so that every
+//! machine sees one order.
 
 use std::path::Path;
 
@@ -29,4 +30,15 @@ pub fn list_files(dir: &Path) -> std::io::Result<Vec<String>> {
     walk(dir, "", &mut out)?;
     out.sort();
     Ok(out)
+}
+
+/// `path` if it is a plain relative path inside a folder: `/`-separated,
+/// no empty, `.` or `..` part, no backslash, no drive or NUL. Such a path
+/// names a file under the folder on every system.
+pub fn inside(path: &str) -> bool {
+    !path.is_empty()
+        && !path.contains(['\\', ':', '\0'])
+        && path
+            .split('/')
+            .all(|part| !part.is_empty() && part != "." && part != "..")
 }

@@ -2,33 +2,21 @@
 //! target's files from its templates, and the manifest over them all.
 
 use std::collections::{BTreeMap, BTreeSet};
-
-use rse_core::export::{mtl, obj, usda};
 use std::sync::OnceLock;
 
-use rse_core::{Difficulty, Scheme, Terrain, generate_at, preview};
+use rse_core::export::{mtl, obj, usda};
+use rse_core::{Globals, Scheme, Terrain, generate_at, preview};
 
+use crate::atlas_record::AtlasRecord;
 use crate::context::{MODEL, WorldContext};
+use crate::digest::sha256_hex;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest};
-use crate::target::{MeshMode, MujocoCollider, Target, Targets};
+use crate::options::{MeshMode, MujocoCollider, Target, WorldOptions};
 use crate::templates::Templates;
 
 /// Where a world's `MuJoCo` height field file goes.
 pub const HFIELD_FILE: &str = "mujoco/terrain.bin";
-
-/// What to put in a world folder.
-#[derive(Debug, Clone, Default)]
-pub struct WorldOptions {
-    /// The simulators to write files for.
-    pub targets: Targets,
-    /// Single mesh or boxes in the simulator files.
-    pub mesh: MeshMode,
-    /// The difficulty the heights are scaled to.
-    pub difficulty: Difficulty,
-    /// What the `MuJoCo` world collides with.
-    pub mujoco_collider: MujocoCollider,
-}
 
 /// The files of one world folder, by `/`-separated relative path, with the
 /// folder's name. Deterministic: the same inputs give the same bytes.
@@ -61,19 +49,99 @@ pub fn build_world(
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
     let terrain = generate_at(scheme, seed, index, options.difficulty);
-    let mut world = terrain_files(&terrain, name, options, templates, BTreeMap::new())?;
+    build_world_of(&terrain, scheme, name, options, templates)
+}
+
+/// The world folder of `terrain`, generated from `scheme` at its seed pair
+/// and `options.difficulty`: what [`build_world`] makes, for a caller that
+/// has the terrain already (`check` compares with it too).
+pub fn build_world_of(
+    terrain: &Terrain,
+    scheme: &Scheme,
+    name: String,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> Result<WorldFiles, Error> {
+    debug_assert_eq!(
+        terrain.difficulty(),
+        options.difficulty,
+        "the terrain's own"
+    );
+    let world = terrain_files(terrain, name, options, templates, BTreeMap::new())?;
+    let recipe = Recipe::Scheme {
+        csv: scheme.to_csv(),
+        seed: terrain.seed(),
+        index: terrain.index(),
+        terrain,
+    };
+    Ok(seal(world, recipe, scheme.globals(), options, templates))
+}
+
+/// What a world is made from, as `rse.json` records it.
+pub(crate) enum Recipe<'a> {
+    /// A scheme (its canonical CSV) at a seed pair: `terrain` is the world
+    /// it gives, whose drawn obstacles are recorded.
+    Scheme {
+        csv: String,
+        seed: u64,
+        index: u64,
+        terrain: &'a Terrain,
+    },
+    /// An atlas of `seed`, and everything else it was built from.
+    Atlas {
+        seed: u64,
+        record: AtlasRecord,
+        terrain: &'a Terrain,
+    },
+}
+
+/// `world` with its `rse.json`: the manifest of `recipe`, `globals` and
+/// `options`, hashing every file `world` holds. The one place a manifest is
+/// made.
+pub(crate) fn seal(
+    mut world: WorldFiles,
+    recipe: Recipe,
+    globals: &Globals,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> WorldFiles {
+    let (seed, index, scheme, drawn, atlas, terrain) = match recipe {
+        Recipe::Scheme {
+            csv,
+            seed,
+            index,
+            terrain,
+        } => (seed, index, csv, terrain.drawn().to_vec(), None, terrain),
+        Recipe::Atlas {
+            seed,
+            record,
+            terrain,
+        } => (seed, 0, String::new(), Vec::new(), Some(record), terrain),
+    };
     let manifest = Manifest {
+        generator: "rse".to_owned(),
+        version: rse_core::VERSION.to_owned(),
+        world: world.name.clone(),
         seed,
         index,
-        difficulty: options.difficulty,
-        scheme: scheme.to_csv(),
-        drawn: terrain.drawn().to_vec(),
-        ..Manifest::of(&world, &terrain, scheme.globals(), options, templates)
+        options: options.clone(),
+        templates: templates.set(),
+        templates_sha256: templates.digest().to_owned(),
+        grid: terrain.grid(),
+        globals: *globals,
+        scheme,
+        drawn,
+        atlas,
+        files: world
+            .files
+            .iter()
+            .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
+            .collect(),
     };
     world
         .files
         .insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
-    Ok(world)
+    world
 }
 
 /// Every file of a world folder of `terrain` but `rse.json`: `extra`
@@ -179,8 +247,8 @@ pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::manifest::sha256_hex;
-    use rse_core::generate;
+    use crate::options::Targets;
+    use rse_core::{Difficulty, generate};
 
     fn files(scheme: &str, mesh: MeshMode, targets: &str) -> Vec<String> {
         let scheme = Scheme::from_csv(scheme, None).unwrap();
@@ -334,7 +402,7 @@ mod tests {
         let half = manifest_of(Difficulty::new(0.5).unwrap());
         assert!(half.contains("\"difficulty\": 0.5,"), "{half}");
         assert_eq!(
-            Manifest::from_json(&half).unwrap().difficulty,
+            Manifest::from_json(&half).unwrap().options.difficulty,
             Difficulty::new(0.5).unwrap()
         );
     }

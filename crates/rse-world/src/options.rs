@@ -1,11 +1,40 @@
-//! What a batch writes: the simulator targets and the kind of terrain model.
+//! What a world folder holds, as typed options with one set of defaults:
+//! the simulator targets, the terrain model, the `MuJoCo` collider and the
+//! difficulty. Every front end (clap, Python, the editor) parses these
+//! types' `FromStr` and starts from their `Default`.
 
 use std::fmt;
 use std::str::FromStr;
 
+use rse_core::Difficulty;
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
+
+/// What to put in a world folder. Recorded in `rse.json` as it is (its
+/// fields flattened into the manifest, in this order), so an option added
+/// here is written, compared and rebuilt with no other edit.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct WorldOptions {
+    /// The difficulty the heights are scaled to; absent at 1, so worlds
+    /// of full difficulty keep the bytes they had before difficulties.
+    #[serde(default, skip_serializing_if = "is_full")]
+    pub difficulty: Difficulty,
+    /// The simulators to write files for.
+    pub targets: Targets,
+    /// The terrain model of the simulator files.
+    pub mesh: MeshMode,
+    /// What the `MuJoCo` world collides with; absent for boxes, so worlds
+    /// made before height fields keep their bytes.
+    #[serde(default, skip_serializing_if = "MujocoCollider::is_boxes")]
+    pub mujoco_collider: MujocoCollider,
+}
+
+/// For serde: whether a manifest's difficulty is left out.
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
+fn is_full(d: &Difficulty) -> bool {
+    d.is_full()
+}
 
 /// A simulator (or file) a world is written for (docs/worlds.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -101,9 +130,32 @@ impl Targets {
 }
 
 impl Default for Targets {
-    /// Gazebo alone, as `rse-gen batch` without `--target`.
+    /// Gazebo alone: every front end's default (`rse-gen batch` without
+    /// `--target`, Python without `targets=`, the editor's first choice).
     fn default() -> Self {
         Targets(vec![Target::Gazebo])
+    }
+}
+
+impl FromStr for Targets {
+    type Err = Error;
+
+    /// [`Targets::parse`].
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Targets::parse(s)
+    }
+}
+
+impl fmt::Display for Targets {
+    /// The comma-separated list [`Targets::parse`] reads back.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, target) in self.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            f.write_str(target.name())?;
+        }
+        Ok(())
     }
 }
 
@@ -125,6 +177,9 @@ pub enum MeshMode {
 }
 
 impl MeshMode {
+    /// Every mode, in the order help pages list them.
+    pub const ALL: [MeshMode; 3] = [MeshMode::Auto, MeshMode::Single, MeshMode::Blocks];
+
     /// The name on the command line and in `rse.json`.
     pub fn name(self) -> &'static str {
         match self {
@@ -146,19 +201,23 @@ impl MeshMode {
     }
 }
 
+impl fmt::Display for MeshMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 impl FromStr for MeshMode {
     type Err = Error;
 
     fn from_str(s: &str) -> Result<Self, Error> {
-        match s {
-            "auto" => Ok(MeshMode::Auto),
-            "single" => Ok(MeshMode::Single),
-            "blocks" => Ok(MeshMode::Blocks),
-            _ => Err(Error::BadOption {
+        MeshMode::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| Error::BadOption {
                 option: "mesh",
                 message: format!("unknown mesh mode {s:?}: expected auto, single or blocks"),
-            }),
-        }
+            })
     }
 }
 
@@ -209,8 +268,12 @@ impl MujocoCollider {
         *self == MujocoCollider::Boxes
     }
 
+    /// The names [`MujocoCollider::parse`] takes, the default first.
+    pub const NAMES: [&'static str; 2] = ["boxes", "hfield"];
+
     /// The collider named `boxes` or `hfield`, with `oversample` for a
-    /// height field (`None`: 4); an oversample with boxes, or 0, is refused.
+    /// height field (`None`: [`rse_core::DEFAULT_OVERSAMPLE`]); an
+    /// oversample with boxes, or 0, is refused.
     pub fn parse(name: &str, oversample: Option<u32>) -> Result<Self, Error> {
         let bad = |message: String| Error::BadOption {
             option: "mujoco_collider",
@@ -223,7 +286,7 @@ impl MujocoCollider {
             )),
             ("hfield", Some(0)) => Err(bad("oversample must be 1 or more".to_owned())),
             ("hfield", k) => Ok(MujocoCollider::Hfield {
-                oversample: k.unwrap_or(4),
+                oversample: k.unwrap_or(rse_core::DEFAULT_OVERSAMPLE),
             }),
             _ => Err(bad(format!(
                 "unknown MuJoCo collider {name:?}: expected boxes or hfield"
