@@ -70,3 +70,30 @@ def test_no_page_or_docstring_cites_the_spec_we_do_not_ship() -> None:
     for name in tracked:
         if name.endswith((".md", ".rs", ".py", ".pyi", ".j2", ".toml")) and name != "tests/python/test_docs.py":
             assert "SPEC" not in (REPO / name).read_text(errors="replace"), name
+
+
+def modules() -> list[tuple[str, str]]:
+    """(crate or package, module name) of every Rust module of every crate
+    and every module of the Python package."""
+    found = []
+    for path in sorted((REPO / "crates").glob("*/src/**/*.rs")):
+        crate = path.relative_to(REPO / "crates").parts[0]
+        name = path.parent.name if path.stem == "mod" else path.stem
+        if name not in ("lib", "main"):
+            found.append((crate, name))
+    for path in sorted((REPO / "crates" / "rse-py" / "python" / "rse").glob("*.py")):
+        if path.stem != "__init__":
+            found.append(("rse", path.stem))
+    return found
+
+
+def test_architecture_names_every_module() -> None:
+    # ARCHITECTURE.md is the map a newcomer reads first: a module it does
+    # not name is one they cannot find.
+    text = (REPO / "ARCHITECTURE.md").read_text()
+    crates = sorted(p.name for p in (REPO / "crates").iterdir() if (p / "Cargo.toml").is_file())
+    assert len(crates) >= 7, crates
+    for crate in crates:
+        assert f"`{crate}`" in text, crate
+    missing = [f"{crate}: {name}" for crate, name in modules() if not re.search(rf"`{name}(\.rs|\.py)?`", text)]
+    assert not missing, f"ARCHITECTURE.md does not name: {missing}"

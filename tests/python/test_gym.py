@@ -108,3 +108,23 @@ def test_episode_e_is_the_same_terrain_in_fresh_processes() -> None:
     finally:
         env.close()
     assert runs[0] == runs[1] == here
+
+
+MISSING_ANT = """
+import sys
+sys.modules["gymnasium.envs.mujoco.ant_v5"] = None  # as without mujoco or imageio
+import gymnasium as gym, rse.gym
+assert rse.gym.ENV_ID in gym.registry, "registered all the same"
+try:
+    gym.make(rse.gym.ENV_ID)
+except ImportError as e:
+    print(e)
+else:
+    raise SystemExit("gym.make did not fail")
+"""
+
+
+def test_without_gymnasiums_mujoco_extras_make_names_the_install_line() -> None:
+    # Once: nothing registered, and gym.make said "Namespace rse not found".
+    said = subprocess.run([sys.executable, "-c", MISSING_ANT], capture_output=True, text=True, check=True).stdout
+    assert rse.gym.ENV_ID in said and 'pip install "gymnasium[mujoco]"' in said, said

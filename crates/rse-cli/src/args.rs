@@ -227,7 +227,7 @@ pub struct HfieldArgs {
     pub output: PathBuf,
 
     /// Samples per cell along each axis: the surface is exact but within half a sample of a step edge.
-    #[arg(long, value_name = "K", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "K", default_value_t = rse_core::DEFAULT_OVERSAMPLE, value_parser = clap::value_parser!(u32).range(1..))]
     pub oversample: u32,
 
     #[command(flatten)]
@@ -305,12 +305,12 @@ pub struct WorldArgs {
 #[derive(Debug, Args)]
 pub struct WorldFilesArgs {
     /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
-    #[arg(long, value_name = "LIST", default_value = "gazebo", value_parser = parse_targets)]
+    #[arg(long, value_name = "LIST", default_value_t = Targets::default(), value_parser = parse_targets)]
     pub target: Targets,
 
     /// Terrain model in the simulator files: each target's fastest exact one (auto: boxes for
     /// URDF, the mesh elsewhere), the single mesh everywhere, or boxes everywhere.
-    #[arg(long, value_name = "auto|single|blocks", default_value = "auto", value_parser = parse_mesh_mode)]
+    #[arg(long, value_name = "auto|single|blocks", default_value_t = MeshMode::default(), value_parser = parse_mesh_mode)]
     pub mesh: MeshMode,
 
     #[command(flatten)]
@@ -345,8 +345,8 @@ impl WorldFilesArgs {
 #[derive(Debug, Args)]
 pub struct ColliderArgs {
     /// MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin).
-    #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = "boxes",
-          value_parser = ["boxes", "hfield"], hide_possible_values = true)]
+    #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = MujocoCollider::default().name(),
+          value_parser = MujocoCollider::NAMES, hide_possible_values = true)]
     pub name: String,
 
     /// Height field samples per cell along each axis [default: 4]; needs --mujoco-collider hfield.

@@ -74,6 +74,12 @@ fn no_worlds_is_an_error_and_no_obstacles_a_note() {
         text.contains("rse-gen: 1 world in "),
         "one world, not '1 worlds': {text}"
     );
+    // Said once per command: preview once read the scheme twice.
+    let png = dir.path().join("flat.png");
+    let made = rse_gen(&["preview", &empty, "-o", png.to_str().unwrap()]);
+    let text = stderr(&made);
+    assert!(made.status.success(), "{text}");
+    assert_eq!(text.matches("has no obstacles").count(), 1, "{text}");
 }
 
 #[test]

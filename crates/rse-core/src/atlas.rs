@@ -6,11 +6,12 @@
 use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
-use crate::generate::{Terrain, generate_at};
+use crate::generate::generate_at;
 use crate::globals::{Grid, MAX_CELLS, MAX_EXTENT};
 use crate::heightmap::Heightmap;
 use crate::scheme::Scheme;
 use crate::spawn::Region;
+use crate::terrain::Terrain;
 
 /// Flat patches to find on every tile (none when `count` is 0).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,38 +1,13 @@
 //! Generating one world: draw the ranges, apply the obstacles in order, frame the pallets.
 
-use serde::{Deserialize, Serialize};
-
 use crate::difficulty::Difficulty;
-use crate::globals::{Globals, Grid};
 use crate::heightmap::Heightmap;
 use crate::obstacle::{DEFAULT_SIGMA, DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
 use crate::rng::WorldRng;
 use crate::scheme::Scheme;
 use crate::stamp::{self, Units};
-
-/// One generated RSE: the heightmap, its units, and what was drawn for it.
-///
-/// Serialises without its heightmap (the cells go apart, as raw data):
-/// [`Terrain::from_parts`] puts the two back together.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Terrain {
-    grid: Grid,
-    #[serde(skip, default = "no_cells")]
-    heightmap: Heightmap,
-    block_size: f64,
-    step_height: f64,
-    base: f64,
-    seed: u64,
-    index: u64,
-    difficulty: Difficulty,
-    drawn: Vec<DrawnObstacle>,
-}
-
-/// The heightmap of a deserialised terrain until its cells are put in.
-fn no_cells() -> Heightmap {
-    Heightmap::zeros(0, 0)
-}
+use crate::terrain::Terrain;
 
 /// Generates world `index` of a batch with base seed `seed` (docs/schemes.md).
 ///
@@ -138,95 +113,5 @@ fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
         p1,
         p2,
         sigma,
-    }
-}
-
-impl Terrain {
-    /// A terrain of given heights (an atlas's map): no obstacles drawn,
-    /// world 0 of `seed`, the units of `globals`.
-    pub(crate) fn from_heightmap(
-        grid: Grid,
-        heightmap: Heightmap,
-        globals: &Globals,
-        seed: u64,
-    ) -> Terrain {
-        Terrain {
-            grid,
-            heightmap,
-            block_size: globals.block_size,
-            step_height: globals.step_height,
-            base: globals.base,
-            seed,
-            index: 0,
-            difficulty: Difficulty::FULL,
-            drawn: Vec::new(),
-        }
-    }
-
-    /// A terrain from its JSON (serde, without heightmap) and its cells,
-    /// row by row from y = 0: what a Python pickle carries. `None` when
-    /// the JSON does not parse or the cells do not fill its grid.
-    pub fn from_parts(json: &str, cells: Vec<u16>) -> Option<Terrain> {
-        let mut terrain: Terrain = serde_json::from_str(json).ok()?;
-        terrain.heightmap = Heightmap::from_cells(terrain.grid.nx, terrain.grid.ny, cells)?;
-        Some(terrain)
-    }
-
-    /// The JSON of [`Terrain::from_parts`].
-    ///
-    /// # Panics
-    /// Never: every field serialises.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string(self).expect("a terrain serialises")
-    }
-
-    /// The grid, with where its pallet frames are.
-    pub fn grid(&self) -> Grid {
-        self.grid
-    }
-
-    /// Heights in steps.
-    pub fn heightmap(&self) -> &Heightmap {
-        &self.heightmap
-    }
-
-    /// Cell side in metres.
-    pub fn block_size(&self) -> f64 {
-        self.block_size
-    }
-
-    /// Step height in metres.
-    pub fn step_height(&self) -> f64 {
-        self.step_height
-    }
-
-    /// Slab thickness under the grid, metres.
-    pub fn base(&self) -> f64 {
-        self.base
-    }
-
-    /// Top of cell `(x, y)` in metres: `base + h·step`.
-    pub fn elevation(&self, x: u32, y: u32) -> f64 {
-        self.base + f64::from(self.heightmap.get(x, y)) * self.step_height
-    }
-
-    /// The batch's base seed.
-    pub fn seed(&self) -> u64 {
-        self.seed
-    }
-
-    /// The world's index in its batch.
-    pub fn index(&self) -> u64 {
-        self.index
-    }
-
-    /// The difficulty its heights were scaled to.
-    pub fn difficulty(&self) -> Difficulty {
-        self.difficulty
-    }
-
-    /// The obstacles as drawn for this world, in table order.
-    pub fn drawn(&self) -> &[DrawnObstacle] {
-        &self.drawn
     }
 }

@@ -10,7 +10,7 @@
 //! span exactly `[0, 1]`, so [`HField`] always spans `[0, 1]` (or is all 0
 //! on a flat terrain) and puts its geom at the lowest top.
 
-use crate::generate::Terrain;
+use crate::terrain::Terrain;
 
 /// At most this many samples (`nx·ny·k²`): 2^27 float32 are 512 MiB.
 pub const MAX_HFIELD_SAMPLES: u64 = 1 << 27;

@@ -47,11 +47,12 @@ mod scheme;
 mod scheme_csv;
 pub mod spawn;
 mod stamp;
+mod terrain;
 
 pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
 pub use error::{Error, SchemeError, SchemeErrorKind};
-pub use generate::{Terrain, generate, generate_at};
+pub use generate::{generate, generate_at};
 pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
     Pallets, format_dims, parse_dims,
@@ -63,6 +64,7 @@ pub use obstacle::{
 };
 pub use param::Param;
 pub use scheme::Scheme;
+pub use terrain::Terrain;
 
 /// The generator's version, written into every world's manifest.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

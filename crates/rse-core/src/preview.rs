@@ -1,7 +1,7 @@
 //! The top-down preview of paper §3.1: blue (lowest) → green → red (highest).
 
 use crate::error::Error;
-use crate::generate::Terrain;
+use crate::terrain::Terrain;
 
 /// Colour of pallet frame cells: wood, outside the blue–green–red palette so
 /// frames stand out from 1-step blocks.
@@ -25,7 +25,7 @@ pub const MAX_PIXELS: u64 = 1 << 28;
 
 /// Refuses a preview of an `nx × ny` grid at `cell_pixels` larger than
 /// [`MAX_PIXELS`], before anything is drawn.
-pub fn check_size(nx: u32, ny: u32, cell_pixels: u32) -> Result<(), Error> {
+pub fn validate_size(nx: u32, ny: u32, cell_pixels: u32) -> Result<(), Error> {
     let (width, height) = (
         u64::from(nx) * u64::from(cell_pixels),
         u64::from(ny) * u64::from(cell_pixels),
@@ -113,7 +113,7 @@ pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
 pub fn png(terrain: &Terrain, cell_pixels: Option<u32>) -> Result<Vec<u8>, Error> {
     let grid = terrain.grid();
     let cell_pixels = cell_pixels.unwrap_or_else(|| auto_cell_pixels(grid.nx, grid.ny));
-    check_size(grid.nx, grid.ny, cell_pixels)?;
+    validate_size(grid.nx, grid.ny, cell_pixels)?;
     encode_png(&render(terrain, cell_pixels))
 }
 

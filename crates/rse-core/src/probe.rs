@@ -1,7 +1,7 @@
 //! Heights under points, in metres: what a height scanner or a foothold
 //! planner reads from the terrain.
 
-use crate::generate::Terrain;
+use crate::terrain::Terrain;
 
 impl Terrain {
     /// The top under the point `(x, y)` (metres, the terrain's frame: cell

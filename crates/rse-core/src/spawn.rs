@@ -3,8 +3,8 @@
 //! patches, after Isaac Lab's `FlatPatchSamplingCfg`). Everything here is
 //! in cell units: cell `(x, y)` covers `[x, x+1] × [y, y+1]`.
 
-use crate::generate::Terrain;
 use crate::heightmap::Heightmap;
+use crate::terrain::Terrain;
 
 /// How far, in cells, a disc may miss a cell and still touch it, or poke out
 /// of a region and still be inside: radii come in metres, and 0.25 m / 0.1 m

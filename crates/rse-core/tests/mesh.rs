@@ -2,14 +2,14 @@
 //! property-test heightmaps (checkerboards, single cells, all-zero, base > 0).
 
 use proptest::prelude::*;
-use rse_core::mesh::{MeshUnits, TriMesh, build_mesh, check};
+use rse_core::mesh::{MeshUnits, TriMesh, build_mesh, invariants};
 use rse_core::{Heightmap, Scheme, generate};
 
 use crate::util::{repo, sample_paths};
 
 /// Asserts closedness, orientation, area, no T-junction, exact volume and box.
 fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
-    let faults = check::faults(mesh.vertices(), mesh.triangles());
+    let faults = invariants::faults(mesh.vertices(), mesh.triangles());
     assert!(
         faults.is_empty(),
         "{} faults, first {:?}",
@@ -22,7 +22,7 @@ fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
         .iter()
         .map(|&h| units.base + f64::from(h) * units.step_height);
     let expected: f64 = tops.clone().map(|z| z * cell_area).sum();
-    let volume = check::volume(mesh.vertices(), mesh.triangles());
+    let volume = invariants::volume(mesh.vertices(), mesh.triangles());
     assert!(
         (volume - expected).abs() <= 1e-5 * expected.max(1e-9),
         "volume {volume}, expected {expected}"
@@ -39,7 +39,7 @@ fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
         })
         .filter(|&(_, _, z)| z > 0.0)
         .collect();
-    let found = check::bounding_box(mesh.vertices());
+    let found = invariants::bounding_box(mesh.vertices());
     if solid.is_empty() {
         assert_eq!(found, None, "an empty solid has an empty mesh");
         return;

@@ -63,7 +63,7 @@ fn main() {
                     TerrainModel::Mesh { triangles, .. } => triangles.len(),
                     TerrainModel::Boxes(boxes) => boxes.len(),
                 };
-                let report = smoke_test(&model, label, terrain, SmokeTest::default());
+                let report = smoke_test(&model, None, terrain, SmokeTest::default());
                 rse += report.rse_step_us;
                 plane += report.plane_step_us;
                 errors += report.errors.len();

@@ -9,14 +9,15 @@
 //! without being pushed, one thrown.
 
 mod bodies;
+mod report;
 
 use std::time::{Duration, Instant};
 
 use rapier3d::prelude::*;
 use rse_core::Terrain;
-use serde::Serialize;
 
 pub use bodies::{Body, Shape, drop_set};
+pub use report::{ColliderKind, PhysicsError, PhysicsReport, Problem, TestedCollider};
 
 /// The terrain as the simulator gets it.
 #[derive(Debug, Clone)]
@@ -40,6 +41,14 @@ pub const PENETRATION_LIMIT: f64 = 0.01;
 pub const SPEED_LIMIT: f64 = 10.0;
 
 impl TerrainModel {
+    /// Mesh or boxes.
+    pub fn kind(&self) -> ColliderKind {
+        match self {
+            TerrainModel::Mesh { .. } => ColliderKind::Mesh,
+            TerrainModel::Boxes(_) => ColliderKind::Boxes,
+        }
+    }
+
     /// The single mesh of `terrain`.
     pub fn mesh_of(terrain: &Terrain) -> Self {
         let mesh = terrain.mesh();
@@ -91,25 +100,6 @@ impl Default for SmokeTest {
     }
 }
 
-/// What the smoke test measured.
-#[derive(Debug, Clone, Serialize)]
-pub struct PhysicsReport {
-    /// The collider tested: `mesh` (with the file, in a world) or `boxes`.
-    pub collider: String,
-    /// Mean wall time of one step with the RSE, microseconds.
-    pub rse_step_us: f64,
-    /// Mean wall time of one step with the same bodies on a plane.
-    pub plane_step_us: f64,
-    /// `rse_step_us / plane_step_us`: how much the terrain slows physics.
-    pub ratio: f64,
-    /// Bodies dropped.
-    pub bodies: usize,
-    /// Steps simulated.
-    pub steps: usize,
-    /// One line per physics error; empty when the terrain is sound.
-    pub errors: Vec<String>,
-}
-
 /// A body below the surface under its centre by more than this is inside
 /// the terrain, metres.
 const SINK_TOLERANCE: f64 = 0.01;
@@ -148,10 +138,10 @@ const EDGE_MARGIN: f64 = 0.5;
 const ENERGY_SLACK_HEIGHT: f64 = 0.02;
 
 /// Runs the smoke test of `model`, the terrain of `terrain`; the report
-/// names the collider `collider`.
+/// names the world file the model was read from, `file`, when there is one.
 pub fn smoke_test(
     model: &TerrainModel,
-    collider: &str,
+    file: Option<&str>,
     terrain: &Terrain,
     test: SmokeTest,
 ) -> PhysicsReport {
@@ -195,18 +185,19 @@ pub fn smoke_test(
     let mut errors = judge(&world, &handles, &moved, window, &drops, terrain);
     for (i, drop) in drops.iter().enumerate() {
         if gain[i] > 0.0 {
-            errors.push(format!(
-                "{}: gained {:.3} J more kinetic energy than its fall gives (thrown by the solver)",
-                drop.label(i),
-                gain[i]
-            ));
+            errors.push(PhysicsError {
+                body: drop.label(i),
+                problem: Problem::Thrown { joules: gain[i] },
+            });
         }
         if top_speed[i] > SPEED_LIMIT {
-            errors.push(format!(
-                "{}: reached {:.1} m/s (limit {SPEED_LIMIT} m/s)",
-                drop.label(i),
-                top_speed[i]
-            ));
+            errors.push(PhysicsError {
+                body: drop.label(i),
+                problem: Problem::TooFast {
+                    speed: top_speed[i],
+                    limit: SPEED_LIMIT,
+                },
+            });
         }
     }
 
@@ -225,7 +216,10 @@ pub fn smoke_test(
     let per_step = |t: Duration| t.as_secs_f64() * 1e6 / steps.max(1) as f64;
     let (rse_step_us, plane_step_us) = (per_step(rse_time), per_step(plane_time));
     PhysicsReport {
-        collider: collider.to_owned(),
+        collider: TestedCollider {
+            kind: model.kind(),
+            file: file.map(str::to_owned),
+        },
         rse_step_us: round(rse_step_us, 0.01),
         plane_step_us: round(plane_step_us, 0.01),
         ratio: round(rse_step_us / plane_step_us.max(1e-9), 0.001),
@@ -350,7 +344,7 @@ fn judge(
     window: f64,
     drops: &[Body],
     terrain: &Terrain,
-) -> Vec<String> {
+) -> Vec<PhysicsError> {
     let solid = Solid::of(terrain);
     let grid = terrain.grid();
     let s = terrain.block_size();
@@ -369,39 +363,43 @@ fn judge(
     {
         let p = world.bodies[handle].translation();
         let [x, y, z] = [p.x, p.y, p.z].map(f64::from);
-        let name = drop.label(i);
+        let error = |problem| PhysicsError {
+            body: drop.label(i),
+            problem,
+        };
         if ![x, y, z, moved.distance]
             .iter()
             .all(|v: &f64| v.is_finite())
         {
-            errors.push(format!("{name}: its state is not finite"));
+            errors.push(error(Problem::NotFinite));
             continue;
         }
         let under = surface(x, y);
         if z < under - SINK_TOLERANCE {
-            errors.push(format!(
-                "{name}: sank into the terrain: centre at ({x:.3}, {y:.3}, {z:.3}) m under a surface at {under:.3} m"
-            ));
+            errors.push(error(Problem::Sank {
+                centre: [x, y, z],
+                surface: under,
+            }));
         }
         let depth = solid.depth(world, collider);
         if depth > PENETRATION_LIMIT {
-            errors.push(format!(
-                "{name}: {:.1} mm inside the solid (limit {:.0} mm)",
-                depth * 1e3,
-                PENETRATION_LIMIT * 1e3
-            ));
+            errors.push(error(Problem::Inside {
+                depth,
+                limit: PENETRATION_LIMIT,
+            }));
         }
         if moved.unsettled(window) {
-            errors.push(format!(
-                "{name}: still moving after settling: {:.2} m in the last {window:.1} s",
-                moved.distance
-            ));
+            errors.push(error(Problem::StillMoving {
+                distance: moved.distance,
+                window,
+            }));
         }
         let outside = (-x).max(x - size[0]).max(-y).max(y - size[1]);
         if outside > EDGE_MARGIN {
-            errors.push(format!(
-                "{name}: left the RSE: {outside:.2} m past its edge at ({x:.2}, {y:.2})"
-            ));
+            errors.push(error(Problem::LeftTheRse {
+                outside,
+                at: [x, y],
+            }));
         }
     }
     errors

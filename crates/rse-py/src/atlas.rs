@@ -6,12 +6,13 @@ use numpy::ndarray::{Array3, Array4};
 use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use rse_core::{AtlasOptions, PatchOptions};
+use rse_core::{AtlasOptions, Difficulty, PatchOptions};
 use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 
 use crate::args;
-use crate::batch::{outcome_name, templates, world_options};
+use crate::batch::{outcome_name, templates};
 use crate::errors::{core_error, world_error};
+use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_options};
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, check_radius};
 
@@ -194,20 +195,27 @@ impl Atlas {
     /// (the same bytes): whole or not at all; an identical folder is left
     /// alone (returns `"skipped"`), a different one refused unless
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
-    #[pyo3(signature = (out, *, targets="gazebo", mesh="auto", template=None, force=false, mujoco_collider="boxes", oversample=None))]
+    #[pyo3(signature = (out, *, targets=None, mesh=None, template=None, force=false, mujoco_collider=None, oversample=None))]
     #[allow(clippy::too_many_arguments)]
     fn write(
         &self,
         py: Python<'_>,
         out: std::path::PathBuf,
-        targets: &str,
-        mesh: &str,
+        targets: Option<PyTargets>,
+        mesh: Option<PyMeshMode>,
         template: Option<std::path::PathBuf>,
         force: bool,
-        mujoco_collider: &str,
+        mujoco_collider: Option<PyColliderName>,
         oversample: Option<u32>,
     ) -> PyResult<&'static str> {
-        let options = world_options(py, targets, mesh, 1.0, mujoco_collider, oversample)?;
+        let options = world_options(
+            py,
+            targets,
+            mesh,
+            Difficulty::FULL,
+            mujoco_collider,
+            oversample,
+        )?;
         let templates = templates(py, template.as_deref())?;
         let atlas_options = *self.inner.options();
         let (outcome, _) = py

@@ -5,11 +5,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use rse_world::{
-    BatchOptions, MeshMode, MujocoCollider, Outcome, Shard, Targets, Templates, WorldOptions,
-};
+use rse_world::{BatchOptions, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
+use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_options};
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::Terrain;
 
@@ -48,7 +47,7 @@ pub fn generate_batch(
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets="gazebo", mesh="auto", jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider="boxes", oversample=None))]
+#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets=None, mesh=None, jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider=None, oversample=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
@@ -56,21 +55,28 @@ pub fn write_worlds<'py>(
     out: std::path::PathBuf,
     amount: Option<u64>,
     seed: Option<u64>,
-    targets: &str,
-    mesh: &str,
+    targets: Option<PyTargets>,
+    mesh: Option<PyMeshMode>,
     jobs: Option<usize>,
     shard: Option<&str>,
     template: Option<std::path::PathBuf>,
     force: bool,
     difficulty: f64,
-    mujoco_collider: &str,
+    mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
     let options = BatchOptions {
         amount: amount.unwrap_or(scheme_batch.amount),
         seed: seed.unwrap_or(scheme_batch.seed),
-        world: world_options(py, targets, mesh, difficulty, mujoco_collider, oversample)?,
+        world: world_options(
+            py,
+            targets,
+            mesh,
+            difficulty_arg(difficulty)?,
+            mujoco_collider,
+            oversample,
+        )?,
         jobs,
         shard: shard
             .map(str::parse::<Shard>)
@@ -99,17 +105,17 @@ pub fn write_worlds<'py>(
 /// folder is left alone (`"skipped"`), a different one refused unless
 /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
 #[pyfunction]
-#[pyo3(signature = (terrain, out, *, targets="gazebo", mesh="auto", template=None, force=false, mujoco_collider="boxes", oversample=None))]
+#[pyo3(signature = (terrain, out, *, targets=None, mesh=None, template=None, force=false, mujoco_collider=None, oversample=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_world(
     py: Python<'_>,
     terrain: &Terrain,
     out: std::path::PathBuf,
-    targets: &str,
-    mesh: &str,
+    targets: Option<PyTargets>,
+    mesh: Option<PyMeshMode>,
     template: Option<std::path::PathBuf>,
     force: bool,
-    mujoco_collider: &str,
+    mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<&'static str> {
     let Some(scheme) = &terrain.scheme else {
@@ -122,7 +128,7 @@ pub fn write_world(
         py,
         targets,
         mesh,
-        t.difficulty().get(),
+        t.difficulty(),
         mujoco_collider,
         oversample,
     )?;
@@ -141,24 +147,6 @@ pub fn write_world(
         })
         .map_err(|e| world_error(py, &e))?;
     Ok(outcome_name(outcome))
-}
-
-/// The world options of the keyword arguments every writer takes.
-pub fn world_options(
-    py: Python<'_>,
-    targets: &str,
-    mesh: &str,
-    difficulty: f64,
-    mujoco_collider: &str,
-    oversample: Option<u32>,
-) -> PyResult<WorldOptions> {
-    let bad = |e: rse_world::Error| world_error(py, &e);
-    Ok(WorldOptions {
-        targets: Targets::parse(targets).map_err(bad)?,
-        mesh: mesh.parse::<MeshMode>().map_err(bad)?,
-        difficulty: difficulty_arg(difficulty)?,
-        mujoco_collider: MujocoCollider::parse(mujoco_collider, oversample).map_err(bad)?,
-    })
 }
 
 /// Our templates, overlaid by the folder `template` when given.

@@ -7,6 +7,7 @@
 #![allow(clippy::needless_pass_by_value)]
 
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 
 mod args;
 mod atlas;
@@ -14,6 +15,7 @@ mod batch;
 mod check;
 mod cli;
 mod errors;
+mod options;
 mod scheme;
 mod terrain;
 
@@ -21,6 +23,23 @@ mod terrain;
 #[pymodule]
 fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", rse_core::VERSION)?;
+    // The option values and defaults of rse-world and rse-core, for the
+    // Python modules and the stub's `Literal`s (a test keeps them equal).
+    let py = m.py();
+    let names = |names: &[&str]| PyTuple::new(py, names);
+    m.add(
+        "TARGETS",
+        names(&rse_world::Target::ALL.map(rse_world::Target::name))?,
+    )?;
+    m.add(
+        "MESH_MODES",
+        names(&rse_world::MeshMode::ALL.map(rse_world::MeshMode::name))?,
+    )?;
+    m.add(
+        "MUJOCO_COLLIDERS",
+        names(&rse_world::MujocoCollider::NAMES)?,
+    )?;
+    m.add("DEFAULT_OVERSAMPLE", rse_core::DEFAULT_OVERSAMPLE)?;
     m.add("SchemeError", m.py().get_type::<errors::SchemeError>())?;
     m.add_class::<scheme::Obstacle>()?;
     m.add_class::<scheme::Scheme>()?;

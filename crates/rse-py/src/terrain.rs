@@ -248,25 +248,26 @@ impl Terrain {
     }
 
     /// The terrain as a MuJoCo height field with `oversample` samples per
-    /// cell along each axis: `(data, size, pos)` — float32 `(nrow, ncol)`
+    /// cell along each axis (`None`: `rse.DEFAULT_OVERSAMPLE`): `(data, size, pos)` — float32 `(nrow, ncol)`
     /// samples in [0, 1] (row 0 at the lowest y, MuJoCo's layout), MuJoCo's
     /// `size` `(radius_x, radius_y, elevation, base)` and the hfield geom's
     /// `pos`, metres. Exact but within half a sample spacing of a step edge.
     /// With `out=` (a writable C-contiguous float32 array of
     /// `hfield_shape(oversample)`), the samples go there and `out` is
     /// returned: no allocation, for loops.
-    #[pyo3(signature = (oversample=4, *, out=None))]
+    #[pyo3(signature = (oversample=None, *, out=None))]
     fn hfield<'py>(
         &self,
         py: Python<'py>,
-        oversample: u32,
+        oversample: Option<u32>,
         out: Option<Bound<'py, PyArray2<f32>>>,
     ) -> PyResult<HFieldTuple<'py>> {
+        let oversample = oversample.unwrap_or(rse_core::DEFAULT_OVERSAMPLE);
         let layout = self.inner.hfield_layout(oversample).map_err(hfield_error)?;
         let [rx, ry, elevation, base] = layout.size;
         let [x, y, z] = layout.pos;
         let data = if let Some(out) = out {
-            self.hfield_into(py, &out, oversample, z, elevation)?;
+            self.hfield_into(py, &out, Some(oversample), z, elevation)?;
             out
         } else {
             let hf = self.inner.hfield(oversample).map_err(hfield_error)?;
@@ -278,8 +279,9 @@ impl Terrain {
     }
 
     /// `(nrow, ncol)` of `hfield(oversample)`.
-    #[pyo3(signature = (oversample=4))]
-    fn hfield_shape(&self, oversample: u32) -> PyResult<(u32, u32)> {
+    #[pyo3(signature = (oversample=None))]
+    fn hfield_shape(&self, oversample: Option<u32>) -> PyResult<(u32, u32)> {
+        let oversample = oversample.unwrap_or(rse_core::DEFAULT_OVERSAMPLE);
         self.inner.hfield_shape(oversample).map_err(hfield_error)
     }
 
@@ -288,15 +290,16 @@ impl Terrain {
     /// is `z0` at 0 and `z0 + elevation` at 1: `(top − z0) / elevation`.
     /// Nothing is allocated; a wrong shape or a top outside that range is a
     /// `ValueError` and leaves `out` as it was.
-    #[pyo3(signature = (out, oversample=4, z0=0.0, elevation=1.0))]
+    #[pyo3(signature = (out, oversample=None, z0=0.0, elevation=1.0))]
     fn hfield_into(
         &self,
         py: Python<'_>,
         out: &Bound<'_, PyArray2<f32>>,
-        oversample: u32,
+        oversample: Option<u32>,
         z0: f64,
         elevation: f64,
     ) -> PyResult<()> {
+        let oversample = oversample.unwrap_or(rse_core::DEFAULT_OVERSAMPLE);
         let (nrow, ncol) = self.inner.hfield_shape(oversample).map_err(hfield_error)?;
         let shape = out.shape().to_vec();
         if shape != [nrow as usize, ncol as usize] {

@@ -2,7 +2,7 @@
 //! manifest: the heightmap cell by cell, and every OBJ re-read against
 //! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
-use rse_core::mesh::check::{bounding_box, faults as mesh_faults, volume};
+use rse_core::mesh::invariants::{bounding_box, faults as mesh_faults, volume};
 use rse_core::{Heightmap, Terrain};
 
 use crate::fault::FaultKind;

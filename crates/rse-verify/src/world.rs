@@ -233,12 +233,8 @@ fn physics(
         runs.push((None, TerrainModel::boxes_of(terrain)));
     }
     for (path, model) in runs {
-        let kind = match model {
-            TerrainModel::Mesh { .. } => "mesh",
-            TerrainModel::Boxes(_) => "boxes",
-        };
-        let collider = path.map_or(kind.to_owned(), |path| format!("{kind} {path}"));
-        let physics = smoke_test(&model, &collider, terrain, SmokeTest::default());
+        let physics = smoke_test(&model, path, terrain, SmokeTest::default());
+        let kind = physics.collider.kind;
         faults.extend(physics.errors.iter().map(|error| {
             Fault::new(
                 path,

@@ -11,10 +11,10 @@ use serde::Serialize;
 use crate::atlas_record::{AtlasRecord, NamedScheme, PatchRecord};
 use crate::context::tidy;
 use crate::error::Error;
+use crate::folder::place_folder;
 use crate::memory::check_memory_for;
 use crate::options::WorldOptions;
 use crate::place::Outcome;
-use crate::single::place_folder;
 use crate::templates::Templates;
 use crate::world::{Recipe, WorldFiles, seal, terrain_files};
 

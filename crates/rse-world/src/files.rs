@@ -49,15 +49,22 @@ fn without_temp_path(e: &std::io::Error) -> std::io::Error {
     }
 }
 
+/// The mesh format `path`'s suffix names (`.obj`, `.stl`, `.glb`), or the
+/// error [`write_mesh`] gives: a caller can refuse a bad name before it
+/// builds the mesh.
+pub fn mesh_format(path: &Path) -> Result<MeshFormat, Error> {
+    MeshFormat::from_path(path).ok_or_else(|| Error::BadMeshPath {
+        path: path.to_owned(),
+        reason: "unknown mesh format; name the file .obj, .stl or .glb",
+    })
+}
+
 /// Writes `mesh` to `path` in the format its suffix names (`.obj`, `.stl`,
 /// `.glb`). An OBJ gets its material library beside it, named after it
 /// (`terrain.obj` → `terrain.mtl`); a name that is not UTF-8 is refused,
 /// since the OBJ must name the `.mtl` in text.
 pub fn write_mesh(mesh: &TriMesh, path: &Path) -> Result<(), Error> {
-    let format = MeshFormat::from_path(path).ok_or_else(|| Error::BadMeshPath {
-        path: path.to_owned(),
-        reason: "unknown mesh format; name the file .obj, .stl or .glb",
-    })?;
+    let format = mesh_format(path)?;
     match format {
         MeshFormat::Obj => {
             let mtl_path = path.with_extension("mtl");

@@ -5,7 +5,7 @@
 //! Modules, each using only those above it (a test keeps it so):
 //! `digest`, `error`, `tree`, `memory`, `options` → `atlas_record` →
 //! `manifest` → `context` → `templates` → `world` → `files`, `place` →
-//! `single`, `batch` → `atlas` → `rebuild`.
+//! `folder`, `batch` → `atlas` → `rebuild`.
 //!
 //! ```no_run
 //! use rse_world::{BatchOptions, Targets, Templates, write_batch};
@@ -23,12 +23,12 @@ mod context;
 mod digest;
 mod error;
 mod files;
+mod folder;
 mod manifest;
 mod memory;
 mod options;
 mod place;
 mod rebuild;
-mod single;
 mod templates;
 mod tree;
 mod world;
@@ -41,13 +41,13 @@ pub use batch::{
 };
 pub use digest::sha256_hex;
 pub use error::Error;
-pub use files::{write_atomically, write_mesh};
+pub use files::{mesh_format, write_atomically, write_mesh};
+pub use folder::{place_folder, write_world_at};
 pub use manifest::{MANIFEST, Manifest, TemplateSet, what_differs};
 pub use memory::WORLD_BYTES_PER_CELL;
 pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
 pub use place::{Leftover, Outcome, place_world};
 pub use rebuild::{RebuildError, Rebuilt};
-pub use single::{place_folder, write_world_at};
 pub use templates::Templates;
 pub use tree::{inside, list_files};
 pub use world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

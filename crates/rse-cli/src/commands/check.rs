@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressDrawTarget};
-use rse_physics::PhysicsReport;
+use rse_physics::{ColliderKind, PhysicsReport};
 use rse_verify::{CheckOptions, CheckReport, check_paths};
 
 use crate::ExitStatus;
@@ -52,10 +52,10 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
 /// `boxes`), when the smoke test ran.
 fn print_physics(report: &CheckReport) {
     let runs = || report.worlds.iter().flat_map(|r| &r.physics);
-    let kind = |p: &PhysicsReport| p.collider.split(' ').next().unwrap_or_default().to_owned();
-    let kinds: std::collections::BTreeSet<String> = runs().map(kind).collect();
-    for k in kinds.iter().rev() {
-        let physics: Vec<&PhysicsReport> = runs().filter(|p| kind(p) == *k).collect();
+    let kinds: std::collections::BTreeSet<ColliderKind> = runs().map(|p| p.collider.kind).collect();
+    // Mesh, then boxes (ColliderKind order), as before the kinds were typed.
+    for &k in &kinds {
+        let physics: Vec<&PhysicsReport> = runs().filter(|p| p.collider.kind == k).collect();
         let mean = |f: fn(&PhysicsReport) -> f64| {
             physics.iter().map(|p| f(p)).sum::<f64>() / physics.len() as f64
         };

@@ -56,14 +56,13 @@ pub fn load_world(
     overrides: &SchemeOverrides,
     world: &WorldArgs,
 ) -> anyhow::Result<Terrain> {
-    let scheme = load_scheme(path, overrides)?;
+    Ok(world_of(&load_scheme(path, overrides)?, world))
+}
+
+/// The world of `scheme` the flags name.
+pub fn world_of(scheme: &Scheme, world: &WorldArgs) -> Terrain {
     let seed = world.seed.unwrap_or(scheme.globals().seed);
-    Ok(rse_core::generate_at(
-        &scheme,
-        seed,
-        world.index,
-        world.difficulty.value,
-    ))
+    rse_core::generate_at(scheme, seed, world.index, world.difficulty.value)
 }
 
 /// Reads the scheme at `path` and applies the command-line overrides.

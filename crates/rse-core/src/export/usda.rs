@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 
 use crate::mesh::TriMesh;
-use crate::mesh::check::bounding_box;
+use crate::mesh::invariants::bounding_box;
 
 const FMT: &str = "writing to a String cannot fail";
 

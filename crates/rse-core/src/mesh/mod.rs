@@ -1,9 +1,9 @@
 //! The single mesh of a world (docs/meshes.md): the closed solid under the heightmap.
 
 mod boxes;
-pub mod check;
 mod cover;
 mod faces;
+pub mod invariants;
 pub mod naive;
 mod staircase;
 mod stitch;
@@ -14,8 +14,8 @@ pub use faces::Normal;
 
 use faces::Key;
 
-use crate::generate::Terrain;
 use crate::heightmap::Heightmap;
+use crate::terrain::Terrain;
 
 /// A triangle mesh as plain buffers, in the grid frame (metres, Z up, origin
 /// at the outer corner of cell (0, 0)). Triangles are counter-clockwise seen

@@ -2,7 +2,7 @@
 //! per cell with solid, concatenated, as the RL terrain generators build
 //! their grids. For benchmarks and comparisons, not for simulators.
 
-use crate::generate::Terrain;
+use crate::terrain::Terrain;
 
 /// The 12 triangles of a closed box whose corner `i` is
 /// `(i & 1, i >> 1 & 1, i >> 2 & 1)`, counter-clockwise from outside.
@@ -50,7 +50,7 @@ pub fn box_per_cell(terrain: &Terrain) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::check::volume;
+    use crate::mesh::invariants::volume;
 
     #[test]
     fn twelve_triangles_per_solid_cell_enclosing_the_solid() {

@@ -10,6 +10,10 @@ The generator lives in Rust (``rse._rse``); this package re-exports it::
 """
 
 from rse._rse import (
+    DEFAULT_OVERSAMPLE,
+    MESH_MODES,
+    MUJOCO_COLLIDERS,
+    TARGETS,
     Atlas,
     Obstacle,
     Scheme,
@@ -23,6 +27,10 @@ from rse._rse import (
 from rse._check import CheckReport, Fault, WorldReport, check
 
 __all__ = [
+    "DEFAULT_OVERSAMPLE",
+    "MESH_MODES",
+    "MUJOCO_COLLIDERS",
+    "TARGETS",
     "Atlas",
     "CheckReport",
     "Fault",

@@ -1,13 +1,18 @@
 """Type stubs of the native module ``rse._rse`` (checked by mypy.stubtest)."""
 
 import os
-from typing import Optional, Union, final
+from collections.abc import Sequence
+from typing import Literal, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
 __all__ = [
     "__version__",
+    "TARGETS",
+    "MESH_MODES",
+    "MUJOCO_COLLIDERS",
+    "DEFAULT_OVERSAMPLE",
     "SchemeError",
     "Obstacle",
     "Scheme",
@@ -22,6 +27,18 @@ __all__ = [
 ]
 
 __version__: str
+
+# World options: the values rse-world takes (a test keeps these equal to
+# TARGETS, MESH_MODES and MUJOCO_COLLIDERS). None, where a keyword takes
+# one, is the library's default: gazebo, auto, boxes, DEFAULT_OVERSAMPLE.
+_Target = Literal["obj", "gazebo", "webots", "mujoco", "urdf", "usd"]
+_Targets = Union[str, Sequence[_Target]]
+_MeshMode = Literal["auto", "single", "blocks"]
+_MujocoCollider = Literal["boxes", "hfield"]
+TARGETS: tuple[str, ...]
+MESH_MODES: tuple[str, ...]
+MUJOCO_COLLIDERS: tuple[str, ...]
+DEFAULT_OVERSAMPLE: int
 
 # A value, or an inclusive (lo, hi) range drawn per world; numpy scalars
 # and length-2 arrays are taken too.
@@ -136,11 +153,11 @@ class Terrain:
     def drawn(self) -> list[dict[str, object]]: ...
     def spawn_origin(self, radius: float = 0.3) -> npt.NDArray[np.float64]: ...
     def hfield(
-        self, oversample: int = 4, *, out: Optional[npt.NDArray[np.float32]] = None
+        self, oversample: Optional[int] = None, *, out: Optional[npt.NDArray[np.float32]] = None
     ) -> tuple[npt.NDArray[np.float32], tuple[float, float, float, float], tuple[float, float, float]]: ...
-    def hfield_shape(self, oversample: int = 4) -> tuple[int, int]: ...
+    def hfield_shape(self, oversample: Optional[int] = None) -> tuple[int, int]: ...
     def hfield_into(
-        self, out: npt.NDArray[np.float32], oversample: int = 4, z0: float = 0.0, elevation: float = 1.0
+        self, out: npt.NDArray[np.float32], oversample: Optional[int] = None, z0: float = 0.0, elevation: float = 1.0
     ) -> None: ...
     def flat_patches(self, n: int, radius: float = 0.3, max_step: int = 0) -> npt.NDArray[np.float64]: ...
     def mesh(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]: ...
@@ -187,11 +204,11 @@ class Atlas:
         self,
         out: Union[str, os.PathLike[str]],
         *,
-        targets: str = "gazebo",
-        mesh: str = "auto",
+        targets: Optional[_Targets] = None,
+        mesh: Optional[_MeshMode] = None,
         template: Optional[Union[str, os.PathLike[str]]] = None,
         force: bool = False,
-        mujoco_collider: str = "boxes",
+        mujoco_collider: Optional[_MujocoCollider] = None,
         oversample: Optional[int] = None,
     ) -> str: ...
 
@@ -204,25 +221,25 @@ def write_worlds(
     *,
     amount: Optional[int] = None,
     seed: Optional[int] = None,
-    targets: str = "gazebo",
-    mesh: str = "auto",
+    targets: Optional[_Targets] = None,
+    mesh: Optional[_MeshMode] = None,
     jobs: Optional[int] = None,
     shard: Optional[str] = None,
     template: Optional[Union[str, os.PathLike[str]]] = None,
     force: bool = False,
     difficulty: float = 1.0,
-    mujoco_collider: str = "boxes",
+    mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> dict[str, int]: ...
 def write_world(
     terrain: Terrain,
     out: Union[str, os.PathLike[str]],
     *,
-    targets: str = "gazebo",
-    mesh: str = "auto",
+    targets: Optional[_Targets] = None,
+    mesh: Optional[_MeshMode] = None,
     template: Optional[Union[str, os.PathLike[str]]] = None,
     force: bool = False,
-    mujoco_collider: str = "boxes",
+    mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> str: ...
 def _main(argv: list[str]) -> int: ...

@@ -32,14 +32,31 @@ from typing import Any, Optional, Union
 import numpy as np
 
 import rse
+from rse._rse import DEFAULT_OVERSAMPLE
 from rse.mujoco import HFieldSlot, add_hfield, max_top
 
 ENV_ID = "rse/AntStepfield-v0"
 
-try:  # pragma: no cover - depends on what is installed
+INSTALL = 'pip install "gymnasium[mujoco]"'
+
+# Gymnasium's MuJoCo Ant needs gymnasium, mujoco and imageio. Without them
+# the environment is still registered (when gymnasium is there at all), and
+# gym.make / AntStepfieldEnv raise this error with the install line: a
+# registration that silently did not happen reads "Namespace rse not found".
+_ANT_IMPORT_ERROR: Optional[ImportError] = None
+try:
     from gymnasium.envs.mujoco.ant_v5 import AntEnv as _AntEnv
-except ImportError:  # gymnasium or mujoco absent
+except ImportError as e:
     _AntEnv = None  # type: ignore[assignment,misc]
+    _ANT_IMPORT_ERROR = e
+
+
+def _missing_ant() -> ImportError:
+    """Why the environment cannot be made here, with what installs it."""
+    return ImportError(
+        f"{ENV_ID} needs Gymnasium's MuJoCo environments, which do not import here "
+        f"({_ANT_IMPORT_ERROR}): {INSTALL}"
+    )
 
 
 def ant_on_hfield_xml(scheme: rse.Scheme, oversample: int, elevation: float) -> str:
@@ -68,7 +85,7 @@ if _AntEnv is not None:
             scheme: Union[rse.Scheme, str, "os.PathLike[str]"] = "schemes/six_obstacles.csv",
             terrain_seed: Optional[int] = None,
             difficulty: float = 1.0,
-            oversample: int = 4,
+            oversample: int = DEFAULT_OVERSAMPLE,
             footprint: float = 0.6,
             spawn_height: float = 0.75,
             new_terrain_each_reset: bool = True,
@@ -127,12 +144,30 @@ if _AntEnv is not None:
             if os.path.exists(self._xml_path):
                 os.remove(self._xml_path)
 
-    def _register() -> None:
+
+def make_env(**kwargs: Any) -> Any:
+    """``gym.make``'s entry point: an ``AntStepfieldEnv``, or the
+    ``ImportError`` that names what to install."""
+    if _AntEnv is None:
+        raise _missing_ant() from _ANT_IMPORT_ERROR
+    return AntStepfieldEnv(**kwargs)
+
+
+def __getattr__(name: str) -> Any:
+    if name == "AntStepfieldEnv":  # only defined where Gymnasium's Ant imports
+        raise _missing_ant() from _ANT_IMPORT_ERROR
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _register() -> None:
+    try:
         import gymnasium
+    except ImportError:  # nothing to register with; gym.make cannot be called
+        return
+    if ENV_ID not in gymnasium.registry:
+        gymnasium.register(id=ENV_ID, entry_point="rse.gym:make_env", max_episode_steps=1000)
 
-        if ENV_ID not in gymnasium.registry:
-            gymnasium.register(id=ENV_ID, entry_point="rse.gym:AntStepfieldEnv", max_episode_steps=1000)
 
-    _register()
+_register()
 
-__all__ = ["ENV_ID", "AntStepfieldEnv", "ant_on_hfield_xml"]
+__all__ = ["ENV_ID", "INSTALL", "AntStepfieldEnv", "ant_on_hfield_xml", "make_env"]

@@ -37,7 +37,7 @@ from typing import Any, Union
 
 import numpy as np
 
-from rse._rse import Scheme, Terrain
+from rse._rse import DEFAULT_OVERSAMPLE, Scheme, Terrain
 
 __all__ = ["HFieldSlot", "add_hfield", "hfield_mjcf", "max_top", "set_hfield"]
 
@@ -89,7 +89,7 @@ class HFieldSlot:
     elevation. ``model`` must outlive the slot: it holds a view of
     ``model.hfield_data``."""
 
-    def __init__(self, model: Any, hfield: Union[int, str], oversample: int = 4) -> None:
+    def __init__(self, model: Any, hfield: Union[int, str], oversample: int = DEFAULT_OVERSAMPLE) -> None:
         self.model = model
         self.id = _hfield_id(model, hfield)
         self.oversample = int(oversample)
@@ -116,7 +116,7 @@ class HFieldSlot:
         terrain.hfield_into(self.view, self.oversample, self.z0, self.elevation)
 
 
-def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample: int = 4) -> None:
+def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample: int = DEFAULT_OVERSAMPLE) -> None:
     """Writes ``terrain`` into the live ``model``'s height field ``hfield``
     (its name or number): no recompile, no new model; the only allocation is
     numpy's view of ``model.hfield_data``. The field must have the terrain's
@@ -161,7 +161,7 @@ def _field(
 def add_hfield(
     spec: Any,
     scheme: Scheme,
-    oversample: int = 4,
+    oversample: int = DEFAULT_OVERSAMPLE,
     *,
     name: str = "terrain",
     elevation: Union[float, None] = None,
@@ -198,7 +198,7 @@ def add_hfield(
 
 def hfield_mjcf(
     scheme: Scheme,
-    oversample: int = 4,
+    oversample: int = DEFAULT_OVERSAMPLE,
     *,
     name: str = "terrain",
     elevation: Union[float, None] = None,
