@@ -48,7 +48,7 @@ def test_targets_as_a_list_or_a_string_are_one_option(tmp_path: Path) -> None:
 )
 def test_bad_options_name_the_keyword(tmp_path: Path, keyword: str, value: object, error: type, says: str) -> None:
     scheme = rse.Scheme.load(SCHEME)
-    with pytest.raises(error, match=None) as caught:
+    with pytest.raises(error) as caught:
         rse.write_worlds(scheme, tmp_path, amount=1, **{keyword: value})
     assert says in str(caught.value)
     assert not any(tmp_path.iterdir()), "nothing written"

@@ -70,17 +70,7 @@ pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficult
             }
         }
     }
-    Terrain {
-        grid,
-        heightmap,
-        block_size: globals.block_size,
-        step_height: globals.step_height,
-        base: globals.base,
-        seed,
-        index,
-        difficulty,
-        drawn,
-    }
+    Terrain::new(grid, heightmap, globals, (seed, index), difficulty, drawn)
 }
 
 /// Resolves an obstacle's ranges in the fixed order x1, y1, x2, y2, height,

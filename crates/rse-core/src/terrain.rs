@@ -16,16 +16,16 @@ use crate::obstacle::DrawnObstacle;
 /// [`Terrain::from_parts`] puts the two back together.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Terrain {
-    pub(crate) grid: Grid,
+    grid: Grid,
     #[serde(skip, default = "no_cells")]
-    pub(crate) heightmap: Heightmap,
-    pub(crate) block_size: f64,
-    pub(crate) step_height: f64,
-    pub(crate) base: f64,
-    pub(crate) seed: u64,
-    pub(crate) index: u64,
-    pub(crate) difficulty: Difficulty,
-    pub(crate) drawn: Vec<DrawnObstacle>,
+    heightmap: Heightmap,
+    block_size: f64,
+    step_height: f64,
+    base: f64,
+    seed: u64,
+    index: u64,
+    difficulty: Difficulty,
+    drawn: Vec<DrawnObstacle>,
 }
 
 /// The heightmap of a deserialised terrain until its cells are put in.
@@ -34,13 +34,15 @@ fn no_cells() -> Heightmap {
 }
 
 impl Terrain {
-    /// A terrain of given heights (an atlas's map): no obstacles drawn,
-    /// world 0 of `seed`, the units of `globals`.
-    pub(crate) fn from_heightmap(
+    /// World `index` of `seed` at `difficulty`: `heightmap` on `grid` in the
+    /// units of `globals`, with the obstacles `drawn` for it.
+    pub(crate) fn new(
         grid: Grid,
         heightmap: Heightmap,
         globals: &Globals,
-        seed: u64,
+        (seed, index): (u64, u64),
+        difficulty: Difficulty,
+        drawn: Vec<DrawnObstacle>,
     ) -> Terrain {
         Terrain {
             grid,
@@ -49,10 +51,28 @@ impl Terrain {
             step_height: globals.step_height,
             base: globals.base,
             seed,
-            index: 0,
-            difficulty: Difficulty::FULL,
-            drawn: Vec::new(),
+            index,
+            difficulty,
+            drawn,
         }
+    }
+
+    /// A terrain of given heights (an atlas's map): no obstacles drawn,
+    /// world 0 of `seed`, the units of `globals`.
+    pub(crate) fn from_heightmap(
+        grid: Grid,
+        heightmap: Heightmap,
+        globals: &Globals,
+        seed: u64,
+    ) -> Terrain {
+        Terrain::new(
+            grid,
+            heightmap,
+            globals,
+            (seed, 0),
+            Difficulty::FULL,
+            Vec::new(),
+        )
     }
 
     /// A terrain from its JSON (serde, without heightmap) and its cells,

@@ -11,7 +11,7 @@ use rse_core::Param;
 use crate::errors::scheme_error_at;
 
 /// `type(obj).__name__` and `repr(obj)`, for messages.
-fn describe(obj: &Bound<'_, PyAny>) -> String {
+pub(crate) fn describe(obj: &Bound<'_, PyAny>) -> String {
     let name = obj
         .get_type()
         .name()

@@ -9,6 +9,7 @@ use pyo3::types::PyString;
 use rse_core::Difficulty;
 use rse_world::{MeshMode, MujocoCollider, Targets, WorldOptions};
 
+use crate::args::describe;
 use crate::errors::world_error;
 
 /// `targets=`: `"gazebo,mujoco"`, or a sequence of names
@@ -25,7 +26,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for PyTargets {
             let names: Vec<String> = obj.extract().map_err(|_| {
                 PyTypeError::new_err(format!(
                     "targets: expected a comma-separated string or a list of target names, got {}",
-                    type_name(obj)
+                    describe(&obj)
                 ))
             })?;
             names.join(",")
@@ -67,16 +68,10 @@ fn string(obj: Borrowed<'_, '_, PyAny>, keyword: &str) -> PyResult<String> {
     if !obj.is_instance_of::<PyString>() {
         return Err(PyTypeError::new_err(format!(
             "{keyword}: expected a string, got {}",
-            type_name(obj)
+            describe(&obj)
         )));
     }
     obj.extract::<String>()
-}
-
-fn type_name(obj: Borrowed<'_, '_, PyAny>) -> String {
-    obj.get_type()
-        .name()
-        .map_or_else(|_| "?".to_owned(), |n| n.to_string())
 }
 
 /// The world options of the keywords every writer takes; `None` for any

@@ -133,7 +133,8 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
 /// The leftover temporary folders of the world folder `world` in its parent
 /// (`.atlas.tmp-PID` beside `atlas`), as faults.
 fn leftovers_of_world(world: &Path) -> Vec<Fault> {
-    let (Some(parent), Some(name)) = (world.parent(), world.file_name()) else {
+    let (Some(parent), Some(name)) = (world.parent(), world.file_name().and_then(|n| n.to_str()))
+    else {
         return Vec::new();
     };
     let parent = if parent.as_os_str().is_empty() {
@@ -147,15 +148,7 @@ fn leftovers_of_world(world: &Path) -> Vec<Fault> {
     let mut found: Vec<PathBuf> = entries
         .filter_map(Result::ok)
         .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
-        .filter(|e| {
-            let of = e
-                .file_name()
-                .to_str()
-                .and_then(Leftover::world_of)
-                .map(str::to_owned);
-            name.to_str()
-                .is_some_and(|name| of.as_deref() == Some(name))
-        })
+        .filter(|e| e.file_name().to_str().and_then(Leftover::world_of) == Some(name))
         .map(|e| world.with_file_name(e.file_name()))
         .collect();
     found.sort();

@@ -119,7 +119,7 @@ fn check_against_manifest(
         terrain,
         files: expected,
         hashed_only,
-    } = match manifest.rebuild(builtin_templates()) {
+    } = match manifest.rebuild(Templates::builtin_shared()) {
         Ok(rebuilt) => rebuilt,
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
@@ -269,12 +269,6 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
         line: text.then(|| line_of(want, byte)),
         byte,
     })
-}
-
-/// Our templates, parsed once per process, not once per world checked.
-fn builtin_templates() -> &'static Templates {
-    static BUILTIN: std::sync::OnceLock<Templates> = std::sync::OnceLock::new();
-    BUILTIN.get_or_init(Templates::builtin)
 }
 
 /// The fault of a manifest whose world cannot be rebuilt.

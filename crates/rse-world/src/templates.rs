@@ -94,6 +94,13 @@ impl Templates {
         Self::new(files, false).expect("the built-in templates parse")
     }
 
+    /// Ours, parsed once per process and shared: for callers that render
+    /// with them again and again (`check` per world, `mjcf` per terrain).
+    pub fn builtin_shared() -> &'static Templates {
+        static BUILTIN: std::sync::OnceLock<Templates> = std::sync::OnceLock::new();
+        BUILTIN.get_or_init(Templates::builtin)
+    }
+
     /// Ours, overlaid file by file with the target folders present in
     /// `dir` (`dir/gazebo/`, …): a user's file replaces ours of the same
     /// output path (`rse.world` and `rse.world.j2` both replace our

@@ -2,7 +2,6 @@
 //! target's files from its templates, and the manifest over them all.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::sync::OnceLock;
 
 use rse_core::export::{mtl, obj, usda};
 use rse_core::{Globals, Scheme, Terrain, generate_at, preview};
@@ -230,13 +229,10 @@ pub(crate) fn terrain_files(
 /// # Panics
 /// Never: our template writes `rse.xml`, as UTF-8 (tested).
 pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
-    static TEMPLATES: OnceLock<Templates> = OnceLock::new();
     let boxes = terrain.boxes();
     let name = format!("rse_{}_{}", terrain.seed(), terrain.index());
     let context = WorldContext::new(name, terrain, MeshMode::Blocks, &boxes);
-    let files = TEMPLATES
-        .get_or_init(Templates::builtin)
-        .render(Target::Mujoco, &context)?;
+    let files = Templates::builtin_shared().render(Target::Mujoco, &context)?;
     let (_, bytes) = files
         .into_iter()
         .find(|(path, _)| path == "rse.xml")
