@@ -101,7 +101,7 @@ def test_a_wrong_type_is_a_type_error_naming_the_field(kwargs: dict, field: str)
         (dict(seed=-1), "seed"),
         (dict(amount=np.int64(-3)), "amount"),
         (dict(pallet_size=3), "pallet_size"),
-        (dict(pallet_boundary=False), "pallet_boundary"),
+        (dict(pallet_boundary=True), "pallet_boundary"),
         (dict(size=(0, 10)), "size"),
         (dict(amount=0), "amount"),
     ],
@@ -128,6 +128,29 @@ def test_pallet_settings_without_pallets_are_refused_in_both_front_ends(tmp_path
     with pytest.raises(rse.SchemeError) as from_file:
         rse.Scheme.load(path)
     assert from_file.value.field == "pallet_size" and from_file.value.line == 1
+
+
+def test_a_pallet_setting_that_changes_nothing_is_accepted_everywhere(tmp_path: Path) -> None:
+    """No pallets, no frame: saying `pallet_boundary` false is not a mistake
+    (one rule in rse-core, the same answer from Python, a file and a flag)."""
+    import subprocess
+
+    plain = rse.Scheme([rse.Obstacle("random", height=2)])
+    assert rse.Scheme([rse.Obstacle("random", height=2)], pallet_boundary=False) == plain
+    assert plain.replace(pallet_boundary=False) == plain
+    path = tmp_path / "p.csv"
+    path.write_text("# pallet_boundary: false\ntype,height\nrandom,2\n")
+    assert rse.Scheme.load(path).to_csv() == plain.to_csv()
+    flag = subprocess.run(
+        [str(rse_gen_path()), "heightmap", str(SCHEMES / "random.csv"), "--pallet-boundary", "false"],
+        capture_output=True, text=True,
+    )
+    assert flag.returncode == 0, flag.stderr
+    refused = subprocess.run(
+        [str(rse_gen_path()), "heightmap", str(SCHEMES / "random.csv"), "--pallet-boundary", "true"],
+        capture_output=True, text=True,
+    )
+    assert refused.returncode == 2 and "--pallet-boundary needs pallets" in refused.stderr
 
 
 # --- pickle, copy, repr ---------------------------------------------------

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use crate::examples;
-use rse_core::Difficulty;
+use rse_core::{Difficulty, GlobalsPatch};
 use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
@@ -421,6 +421,23 @@ impl SchemeOverrides {
             block_size: self.block_size.or(outer.block_size),
             step_height: self.step_height.or(outer.step_height),
             base: self.base.or(outer.base),
+        }
+    }
+
+    /// The flags as core's patch of the scheme's globals.
+    pub fn patch(&self) -> GlobalsPatch {
+        GlobalsPatch {
+            size: self.size,
+            pallets: self.pallets.map(|p| match p {
+                PalletsFlag::Off => None,
+                PalletsFlag::Count(count) => Some(count),
+            }),
+            pallet_size: self.pallet_size,
+            pallet_boundary: self.pallet_boundary,
+            block_size: self.block_size,
+            step_height: self.step_height,
+            base: self.base,
+            ..GlobalsPatch::default()
         }
     }
 

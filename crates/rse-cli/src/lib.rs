@@ -1,6 +1,5 @@
 //! `rse-gen` as a library: the command line (arguments, one module per
-//! subcommand), for the binary and for the fuzz targets that drive the
-//! editor's JSON API without a socket.
+//! subcommand), for the binary and for the Python wheel's `rse-gen` command.
 
 use std::ffi::OsString;
 use std::io::Write as _;
@@ -15,13 +14,6 @@ mod hints;
 
 pub use args::Cli;
 pub use commands::run;
-
-/// The editor's pure JSON API handlers (request body in, JSON answer out),
-/// for the fuzz targets.
-#[doc(hidden)]
-pub mod editor_api {
-    pub use crate::commands::edit::api::{Answer, parse, preview};
-}
 
 /// How a run ended: 0 success, 1 a check or validation failed, 2 usage or I/O error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -117,6 +117,12 @@ pub enum SchemeErrorKind {
     /// A `# key: value` line names no known global parameter.
     #[error("unknown global parameter `{0}` (known: {known})", known = crate::globals::GLOBAL_KEYS.join(", "))]
     UnknownGlobal(String),
+    /// A free-text note that a scheme file would read back as the global
+    /// parameter setting `key: …`.
+    #[error(
+        "a note would be read back as a global parameter (`{0}: …`): reword the `word:` at its start"
+    )]
+    NoteReadsAsGlobal(String),
     /// A global parameter is given twice.
     #[error("given twice")]
     DuplicateGlobal,

@@ -35,6 +35,7 @@ mod error;
 pub mod export;
 mod generate;
 mod globals;
+mod globals_patch;
 mod heightmap;
 pub mod hfield;
 pub mod mesh;
@@ -57,6 +58,7 @@ pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
     Pallets, format_dims, parse_dims,
 };
+pub use globals_patch::GlobalsPatch;
 pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use obstacle::{

@@ -272,6 +272,21 @@ impl Obstacle {
         Ok(Obstacle { kind, fields })
     }
 
+    /// A row from its cells' text as a scheme file holds it (`("height",
+    /// "2..4")`; blank cells are not given), validated as [`Obstacle::new`]
+    /// does. The error's `field` names the faulty column.
+    pub fn from_cells<'a>(
+        cells: impl IntoIterator<Item = (Field, &'a str)>,
+    ) -> Result<Self, SchemeError> {
+        crate::scheme_csv::obstacle_of_cells(cells)
+    }
+
+    /// The text of each given cell, in column order, as a scheme file
+    /// writes it; [`Obstacle::from_cells`] reads it back to an equal row.
+    pub fn cells(&self) -> Vec<(Field, String)> {
+        crate::scheme_csv::cells_of(self)
+    }
+
     /// The type.
     pub fn kind(&self) -> ObstacleKind {
         self.kind

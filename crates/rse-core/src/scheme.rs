@@ -153,11 +153,21 @@ impl Scheme {
     }
 
     /// The same scheme with other free-text notes (the comment lines written
-    /// above the table).
-    #[must_use]
-    pub fn with_notes(mut self, notes: Vec<String>) -> Self {
+    /// above the table). A note a scheme file would read back as a global
+    /// parameter (`Author: me`) is refused: error field `notes`.
+    pub fn with_notes(mut self, notes: Vec<String>) -> Result<Self, SchemeError> {
+        let reads_as_global = notes
+            .iter()
+            .flat_map(|note| note.lines())
+            .find_map(|line| crate::scheme_csv::split_global(line).map(|(key, _)| key));
+        if let Some(key) = reads_as_global {
+            return Err(
+                SchemeError::new(SchemeErrorKind::NoteReadsAsGlobal(key.to_owned()))
+                    .with_field("notes"),
+            );
+        }
         self.notes = notes;
-        self
+        Ok(self)
     }
 
     /// The global parameters.
@@ -173,6 +183,20 @@ impl Scheme {
     /// Free-text comment lines of the file (without the leading `#`).
     pub fn notes(&self) -> &[String] {
         &self.notes
+    }
+
+    /// The highest top any world of this scheme can have, metres:
+    /// `base + H·step_height`, `H` the largest obstacle height the table
+    /// allows (its ranges' upper ends; at least one step, for frames). A
+    /// height field sized to it holds every world (`rse.mujoco`).
+    pub fn max_top(&self) -> f64 {
+        let highest = self
+            .obstacles
+            .iter()
+            .filter_map(|o| o.fields().height)
+            .map(|h| h.hi())
+            .fold(1, u32::max);
+        self.globals.top(highest)
     }
 
     /// The grid (frame included).

@@ -7,7 +7,8 @@
 use std::fmt::Write as _;
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::globals::{self, DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Pallets};
+use crate::globals::{GLOBAL_KEYS, Globals};
+use crate::globals_patch::GlobalsPatch;
 use crate::obstacle::{Field, Obstacle, ObstacleFields, ObstacleKind};
 use crate::param::{Param, ParamTextError};
 use crate::scheme::{Origin, RowOrigin, Scheme};
@@ -56,7 +57,7 @@ pub(crate) fn parse(text: &str, file: Option<&str>) -> Result<Scheme, SchemeErro
 
 /// `key: value` where key is a single word (letters, digits, `_`); anything
 /// else in a leading comment is a free-text note.
-fn split_global(comment: &str) -> Option<(&str, &str)> {
+pub(crate) fn split_global(comment: &str) -> Option<(&str, &str)> {
     let (key, value) = comment.split_once(':')?;
     let key = key.trim();
     let is_word = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
@@ -66,123 +67,36 @@ fn split_global(comment: &str) -> Option<(&str, &str)> {
 /// Global values as read from leading comment lines, with the line of each.
 #[derive(Default)]
 struct GlobalLines {
-    globals: Globals,
-    /// `None` when not given or `off`.
-    pallets: Option<[u32; 2]>,
-    pallet_size: Option<u32>,
-    pallet_boundary: Option<bool>,
+    patch: GlobalsPatch,
     lines: Vec<(&'static str, u64)>,
 }
 
 impl GlobalLines {
     fn set(&mut self, key: &str, value: &str, line: u64) -> Result<(), SchemeError> {
-        let lower = key.to_ascii_lowercase();
-        let Some(&key) = GLOBAL_KEYS.iter().find(|k| **k == lower) else {
-            return Err(
-                SchemeError::new(SchemeErrorKind::UnknownGlobal(key.to_owned()))
-                    .with_field(key)
-                    .at_line(line),
-            );
-        };
-        let fail = |kind| Err(SchemeError::new(kind).with_field(key).at_line(line));
-        if self.lines.iter().any(|(k, _)| *k == key) {
-            return fail(SchemeErrorKind::DuplicateGlobal);
+        let known = GLOBAL_KEYS.iter().find(|k| k.eq_ignore_ascii_case(key));
+        if let Some(&key) = known.filter(|k| self.lines.iter().any(|(seen, _)| seen == *k)) {
+            return Err(SchemeError::new(SchemeErrorKind::DuplicateGlobal)
+                .with_field(key)
+                .at_line(line));
         }
+        let key = self.patch.set(key, value).map_err(|e| e.at_line(line))?;
         self.lines.push((key, line));
-        let bad = |reason: String| {
-            fail(SchemeErrorKind::BadGlobal {
-                value: value.to_owned(),
-                reason,
-            })
-        };
-        let g = &mut self.globals;
-        let parsed = match key {
-            "size" => globals::parse_dims(value).map(|d| g.size = d),
-            "pallets" => parse_pallets(value).map(|p| self.pallets = p),
-            "pallet_size" => {
-                parse_number(value, "a whole number of cells").map(|n| self.pallet_size = Some(n))
-            }
-            "pallet_boundary" => parse_bool(value).map(|b| self.pallet_boundary = Some(b)),
-            "block_size" => parse_number(value, "a length in metres").map(|v| g.block_size = v),
-            "step_height" => parse_number(value, "a length in metres").map(|v| g.step_height = v),
-            "base" => parse_number(value, "a length in metres").map(|v| g.base = v),
-            "amount" => parse_number(value, "a whole number of worlds").map(|v| g.amount = v),
-            "seed" => parse_number(value, "a whole number 0..=2^64-1").map(|v| g.seed = v),
-            _ => unreachable!("every key of GLOBAL_KEYS is handled"),
-        };
-        parsed.or_else(bad)
+        Ok(())
     }
 
+    /// The globals, a fault placed on the line of the key it concerns.
     fn build(&self) -> Result<Globals, SchemeError> {
-        let mut globals = self.globals;
-        match self.pallets {
-            Some(count) => {
-                globals.pallets = Some(Pallets {
-                    size: self.pallet_size.unwrap_or(DEFAULT_PALLET_SIZE),
-                    count,
-                    boundary: self.pallet_boundary.unwrap_or(true),
-                });
+        self.patch.apply(&Globals::default()).map_err(|e| {
+            let line = self
+                .lines
+                .iter()
+                .find(|(k, _)| Some(*k) == e.field.as_deref())
+                .map(|(_, line)| *line);
+            match line {
+                Some(line) => e.at_line(line),
+                None => e,
             }
-            None => {
-                for key in ["pallet_size", "pallet_boundary"] {
-                    if let Some((_, line)) = self.lines.iter().find(|(k, _)| *k == key) {
-                        return Err(SchemeError::new(SchemeErrorKind::PalletsOff)
-                            .with_field(key)
-                            .at_line(*line));
-                    }
-                }
-            }
-        }
-        Ok(globals)
-    }
-}
-
-/// `PXxPY`, or `off`/`none`/`false` for no pallets.
-fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
-    match value.to_ascii_lowercase().as_str() {
-        "off" | "none" | "false" | "no" => Ok(None),
-        _ => globals::parse_dims(value).map(Some),
-    }
-}
-
-/// `true`/`false`, `yes`/`no`, `on`/`off`, `1`/`0` (case-insensitive).
-pub(crate) fn parse_bool(value: &str) -> Result<bool, String> {
-    match value.trim().to_ascii_lowercase().as_str() {
-        "true" | "yes" | "on" | "1" => Ok(true),
-        "false" | "no" | "off" | "0" => Ok(false),
-        _ => Err("expected true or false".to_owned()),
-    }
-}
-
-fn parse_number<T: std::str::FromStr + ToFloat>(value: &str, what: &str) -> Result<T, String> {
-    value
-        .trim()
-        .parse::<T>()
-        .ok()
-        .filter(ToFloat::is_finite_number)
-        .ok_or_else(|| format!("expected {what}"))
-}
-
-/// Lets one parser refuse `inf` and `NaN`, which `f64::from_str` accepts.
-trait ToFloat {
-    fn is_finite_number(&self) -> bool;
-}
-
-impl ToFloat for f64 {
-    fn is_finite_number(&self) -> bool {
-        self.is_finite()
-    }
-}
-
-impl ToFloat for u32 {
-    fn is_finite_number(&self) -> bool {
-        true
-    }
-}
-
-impl ToFloat for u64 {
-    fn is_finite_number(&self) -> bool {
-        true
+        })
     }
 }
 
@@ -257,57 +171,87 @@ fn parse_row(
     columns: &[Field],
     line: u64,
 ) -> Result<(Obstacle, RowOrigin), SchemeError> {
+    let origin = RowOrigin {
+        line,
+        columns: (1..).zip(columns).map(|(c, &f)| (f, c)).collect(),
+    };
+    let cells = columns.iter().copied().zip(record.iter());
+    let obstacle = obstacle_of_cells(cells).map_err(|mut error| {
+        error.line = Some(line);
+        let field = error.field.as_deref().and_then(Field::from_header);
+        error.column = origin
+            .columns
+            .iter()
+            .find(|(f, _)| Some(*f) == field)
+            .map(|(_, c)| *c);
+        error
+    })?;
+    Ok((obstacle, origin))
+}
+
+/// Reads one cell's text (trimmed, not empty) into the row being built.
+fn set_cell(
+    kind: &mut Option<ObstacleKind>,
+    fields: &mut ObstacleFields,
+    field: Field,
+    text: &str,
+) -> Result<(), SchemeErrorKind> {
+    match field {
+        Field::Type => *kind = Some(text.parse::<ObstacleKind>()?),
+        Field::Height => fields.height = Some(parse_height(text)?),
+        Field::Angle => fields.angle = Some(parse_real(text)?),
+        Field::Sigma => fields.sigma = Some(parse_real(text)?),
+        Field::X1 => fields.x1 = Some(parse_cell(text)?),
+        Field::Y1 => fields.y1 = Some(parse_cell(text)?),
+        Field::X2 => fields.x2 = Some(parse_cell(text)?),
+        Field::Y2 => fields.y2 = Some(parse_cell(text)?),
+    }
+    Ok(())
+}
+
+/// An obstacle from its cells' text as a scheme file holds them (blank
+/// cells are not given); the error's `field` names the column.
+pub(crate) fn obstacle_of_cells<'a>(
+    cells: impl IntoIterator<Item = (Field, &'a str)>,
+) -> Result<Obstacle, SchemeError> {
     let mut kind = None;
     let mut fields = ObstacleFields::default();
-    let mut origin = RowOrigin {
-        line,
-        columns: Vec::new(),
-    };
-    for (i, (&field, text)) in columns.iter().zip(record.iter()).enumerate() {
-        let column = i as u64 + 1;
-        origin.columns.push((field, column));
+    for (field, text) in cells {
         let text = text.trim();
         if text.is_empty() {
             continue;
         }
-        let at = |kind| {
-            SchemeError::new(kind)
-                .with_field(field.name())
-                .at_line(line)
-                .at_column(column)
-        };
-        match field {
-            Field::Type => kind = Some(text.parse::<ObstacleKind>().map_err(at)?),
-            Field::Height => fields.height = Some(parse_height(text).map_err(at)?),
-            Field::Angle => fields.angle = Some(parse_real(text).map_err(at)?),
-            Field::Sigma => fields.sigma = Some(parse_real(text).map_err(at)?),
-            Field::X1 => fields.x1 = Some(parse_cell(text).map_err(at)?),
-            Field::Y1 => fields.y1 = Some(parse_cell(text).map_err(at)?),
-            Field::X2 => fields.x2 = Some(parse_cell(text).map_err(at)?),
-            Field::Y2 => fields.y2 = Some(parse_cell(text).map_err(at)?),
-        }
+        set_cell(&mut kind, &mut fields, field, text)
+            .map_err(|kind| SchemeError::new(kind).with_field(field.name()))?;
     }
-    let column_of = |name: Option<&str>| {
-        let field = name.and_then(Field::from_header)?;
-        origin
-            .columns
-            .iter()
-            .find(|(f, _)| *f == field)
-            .map(|(_, c)| *c)
-    };
-    let Some(kind) = kind else {
-        let error = SchemeError::new(SchemeErrorKind::MissingField("every row"))
-            .with_field("type")
-            .at_line(line);
-        let column = column_of(Some("type"));
-        return Err(SchemeError { column, ..error });
-    };
-    let obstacle = Obstacle::new(kind, fields).map_err(|mut error| {
-        error.line = Some(line);
-        error.column = column_of(error.field.as_deref());
-        error
+    let kind = kind.ok_or_else(|| {
+        SchemeError::new(SchemeErrorKind::MissingField("every row")).with_field("type")
     })?;
-    Ok((obstacle, origin))
+    Obstacle::new(kind, fields)
+}
+
+/// The text of each cell of `obstacle` that is given, as a scheme file
+/// writes it ([`obstacle_of_cells`] reads it back to an equal obstacle).
+pub(crate) fn cells_of(obstacle: &Obstacle) -> Vec<(Field, String)> {
+    let f = obstacle.fields();
+    let whole = |p: Option<Param<u32>>| p.map(|p| p.to_string());
+    let real = |p: Option<Param<f64>>| p.map(|p| p.to_string());
+    Field::ALL
+        .into_iter()
+        .filter_map(|field| {
+            let text = match field {
+                Field::Type => Some(obstacle.kind().name().to_owned()),
+                Field::Height => whole(f.height),
+                Field::Angle => real(f.angle),
+                Field::X1 => whole(f.x1),
+                Field::Y1 => whole(f.y1),
+                Field::X2 => whole(f.x2),
+                Field::Y2 => whole(f.y2),
+                Field::Sigma => real(f.sigma),
+            };
+            text.map(|t| (field, t))
+        })
+        .collect()
 }
 
 const WHOLE: &str = "a whole number ≥ 0 or a range lo..hi";
@@ -366,26 +310,8 @@ pub(crate) fn write(scheme: &Scheme) -> String {
             }
         }
     }
-    let g = scheme.globals();
-    let defaults = Globals::default();
-    if g.pallets.is_none() || g.size != defaults.size {
-        writeln!(out, "# size: {}", globals::format_dims(g.size)).expect(FMT);
-    }
-    if let Some(p) = g.pallets {
-        writeln!(out, "# pallets: {}", globals::format_dims(p.count)).expect(FMT);
-        writeln!(out, "# pallet_size: {}", p.size).expect(FMT);
-        writeln!(out, "# pallet_boundary: {}", p.boundary).expect(FMT);
-    }
-    writeln!(out, "# block_size: {}", g.block_size).expect(FMT);
-    writeln!(out, "# step_height: {}", g.step_height).expect(FMT);
-    if g.base.to_bits() != defaults.base.to_bits() {
-        writeln!(out, "# base: {}", g.base).expect(FMT);
-    }
-    if g.amount != defaults.amount {
-        writeln!(out, "# amount: {}", g.amount).expect(FMT);
-    }
-    if g.seed != defaults.seed {
-        writeln!(out, "# seed: {}", g.seed).expect(FMT);
+    for (key, text) in scheme.globals().cells() {
+        writeln!(out, "# {key}: {text}").expect(FMT);
     }
 
     let with_sigma = scheme
@@ -404,23 +330,14 @@ pub(crate) fn write(scheme: &Scheme) -> String {
         .write_record(columns.iter().map(|f| f.name()))
         .expect(io);
     for obstacle in scheme.obstacles() {
-        let f = obstacle.fields();
-        let show = |p: Option<Param<u32>>| p.map(|p| p.to_string()).unwrap_or_default();
-        let show_real = |p: Option<Param<f64>>| p.map(|p| p.to_string()).unwrap_or_default();
-        let row: Vec<String> = columns
-            .iter()
-            .map(|field| match field {
-                Field::Type => obstacle.kind().name().to_owned(),
-                Field::Height => show(f.height),
-                Field::Angle => show_real(f.angle),
-                Field::X1 => show(f.x1),
-                Field::Y1 => show(f.y1),
-                Field::X2 => show(f.x2),
-                Field::Y2 => show(f.y2),
-                Field::Sigma => show_real(f.sigma),
-            })
-            .collect();
-        writer.write_record(&row).expect(io);
+        let cells = cells_of(obstacle);
+        let row = columns.iter().map(|column| {
+            cells
+                .iter()
+                .find(|(field, _)| field == column)
+                .map_or("", |(_, text)| text.as_str())
+        });
+        writer.write_record(row).expect(io);
     }
     let table = writer.into_inner().expect(io);
     out.push_str(&String::from_utf8(table).expect("the table is built from UTF-8 strings"));

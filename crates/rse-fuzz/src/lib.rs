@@ -182,8 +182,8 @@ pub fn editor_api(data: &[u8]) {
         return;
     };
     let _ = if which % 2 == 0 {
-        rse_cli::editor_api::parse(body)
+        rse_edit::api::parse(body)
     } else {
-        rse_cli::editor_api::preview(body)
+        rse_edit::api::preview(body)
     };
 }

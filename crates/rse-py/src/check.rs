@@ -17,6 +17,11 @@ pub fn _check_json(
     physics: bool,
     jobs: Option<usize>,
 ) -> PyResult<String> {
+    if physics && !rse_verify::PHYSICS {
+        return Err(PyValueError::new_err(
+            "physics=True: this build of rse has no physics smoke test (built without the `physics` feature)",
+        ));
+    }
     let pool = pool(py, jobs)?;
     let report = py
         .detach(|| pool.install(|| check_paths(&paths, CheckOptions { physics }, &|| {})))

@@ -7,7 +7,7 @@ use pyo3::IntoPyObjectExt as _;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rse_core::{Globals, ObstacleFields, ObstacleKind, Pallets, Param};
+use rse_core::{Globals, GlobalsPatch, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
 
 use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
@@ -153,6 +153,56 @@ impl Obstacle {
     }
 }
 
+/// `onto` with the global keywords in `given` (core's rules, e.g. pallets
+/// turned on get a frame; `pallets=None` turns them off, any other `None`
+/// is not given).
+fn apply_patch(py: Python<'_>, given: &Bound<'_, PyDict>, onto: &Globals) -> PyResult<Globals> {
+    let value = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
+        Ok(given.get_item(key)?.filter(|v| !v.is_none()))
+    };
+    let real = |key: &str| value(key)?.map(|v| args::number(key, &v)).transpose();
+    let patch = GlobalsPatch {
+        size: value("size")?
+            .map(|v| args::whole_pair("size", &v))
+            .transpose()?
+            .map(Into::into),
+        pallets: given
+            .get_item("pallets")?
+            .map(|v| {
+                (!v.is_none())
+                    .then(|| args::whole_pair("pallets", &v).map(Into::into))
+                    .transpose()
+            })
+            .transpose()?,
+        pallet_size: value("pallet_size")?
+            .map(|v| args::whole("pallet_size", &v))
+            .transpose()?,
+        pallet_boundary: value("pallet_boundary")?
+            .map(|v| args::boolean("pallet_boundary", &v))
+            .transpose()?,
+        block_size: real("block_size")?,
+        step_height: real("step_height")?,
+        base: real("base")?,
+        amount: value("amount")?
+            .map(|v| args::whole("amount", &v))
+            .transpose()?,
+        seed: value("seed")?
+            .map(|v| args::whole("seed", &v))
+            .transpose()?,
+    };
+    patch
+        .apply(onto)
+        .map_err(|e| match (&e.kind, e.field.as_deref()) {
+            // The rule is core's; the words are Python's.
+            (SchemeErrorKind::PalletsOff, Some(field)) => scheme_error_at(
+                py,
+                field,
+                "is set but pallets are off; pass pallets too, e.g. pallets=(2, 3)",
+            ),
+            _ => scheme_error(py, &e),
+        })
+}
+
 /// A scheme: global parameters and an ordered obstacle table (docs/schemes.md).
 #[pyclass(module = "rse", frozen)]
 pub struct Scheme {
@@ -171,58 +221,30 @@ impl Scheme {
         size: Option<Bound<'_, PyAny>>,
         pallets: Option<Bound<'_, PyAny>>,
         pallet_size: Option<Bound<'_, PyAny>>,
-        pallet_boundary: Option<bool>,
+        pallet_boundary: Option<Bound<'_, PyAny>>,
         block_size: Option<Bound<'_, PyAny>>,
         step_height: Option<Bound<'_, PyAny>>,
         base: Option<Bound<'_, PyAny>>,
         amount: Option<Bound<'_, PyAny>>,
         seed: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let defaults = Globals::default();
-        let real = |field, v: Option<Bound<'_, PyAny>>, default| {
-            v.map_or(Ok(default), |v| args::number(field, &v))
-        };
-        let pallets = if let Some(count) = &pallets {
-            Some(Pallets {
-                size: pallet_size
-                    .as_ref()
-                    .map_or(Ok(rse_core::DEFAULT_PALLET_SIZE), |s| {
-                        args::whole("pallet_size", s)
-                    })?,
-                count: args::whole_pair("pallets", count)?.into(),
-                boundary: pallet_boundary.unwrap_or(true),
-            })
-        } else {
-            // As in a scheme file: pallet settings without pallets are a mistake.
-            let set = [
-                ("pallet_size", pallet_size.is_some()),
-                ("pallet_boundary", pallet_boundary.is_some()),
-            ];
-            if let Some((field, _)) = set.into_iter().find(|(_, is_set)| *is_set) {
-                return Err(scheme_error_at(
-                    py,
-                    field,
-                    "is set but pallets are off; pass pallets too, e.g. pallets=(2, 3)",
-                ));
+        let given = PyDict::new(py);
+        for (key, value) in [
+            ("size", size),
+            ("pallets", pallets),
+            ("pallet_size", pallet_size),
+            ("pallet_boundary", pallet_boundary),
+            ("block_size", block_size),
+            ("step_height", step_height),
+            ("base", base),
+            ("amount", amount),
+            ("seed", seed),
+        ] {
+            if let Some(value) = value {
+                given.set_item(key, value)?;
             }
-            None
-        };
-        let globals = Globals {
-            size: size
-                .as_ref()
-                .map_or(Ok(defaults.size.into()), |s| args::whole_pair("size", s))?
-                .into(),
-            pallets,
-            block_size: real("block_size", block_size, defaults.block_size)?,
-            step_height: real("step_height", step_height, defaults.step_height)?,
-            base: real("base", base, defaults.base)?,
-            amount: amount
-                .as_ref()
-                .map_or(Ok(defaults.amount), |a| args::whole("amount", a))?,
-            seed: seed
-                .as_ref()
-                .map_or(Ok(defaults.seed), |s| args::whole("seed", s))?,
-        };
+        }
+        let globals = apply_patch(py, &given, &Globals::default())?;
         let table = obstacles.iter().map(|o| o.get().inner.clone()).collect();
         let inner = rse_core::Scheme::new(globals, table).map_err(|e| scheme_error(py, &e))?;
         Ok(Scheme {
@@ -240,36 +262,34 @@ impl Scheme {
         py: Python<'py>,
         fields: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let current = self.fields(py)?;
-        if let Some(fields) = fields {
-            for key in fields.keys() {
-                if !current.contains(&key)? {
-                    let names: Vec<String> = current.keys().iter().map(|k| k.to_string()).collect();
-                    return Err(PyTypeError::new_err(format!(
-                        "replace() got an unexpected keyword argument {}: the fields are {}",
-                        key.repr()?,
-                        names.join(", ")
-                    )));
-                }
+        let known = self.fields(py)?;
+        let mut table = None;
+        let given = PyDict::new(py);
+        for (key, value) in fields.map(PyDictMethods::iter).into_iter().flatten() {
+            if !known.contains(&key)? {
+                let names: Vec<String> = known.keys().iter().map(|k| k.to_string()).collect();
+                return Err(PyTypeError::new_err(format!(
+                    "replace() got an unexpected keyword argument {}: the fields are {}",
+                    key.repr()?,
+                    names.join(", ")
+                )));
             }
-            let pallets_off = fields.get_item("pallets")?.is_some_and(|p| p.is_none());
-            for key in ["pallet_size", "pallet_boundary"] {
-                if pallets_off && !fields.contains(key)? {
-                    current.del_item(key)?;
-                }
-            }
-            current.update(fields.as_mapping())?;
-        }
-        let obstacles = current
-            .get_item("obstacles")?
-            .expect("fields has obstacles");
-        current.del_item("obstacles")?;
-        for key in ["pallets", "pallet_size", "pallet_boundary"] {
-            if current.get_item(key)?.is_some_and(|v| v.is_none()) {
-                current.del_item(key)?;
+            if key.extract::<String>()? == "obstacles" {
+                table = Some(value.extract::<Vec<Bound<'py, Obstacle>>>()?);
+            } else {
+                given.set_item(key, value)?;
             }
         }
-        py.get_type::<Scheme>().call((obstacles,), Some(&current))
+        let globals = apply_patch(py, &given, self.inner.globals())?;
+        let obstacles = match table {
+            Some(table) => table.iter().map(|o| o.get().inner.clone()).collect(),
+            None => self.inner.obstacles().to_vec(),
+        };
+        let inner = rse_core::Scheme::new(globals, obstacles).map_err(|e| scheme_error(py, &e))?;
+        Scheme {
+            inner: Arc::new(inner),
+        }
+        .into_bound_py_any(py)
     }
 
     /// The constructor's keywords with this scheme's values.
@@ -321,6 +341,15 @@ impl Scheme {
             .iter()
             .map(|o| Obstacle { inner: o.clone() })
             .collect()
+    }
+
+    /// The highest top any world of this scheme can have, metres:
+    /// `base + H·step_height`, `H` the largest obstacle height allowed (at
+    /// least one step, for frames). A height field that reaches it holds
+    /// every world (`rse.mujoco.hfield_mjcf`).
+    #[getter]
+    fn max_top(&self) -> f64 {
+        self.inner.max_top()
     }
 
     /// `(nx, ny)`: the grid in cells, frames included.

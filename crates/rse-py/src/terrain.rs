@@ -278,6 +278,25 @@ impl Terrain {
         Ok((data, (rx, ry, elevation, base), (x, y, z)))
     }
 
+    /// `hfield(oversample)` without its samples: `((nrow, ncol), size, pos)`
+    /// — the shape, MuJoCo's `size` `(radius_x, radius_y, elevation, base)`
+    /// and the geom's `pos`, metres (the grid's centre; z the lowest top).
+    #[pyo3(signature = (oversample=None))]
+    #[allow(clippy::type_complexity)]
+    fn hfield_layout(
+        &self,
+        oversample: Option<u32>,
+    ) -> PyResult<((u32, u32), (f64, f64, f64, f64), (f64, f64, f64))> {
+        let oversample = oversample.unwrap_or(rse_core::DEFAULT_OVERSAMPLE);
+        let layout = self.inner.hfield_layout(oversample).map_err(hfield_error)?;
+        let ([rx, ry, elevation, base], [x, y, z]) = (layout.size, layout.pos);
+        Ok((
+            (layout.nrow, layout.ncol),
+            (rx, ry, elevation, base),
+            (x, y, z),
+        ))
+    }
+
     /// `(nrow, ncol)` of `hfield(oversample)`.
     #[pyo3(signature = (oversample=None))]
     fn hfield_shape(&self, oversample: Option<u32>) -> PyResult<(u32, u32)> {

@@ -22,11 +22,13 @@ mod batch;
 mod fault;
 mod folder;
 pub mod limits;
+mod physics;
 mod references;
 mod terrain;
 mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
 pub use fault::{Fault, FaultKind};
+pub use physics::PHYSICS;
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
 pub use world::{CheckOptions, WorldReport, check_world};

@@ -8,8 +8,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use rse_core::Terrain;
-use rse_physics::{PhysicsReport, SmokeTest, TerrainModel, smoke_test};
-use rse_world::{Collider, MANIFEST, Manifest, RebuildError, Rebuilt, Templates, sha256_hex};
+#[cfg(feature = "physics")]
+use rse_physics::PhysicsReport;
+use rse_world::{MANIFEST, Manifest, RebuildError, Rebuilt, Templates, sha256_hex};
 use serde::Serialize;
 
 use crate::fault::{Fault, FaultKind, line_of};
@@ -20,7 +21,9 @@ use crate::{references, terrain};
 /// What to check beyond the static checks.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CheckOptions {
-    /// Run the rapier physics smoke test on the terrain.
+    /// Run the rapier physics smoke test on the terrain. A build without
+    /// the `physics` feature ([`PHYSICS`](crate::PHYSICS) is `false`)
+    /// reports a fault instead.
     pub physics: bool,
 }
 
@@ -44,6 +47,7 @@ pub struct WorldReport {
     pub index: Option<u64>,
     /// The physics smoke test of each exact collider the world's simulators
     /// load, when asked for and the terrain could be rebuilt.
+    #[cfg(feature = "physics")]
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub physics: Vec<PhysicsReport>,
 }
@@ -60,6 +64,7 @@ pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
         hashed_only: Vec::new(),
         seed: None,
         index: None,
+        #[cfg(feature = "physics")]
         physics: Vec::new(),
     };
     match read_manifest(&folder) {
@@ -192,58 +197,7 @@ fn check_against_manifest(
     }
     report.hashed_only = hashed_only.iter().cloned().collect();
     if options.physics {
-        physics(manifest, meshes, &terrain, report, faults);
-    }
-}
-
-/// The physics smoke test of each exact collider the world's targets load:
-/// each distinct mesh file (`meshes` holds one of each set of copies) where
-/// a target collides the mesh, the box set where one collides boxes.
-/// `MuJoCo`'s height field is approximate by design: not tested here.
-fn physics(
-    manifest: &Manifest,
-    meshes: Vec<(&str, terrain::ObjMesh)>,
-    terrain: &Terrain,
-    report: &mut WorldReport,
-    faults: &mut Vec<Fault>,
-) {
-    let colliders: BTreeSet<Collider> = manifest
-        .options
-        .targets
-        .iter()
-        .map(|t| Collider::of(t, manifest.options.mesh, manifest.options.mujoco_collider))
-        .collect();
-    let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
-    if colliders.contains(&Collider::Mesh) {
-        if meshes.is_empty() {
-            // An empty terrain: no mesh file, the floor alone.
-            runs.push((None, TerrainModel::mesh_of(terrain)));
-        }
-        for (path, mesh) in meshes {
-            runs.push((
-                Some(path),
-                TerrainModel::Mesh {
-                    vertices: mesh.vertices,
-                    triangles: mesh.triangles,
-                },
-            ));
-        }
-    }
-    if colliders.contains(&Collider::Boxes) {
-        runs.push((None, TerrainModel::boxes_of(terrain)));
-    }
-    for (path, model) in runs {
-        let physics = smoke_test(&model, path, terrain, SmokeTest::default());
-        let kind = physics.collider.kind;
-        faults.extend(physics.errors.iter().map(|error| {
-            Fault::new(
-                path,
-                FaultKind::Physics {
-                    error: format!("{kind}: {error}"),
-                },
-            )
-        }));
-        report.physics.push(physics);
+        crate::physics::run(manifest, meshes, &terrain, report, faults);
     }
 }
 

@@ -3,9 +3,9 @@
 //! Every check itself is in the library.
 
 use std::io::Write as _;
-use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressDrawTarget};
+#[cfg(feature = "physics")]
 use rse_physics::{ColliderKind, PhysicsReport};
 use rse_verify::{CheckOptions, CheckReport, check_paths};
 
@@ -13,6 +13,11 @@ use crate::ExitStatus;
 use crate::args::CheckArgs;
 
 pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
+    if args.physics && !rse_verify::PHYSICS {
+        anyhow::bail!(
+            "--physics: this rse-gen was built without the physics smoke test (cargo feature `physics`)"
+        );
+    }
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
     let options = CheckOptions {
         physics: args.physics,
@@ -50,6 +55,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
 
 /// The physics summary, one line per kind of collider tested (`mesh`,
 /// `boxes`), when the smoke test ran.
+#[cfg(feature = "physics")]
 fn print_physics(report: &CheckReport) {
     let runs = || report.worlds.iter().flat_map(|r| &r.physics);
     let kinds: std::collections::BTreeSet<ColliderKind> = runs().map(|p| p.collider.kind).collect();
@@ -69,15 +75,5 @@ fn print_physics(report: &CheckReport) {
     }
 }
 
-/// The one-line `check` verdict on the worlds in `folder` (no physics), as
-/// the editor shows it after a Generate: the verdict, and the first fault.
-pub fn summary(folder: &Path) -> String {
-    let report = match check_paths(&[folder.to_path_buf()], CheckOptions::default(), &|| {}) {
-        Ok(report) => report,
-        Err(e) => return format!("check: {e}"),
-    };
-    match report.first_fault() {
-        Some(first) => format!("{} (first: {first})", report.verdict()),
-        None => report.verdict(),
-    }
-}
+#[cfg(not(feature = "physics"))]
+fn print_physics(_: &CheckReport) {}

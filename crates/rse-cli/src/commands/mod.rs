@@ -3,11 +3,11 @@
 use std::io::Write as _;
 use std::path::Path;
 
-use anyhow::{Context as _, bail};
-use rse_core::{DEFAULT_PALLET_SIZE, Pallets, Scheme, Terrain};
+use anyhow::Context as _;
+use rse_core::{Scheme, SchemeErrorKind, Terrain};
 
 use crate::ExitStatus;
-use crate::args::{Cli, Command, PalletsFlag, SchemeOverrides, WorldArgs};
+use crate::args::{Cli, Command, SchemeOverrides, WorldArgs};
 
 mod atlas;
 mod batch;
@@ -77,41 +77,23 @@ pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<S
             path.display()
         );
     }
-    let mut globals = *scheme.globals();
-    let SchemeOverrides {
-        size,
-        pallets,
-        pallet_size,
-        pallet_boundary,
-        block_size,
-        step_height,
-        base,
-    } = *overrides;
-    if let Some(size) = size {
-        globals.size = size;
+    let patch = overrides.patch();
+    if patch.is_empty() {
+        return Ok(scheme);
     }
-    match pallets {
-        None => {}
-        Some(PalletsFlag::Off) => globals.pallets = None,
-        Some(PalletsFlag::Count(count)) => {
-            let old = globals.pallets;
-            globals.pallets = Some(Pallets {
-                size: old.map_or(DEFAULT_PALLET_SIZE, |p| p.size),
-                count,
-                boundary: old.is_none_or(|p| p.boundary),
-            });
+    let globals = patch.apply(scheme.globals()).map_err(|e| {
+        // The rule is core's; the words are the command line's.
+        match e.kind {
+            SchemeErrorKind::PalletsOff => anyhow::anyhow!(
+                "--{} needs pallets: add --pallets PXxPY",
+                e.field
+                    .as_deref()
+                    .unwrap_or("pallet-size")
+                    .replace('_', "-")
+            ),
+            _ => e.into(),
         }
-    }
-    if pallet_size.is_some() || pallet_boundary.is_some() {
-        let Some(layout) = globals.pallets.as_mut() else {
-            bail!("--pallet-size and --pallet-boundary need pallets: add --pallets PXxPY");
-        };
-        layout.size = pallet_size.unwrap_or(layout.size);
-        layout.boundary = pallet_boundary.unwrap_or(layout.boundary);
-    }
-    globals.block_size = block_size.unwrap_or(globals.block_size);
-    globals.step_height = step_height.unwrap_or(globals.step_height);
-    globals.base = base.unwrap_or(globals.base);
+    })?;
     if globals == *scheme.globals() {
         return Ok(scheme);
     }

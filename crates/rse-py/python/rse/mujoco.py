@@ -108,7 +108,7 @@ class HFieldSlot:
                 f"height field {self.id} of the model has shape {self.shape}, but the terrain at "
                 f"oversample {self.oversample} has {want}"
             )
-        expect = _radii(self.shape, terrain.block_size, self.oversample)
+        _, (*expect, _, _), _ = terrain.hfield_layout(self.oversample)
         if abs(self.radii[0] - expect[0]) > 1e-6 or abs(self.radii[1] - expect[1]) > 1e-6:
             raise ValueError(
                 f"height field {self.id} spans radii {self.radii} m, but the terrain's samples need {expect}"
@@ -128,34 +128,21 @@ def set_hfield(model: Any, hfield: Union[int, str], terrain: Terrain, oversample
 
 def max_top(scheme: Scheme) -> float:
     """The highest top any world of ``scheme`` can have, metres:
-    ``base + H·step_height`` with ``H`` the largest obstacle height the
-    scheme allows (its ranges' upper ends; at least 1 step for frames)."""
-    heights = [1]
-    for obstacle in scheme.obstacles:
-        h = obstacle.height
-        heights.append(h[1] if isinstance(h, tuple) else int(h or 0))
-    return scheme.base + max(heights) * scheme.step_height
-
-
-def _radii(shape: tuple[int, int], block_size: float, oversample: int) -> tuple[float, float]:
-    """MuJoCo's radii of a field of ``shape`` samples, ``oversample`` per
-    cell: half the span from the first sample to the last."""
-    spacing = block_size / oversample
-    return (shape[1] - 1) * spacing / 2, (shape[0] - 1) * spacing / 2
+    ``scheme.max_top`` (``base + H·step_height`` with ``H`` the largest
+    obstacle height the scheme allows; at least 1 step for frames)."""
+    return scheme.max_top
 
 
 def _field(
     scheme: Scheme, oversample: int, elevation: Union[float, None]
 ) -> tuple[tuple[int, int], tuple[float, float, float, float], tuple[float, float]]:
     """A field for every world of ``scheme``: its shape, MuJoCo's size
-    (elevation ``max_top(scheme)`` unless given, base one block) and the
-    grid's centre."""
+    (radii from rse-core's layout, elevation ``scheme.max_top`` unless
+    given, base one block) and the grid's centre."""
     first = scheme.generate(index=0)
-    shape = first.hfield_shape(oversample)
-    s = first.block_size
-    rx, ry = _radii(shape, s, oversample)
-    top = max_top(scheme) if elevation is None else float(elevation)
-    return shape, (rx, ry, top, s), (shape[1] / oversample * s / 2, shape[0] / oversample * s / 2)
+    shape, (rx, ry, _, _), (cx, cy, _) = first.hfield_layout(oversample)
+    top = scheme.max_top if elevation is None else float(elevation)
+    return shape, (rx, ry, top, first.block_size), (cx, cy)
 
 
 def add_hfield(

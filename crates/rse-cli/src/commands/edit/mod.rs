@@ -2,9 +2,7 @@
 //! obstacle table, a live top-down and 3D preview, load, save, generate.
 //! The page and its script are part of the binary.
 
-pub mod api;
 mod http;
-mod model;
 
 use std::io::Write as _;
 
@@ -13,12 +11,7 @@ use tiny_http::{Method, Server};
 
 use crate::ExitStatus;
 use crate::args::{EditArgs, SchemeOverrides};
-use api::Editor;
-use model::PageScheme;
-
-const INDEX_HTML: &str = include_str!("page/index.html");
-const APP_JS: &str = include_str!("page/app.js");
-const STYLE_CSS: &str = include_str!("page/style.css");
+use rse_edit::{Editor, PageScheme, api};
 
 /// The editor's listening socket on 127.0.0.1:`port` (0: a free port).
 ///
@@ -108,13 +101,7 @@ fn open_in_browser(url: String) {
 fn route(editor: &Editor, request: &mut tiny_http::Request) -> http::Reply {
     let path = request.url().split('?').next().unwrap_or("").to_owned();
     match (request.method(), path.as_str()) {
-        (Method::Get, "/") => http::bytes(200, "text/html; charset=utf-8", INDEX_HTML.into()),
-        (Method::Get, "/app.js") => {
-            http::bytes(200, "text/javascript; charset=utf-8", APP_JS.into())
-        }
-        (Method::Get, "/style.css") => {
-            http::bytes(200, "text/css; charset=utf-8", STYLE_CSS.into())
-        }
+        (Method::Get, "/api/schema") => http::json(&api::schema()),
         (Method::Get, "/api/state") => http::json(&api::state(editor)),
         (Method::Get, "/api/job") => http::json(&api::job(editor)),
         (Method::Post, api_path) => {
@@ -132,6 +119,13 @@ fn route(editor: &Editor, request: &mut tiny_http::Request) -> http::Reply {
             // A refusal is an answer too: the page reads its `ok` and `error`.
             http::json(&answer.unwrap_or_else(|refusal| refusal))
         }
+        (Method::Get, file) => match rse_edit::page::FILES
+            .iter()
+            .find(|(path, ..)| *path == file)
+        {
+            Some((_, content_type, body)) => http::bytes(200, content_type, (*body).into()),
+            None => http::text(404, "not found"),
+        },
         _ => http::text(404, "not found"),
     }
 }

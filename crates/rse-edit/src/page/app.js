@@ -3,8 +3,10 @@
 // WebGL view of the box set. No third-party script.
 "use strict";
 
-const COLUMNS = ["height", "angle", "x1", "y1", "x2", "y2", "sigma"];
-const TYPES = ["random", "gaussian", "peak", "pit", "wall", "long_pit"];
+// The global keys, columns, obstacle types and targets come from the
+// server (GET /api/schema), which takes them from rse-core and rse-world.
+let COLUMNS = [];
+let TYPES = [];
 const $ = (id) => document.getElementById(id);
 
 const state = { rows: [], selected: -1, request: 0, shown: 0, lastBoxes: null, view: { yaw: -0.6, pitch: 0.9, zoom: 1.0 } };
@@ -100,7 +102,6 @@ function move(by) {
 }
 $("up").onclick = () => edit(() => move(-1));
 $("down").onclick = () => edit(() => move(1));
-document.querySelectorAll("[data-global]").forEach((input) => input.addEventListener("input", refresh));
 $("notes").addEventListener("input", refresh);
 $("seed").addEventListener("input", refresh);
 $("index").addEventListener("input", refresh);
@@ -270,11 +271,11 @@ $("save").onclick = async () => {
 };
 
 $("generate").onclick = async () => {
-  const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value).join(",");
+  const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
   const answer = await api("/api/generate", {
     scheme: pageScheme(), out: $("gen-out").value.trim(), amount: Number($("gen-amount").value) || 1,
-    seed: Number($("seed").value) || 0, targets: targets || "gazebo",
+    seed: Number($("seed").value) || 0, targets,
   });
   if (!answer.ok) { markError(answer.error); return; }
   const poll = async () => {
@@ -287,7 +288,35 @@ $("generate").onclick = async () => {
   poll();
 };
 
-api("/api/state").then((answer) => {
+// The fields the schema names: one input per global, a header cell per
+// column, a checkbox per target (the default ones ticked).
+function buildFields(schema) {
+  COLUMNS = schema.columns;
+  TYPES = schema.types.map((t) => t.name);
+  const globals = $("global-fields");
+  for (const g of schema.globals) {
+    const label = document.createElement("label");
+    const input = document.createElement("input");
+    input.dataset.global = g.key; input.placeholder = g.default;
+    input.addEventListener("input", refresh);
+    label.append(`${g.key.replaceAll("_", " ")}${g.unit ? ` (${g.unit})` : ""} `, input);
+    globals.append(label);
+  }
+  const head = document.querySelector("#table thead tr");
+  for (const c of COLUMNS) { const th = document.createElement("th"); th.textContent = c; head.append(th); }
+  const targets = $("gen-targets");
+  for (const t of schema.targets) {
+    const label = document.createElement("label");
+    const box = document.createElement("input");
+    box.type = "checkbox"; box.value = t; box.checked = schema.default_targets.includes(t);
+    label.append(box, ` ${t}`);
+    targets.append(label);
+  }
+}
+
+api("/api/schema").then(async (schema) => {
+  buildFields(schema);
+  const answer = await api("/api/state");
   if (answer.path) $("save-path").value = answer.path;
   loadScheme(answer.scheme);
 });

@@ -1,18 +1,19 @@
-//! The editor's JSON API: every answer comes from rse-core and rse-world,
-//! so what the page shows is what `batch` writes.
+//! The editor's JSON API, one function a route: request body in, JSON
+//! answer out (no socket here: the command line serves these).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use base64::Engine as _;
-use rse_core::preview;
-use rse_world::{BatchOptions, Targets, Templates, WorldOptions, write_batch};
+use rse_core::{DEFAULT_PALLET_SIZE, Field, GLOBAL_KEYS, Globals, ObstacleKind, Usage, preview};
+use rse_verify::{CheckOptions, check_paths};
+use rse_world::{BatchOptions, Target, Targets, Templates, WorldOptions, write_batch};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use super::model::{FieldError, PageScheme};
+use crate::model::{FieldError, PageScheme};
 
 /// The editor's state between requests.
 #[derive(Default)]
@@ -63,6 +64,52 @@ pub fn state(editor: &Editor) -> Value {
         "ok": true,
         "scheme": editor.initial,
         "path": editor.path.as_ref().map(|p| p.display().to_string()),
+    })
+}
+
+/// `GET /api/schema`: what the page's fields and lists are made of — the
+/// global keys with their defaults, the obstacle types with the columns
+/// each needs or takes, the targets and those written by default — so the
+/// script holds no copy of them.
+pub fn schema() -> Value {
+    let defaults = Globals::default();
+    let default = |key: &str| match key {
+        "size" => rse_core::format_dims(defaults.size),
+        "pallets" => "off".to_owned(),
+        "pallet_size" => DEFAULT_PALLET_SIZE.to_string(),
+        "pallet_boundary" => "true".to_owned(),
+        "block_size" => defaults.block_size.to_string(),
+        "step_height" => defaults.step_height.to_string(),
+        "base" => defaults.base.to_string(),
+        "amount" => defaults.amount.to_string(),
+        "seed" => defaults.seed.to_string(),
+        _ => unreachable!("every key of GLOBAL_KEYS has a default"),
+    };
+    let unit = |key: &str| matches!(key, "block_size" | "step_height" | "base").then_some("m");
+    let columns: Vec<Field> = Field::ALL
+        .into_iter()
+        .filter(|&f| f != Field::Type)
+        .collect();
+    let usage = |kind: ObstacleKind| {
+        columns
+            .iter()
+            .map(|&f| {
+                let usage = match kind.usage(f) {
+                    Usage::Required => "required",
+                    Usage::Optional => "optional",
+                    Usage::Unused => "unused",
+                };
+                (f.name().to_owned(), Value::from(usage))
+            })
+            .collect::<serde_json::Map<_, _>>()
+    };
+    json!({
+        "ok": true,
+        "globals": GLOBAL_KEYS.map(|key| json!({ "key": key, "default": default(key), "unit": unit(key) })),
+        "columns": columns.iter().map(|f| f.name()).collect::<Vec<_>>(),
+        "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
+        "targets": Target::ALL.map(|t| t.to_string()),
+        "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),
     })
 }
 
@@ -163,14 +210,23 @@ struct GenerateRequest {
     amount: u64,
     #[serde(default)]
     seed: u64,
-    targets: String,
+    /// Target names; none given: the default targets.
+    #[serde(default)]
+    targets: Vec<String>,
 }
 
 /// `POST /api/generate`: starts writing a batch in the background.
+///
+/// # Panics
+/// If the job's lock is poisoned (a panic in the batch thread).
 pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let request: GenerateRequest = request(body)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
-    let targets = Targets::parse(&request.targets).map_err(|e| bad(e.to_string()))?;
+    let targets = if request.targets.is_empty() {
+        Targets::default()
+    } else {
+        Targets::parse(&request.targets.join(",")).map_err(|e| bad(e.to_string()))?
+    };
     let job = Arc::clone(&editor.job);
     {
         let mut running = job.running.lock().expect("not poisoned");
@@ -205,7 +261,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
             )
         });
         if result.is_ok() {
-            let check = crate::commands::check::summary(&options.out);
+            let check = check_summary(&options.out);
             *job.check.lock().expect("not poisoned") = Some(check);
         }
         *job.result.lock().expect("not poisoned") = Some(result);
@@ -215,6 +271,9 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
 }
 
 /// `GET /api/job`: the batch's progress and, once done, its summaries.
+///
+/// # Panics
+/// If the job's lock is poisoned (a panic in the batch thread).
 pub fn job(editor: &Editor) -> Value {
     let job = &editor.job;
     let result = job.result.lock().expect("not poisoned").clone();
@@ -227,4 +286,56 @@ pub fn job(editor: &Editor) -> Value {
         "error": result.as_ref().and_then(|r| r.as_ref().err()),
         "check": *job.check.lock().expect("not poisoned"),
     })
+}
+
+/// The one-line `check` verdict on the worlds in `folder` (no physics), as
+/// the page shows it after a Generate: the verdict, and the first fault.
+fn check_summary(folder: &Path) -> String {
+    let report = match check_paths(&[folder.to_path_buf()], CheckOptions::default(), &|| {}) {
+        Ok(report) => report,
+        Err(e) => return format!("check: {e}"),
+    };
+    match report.first_fault() {
+        Some(first) => format!("{} (first: {first})", report.verdict()),
+        None => report.verdict(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_schema_lists_what_core_and_world_accept() {
+        let schema = schema();
+        let names = |key: &str, field: Option<&str>| -> Vec<String> {
+            schema[key]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| field.map_or(v, |f| &v[f]).as_str().unwrap().to_owned())
+                .collect()
+        };
+        assert_eq!(names("globals", Some("key")), GLOBAL_KEYS);
+        for t in names("types", Some("name")) {
+            assert!(t.parse::<ObstacleKind>().is_ok(), "{t}");
+        }
+        assert_eq!(names("types", Some("name")).len(), ObstacleKind::ALL.len());
+        assert_eq!(
+            Targets::parse(&names("default_targets", None).join(",")).unwrap(),
+            Targets::default()
+        );
+        // Each default reads back through core's own parser.
+        let mut patch = rse_core::GlobalsPatch::default();
+        for g in schema["globals"].as_array().unwrap() {
+            let key = g["key"].as_str().unwrap();
+            if !key.starts_with("pallet_") {
+                patch.set(key, g["default"].as_str().unwrap()).unwrap();
+            }
+        }
+        assert_eq!(
+            patch.apply(&Globals::default()).unwrap(),
+            Globals::default()
+        );
+    }
 }

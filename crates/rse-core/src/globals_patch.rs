@@ -1,0 +1,304 @@
+//! Global parameters as a user gives them — a scheme file's `# key: value`
+//! lines, command-line flags, Python keywords, the editor's fields — and the
+//! one set of rules that turns them into [`Globals`] (the pallet rules live
+//! here and nowhere else).
+
+use crate::error::{SchemeError, SchemeErrorKind};
+use crate::globals::{self, DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Pallets};
+
+/// Global parameters, each `None` when not given. Every skin fills one in
+/// and [`apply`](GlobalsPatch::apply)s it onto the globals it starts from
+/// (the defaults for a new scheme, the file's for command-line overrides,
+/// the scheme's own for Python's `replace`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct GlobalsPatch {
+    /// `[nx, ny]` in cells.
+    pub size: Option<[u32; 2]>,
+    /// `Some(None)` turns pallets off, `Some(Some(count))` on.
+    pub pallets: Option<Option<[u32; 2]>>,
+    /// Pallet side in cells; needs pallets.
+    pub pallet_size: Option<u32>,
+    /// The frame around every pallet; `true` needs pallets.
+    pub pallet_boundary: Option<bool>,
+    /// Cell side in metres.
+    pub block_size: Option<f64>,
+    /// One step in metres.
+    pub step_height: Option<f64>,
+    /// Slab under the grid, metres.
+    pub base: Option<f64>,
+    /// Worlds in a batch.
+    pub amount: Option<u64>,
+    /// Base seed of a batch.
+    pub seed: Option<u64>,
+}
+
+impl GlobalsPatch {
+    /// Sets `key` (any case) from its text as a scheme file writes it. The
+    /// error's `field` names the key. Returns the key as [`GLOBAL_KEYS`]
+    /// spells it.
+    pub fn set(&mut self, key: &str, text: &str) -> Result<&'static str, SchemeError> {
+        let lower = key.to_ascii_lowercase();
+        let Some(&name) = GLOBAL_KEYS.iter().find(|k| **k == lower) else {
+            return Err(
+                SchemeError::new(SchemeErrorKind::UnknownGlobal(key.to_owned())).with_field(key),
+            );
+        };
+        let parsed = match name {
+            "size" => globals::parse_dims(text).map(|d| self.size = Some(d)),
+            "pallets" => parse_pallets(text).map(|p| self.pallets = Some(p)),
+            "pallet_size" => {
+                parse_number(text, "a whole number of cells").map(|n| self.pallet_size = Some(n))
+            }
+            "pallet_boundary" => parse_bool(text).map(|b| self.pallet_boundary = Some(b)),
+            "block_size" => {
+                parse_number(text, "a length in metres").map(|v| self.block_size = Some(v))
+            }
+            "step_height" => {
+                parse_number(text, "a length in metres").map(|v| self.step_height = Some(v))
+            }
+            "base" => parse_number(text, "a length in metres").map(|v| self.base = Some(v)),
+            "amount" => {
+                parse_number(text, "a whole number of worlds").map(|v| self.amount = Some(v))
+            }
+            "seed" => parse_number(text, "a whole number 0..=2^64-1").map(|v| self.seed = Some(v)),
+            _ => unreachable!("every key of GLOBAL_KEYS is handled"),
+        };
+        parsed.map(|()| name).map_err(|reason| {
+            SchemeError::new(SchemeErrorKind::BadGlobal {
+                value: text.to_owned(),
+                reason,
+            })
+            .with_field(name)
+        })
+    }
+
+    /// `true` when nothing is given.
+    pub fn is_empty(&self) -> bool {
+        *self == GlobalsPatch::default()
+    }
+
+    /// `onto` with the given values. Pallets turned on keep the size and
+    /// frame they had (else [`DEFAULT_PALLET_SIZE`] and a frame); a pallet
+    /// setting with pallets off is refused (error field: its key) unless it
+    /// is what pallets off means anyway (`pallet_boundary: false`, no frame).
+    /// Domains and the grid size are checked by [`Globals::validate`], as
+    /// every scheme is built.
+    pub fn apply(&self, onto: &Globals) -> Result<Globals, SchemeError> {
+        let mut g = *onto;
+        g.size = self.size.unwrap_or(g.size);
+        match self.pallets {
+            None => {}
+            Some(None) => g.pallets = None,
+            Some(Some(count)) => {
+                g.pallets = Some(Pallets {
+                    size: onto.pallets.map_or(DEFAULT_PALLET_SIZE, |p| p.size),
+                    count,
+                    boundary: onto.pallets.is_none_or(|p| p.boundary),
+                });
+            }
+        }
+        if let Some(p) = g.pallets.as_mut() {
+            p.size = self.pallet_size.unwrap_or(p.size);
+            p.boundary = self.pallet_boundary.unwrap_or(p.boundary);
+        } else {
+            let off = |key| Err(SchemeError::new(SchemeErrorKind::PalletsOff).with_field(key));
+            if self.pallet_size.is_some() {
+                return off("pallet_size");
+            }
+            if self.pallet_boundary == Some(true) {
+                return off("pallet_boundary");
+            }
+        }
+        g.block_size = self.block_size.unwrap_or(g.block_size);
+        g.step_height = self.step_height.unwrap_or(g.step_height);
+        g.base = self.base.unwrap_or(g.base);
+        g.amount = self.amount.unwrap_or(g.amount);
+        g.seed = self.seed.unwrap_or(g.seed);
+        Ok(g)
+    }
+}
+
+impl Globals {
+    /// The `(key, text)` of each global a canonical scheme file writes, in
+    /// [`GLOBAL_KEYS`] order; [`GlobalsPatch::set`] reads each text back to
+    /// the same value. Values equal to the defaults are left out where a
+    /// reader would not miss them (`base`, `amount`, `seed`; `size` under
+    /// pallets, which define the grid).
+    pub fn cells(&self) -> Vec<(&'static str, String)> {
+        let defaults = Globals::default();
+        let mut cells = Vec::new();
+        if self.pallets.is_none() || self.size != defaults.size {
+            cells.push(("size", globals::format_dims(self.size)));
+        }
+        if let Some(p) = self.pallets {
+            cells.push(("pallets", globals::format_dims(p.count)));
+            cells.push(("pallet_size", p.size.to_string()));
+            cells.push(("pallet_boundary", p.boundary.to_string()));
+        }
+        cells.push(("block_size", self.block_size.to_string()));
+        cells.push(("step_height", self.step_height.to_string()));
+        if self.base.to_bits() != defaults.base.to_bits() {
+            cells.push(("base", self.base.to_string()));
+        }
+        if self.amount != defaults.amount {
+            cells.push(("amount", self.amount.to_string()));
+        }
+        if self.seed != defaults.seed {
+            cells.push(("seed", self.seed.to_string()));
+        }
+        cells
+    }
+}
+
+/// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets.
+fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
+    match value.trim().to_ascii_lowercase().as_str() {
+        "off" | "none" | "false" | "no" => Ok(None),
+        _ => globals::parse_dims(value).map(Some),
+    }
+}
+
+/// `true`/`false`, `yes`/`no`, `on`/`off`, `1`/`0` (case-insensitive).
+fn parse_bool(value: &str) -> Result<bool, String> {
+    match value.trim().to_ascii_lowercase().as_str() {
+        "true" | "yes" | "on" | "1" => Ok(true),
+        "false" | "no" | "off" | "0" => Ok(false),
+        _ => Err("expected true or false".to_owned()),
+    }
+}
+
+fn parse_number<T: std::str::FromStr + IsFinite>(value: &str, what: &str) -> Result<T, String> {
+    value
+        .trim()
+        .parse::<T>()
+        .ok()
+        .filter(IsFinite::is_finite_number)
+        .ok_or_else(|| format!("expected {what}"))
+}
+
+/// Lets one parser refuse `inf` and `NaN`, which `f64::from_str` accepts.
+trait IsFinite {
+    fn is_finite_number(&self) -> bool;
+}
+
+impl IsFinite for f64 {
+    fn is_finite_number(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl IsFinite for u32 {
+    fn is_finite_number(&self) -> bool {
+        true
+    }
+}
+
+impl IsFinite for u64 {
+    fn is_finite_number(&self) -> bool {
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn patch(pairs: &[(&str, &str)]) -> GlobalsPatch {
+        let mut p = GlobalsPatch::default();
+        for (k, v) in pairs {
+            p.set(k, v).unwrap();
+        }
+        p
+    }
+
+    #[test]
+    fn pallets_turned_on_get_the_default_size_and_a_frame() {
+        let g = patch(&[("pallets", "2x3")])
+            .apply(&Globals::default())
+            .unwrap();
+        assert_eq!(
+            g.pallets,
+            Some(Pallets {
+                size: DEFAULT_PALLET_SIZE,
+                count: [2, 3],
+                boundary: true
+            })
+        );
+    }
+
+    #[test]
+    fn pallets_recounted_keep_their_size_and_frame() {
+        let onto = patch(&[
+            ("pallets", "1x1"),
+            ("pallet_size", "8"),
+            ("pallet_boundary", "no"),
+        ])
+        .apply(&Globals::default())
+        .unwrap();
+        let g = patch(&[("pallets", "3x3")]).apply(&onto).unwrap();
+        assert_eq!(
+            g.pallets,
+            Some(Pallets {
+                size: 8,
+                count: [3, 3],
+                boundary: false
+            })
+        );
+        assert_eq!(
+            patch(&[("pallets", "off")]).apply(&onto).unwrap().pallets,
+            None
+        );
+    }
+
+    #[test]
+    fn a_pallet_setting_without_pallets_is_refused_unless_it_changes_nothing() {
+        let e = patch(&[("pallet_size", "5")])
+            .apply(&Globals::default())
+            .unwrap_err();
+        assert_eq!(
+            (e.kind, e.field.as_deref()),
+            (SchemeErrorKind::PalletsOff, Some("pallet_size"))
+        );
+        let e = patch(&[("pallet_boundary", "true")])
+            .apply(&Globals::default())
+            .unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("pallet_boundary"));
+        // No pallets, no frame: saying so is not a mistake.
+        let g = patch(&[("pallet_boundary", "false")])
+            .apply(&Globals::default())
+            .unwrap();
+        assert_eq!(g, Globals::default());
+    }
+
+    #[test]
+    fn set_names_the_key_of_a_bad_value_and_refuses_unknown_keys() {
+        let e = GlobalsPatch::default()
+            .set("Block_Size", "inf")
+            .unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("block_size"));
+        let e = GlobalsPatch::default().set("colour", "red").unwrap_err();
+        assert!(matches!(e.kind, SchemeErrorKind::UnknownGlobal(_)));
+    }
+
+    #[test]
+    fn cells_read_back_to_the_same_globals() {
+        let g = Globals {
+            size: [7, 9],
+            pallets: Some(Pallets {
+                size: 4,
+                count: [2, 1],
+                boundary: false,
+            }),
+            block_size: 0.05,
+            step_height: 0.025,
+            base: 0.3,
+            amount: 12,
+            seed: u64::MAX,
+        };
+        let mut p = GlobalsPatch::default();
+        for (key, text) in g.cells() {
+            p.set(key, &text).unwrap();
+        }
+        assert_eq!(p.apply(&Globals::default()).unwrap(), g);
+    }
+}

@@ -1,0 +1,199 @@
+//! The editor's scheme as the page holds it — globals and table rows as the
+//! text typed in each field — built into a core scheme by core's own
+//! field parsers ([`GlobalsPatch::set`], [`Obstacle::from_cells`]), and a
+//! core fault turned back into the field it concerns.
+
+use std::collections::BTreeMap;
+
+use rse_core::{Field, Globals, GlobalsPatch, Obstacle, Scheme, SchemeError};
+use serde::{Deserialize, Serialize};
+
+/// The page's scheme: every value as typed (empty: not given).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct PageScheme {
+    /// Global parameters by key (`size`, `pallets`, …).
+    pub globals: BTreeMap<String, String>,
+    /// Table rows by column: `type`, `height`, `angle`, `x1`, `y1`, `x2`,
+    /// `y2`, `sigma`; a cell's text as a scheme file holds it (`2..4`).
+    pub obstacles: Vec<BTreeMap<String, String>>,
+    /// The free-text notes atop the file, one per line (kept on save).
+    #[serde(default)]
+    pub notes: String,
+}
+
+/// Where a fault is, for the page to mark the field.
+#[derive(Debug, Clone, Serialize)]
+pub struct FieldError {
+    /// The obstacle row (0-based), or `None` for a global.
+    pub row: Option<usize>,
+    /// The column or global key, when known.
+    pub field: Option<String>,
+    /// What is wrong, as rse-core says it.
+    pub message: String,
+}
+
+impl FieldError {
+    fn of(e: &SchemeError, row: Option<usize>) -> Self {
+        FieldError {
+            row: row.or(e.obstacle),
+            field: e.field.clone(),
+            message: e.kind.to_string(),
+        }
+    }
+}
+
+impl PageScheme {
+    /// The validated scheme, or the field to mark.
+    pub fn scheme(&self) -> Result<Scheme, FieldError> {
+        let mut patch = GlobalsPatch::default();
+        for (key, text) in &self.globals {
+            if !text.trim().is_empty() {
+                patch.set(key, text).map_err(|e| FieldError::of(&e, None))?;
+            }
+        }
+        let globals = patch
+            .apply(&Globals::default())
+            .map_err(|e| FieldError::of(&e, None))?;
+        let obstacles = self
+            .obstacles
+            .iter()
+            .enumerate()
+            .map(|(row, cells)| {
+                let cells = cells.iter().map(|(column, text)| {
+                    Field::from_header(column)
+                        .map(|field| (field, text.as_str()))
+                        .ok_or_else(|| FieldError {
+                            row: Some(row),
+                            field: Some(column.clone()),
+                            message: format!("unknown column `{column}`"),
+                        })
+                });
+                let cells = cells.collect::<Result<Vec<_>, _>>()?;
+                Obstacle::from_cells(cells).map_err(|e| FieldError::of(&e, Some(row)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let notes = self.notes.lines().map(|l| l.trim().to_owned()).collect();
+        Scheme::new(globals, obstacles)
+            .and_then(|scheme| scheme.with_notes(notes))
+            .map_err(|e| FieldError::of(&e, None))
+    }
+
+    /// The page's view of a scheme: each field as a scheme file writes it.
+    pub fn from_scheme(scheme: &Scheme) -> Self {
+        let cells = |pairs: Vec<(Field, String)>| {
+            pairs
+                .into_iter()
+                .map(|(field, text)| (field.name().to_owned(), text))
+                .collect()
+        };
+        PageScheme {
+            globals: scheme
+                .globals()
+                .cells()
+                .into_iter()
+                .map(|(key, text)| (key.to_owned(), text))
+                .collect(),
+            obstacles: scheme
+                .obstacles()
+                .iter()
+                .map(|o| cells(o.cells()))
+                .collect(),
+            notes: scheme.notes().join("\n"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn page(globals: &[(&str, &str)], rows: &[&[(&str, &str)]]) -> PageScheme {
+        PageScheme {
+            globals: globals
+                .iter()
+                .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+                .collect(),
+            obstacles: rows
+                .iter()
+                .map(|r| {
+                    r.iter()
+                        .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+                        .collect()
+                })
+                .collect(),
+            notes: "a note\n\nwith a blank line".to_owned(),
+        }
+    }
+
+    #[test]
+    fn a_page_scheme_round_trips_through_a_core_scheme() {
+        let p = page(
+            &[("size", "20x10"), ("step_height", "0.05")],
+            &[&[
+                ("type", "peak"),
+                ("height", "2..4"),
+                ("angle", "45"),
+                ("x1", "5"),
+                ("y1", "3"),
+            ]],
+        );
+        let scheme = p.scheme().unwrap();
+        assert_eq!(scheme.grid().nx, 20);
+        let back = PageScheme::from_scheme(&scheme);
+        assert_eq!(back.obstacles[0]["height"], "2..4");
+        assert_eq!(back.globals["size"], "20x10");
+        assert_eq!(back.notes, "a note\n\nwith a blank line");
+        assert_eq!(scheme.notes(), ["a note", "", "with a blank line"]);
+        assert_eq!(back.scheme().unwrap().to_csv(), scheme.to_csv());
+    }
+
+    #[test]
+    fn errors_name_the_row_and_field() {
+        let p = page(
+            &[("size", "10x10")],
+            &[
+                &[("type", "random"), ("height", "2")],
+                &[
+                    ("type", "peak"),
+                    ("height", "2"),
+                    ("angle", "45"),
+                    ("x1", "12"),
+                    ("y1", "3"),
+                ],
+            ],
+        );
+        let e = p.scheme().unwrap_err();
+        assert_eq!((e.row, e.field.as_deref()), (Some(1), Some("x1")));
+        let bad_global = page(&[("block_size", "-1")], &[]);
+        let e = bad_global.scheme().unwrap_err();
+        assert_eq!(
+            (e.row, e.field.as_deref()),
+            (None, Some("block_size")),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn a_note_read_back_as_a_global_is_refused_on_the_notes_field() {
+        let mut p = page(&[], &[]);
+        p.notes = "fine\nAuthor: me".to_owned();
+        let e = p.scheme().unwrap_err();
+        assert_eq!((e.row, e.field.as_deref()), (None, Some("notes")), "{e:?}");
+        assert!(e.message.contains("`Author: …`"), "{}", e.message);
+    }
+
+    #[test]
+    fn a_pallet_boundary_off_without_pallets_is_not_a_fault() {
+        assert!(page(&[("pallet_boundary", "false")], &[]).scheme().is_ok());
+        let e = page(&[("pallet_size", "4")], &[]).scheme().unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("pallet_size"));
+    }
+
+    #[test]
+    fn an_unknown_column_is_named() {
+        let e = page(&[], &[&[("type", "random"), ("hieght", "2")]])
+            .scheme()
+            .unwrap_err();
+        assert_eq!((e.row, e.field.as_deref()), (Some(0), Some("hieght")));
+    }
+}

@@ -1,0 +1,86 @@
+//! The physics smoke test of a checked world (feature `physics`, rapier);
+//! without the feature, asking for it is a fault that says so.
+
+use rse_core::Terrain;
+use rse_world::Manifest;
+
+use crate::fault::{Fault, FaultKind};
+use crate::terrain::ObjMesh;
+use crate::world::WorldReport;
+
+/// `true` when this build runs the physics smoke test (feature `physics`).
+pub const PHYSICS: bool = cfg!(feature = "physics");
+
+#[cfg(feature = "physics")]
+/// The physics smoke test of each exact collider the world's targets load:
+/// each distinct mesh file (`meshes` holds one of each set of copies) where
+/// a target collides the mesh, the box set where one collides boxes.
+/// `MuJoCo`'s height field is approximate by design: not tested here.
+pub(crate) fn run(
+    manifest: &Manifest,
+    meshes: Vec<(&str, ObjMesh)>,
+    terrain: &Terrain,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) {
+    use std::collections::BTreeSet;
+
+    use rse_physics::{SmokeTest, TerrainModel, smoke_test};
+    use rse_world::Collider;
+
+    let colliders: BTreeSet<Collider> = manifest
+        .options
+        .targets
+        .iter()
+        .map(|t| Collider::of(t, manifest.options.mesh, manifest.options.mujoco_collider))
+        .collect();
+    let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
+    if colliders.contains(&Collider::Mesh) {
+        if meshes.is_empty() {
+            // An empty terrain: no mesh file, the floor alone.
+            runs.push((None, TerrainModel::mesh_of(terrain)));
+        }
+        for (path, mesh) in meshes {
+            runs.push((
+                Some(path),
+                TerrainModel::Mesh {
+                    vertices: mesh.vertices,
+                    triangles: mesh.triangles,
+                },
+            ));
+        }
+    }
+    if colliders.contains(&Collider::Boxes) {
+        runs.push((None, TerrainModel::boxes_of(terrain)));
+    }
+    for (path, model) in runs {
+        let physics = smoke_test(&model, path, terrain, SmokeTest::default());
+        let kind = physics.collider.kind;
+        faults.extend(physics.errors.iter().map(|error| {
+            Fault::new(
+                path,
+                FaultKind::Physics {
+                    error: format!("{kind}: {error}"),
+                },
+            )
+        }));
+        report.physics.push(physics);
+    }
+}
+
+#[cfg(not(feature = "physics"))]
+pub(crate) fn run(
+    _: &Manifest,
+    _: Vec<(&str, ObjMesh)>,
+    _: &Terrain,
+    _: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) {
+    faults.push(Fault::new(
+        None,
+        FaultKind::Physics {
+            error: "this build has no physics smoke test (built without the `physics` feature)"
+                .to_owned(),
+        },
+    ));
+}
