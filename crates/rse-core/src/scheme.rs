@@ -23,19 +23,26 @@ pub(crate) struct RowOrigin {
     pub columns: Vec<(Field, u64)>,
 }
 
+impl RowOrigin {
+    /// Puts this row's line, and the column of the error's field, on `error`.
+    pub(crate) fn place(&self, error: &mut SchemeError) {
+        error.line = Some(self.line);
+        let field = error.field.as_deref().and_then(Field::from_header);
+        error.column = self
+            .columns
+            .iter()
+            .find(|(f, _)| Some(*f) == field)
+            .map(|(_, column)| *column);
+    }
+}
+
 impl Origin {
     /// Puts the file, line and column of `obstacle`'s `field` on `error`.
     pub(crate) fn locate_obstacle(&self, mut error: SchemeError, obstacle: usize) -> SchemeError {
         error.file.clone_from(&self.file);
         error.obstacle = Some(obstacle);
         if let Some(row) = self.rows.get(obstacle) {
-            error.line = Some(row.line);
-            let field = error.field.as_deref().and_then(Field::from_header);
-            error.column = row
-                .columns
-                .iter()
-                .find(|(f, _)| Some(*f) == field)
-                .map(|(_, column)| *column);
+            row.place(&mut error);
         }
         error
     }

@@ -177,13 +177,7 @@ fn parse_row(
     };
     let cells = columns.iter().copied().zip(record.iter());
     let obstacle = obstacle_of_cells(cells).map_err(|mut error| {
-        error.line = Some(line);
-        let field = error.field.as_deref().and_then(Field::from_header);
-        error.column = origin
-            .columns
-            .iter()
-            .find(|(f, _)| Some(*f) == field)
-            .map(|(_, c)| *c);
+        origin.place(&mut error);
         error
     })?;
     Ok((obstacle, origin))
