@@ -86,3 +86,28 @@ def test_difficulty_zero_is_the_flat_ground_and_out_of_range_is_clamped() -> Non
 def test_a_missing_scheme_is_a_clear_error() -> None:
     with pytest.raises(ValueError, match="scheme"):
         rse_terrain(0.5, RseTerrainCfg())
+
+
+def test_a_framework_that_fails_to_import_is_not_hidden(tmp_path, monkeypatch) -> None:
+    """Isaac Lab absent: the plain dataclass, silently. Installed but broken
+    (here a stand-in whose `terrains` raises): the same fallback, and a
+    warning naming the reason (it used to be silent)."""
+    import importlib
+    import sys
+
+    import rse.isaaclab
+
+    package = tmp_path / "isaaclab"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    (package / "terrains.py").write_text("raise ImportError('no module named omni.isaac (stand-in)')\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    try:
+        with pytest.warns(RuntimeWarning, match=r"rse.isaaclab: isaaclab is installed but .*omni.isaac"):
+            importlib.reload(rse.isaaclab)
+        assert rse.isaaclab.RseTerrainCfg().scheme is None  # the plain dataclass
+    finally:
+        for name in [n for n in sys.modules if n == "isaaclab" or n.startswith("isaaclab.")]:
+            del sys.modules[name]
+        monkeypatch.undo()
+        importlib.reload(rse.isaaclab)

@@ -5,10 +5,13 @@ terms. Pure Python over ``rse._rse``; no framework is imported here."""
 from __future__ import annotations
 
 import hashlib
+import importlib
+import importlib.util
 import math
 import os
 import struct
-from typing import Optional, Union
+import warnings
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -77,3 +80,24 @@ def patches_in_ranges(
         & (points[:, 2] <= z_range[1])
     )
     return points[keep][:count]
+
+
+def framework_class(module: str, name: str, adapter: str) -> Any:
+    """``module.name`` from an RL framework, or ``None`` when the framework
+    is not installed (the adapter then offers a plain dataclass with the
+    same fields). A framework that is installed but fails to import (Isaac
+    Lab without Isaac Sim, a broken torch) is not hidden: a
+    ``RuntimeWarning`` says why, naming the adapter that falls back."""
+    top = module.split(".")[0]
+    try:
+        return getattr(importlib.import_module(module), name)
+    except ImportError as e:
+        if importlib.util.find_spec(top) is None:
+            return None
+        warnings.warn(
+            f"{adapter}: {top} is installed but `{module}` failed to import ({e}); "
+            f"{adapter}.RseTerrainCfg is a plain dataclass, not a `{name}`",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        return None

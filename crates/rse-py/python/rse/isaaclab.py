@@ -33,7 +33,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from rse._fit import SchemeLike, fit, load, tile_index
+from rse._fit import SchemeLike, fit, framework_class, load, tile_index
 
 
 def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
@@ -61,14 +61,11 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
     return meshes, np.asarray(terrain.spawn_origin(cfg.spawn_radius), dtype=np.float64)
 
 
-try:  # pragma: no cover - depends on what is installed
-    from isaaclab.terrains import SubTerrainBaseCfg as _SubTerrainBaseCfg
+_SubTerrainBaseCfg = framework_class("isaaclab.terrains", "SubTerrainBaseCfg", "rse.isaaclab")
+
+
+if _SubTerrainBaseCfg is not None:  # pragma: no cover - needs Isaac Lab
     from isaaclab.utils import configclass as _configclass
-except ImportError:  # Isaac Lab absent, or present without Isaac Sim
-    _SubTerrainBaseCfg = None
-
-
-if _SubTerrainBaseCfg is not None:  # pragma: no cover
 
     @_configclass
     class RseTerrainCfg(_SubTerrainBaseCfg):  # type: ignore[misc,valid-type]

@@ -34,7 +34,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._fit import SchemeLike, fit, load, max_step, patches_in_ranges
+from rse._fit import SchemeLike, fit, framework_class, load, max_step, patches_in_ranges
 
 
 def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
@@ -70,10 +70,7 @@ def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) 
     return TerrainOutput(origin=origin, geometries=geometries, flat_patches=flat_patches)
 
 
-try:  # pragma: no cover - depends on what is installed
-    from mjlab.terrains.terrain_generator import SubTerrainCfg as _SubTerrainCfg
-except ImportError:
-    _SubTerrainCfg = None
+_SubTerrainCfg = framework_class("mjlab.terrains.terrain_generator", "SubTerrainCfg", "rse.mjlab")
 
 
 if _SubTerrainCfg is not None:  # pragma: no cover
