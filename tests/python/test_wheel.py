@@ -62,3 +62,25 @@ def test_the_wheel_installs_rse_and_the_rse_gen_command(tmp_path: Path) -> None:
     assert bad.returncode == 2 and bad.stderr.startswith("rse-gen: cannot read ") and "missing.csv" in bad.stderr
     usage = subprocess.run([str(command), "no-such-command"], capture_output=True, text=True)
     assert usage.returncode == 2 and "unrecognized subcommand" in usage.stderr
+
+
+def test_rse_gen_and_the_wheel_share_their_release_build() -> None:
+    """Every package both graphs hold gets the same features (rse-cli's
+    feature-unifying dependencies), so `make test` compiles the physics
+    stack once in release; a new dependency of the extension that turns on
+    another feature breaks this, and names the package."""
+
+    def features(package: str) -> dict[str, str]:
+        tree = subprocess.run(
+            ["cargo", "tree", "-q", "--locked", "-p", package, "-e", "normal,build", "--prefix", "none",
+             "--format", "{p} [{f}]"],
+            cwd=REPO, capture_output=True, text=True, check=True,
+        ).stdout
+        lines = {line.removesuffix(" (*)") for line in tree.splitlines() if line.strip()}
+        return {line.split(" [")[0]: line for line in lines}
+
+    cli, wheel = features("rse-cli"), features("rse-py")
+    shared = sorted(set(cli) & set(wheel) - {p for p in cli if p.startswith("rse-cli ")})
+    assert len(shared) > 50, shared
+    differ = [(cli[p], wheel[p]) for p in shared if cli[p] != wheel[p]]
+    assert not differ, f"add these features to rse-cli's feature-unifying dependencies: {differ}"
