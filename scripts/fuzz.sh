@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every fuzz target (fuzz/, libFuzzer through libfuzzer-sys, built
-# as cargo-fuzz builds them) for FUZZ_SECONDS each (default 12: about a
-# minute in all).
+# as cargo-fuzz builds them) for FUZZ_SECONDS each (default 12: a minute
+# of CPU in all), FUZZ_JOBS targets at a time (default one per core).
 # Seeds come from fuzz/seeds/<target>/; the growing corpus lives in
 # target/fuzz-corpus/ (not committed). An input that fails is written to
 # fuzz/regressions/<target>/, where the stable test
@@ -29,29 +29,46 @@ coverage="$coverage -Cllvm-args=-simplifycfg-branch-fold-threshold=0"
 RUSTFLAGS="$coverage --cfg fuzzing" cargo build --manifest-path fuzz/Cargo.toml --locked \
     --release --target "$triple" --bins --quiet
 bin=fuzz/target/$triple/release
-findings=0
-executions=0
-for target in $(basename -s .rs fuzz/fuzz_targets/*.rs); do
-    corpus=target/fuzz-corpus/$target
-    regressions=fuzz/regressions/$target
+# Targets run side by side, one per core (libFuzzer is single-threaded).
+jobs=${FUZZ_JOBS:-$(nproc)}
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
+run_one() {
+    local target=$1 status=0
+    local corpus=target/fuzz-corpus/$target regressions=fuzz/regressions/$target
     mkdir -p "$corpus" "$regressions"
-    log=$(mktemp)
-    status=0
     # -timeout: one input taking longer is a hang; -rss_limit_mb: one
     # allocating more is a finding too.
     "$bin/$target" "$corpus" "fuzz/seeds/$target" -max_total_time="$seconds" \
         -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
-        -artifact_prefix="$regressions/" -print_final_stats=1 >"$log" 2>&1 || status=$?
+        -artifact_prefix="$regressions/" -print_final_stats=1 >"$logs/$target" 2>&1 || status=$?
+    echo "$status" >"$logs/$target.status"
+}
+targets=$(basename -s .rs fuzz/fuzz_targets/*.rs)
+running=0
+for target in $targets; do
+    run_one "$target" &
+    running=$((running + 1))
+    if [ "$running" -ge "$jobs" ]; then
+        wait -n
+        running=$((running - 1))
+    fi
+done
+wait
+findings=0
+executions=0
+for target in $targets; do
+    log=$logs/$target
+    status=$(cat "$log.status")
     runs=$(awk '/stat::number_of_executed_units/ { print $2 }' "$log" | tail -1)
     executions=$((executions + ${runs:-0}))
     if [ "$status" -ne 0 ]; then
         findings=$((findings + 1))
-        echo "fuzz $target: FOUND a failure after ${runs:-?} runs (input kept in $regressions/):" >&2
+        echo "fuzz $target: FOUND a failure after ${runs:-?} runs (input kept in fuzz/regressions/$target/):" >&2
         grep -E "panicked|ERROR|SUMMARY|Test unit written" "$log" | head -20 >&2
     else
         echo "fuzz $target: ${runs:-0} runs, no failure" >&2
     fi
-    rm -f "$log"
 done
 echo "fuzz: $executions runs over all targets, $findings targets with findings"
 [ "$findings" -eq 0 ]

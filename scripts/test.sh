@@ -75,7 +75,7 @@ fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
 cargo build --release --locked --quiet -p rse-cli  # built by the tests above: a no-op unless run alone
 RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
-    .venv/bin/python -m pytest 2>&1 | tee -a "$log"
+    .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" 2>&1 | tee -a "$log"
 
 say "the README's main command"
 rm -rf target/readme-demo
