@@ -29,12 +29,20 @@ pkg-config --exists ignition-physics5 ignition-common4 2>/dev/null \
         libignition-physics5-bullet-plugin5 libignition-common-dev)
 command -v g++ >/dev/null || apt_packages+=(g++)
 command -v chromium >/dev/null || apt_packages+=(chromium)  # the editor's browser tests
+# Installed in the background while the Rust checks build (nothing before
+# the Python tests needs them); waited for, and its log shown on failure,
+# before those.
+apt_pid=""
+apt_log=$(mktemp)
 if [ ${#apt_packages[@]} -gt 0 ]; then
-    say "installing ${apt_packages[*]} (Debian)"
+    say "installing ${apt_packages[*]} (Debian, in the background)"
     sudo=""
     [ "$(id -u)" = 0 ] || sudo="sudo"
-    $sudo apt-get update -q
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q "${apt_packages[@]}"
+    (
+        $sudo apt-get update -q
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q "${apt_packages[@]}"
+    ) >"$apt_log" 2>&1 &
+    apt_pid=$!
 fi
 
 say "format"
@@ -49,7 +57,8 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
 say "Rust tests: unit, property, golden, samples"
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+pip_log=$(mktemp)
+trap 'rm -f "$log" "$apt_log" "$pip_log"' EXIT
 cargo test --workspace --exclude rse-cli --locked -- --include-ignored 2>&1 | tee "$log"
 # The CLI's tests drive the rse-gen binary through whole batches, checks
 # and physics: in release they take a fifth of the time, and the release
@@ -58,14 +67,22 @@ cargo test --workspace --exclude rse-cli --locked -- --include-ignored 2>&1 | te
 say "Rust tests: the command line (release build)"
 cargo test --release -p rse-cli --locked -- --include-ignored 2>&1 | tee -a "$log"
 
+# The Python test dependencies download while the fuzz targets build.
+if [ ! -x .venv/bin/python ]; then
+    python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt \
+    >"$pip_log" 2>&1 &
+pip_pid=$!
+
 say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
 scripts/fuzz.sh
 
 say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat; gz-physics)"
-if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
+wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r tests/requirements.txt failed" >&2; exit 1; }
+if [ -n "$apt_pid" ]; then
+    wait "$apt_pid" || { cat "$apt_log" >&2; echo "scripts/test.sh: apt-get install failed" >&2; exit 1; }
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
 say "the Python package (pip install ./crates/rse-py: maturin, release build)"
 # The distribution was named `rse` before it became `rse-gen`: an old venv's
 # copy would share the `rse/` folder with the new one.
