@@ -1,8 +1,11 @@
 """``Terrain.mjcf``'s options: our MuJoCo template's model, made to fit
 into a robot's model (a fragment, a name prefix, an offset, a friction).
 
-One source of MJCF (the template the world folders use); this only edits
-its tree, so the default model keeps its bytes.
+A terrain's MJCF has one source, the template the world folders use; this
+only edits its tree, so the default model keeps its bytes. (The empty
+height-field slot of ``rse.mujoco.hfield_mjcf`` is not a terrain: a field
+to write terrains into later, with its shape and radii from rse-core's
+``hfield_layout``.)
 """
 
 from __future__ import annotations
