@@ -137,6 +137,7 @@ def test_a_pallet_setting_that_changes_nothing_is_accepted_everywhere(tmp_path: 
 
     plain = rse.Scheme([rse.Obstacle("random", height=2)])
     assert rse.Scheme([rse.Obstacle("random", height=2)], pallet_boundary=False) == plain
+    assert rse.Scheme([rse.Obstacle("random", height=2)], pallet_boundary=np.bool_(False)) == plain
     assert plain.replace(pallet_boundary=False) == plain
     path = tmp_path / "p.csv"
     path.write_text("# pallet_boundary: false\ntype,height\nrandom,2\n")

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use base64::Engine as _;
-use rse_core::{DEFAULT_PALLET_SIZE, Field, GLOBAL_KEYS, Globals, ObstacleKind, Usage, preview};
+use rse_core::{Field, GLOBAL_KEYS, Globals, GlobalsPatch, ObstacleKind, Usage, preview};
 use rse_verify::{CheckOptions, check_paths};
 use rse_world::{BatchOptions, Target, Targets, Templates, WorldOptions, write_batch};
 use serde::Deserialize;
@@ -71,13 +71,25 @@ pub fn state(editor: &Editor) -> Value {
 /// global keys with their defaults, the obstacle types with the columns
 /// each needs or takes, the targets and those written by default — so the
 /// script holds no copy of them.
+///
+/// # Panics
+/// Never: one pallet is a layout core always accepts.
 pub fn schema() -> Value {
     let defaults = Globals::default();
+    // What pallets get when turned on: core's rule, not a copy of it.
+    let turned_on = GlobalsPatch {
+        pallets: Some(Some([1, 1])),
+        ..GlobalsPatch::default()
+    }
+    .apply(&defaults)
+    .ok()
+    .and_then(|g| g.pallets)
+    .expect("one pallet is a valid layout");
     let default = |key: &str| match key {
         "size" => rse_core::format_dims(defaults.size),
         "pallets" => "off".to_owned(),
-        "pallet_size" => DEFAULT_PALLET_SIZE.to_string(),
-        "pallet_boundary" => "true".to_owned(),
+        "pallet_size" => turned_on.size.to_string(),
+        "pallet_boundary" => turned_on.boundary.to_string(),
         "block_size" => defaults.block_size.to_string(),
         "step_height" => defaults.step_height.to_string(),
         "base" => defaults.base.to_string(),
@@ -167,7 +179,6 @@ pub fn preview(body: &[u8]) -> Answer {
         "block_size": terrain.block_size(),
         "png": format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(png)),
         "boxes": boxes,
-        "csv": scheme.to_csv(),
         "server_ms": start.elapsed().as_secs_f64() * 1e3,
     }))
 }
@@ -326,7 +337,7 @@ mod tests {
             Targets::default()
         );
         // Each default reads back through core's own parser.
-        let mut patch = rse_core::GlobalsPatch::default();
+        let mut patch = GlobalsPatch::default();
         for g in schema["globals"].as_array().unwrap() {
             let key = g["key"].as_str().unwrap();
             if !key.starts_with("pallet_") {

@@ -136,16 +136,15 @@ pub fn number(field: &str, obj: &Bound<'_, PyAny>) -> PyResult<f64> {
     })
 }
 
-/// A `bool` `field` (`True`/`False`; not `1` or `"yes"`).
+/// A `bool` `field`: `True`/`False` or a numpy bool, as pyo3 takes a
+/// `bool` argument (not `1` or `"yes"`).
 pub fn boolean(field: &str, obj: &Bound<'_, PyAny>) -> PyResult<bool> {
-    obj.cast::<pyo3::types::PyBool>()
-        .map(pyo3::types::PyBoolMethods::is_true)
-        .map_err(|_| {
-            PyTypeError::new_err(format!(
-                "{field}: expected True or False, got {}",
-                describe(obj)
-            ))
-        })
+    obj.extract::<bool>().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{field}: expected True or False, got {}",
+            describe(obj)
+        ))
+    })
 }
 
 /// A pair of whole numbers `field`, such as `size=(10, 10)`.

@@ -99,6 +99,7 @@ class HFieldSlot:
         self.z0 = _geom_z(model, self.id)
         adr, n = int(model.hfield_adr[self.id]), self.shape[0] * self.shape[1]
         self.view = model.hfield_data[adr : adr + n].reshape(self.shape)
+        self._checked_block_size: Union[float, None] = None
 
     def write(self, terrain: Terrain) -> None:
         """Writes ``terrain`` into the field (see ``set_hfield``)."""
@@ -108,11 +109,16 @@ class HFieldSlot:
                 f"height field {self.id} of the model has shape {self.shape}, but the terrain at "
                 f"oversample {self.oversample} has {want}"
             )
-        _, (*expect, _, _), _ = terrain.hfield_layout(self.oversample)
-        if abs(self.radii[0] - expect[0]) > 1e-6 or abs(self.radii[1] - expect[1]) > 1e-6:
-            raise ValueError(
-                f"height field {self.id} spans radii {self.radii} m, but the terrain's samples need {expect}"
-            )
+        # With the shape checked, the radii depend on the block size alone:
+        # checked once per block size, not on every write (the layout scans
+        # the terrain's tops).
+        if terrain.block_size != self._checked_block_size:
+            _, (*expect, _, _), _ = terrain.hfield_layout(self.oversample)
+            if abs(self.radii[0] - expect[0]) > 1e-6 or abs(self.radii[1] - expect[1]) > 1e-6:
+                raise ValueError(
+                    f"height field {self.id} spans radii {self.radii} m, but the terrain's samples need {expect}"
+                )
+            self._checked_block_size = terrain.block_size
         terrain.hfield_into(self.view, self.oversample, self.z0, self.elevation)
 
 
