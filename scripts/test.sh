@@ -91,6 +91,7 @@ if .venv/bin/python -m pip show --quiet rse >/dev/null 2>&1; then
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
 cargo build --release --locked --quiet -p rse-cli  # built by the tests above: a no-op unless run alone
+say "pytest (tests/python, on every core)"
 RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
     .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" 2>&1 | tee -a "$log"
 

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The wheel's size with the physics smoke test (the default) and without it
+# (`--no-default-features`), and the extension inside each (README, "Python").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[ -x target/wheel-venv/bin/pip ] || python3 -m venv target/wheel-venv
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+for variant in physics no-physics; do
+    args=""
+    [ "$variant" = no-physics ] && args="--no-default-features"
+    MATURIN_PEP517_ARGS="$args" target/wheel-venv/bin/pip wheel --quiet --disable-pip-version-check \
+        --no-deps -w "$out/$variant" ./crates/rse-py
+    wheel=$(ls "$out/$variant"/*.whl)
+    extension=$(python3 -c 'import sys, zipfile
+z = zipfile.ZipFile(sys.argv[1])
+print(sum(i.file_size for i in z.infolist() if "/_rse" in i.filename and i.filename.endswith(".so")))' "$wheel")
+    printf '%-10s  wheel %9d bytes  extension %9d bytes\n' "$variant" "$(stat -c %s "$wheel")" "$extension"
+done
