@@ -64,7 +64,7 @@ pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use obstacle::{
     DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
 };
-pub use param::Param;
+pub use param::{Param, range_parts, range_text};
 pub use scheme::Scheme;
 pub use terrain::Terrain;
 

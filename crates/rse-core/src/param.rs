@@ -50,7 +50,7 @@ impl<T: fmt::Display> fmt::Display for Param<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Param::Fixed(v) => write!(f, "{v}"),
-            Param::Range(lo, hi) => write!(f, "{lo}..{hi}"),
+            Param::Range(lo, hi) => write!(f, "{lo}{RANGE}{hi}"),
         }
     }
 }
@@ -70,9 +70,49 @@ impl<T: FromStr> Param<T> {
             s.parse::<T>()
                 .map_err(|_| ParamTextError::NotANumber(s.to_owned()))
         };
-        match text.split_once("..") {
+        match text.split_once(RANGE) {
             Some((lo, hi)) => Ok(Param::Range(one(lo)?, one(hi)?)),
             None => Ok(Param::Fixed(one(text)?)),
         }
+    }
+}
+
+/// What separates a range's ends in a field's text.
+const RANGE: &str = "..";
+
+/// A field's text split into its ends as a form shows them: `[lo, hi]` for
+/// a range `lo..hi`, `[v, ""]` for one value (the inverse of
+/// [`range_text`]; neither end is parsed).
+pub fn range_parts(text: &str) -> [&str; 2] {
+    match text.split_once(RANGE) {
+        Some((lo, hi)) => [lo, hi],
+        None => [text, ""],
+    }
+}
+
+/// A field's text from the ends a form holds: `lo..hi`, or `lo` alone when
+/// `hi` is blank.
+pub fn range_text(lo: &str, hi: &str) -> String {
+    let (lo, hi) = (lo.trim(), hi.trim());
+    if hi.is_empty() {
+        lo.to_owned()
+    } else {
+        format!("{lo}{RANGE}{hi}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Param, range_parts, range_text};
+
+    #[test]
+    fn a_fields_ends_split_and_join_back() {
+        assert_eq!(range_parts("2..4"), ["2", "4"]);
+        assert_eq!(range_parts("3"), ["3", ""]);
+        assert_eq!(range_text(" 2 ", "4"), "2..4");
+        assert_eq!(range_text("3", "  "), "3");
+        let range: Param<u32> = Param::parse_text(&range_text("2", "4")).unwrap();
+        assert_eq!(range, Param::Range(2, 4));
+        assert_eq!(range_parts(&range.to_string()), ["2", "4"]);
     }
 }

@@ -5,7 +5,9 @@
 
 use std::collections::BTreeMap;
 
-use rse_core::{Field, Globals, GlobalsPatch, Obstacle, Scheme, SchemeError};
+use rse_core::{
+    Field, Globals, GlobalsPatch, Obstacle, Scheme, SchemeError, range_parts, range_text,
+};
 use serde::{Deserialize, Serialize};
 
 /// The page's scheme: every value as typed (empty: not given).
@@ -14,11 +16,41 @@ pub struct PageScheme {
     /// Global parameters by key (`size`, `pallets`, …).
     pub globals: BTreeMap<String, String>,
     /// Table rows by column: `type`, `height`, `angle`, `x1`, `y1`, `x2`,
-    /// `y2`, `sigma`; a cell's text as a scheme file holds it (`2..4`).
-    pub obstacles: Vec<BTreeMap<String, String>>,
+    /// `y2`, `sigma`.
+    pub obstacles: Vec<BTreeMap<String, Cell>>,
     /// The free-text notes atop the file, one per line (kept on save).
     #[serde(default)]
     pub notes: String,
+}
+
+/// One table cell: the two inputs of a column (`["2", "4"]` for a range,
+/// `["3", ""]` for one value), or, as the page sends `type`, one text.
+/// Answers give every column but `type` as its two ends.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Cell {
+    /// A column's low and high inputs (high blank: one value).
+    Ends([String; 2]),
+    /// A cell's whole text, as a scheme file holds it.
+    Text(String),
+}
+
+impl Cell {
+    /// The cell's text as core's field parsers read it.
+    fn text(&self) -> String {
+        match self {
+            Cell::Ends([lo, hi]) => range_text(lo, hi),
+            Cell::Text(text) => text.clone(),
+        }
+    }
+
+    /// The page's cell for `field` holding `text`, as a scheme file writes it.
+    fn of(field: Field, text: &str) -> Self {
+        match field {
+            Field::Type => Cell::Text(text.to_owned()),
+            _ => Cell::Ends(range_parts(text).map(str::to_owned)),
+        }
+    }
 }
 
 /// Where a fault is, for the page to mark the field.
@@ -59,12 +91,16 @@ impl PageScheme {
             .iter()
             .enumerate()
             .map(|(row, cells)| {
-                let cells = cells.iter().map(|(column, text)| {
+                let texts: Vec<(&String, String)> = cells
+                    .iter()
+                    .map(|(column, cell)| (column, cell.text()))
+                    .collect();
+                let cells = texts.iter().map(|(column, text)| {
                     Field::from_header(column)
                         .map(|field| (field, text.as_str()))
                         .ok_or_else(|| FieldError {
                             row: Some(row),
-                            field: Some(column.clone()),
+                            field: Some((*column).clone()),
                             message: format!("unknown column `{column}`"),
                         })
                 });
@@ -83,7 +119,7 @@ impl PageScheme {
         let cells = |pairs: Vec<(Field, String)>| {
             pairs
                 .into_iter()
-                .map(|(field, text)| (field.name().to_owned(), text))
+                .map(|(field, text)| (field.name().to_owned(), Cell::of(field, &text)))
                 .collect()
         };
         PageScheme {
@@ -106,6 +142,7 @@ impl PageScheme {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rse_core::Param;
 
     fn page(globals: &[(&str, &str)], rows: &[&[(&str, &str)]]) -> PageScheme {
         PageScheme {
@@ -117,7 +154,7 @@ mod tests {
                 .iter()
                 .map(|r| {
                     r.iter()
-                        .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+                        .map(|(k, v)| ((*k).to_owned(), Cell::Text((*v).to_owned())))
                         .collect()
                 })
                 .collect(),
@@ -140,11 +177,44 @@ mod tests {
         let scheme = p.scheme().unwrap();
         assert_eq!(scheme.grid().nx, 20);
         let back = PageScheme::from_scheme(&scheme);
-        assert_eq!(back.obstacles[0]["height"], "2..4");
+        assert_eq!(
+            back.obstacles[0]["height"],
+            Cell::Ends(["2".into(), "4".into()])
+        );
+        assert_eq!(
+            back.obstacles[0]["angle"],
+            Cell::Ends(["45".into(), String::new()])
+        );
+        assert_eq!(back.obstacles[0]["type"], Cell::Text("peak".into()));
         assert_eq!(back.globals["size"], "20x10");
         assert_eq!(back.notes, "a note\n\nwith a blank line");
         assert_eq!(scheme.notes(), ["a note", "", "with a blank line"]);
         assert_eq!(back.scheme().unwrap().to_csv(), scheme.to_csv());
+    }
+
+    #[test]
+    fn the_page_sends_a_columns_two_ends() {
+        let p: PageScheme = serde_json::from_str(
+            r#"{"globals": {"size": "10x10"}, "obstacles": [
+                {"type": "random", "height": ["1", "3"], "sigma": ["", ""]},
+                {"type": "random", "height": "2"}]}"#,
+        )
+        .unwrap();
+        let scheme = p.scheme().unwrap();
+        assert_eq!(
+            scheme.obstacles()[0].fields().height,
+            Some(Param::Range(1, 3))
+        );
+        assert_eq!(scheme.obstacles()[1].fields().height, Some(Param::Fixed(2)));
+        let answer = serde_json::to_value(PageScheme::from_scheme(&scheme)).unwrap();
+        assert_eq!(
+            answer["obstacles"][0]["height"],
+            serde_json::json!(["1", "3"])
+        );
+        assert_eq!(
+            answer["obstacles"][1]["height"],
+            serde_json::json!(["2", ""])
+        );
     }
 
     #[test]

@@ -145,87 +145,171 @@ pub fn smoke_test(
     terrain: &Terrain,
     test: SmokeTest,
 ) -> PhysicsReport {
-    let drops = drop_set(terrain, test.bodies);
-    let steps = (test.seconds * test.rate_hz).round() as usize;
-    let dt = (1.0 / test.rate_hz) as f32;
+    let run = Run::new(terrain, test);
+    run.report(model, file, run.plane_step_us())
+}
 
-    let (mut world, handles) = scene(Some(model), &drops, dt, terrain);
-    let last_second = (test.rate_hz.round() as usize).min(steps);
-    // Energy no body may exceed: what it had at the start plus what it
-    // gained by falling. A solver that throws a body out breaks this.
-    let mut gain = vec![0.0f64; handles.len()];
-    let mut top_speed = vec![0.0f64; handles.len()];
-    let mut watch_energy = |world: &PhysicsWorld| {
-        for (i, (&(h, _), drop)) in handles.iter().zip(&drops).enumerate() {
-            let body = &world.bodies[h];
-            let fallen = drop.start[2] - f64::from(body.translation().z);
-            let budget = f64::from(body.mass()) * 9.81 * (fallen + ENERGY_SLACK_HEIGHT);
-            gain[i] = gain[i].max(f64::from(body.kinetic_energy()) - budget);
-            top_speed[i] = top_speed[i].max(f64::from(body.linvel().length()));
-        }
-    };
-    let mut rse_time = simulate(&mut world, steps - last_second, &mut watch_energy);
-    let before: Vec<Vector> = handles
+/// Runs the smoke test of each of `models` (each with the world file it was
+/// read from, if any), all models of the one terrain `terrain`: one report
+/// each, in order. The flat-plane reference drops the same bodies on the
+/// same floor whatever the model, so it is simulated once for all of them
+/// (a third of the work of a world checked with two colliders).
+pub fn smoke_tests(
+    models: &[(&TerrainModel, Option<&str>)],
+    terrain: &Terrain,
+    test: SmokeTest,
+) -> Vec<PhysicsReport> {
+    if models.is_empty() {
+        return Vec::new();
+    }
+    let run = Run::new(terrain, test);
+    let timed: Vec<(Duration, Vec<PhysicsError>)> = models
         .iter()
-        .map(|&(h, _)| world.bodies[h].translation())
+        .map(|(model, _)| run.on_model(model))
         .collect();
-    rse_time += simulate(&mut world, last_second, &mut watch_energy);
-    let moved: Vec<Moved> = handles
+    let plane_step_us = run.plane_step_us();
+    models
         .iter()
-        .zip(&before)
-        .map(|(&(h, _), &p)| {
-            let d = world.bodies[h].translation() - p;
-            Moved {
-                distance: f64::from(d.length()),
-                descent: f64::from(-d.z),
-            }
-        })
-        .collect();
-    let window = last_second as f64 / test.rate_hz;
-    let mut errors = judge(&world, &handles, &moved, window, &drops, terrain);
-    for (i, drop) in drops.iter().enumerate() {
-        if gain[i] > 0.0 {
-            errors.push(PhysicsError {
-                body: drop.label(i),
-                problem: Problem::Thrown { joules: gain[i] },
-            });
-        }
-        if top_speed[i] > SPEED_LIMIT {
-            errors.push(PhysicsError {
-                body: drop.label(i),
-                problem: Problem::TooFast {
-                    speed: top_speed[i],
-                    limit: SPEED_LIMIT,
-                },
-            });
+        .zip(timed)
+        .map(|(&(model, file), timed)| run.finish(model, file, timed, plane_step_us))
+        .collect()
+}
+
+/// One smoke test's setting: the terrain, its bodies and steps.
+struct Run<'a> {
+    terrain: &'a Terrain,
+    drops: Vec<Body>,
+    rate_hz: f64,
+    steps: usize,
+}
+
+impl<'a> Run<'a> {
+    fn new(terrain: &'a Terrain, test: SmokeTest) -> Self {
+        Run {
+            terrain,
+            drops: drop_set(terrain, test.bodies),
+            rate_hz: test.rate_hz,
+            steps: (test.seconds * test.rate_hz).round() as usize,
         }
     }
 
-    let flat: Vec<Body> = drops
-        .iter()
-        .map(|b| Body {
-            start: [b.start[0], b.start[1], b.drop_over],
-            ..*b
-        })
-        .collect();
-    let (mut plane, _) = scene(None, &flat, dt, terrain);
-    let plane_time = simulate(&mut plane, steps, &mut |_| {});
+    fn dt(&self) -> f32 {
+        (1.0 / self.rate_hz) as f32
+    }
 
-    // Timings are noisy well above these roundings.
-    let round = |v: f64, unit: f64| (v / unit).round() * unit;
-    let per_step = |t: Duration| t.as_secs_f64() * 1e6 / steps.max(1) as f64;
-    let (rse_step_us, plane_step_us) = (per_step(rse_time), per_step(plane_time));
-    PhysicsReport {
-        collider: TestedCollider {
-            kind: model.kind(),
-            file: file.map(str::to_owned),
-        },
-        rse_step_us: round(rse_step_us, 0.01),
-        plane_step_us: round(plane_step_us, 0.01),
-        ratio: round(rse_step_us / plane_step_us.max(1e-9), 0.001),
-        bodies: drops.len(),
-        steps,
-        errors,
+    /// Microseconds per step, from the time of the whole run.
+    fn per_step(&self, t: Duration) -> f64 {
+        t.as_secs_f64() * 1e6 / self.steps.max(1) as f64
+    }
+
+    /// The mean step time of the same bodies dropped on the floor alone,
+    /// each from its height over its cell.
+    fn plane_step_us(&self) -> f64 {
+        let flat: Vec<Body> = self
+            .drops
+            .iter()
+            .map(|b| Body {
+                start: [b.start[0], b.start[1], b.drop_over],
+                ..*b
+            })
+            .collect();
+        let (mut plane, _) = scene(None, &flat, self.dt(), self.terrain);
+        self.per_step(simulate(&mut plane, self.steps, &mut |_| {}))
+    }
+
+    /// The report of `model` alone.
+    fn report(
+        &self,
+        model: &TerrainModel,
+        file: Option<&str>,
+        plane_step_us: f64,
+    ) -> PhysicsReport {
+        let timed = self.on_model(model);
+        self.finish(model, file, timed, plane_step_us)
+    }
+
+    /// The report of a model's run, `timed`: its stepping time and errors.
+    fn finish(
+        &self,
+        model: &TerrainModel,
+        file: Option<&str>,
+        (rse_time, errors): (Duration, Vec<PhysicsError>),
+        plane_step_us: f64,
+    ) -> PhysicsReport {
+        // Timings are noisy well above these roundings.
+        let round = |v: f64, unit: f64| (v / unit).round() * unit;
+        let rse_step_us = self.per_step(rse_time);
+        PhysicsReport {
+            collider: TestedCollider {
+                kind: model.kind(),
+                file: file.map(str::to_owned),
+            },
+            rse_step_us: round(rse_step_us, 0.01),
+            plane_step_us: round(plane_step_us, 0.01),
+            ratio: round(rse_step_us / plane_step_us.max(1e-9), 0.001),
+            bodies: self.drops.len(),
+            steps: self.steps,
+            errors,
+        }
+    }
+
+    /// Drops the bodies on `model`: the time spent stepping, and the
+    /// physics errors found.
+    fn on_model(&self, model: &TerrainModel) -> (Duration, Vec<PhysicsError>) {
+        let (terrain, drops, rate_hz, steps) =
+            (self.terrain, &self.drops[..], self.rate_hz, self.steps);
+        let (mut world, handles) = scene(Some(model), drops, self.dt(), terrain);
+        let last_second = (rate_hz.round() as usize).min(steps);
+        // Energy no body may exceed: what it had at the start plus what it
+        // gained by falling. A solver that throws a body out breaks this.
+        let mut gain = vec![0.0f64; handles.len()];
+        let mut top_speed = vec![0.0f64; handles.len()];
+        let mut watch_energy = |world: &PhysicsWorld| {
+            for (i, (&(h, _), drop)) in handles.iter().zip(drops).enumerate() {
+                let body = &world.bodies[h];
+                let fallen = drop.start[2] - f64::from(body.translation().z);
+                let budget = f64::from(body.mass()) * 9.81 * (fallen + ENERGY_SLACK_HEIGHT);
+                gain[i] = gain[i].max(f64::from(body.kinetic_energy()) - budget);
+                top_speed[i] = top_speed[i].max(f64::from(body.linvel().length()));
+            }
+        };
+        let mut rse_time = simulate(&mut world, steps - last_second, &mut watch_energy);
+        let before: Vec<Vector> = handles
+            .iter()
+            .map(|&(h, _)| world.bodies[h].translation())
+            .collect();
+        rse_time += simulate(&mut world, last_second, &mut watch_energy);
+        let moved: Vec<Moved> = handles
+            .iter()
+            .zip(&before)
+            .map(|(&(h, _), &p)| {
+                let d = world.bodies[h].translation() - p;
+                Moved {
+                    distance: f64::from(d.length()),
+                    descent: f64::from(-d.z),
+                }
+            })
+            .collect();
+        let window = last_second as f64 / rate_hz;
+        let mut errors = judge(&world, &handles, &moved, window, drops, terrain);
+        for (i, drop) in drops.iter().enumerate() {
+            if gain[i] > 0.0 {
+                errors.push(PhysicsError {
+                    body: drop.label(i),
+                    problem: Problem::Thrown { joules: gain[i] },
+                });
+            }
+            if top_speed[i] > SPEED_LIMIT {
+                errors.push(PhysicsError {
+                    body: drop.label(i),
+                    problem: Problem::TooFast {
+                        speed: top_speed[i],
+                        limit: SPEED_LIMIT,
+                    },
+                });
+            }
+        }
+        (rse_time, errors)
     }
 }
 
@@ -450,8 +534,40 @@ impl Solid {
 
 #[cfg(test)]
 mod tests {
-    use super::{Moved, Solid};
+    use super::{Moved, SmokeTest, Solid, TerrainModel, smoke_test, smoke_tests};
     use rapier3d::prelude::*;
+    use rse_core::{Scheme, generate};
+
+    /// Several models of one terrain share one plane run, and each report
+    /// is the one its model gets alone (rapier is deterministic).
+    #[test]
+    fn models_of_one_terrain_share_the_plane_and_keep_their_verdicts() {
+        let scheme = Scheme::from_csv("# size: 6x6\ntype,height\nrandom,3\n", None).unwrap();
+        let terrain = generate(&scheme, 0, 0);
+        let test = SmokeTest {
+            bodies: 4,
+            seconds: 1.0,
+            rate_hz: 500.0,
+        };
+        let (mesh, boxes) = (
+            TerrainModel::mesh_of(&terrain),
+            TerrainModel::boxes_of(&terrain),
+        );
+        let both = smoke_tests(&[(&mesh, Some("m.obj")), (&boxes, None)], &terrain, test);
+        assert_eq!(both.len(), 2);
+        assert_eq!(both[0].plane_step_us, both[1].plane_step_us);
+        assert_eq!(both[0].collider.file.as_deref(), Some("m.obj"));
+        for (report, model) in both.iter().zip([&mesh, &boxes]) {
+            let alone = smoke_test(model, None, &terrain, test);
+            assert_eq!(report.collider.kind, model.kind());
+            assert_eq!((report.bodies, report.steps), (4, 500));
+            assert_eq!(
+                format!("{:?}", report.errors),
+                format!("{:?}", alone.errors)
+            );
+        }
+        assert!(smoke_tests(&[], &terrain, test).is_empty());
+    }
 
     /// A ball sunk 3 cm into the solid is 3 cm deep; resting on it, 0.
     #[test]

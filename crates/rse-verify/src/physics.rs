@@ -25,7 +25,7 @@ pub(crate) fn run(
 ) {
     use std::collections::BTreeSet;
 
-    use rse_physics::{SmokeTest, TerrainModel, smoke_test};
+    use rse_physics::{SmokeTest, TerrainModel, smoke_tests};
     use rse_world::Collider;
 
     let colliders: BTreeSet<Collider> = manifest
@@ -53,8 +53,10 @@ pub(crate) fn run(
     if colliders.contains(&Collider::Boxes) {
         runs.push((None, TerrainModel::boxes_of(terrain)));
     }
-    for (path, model) in runs {
-        let physics = smoke_test(&model, path, terrain, SmokeTest::default());
+    let models: Vec<(&TerrainModel, Option<&str>)> =
+        runs.iter().map(|(path, model)| (model, *path)).collect();
+    for physics in smoke_tests(&models, terrain, SmokeTest::default()) {
+        let path = physics.collider.file.as_deref();
         let kind = physics.collider.kind;
         faults.extend(physics.errors.iter().map(|error| {
             Fault::new(

@@ -24,20 +24,13 @@ async function api(path, body) {
 
 // --- the scheme as the page holds it ----------------------------------------
 
-function splitRange(value) {
-  const parts = String(value ?? "").split("..");
-  return parts.length === 2 ? parts : [parts[0], ""];
-}
-
 function pageScheme() {
   const globals = {};
   document.querySelectorAll("[data-global]").forEach((input) => { globals[input.dataset.global] = input.value.trim(); });
   const obstacles = state.rows.map((row) => {
     const out = { type: row.type };
-    for (const c of COLUMNS) {
-      const [lo, hi] = [row[c + ".lo"] ?? "", row[c + ".hi"] ?? ""].map((v) => v.trim());
-      out[c] = hi ? `${lo}..${hi}` : lo;
-    }
+    // Each column's two inputs as they are: the server joins a range.
+    for (const c of COLUMNS) out[c] = [row[c + ".lo"] ?? "", row[c + ".hi"] ?? ""];
     return out;
   });
   return { globals, obstacles, notes: $("notes").value };
@@ -48,7 +41,7 @@ function loadScheme(scheme) {
   $("notes").value = scheme.notes ?? "";
   state.rows = scheme.obstacles.map((o) => {
     const row = { type: o.type };
-    for (const c of COLUMNS) { const [lo, hi] = splitRange(o[c]); row[c + ".lo"] = lo; row[c + ".hi"] = hi; }
+    for (const c of COLUMNS) { const [lo, hi] = o[c] ?? ["", ""]; row[c + ".lo"] = lo; row[c + ".hi"] = hi; }
     return row;
   });
   state.selected = state.rows.length ? 0 : -1;
