@@ -555,7 +555,10 @@ mod tests {
         );
         let both = smoke_tests(&[(&mesh, Some("m.obj")), (&boxes, None)], &terrain, test);
         assert_eq!(both.len(), 2);
-        assert_eq!(both[0].plane_step_us.to_bits(), both[1].plane_step_us.to_bits());
+        assert_eq!(
+            both[0].plane_step_us.to_bits(),
+            both[1].plane_step_us.to_bits()
+        );
         assert_eq!(both[0].collider.file.as_deref(), Some("m.obj"));
         for (report, model) in both.iter().zip([&mesh, &boxes]) {
             let alone = smoke_test(model, None, &terrain, test);
