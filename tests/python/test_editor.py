@@ -222,6 +222,39 @@ def test_a_huge_preview_is_refused_quickly(editor) -> None:
     assert post(url, "api/preview", {"scheme": scheme})["ok"], "the largest previewed grid"
 
 
+def test_a_stalled_client_does_not_stop_the_others(editor) -> None:
+    """Issue 22, item 10: a connection that announces a body of a million
+    bytes and sends none held the only worker; others must be served, and
+    the stalled one dropped after the read timeout."""
+    import socket
+    from urllib.parse import urlparse
+
+    url, _ = editor
+    where = urlparse(url)
+    stalled = [socket.create_connection((where.hostname, where.port)) for _ in range(2)]
+    for s in stalled:
+        s.sendall(b"POST /api/preview HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 1000000\r\n\r\n{")
+    try:
+        started = time.monotonic()
+        with urllib.request.urlopen(url + "api/state", timeout=4) as answer:
+            assert answer.status == 200
+        assert time.monotonic() - started < 3.0
+        # Gentle peaks reaching the whole of a 500x500 grid: refused by the
+        # work cap at once (it took 25 s), so it cannot hold a worker either.
+        rows = [{"type": "peak", "height": "60", "angle": "0.5", "x1": str(i % 500), "y1": "250"} for i in range(400)]
+        refused = post(url, "api/preview", {"scheme": {"globals": {"size": "500x500"}, "obstacles": rows}})
+        assert not refused["ok"] and "more than the editor previews" in refused["error"]["message"], refused
+        # The stalled connections are answered and closed after the read
+        # timeout (a recv that waits longer raises socket.timeout).
+        for s in stalled:
+            s.settimeout(15)
+            while s.recv(4096):
+                pass
+    finally:
+        for s in stalled:
+            s.close()
+
+
 def test_open_without_a_browser_says_so_in_one_line(tmp_path: Path) -> None:
     """No xdg-open on PATH: one line on stderr; the editor keeps serving."""
     process = subprocess.Popen(

@@ -115,6 +115,28 @@ pub struct CheckArgs {
     /// bodies that sink, keep moving or leave, and the step time against a flat plane.
     #[arg(long)]
     pub physics: bool,
+
+    /// The folder of templates custom worlds were made with (as given to `batch --template`):
+    /// their files are rebuilt and compared byte for byte instead of by hash.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
+
+    /// Fail every world some of whose files could be compared only with their hashes in rse.json.
+    #[arg(long)]
+    pub strict: bool,
+
+    /// Allow each world's rebuild F times the default budget (2·10⁹ cell visits, and the memory
+    /// available per world checked at once) [default: 1].
+    #[arg(long, value_name = "F", value_parser = positive_factor)]
+    pub budget: Option<f64>,
+}
+
+/// A budget factor: a finite number above 0.
+fn positive_factor(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(f) if f.is_finite() && f > 0.0 => Ok(f),
+        _ => Err(format!("`{text}` is not a number above 0")),
+    }
 }
 
 #[derive(Debug, Args)]

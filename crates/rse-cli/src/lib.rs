@@ -46,6 +46,23 @@ impl From<ExitStatus> for ExitCode {
     }
 }
 
+/// Over a file size limit (`ulimit -f`) the system kills a writer with
+/// SIGXFSZ, without a word. Handled (by a flag nobody reads), the write
+/// fails with EFBIG instead, and the batch stops with the path and exit 2,
+/// as on a full disk. (Python ignores the signal itself, so the wheel's
+/// command gains nothing and loses nothing here.)
+fn ignore_file_size_signal() {
+    #[cfg(unix)]
+    {
+        use std::sync::Arc;
+        use std::sync::atomic::AtomicBool;
+        let _ = signal_hook::flag::register(
+            signal_hook::consts::SIGXFSZ,
+            Arc::new(AtomicBool::new(false)),
+        );
+    }
+}
+
 /// The whole `rse-gen` program on `args` (the program's name first): parse,
 /// run, and print an error as `rse-gen: …` with what to do about it;
 /// returns the exit status. The binary and the Python wheel's `rse-gen`
@@ -55,6 +72,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
+    ignore_file_size_signal();
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {

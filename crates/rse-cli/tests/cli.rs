@@ -11,6 +11,7 @@ mod batch;
 mod check;
 mod difficulty;
 mod help;
+mod hostile;
 mod messages;
 
 fn repo() -> PathBuf {

@@ -149,13 +149,56 @@ pub enum AtlasError {
 
 impl AtlasOptions {
     /// The whole map's `[nx, ny]` in cells for tiles of `tile` cells:
-    /// `rows·(tile_nx + border) + border` by `cols·(tile_ny + border) + border`.
+    /// `rows·(tile_nx + border) + border` by `cols·(tile_ny + border) + border`,
+    /// saturating at `u64::MAX` (options read from a file may ask for
+    /// anything: a size that does not fit is too large, never wrapped).
     pub fn map_cells(&self, tile: [u32; 2]) -> [u64; 2] {
         let b = u64::from(self.border);
-        [
-            u64::from(self.rows) * (u64::from(tile[0]) + b) + b,
-            u64::from(self.cols) * (u64::from(tile[1]) + b) + b,
-        ]
+        let side = |n: u32, t: u32| {
+            u64::from(n)
+                .saturating_mul(u64::from(t) + b)
+                .saturating_add(b)
+        };
+        [side(self.rows, tile[0]), side(self.cols, tile[1])]
+    }
+
+    /// At most how many cells building this atlas of `schemes` visits: the
+    /// map once, each tile's generation ([`Scheme::generation_visits`] of
+    /// its column's scheme), and per tile its spawn disc and flat patches
+    /// (each candidate cell's disc, then about 32 visits per candidate for
+    /// the sampling). Saturates rather than wraps: options read from a file
+    /// may ask for anything. What `check` budgets before it rebuilds one.
+    pub fn visits(&self, schemes: &[Scheme]) -> u64 {
+        let Some(first) = schemes.first() else {
+            return 0;
+        };
+        let grid = first.grid();
+        let [nx, ny] = self.map_cells([grid.nx, grid.ny]);
+        let tile_cells = grid.cells() as u64;
+        let disc = |radius: f64| {
+            let r = (radius / first.globals().block_size).min(f64::from(u32::MAX));
+            let side = (2.0 * r.ceil() + 1.0) as u64;
+            side.saturating_mul(side).min(tile_cells)
+        };
+        let per_tile = disc(self.spawn_radius).saturating_add(if self.patches.count == 0 {
+            0
+        } else {
+            tile_cells.saturating_mul(disc(self.patches.radius).saturating_add(32))
+        });
+        // Tiles per scheme: column c uses scheme c mod len.
+        let rows = u64::from(self.rows);
+        let generation = (0..u64::from(self.cols).min(schemes.len() as u64))
+            .map(|c| {
+                let columns = (u64::from(self.cols) - c).div_ceil(schemes.len() as u64);
+                let tiles = rows.saturating_mul(columns);
+                tiles.saturating_mul(
+                    schemes[c as usize]
+                        .generation_visits()
+                        .saturating_add(per_tile),
+                )
+            })
+            .fold(0u64, u64::saturating_add);
+        nx.saturating_mul(ny).saturating_add(generation)
     }
 
     fn validate(&self) -> Result<(), AtlasError> {
@@ -227,7 +270,8 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
     }
     let [nx, ny] = options.map_cells([tile_grid.nx, tile_grid.ny]);
     let metres = nx.max(ny) as f64 * units.block_size;
-    if nx * ny > MAX_CELLS || metres > MAX_EXTENT || nx > u64::from(u32::MAX) {
+    if nx.saturating_mul(ny) > MAX_CELLS || metres > MAX_EXTENT || nx.max(ny) > u64::from(u32::MAX)
+    {
         return Err(AtlasError::TooLarge { nx, ny, metres });
     }
     let (nx, ny) = (nx as u32, ny as u32);

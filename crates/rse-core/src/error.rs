@@ -115,8 +115,21 @@ pub enum SchemeErrorKind {
     #[error("malformed CSV: {0}")]
     Csv(String),
     /// A `# key: value` line names no known global parameter.
-    #[error("unknown global parameter `{0}` (known: {known})", known = crate::globals::GLOBAL_KEYS.join(", "))]
+    #[error("unknown global parameter `{}` (known: {known})", quote(.0), known = crate::globals::GLOBAL_KEYS.join(", "))]
     UnknownGlobal(String),
+    /// A leading comment `# word: value` whose word is a global's name
+    /// misspelt (`step-height`, `Seeds`): an error, not a note, since the
+    /// setting would be silently lost.
+    #[error(
+        "`{}` is not a global parameter; did you mean `{near}`? (a note may not look like `# {near}: value`: reword it)",
+        quote(found)
+    )]
+    NearGlobal {
+        /// The word as written.
+        found: String,
+        /// The global it is close to.
+        near: &'static str,
+    },
     /// A free-text note that a scheme file would read back as the global
     /// parameter setting `key: …`.
     #[error(
@@ -127,7 +140,7 @@ pub enum SchemeErrorKind {
     #[error("given twice")]
     DuplicateGlobal,
     /// A global parameter has a value it cannot take.
-    #[error("{}: {reason}", if value.is_empty() { "no value".to_owned() } else { format!("invalid value `{value}`") })]
+    #[error("{}: {reason}", if value.is_empty() { "no value".to_owned() } else { format!("invalid value `{}`", quote(value)) })]
     BadGlobal {
         /// The text found.
         value: String,
@@ -139,7 +152,7 @@ pub enum SchemeErrorKind {
     #[error("is set but pallets are off; add e.g. `# pallets: 2x3`")]
     PalletsOff,
     /// The header names a column that does not exist.
-    #[error("unknown column `{0}` (known: type, height, angle, x1, y1, x2, y2, sigma)")]
+    #[error("unknown column `{}` (known: type, height, angle, x1, y1, x2, y2, sigma)", quote(.0))]
     UnknownColumn(String),
     /// The header names a column twice.
     #[error("column given twice")]
@@ -156,7 +169,7 @@ pub enum SchemeErrorKind {
         expected: usize,
     },
     /// The `type` field names no obstacle.
-    #[error("unknown obstacle type `{0}` (known: random, gaussian, peak, pit, wall, long_pit)")]
+    #[error("unknown obstacle type `{}` (known: random, gaussian, peak, pit, wall, long_pit)", quote(.0))]
     UnknownType(String),
     /// An obstacle lacks a field its type needs.
     #[error("required by {0} but empty")]
@@ -165,7 +178,7 @@ pub enum SchemeErrorKind {
     #[error("not used by {0}; leave it empty")]
     UnusedField(&'static str),
     /// A field is not a number of the expected kind.
-    #[error("`{value}` is not {expected}")]
+    #[error("`{}` is not {expected}", quote(value))]
     NotANumber {
         /// The text found.
         value: String,
@@ -196,7 +209,7 @@ pub enum SchemeErrorKind {
     #[error("{0} is not a finite number ≥ 0")]
     BadSigma(f64),
     /// A range `lo..hi` with `lo > hi`.
-    #[error("range {lo}..{hi} is reversed (lo > hi)")]
+    #[error("range {}..{} is reversed (lo > hi)", quote(lo), quote(hi))]
     ReversedRange {
         /// Lower end as written.
         lo: String,
@@ -226,3 +239,17 @@ pub enum SchemeErrorKind {
         ny: u32,
     },
 }
+
+/// How an error quotes text from a scheme: escaped (no control character
+/// or newline reaches a terminal) and cut to [`QUOTE_CHARS`] characters, so
+/// a 10 MB field is not echoed whole.
+pub(crate) fn quote(text: &str) -> String {
+    let escaped: String = text.chars().flat_map(char::escape_debug).collect();
+    match escaped.char_indices().nth(QUOTE_CHARS) {
+        Some((at, _)) => format!("{}…", &escaped[..at]),
+        None => escaped,
+    }
+}
+
+/// The most characters of a field an error quotes.
+pub const QUOTE_CHARS: usize = 80;

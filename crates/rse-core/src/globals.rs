@@ -4,6 +4,37 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
 
+/// The global whose name `word` most likely misspells (any case, `-` or a
+/// space for `_`, one edit away for a short name, two for a long one), if
+/// any: `step-height` → `step_height`, `Seeds` → `seed`.
+pub(crate) fn nearest_global(word: &str) -> Option<&'static str> {
+    let word: String = word
+        .trim()
+        .chars()
+        .map(|c| {
+            if c == '-' || c == ' ' {
+                '_'
+            } else {
+                c.to_ascii_lowercase()
+            }
+        })
+        .collect();
+    GLOBAL_KEYS
+        .iter()
+        .map(|&key| (strsim::levenshtein(&word, key), key))
+        .filter(|&(distance, key)| distance <= if key.len() <= 5 { 1 } else { 2 })
+        .min()
+        .map(|(_, key)| key)
+}
+
+/// The shortest `block_size` and `step_height` (and `base`, unless 0), metres
+/// (docs/schemes.md, "Errors"): mesh vertices are `f32` and `check` tells
+/// heights apart to 10⁻⁵ m, so a step must be far above both.
+pub const MIN_LENGTH: f64 = 1e-3;
+
+const MIN_LENGTH_REASON: &str =
+    "must be at least 0.001 m: shorter is not exact in an f32 mesh, nor told apart by check";
+
 /// Largest grid the generator accepts, in cells (docs/schemes.md,
 /// "Errors"). 10⁸ cells is a 1 km square at 10 cm blocks: 200 MB of
 /// heights, and several GB once meshed.
@@ -108,9 +139,9 @@ impl Globals {
         }
     }
 
-    /// Checks every value's domain and the grid size. The error's `field`
-    /// names the global key.
-    pub fn validate(&self) -> Result<(), SchemeError> {
+    /// `block_size` and `step_height` at least [`MIN_LENGTH`], `base` 0 or
+    /// at least that; finite numbers all.
+    fn validate_lengths(&self) -> Result<(), SchemeError> {
         let bad = |key: &str, value: String, reason: &str| {
             Err(SchemeError::new(SchemeErrorKind::BadGlobal {
                 value,
@@ -125,6 +156,9 @@ impl Globals {
             if !(value.is_finite() && value > 0.0) {
                 return bad(key, value.to_string(), "must be a length in metres > 0");
             }
+            if value < MIN_LENGTH {
+                return bad(key, format!("{value:?}"), MIN_LENGTH_REASON);
+            }
         }
         if !(self.base.is_finite() && self.base >= 0.0) {
             return bad(
@@ -133,6 +167,27 @@ impl Globals {
                 "must be a length in metres ≥ 0",
             );
         }
+        if self.base > 0.0 && self.base < MIN_LENGTH {
+            return bad(
+                "base",
+                format!("{:?}", self.base),
+                "must be 0 (no slab) or at least 0.001 m: thinner is not exact in an f32 mesh, nor told apart by check",
+            );
+        }
+        Ok(())
+    }
+
+    /// Checks every value's domain and the grid size. The error's `field`
+    /// names the global key.
+    pub fn validate(&self) -> Result<(), SchemeError> {
+        let bad = |key: &str, value: String, reason: &str| {
+            Err(SchemeError::new(SchemeErrorKind::BadGlobal {
+                value,
+                reason: reason.to_owned(),
+            })
+            .with_field(key))
+        };
+        self.validate_lengths()?;
         if self.amount == 0 {
             return bad("amount", "0".into(), "needs at least one world");
         }

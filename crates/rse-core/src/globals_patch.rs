@@ -39,9 +39,14 @@ impl GlobalsPatch {
     pub fn set(&mut self, key: &str, text: &str) -> Result<&'static str, SchemeError> {
         let lower = key.to_ascii_lowercase();
         let Some(&name) = GLOBAL_KEYS.iter().find(|k| **k == lower) else {
-            return Err(
-                SchemeError::new(SchemeErrorKind::UnknownGlobal(key.to_owned())).with_field(key),
-            );
+            let kind = match globals::nearest_global(key) {
+                Some(near) => SchemeErrorKind::NearGlobal {
+                    found: key.to_owned(),
+                    near,
+                },
+                None => SchemeErrorKind::UnknownGlobal(key.to_owned()),
+            };
+            return Err(SchemeError::new(kind).with_field(key));
         };
         let parsed = match name {
             "size" => globals::parse_dims(text).map(|d| self.size = Some(d)),

@@ -56,7 +56,7 @@ pub use error::{Error, SchemeError, SchemeErrorKind};
 pub use generate::{generate, generate_at};
 pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
-    Pallets, format_dims, parse_dims,
+    MIN_LENGTH, Pallets, format_dims, parse_dims,
 };
 pub use globals_patch::GlobalsPatch;
 pub use heightmap::{Heightmap, HeightmapCsvError};

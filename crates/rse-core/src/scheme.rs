@@ -206,6 +206,25 @@ impl Scheme {
         self.globals.top(highest)
     }
 
+    /// At most how many cells generating one world of this scheme visits,
+    /// whatever its ranges draw: each obstacle's reach on the grid (every
+    /// cell for a random or gaussian field; a peak or wall only the cells
+    /// within its slope's reach of its points), plus the grid once for the
+    /// heights and frames. The measure of generation work that `check`
+    /// holds to a budget before it rebuilds a world from a file it was
+    /// handed.
+    pub fn generation_visits(&self) -> u64 {
+        let grid = self.grid();
+        let units = crate::stamp::Units {
+            block_size: self.globals.block_size,
+            step_height: self.globals.step_height,
+        };
+        self.obstacles
+            .iter()
+            .map(|o| crate::stamp::visits(o, grid, units))
+            .fold(grid.cells() as u64, u64::saturating_add)
+    }
+
     /// The grid (frame included).
     pub fn grid(&self) -> Grid {
         self.globals.grid()

@@ -35,11 +35,12 @@ pub(crate) fn parse(text: &str, file: Option<&str>) -> Result<Scheme, SchemeErro
         lines_before_table += 1;
         table_start += line.len();
         if let Some(comment) = comment {
-            match split_global(comment) {
-                Some((key, value)) => leading
+            if let Some((key, value)) = split_global(comment) {
+                leading
                     .set(key, value, lines_before_table)
-                    .map_err(locate)?,
-                None => notes.push(comment.trim().to_owned()),
+                    .map_err(locate)?;
+            } else {
+                notes.push(note(comment, lines_before_table).map_err(locate)?);
             }
         }
     }
@@ -62,6 +63,37 @@ pub(crate) fn split_global(comment: &str) -> Option<(&str, &str)> {
     let key = key.trim();
     let is_word = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     is_word.then(|| (key, value.trim()))
+}
+
+/// The free-text note of the comment at `line`, or the error of one that
+/// misspells a global ([`misspelt_global`]).
+fn note(comment: &str, line: u64) -> Result<String, SchemeError> {
+    match misspelt_global(comment) {
+        Some((found, near)) => {
+            let kind = SchemeErrorKind::NearGlobal {
+                found: found.to_owned(),
+                near,
+            };
+            Err(SchemeError::new(kind).with_field(found).at_line(line))
+        }
+        None => Ok(comment.trim().to_owned()),
+    }
+}
+
+/// A note `words: value` whose words (letters, digits, `_`, `-`, spaces;
+/// at most three) spell a global's name with a slip: `step-height: 0.05`
+/// would otherwise be kept as a note and its setting silently lost. The
+/// words as written and the global they are near.
+fn misspelt_global(comment: &str) -> Option<(&str, &'static str)> {
+    let (key, _) = comment.split_once(':')?;
+    let key = key.trim();
+    let wordy = key
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | ' '));
+    if key.is_empty() || !wordy || key.split_whitespace().count() > 3 {
+        return None;
+    }
+    crate::globals::nearest_global(key).map(|near| (key, near))
 }
 
 /// Global values as read from leading comment lines, with the line of each.
@@ -255,8 +287,9 @@ fn parse_height(text: &str) -> Result<Param<u32>, SchemeErrorKind> {
     Param::<u32>::parse_text(text).map_err(|ParamTextError::NotANumber(part)| {
         match part.parse::<i64>() {
             Ok(v) if v < 0 => SchemeErrorKind::NegativeHeight(v),
-            Ok(v) => SchemeErrorKind::HeightTooLarge(v as u64),
-            Err(_) => SchemeErrorKind::NotANumber {
+            Ok(v) if v > i64::from(u32::MAX) => SchemeErrorKind::HeightTooLarge(v as u64),
+            // `-0`: a number, but not as a height is written.
+            _ => SchemeErrorKind::NotANumber {
                 value: text.to_owned(),
                 expected: WHOLE,
             },

@@ -4,8 +4,10 @@
 //! combined with the map by the maximum rule (raising obstacles) or subtracted
 //! with a floor at 0 (pit, long pit).
 
+use crate::globals::Grid;
 use crate::heightmap::Heightmap;
-use crate::obstacle::{DrawnObstacle, ObstacleKind};
+use crate::obstacle::{DrawnObstacle, Obstacle, ObstacleKind};
+use crate::param::Param;
 use crate::rng::{ClampedRoundedNormal, WorldRng};
 
 /// Lengths of the grid, in metres.
@@ -78,14 +80,14 @@ fn lower(cell: &mut u16, value: u32) {
 }
 
 /// Height `H` on top, falling off by `tan(a)` with distance (eq. 1).
-struct Slope {
+pub(crate) struct Slope {
     height: u32,
     tan: f64,
     units: Units,
 }
 
 impl Slope {
-    fn new(height: u32, angle_degrees: f64, units: Units) -> Self {
+    pub(crate) fn new(height: u32, angle_degrees: f64, units: Units) -> Self {
         // tan(90°) in floating point is finite but huge; make it exact.
         let tan = if angle_degrees >= 90.0 {
             f64::INFINITY
@@ -109,10 +111,39 @@ impl Slope {
     }
 
     /// Cells beyond this distance get 0 steps.
-    fn reach(&self) -> f64 {
+    pub(crate) fn reach(&self) -> f64 {
         let metres = f64::from(self.height) * self.units.step_height / self.tan;
         metres / self.units.block_size
     }
+}
+
+/// At most how many cells [`apply`] visits for any drawing of `obstacle`
+/// on `grid`: every cell for a random or gaussian field; for a peak, pit,
+/// wall or long pit the box around the span of its points widened by the
+/// reach of its steepest-to-gentlest slope (highest height, lowest angle),
+/// kept to the grid. What `check` budgets before it rebuilds a world.
+pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
+    let f = obstacle.fields();
+    let cells = u64::from(grid.nx) * u64::from(grid.ny);
+    let (Some(height), Some(angle), Some(x1), Some(y1)) = (f.height, f.angle, f.x1, f.y1) else {
+        return cells; // random, gaussian
+    };
+    let reach = Slope::new(height.hi(), angle.lo(), units).reach();
+    let margin = reach.min(f64::from(u32::MAX)).ceil() + 1.0;
+    let side = |a: Param<u32>, b: Option<Param<u32>>, n: u32| -> u64 {
+        let lo = f64::from(b.map_or(a.lo(), |b| b.lo().min(a.lo())));
+        let hi = f64::from(b.map_or(a.hi(), |b| b.hi().max(a.hi())));
+        let first = (lo - margin).max(0.0);
+        let last = (hi + margin).min(f64::from(n) - 1.0);
+        if last < first {
+            0
+        } else {
+            (last - first) as u64 + 1
+        }
+    };
+    side(x1, f.x2, grid.nx)
+        .saturating_mul(side(y1, f.y2, grid.ny))
+        .min(cells)
 }
 
 /// Largest slope table worth building; past it, cells are computed directly.

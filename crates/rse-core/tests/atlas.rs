@@ -211,3 +211,42 @@ fn bad_layouts_are_refused_by_name() {
         Err(AtlasError::NoScheme)
     ));
 }
+
+/// Sizes from a file may ask for anything: rows and columns whose product
+/// would wrap a machine word are too large, never a panic or a wrapped size.
+#[test]
+fn huge_layouts_are_too_large_not_wrapped() {
+    let scheme = Scheme::from_csv("# size: 4x4\ntype,height\nrandom,1\n", None).unwrap();
+    for (rows, cols, border) in [
+        (u32::MAX, u32::MAX, u32::MAX),
+        (1 << 31, 2, 0),
+        (65_536, 65_536, 0),
+    ] {
+        let options = AtlasOptions {
+            rows,
+            cols,
+            border,
+            ..AtlasOptions::default()
+        };
+        let [nx, ny] = options.map_cells([4, 4]);
+        assert!(nx >= u64::from(rows) && ny >= u64::from(cols));
+        assert!(options.visits(std::slice::from_ref(&scheme)) >= nx.saturating_mul(ny));
+        assert!(matches!(
+            build_atlas(std::slice::from_ref(&scheme), &options),
+            Err(AtlasError::TooLarge { .. })
+        ));
+    }
+}
+
+/// The work estimate `check` budgets is an upper bound of what building
+/// visits, and grows with the patches asked for.
+#[test]
+fn the_visit_estimate_counts_tiles_and_patches() {
+    let scheme = sample("six_obstacles.csv");
+    let mut o = options();
+    let base = o.visits(std::slice::from_ref(&scheme));
+    let tiles = u64::from(o.rows * o.cols);
+    assert!(base >= tiles * scheme.generation_visits());
+    o.patches.count = 0;
+    assert!(o.visits(std::slice::from_ref(&scheme)) < base);
+}

@@ -351,3 +351,70 @@ fn an_empty_note_line_survives_saving() {
     assert_eq!(s.notes(), [""]);
     assert_eq!(scheme(&s.to_csv()), s);
 }
+
+/// Issue 22, item 9: a comment that spells a global's name with a slip is
+/// an error naming the global, on its line; free text stays a note.
+#[test]
+fn a_misspelt_global_comment_is_refused_with_the_name_meant() {
+    for (line, near) in [
+        ("# step-height: 0.05", "step_height"),
+        ("# Step Height: 0.05", "step_height"),
+        ("# Seeds: 3", "seed"),
+        ("# blocksize: 0.2", "block_size"),
+    ] {
+        let e = refuse(&format!("{line}\n{HEAD}random,2,,,,,\n"));
+        assert_eq!(e.line, Some(1), "{e}");
+        assert!(
+            matches!(e.kind, SchemeErrorKind::NearGlobal { near: n, .. } if n == near),
+            "{line}: {e}"
+        );
+        assert!(
+            e.to_string().contains(&format!("did you mean `{near}`")),
+            "{e}"
+        );
+    }
+    let fine = Scheme::from_csv(
+        &format!("# Husky runs: see the wiki\n# size - 3 rows\n{HEAD}"),
+        None,
+    )
+    .unwrap();
+    assert_eq!(fine.notes(), ["Husky runs: see the wiki", "size - 3 rows"]);
+}
+
+/// Item 9: lengths a mesh cannot hold apart are refused, naming the global.
+#[test]
+fn lengths_under_a_millimetre_are_refused() {
+    for (key, value) in [
+        ("step_height", "1e-7"),
+        ("block_size", "1e-320"),
+        ("base", "1e-320"),
+        ("base", "0.0009"),
+    ] {
+        let e = refuse(&format!(
+            "# size: 5x5\n# {key}: {value}\ntype,height\nrandom,1\n"
+        ));
+        assert_eq!(e.field.as_deref(), Some(key), "{e}");
+        assert!(e.to_string().contains("0.001 m"), "{e}");
+    }
+    let slab = scheme(
+        "# size: 5x5\n# base: 0\n# step_height: 0.001\n# block_size: 0.001\ntype,height\nrandom,1\n",
+    );
+    assert_eq!(slab.globals().step_height.to_bits(), 0.001f64.to_bits());
+}
+
+/// Item 9: `-0` is not a height as written, and a huge field is quoted
+/// short and escaped.
+#[test]
+fn negative_zero_and_huge_fields_are_told_plainly() {
+    let e = refuse(&format!("{HEAD}random,-0,,,,,\n"));
+    assert!(matches!(e.kind, SchemeErrorKind::NotANumber { .. }), "{e}");
+    assert!(!e.to_string().contains("above the largest"), "{e}");
+    let huge = format!("\u{1b}[2J{}", "7".repeat(10_000_000));
+    let e = refuse(&format!("{HEAD}random,{huge},,,,,\n"));
+    let text = e.to_string();
+    assert!(text.len() < 400, "{} bytes", text.len());
+    assert!(
+        !text.contains('\u{1b}') && text.contains("\\u{1b}[2J777"),
+        "{text}"
+    );
+}

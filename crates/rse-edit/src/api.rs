@@ -139,6 +139,12 @@ struct PreviewRequest {
 /// (a 5000×5000 grid gave 795 MB of JSON after 18 s).
 pub const MAX_PREVIEW_CELLS: u64 = 250_000;
 
+/// The most cell visits a preview's generation may cost
+/// ([`Scheme::generation_visits`](rse_core::Scheme::generation_visits)):
+/// well under a second. Many gentle peaks reaching a whole 500×500 grid
+/// took 25 s.
+pub const MAX_PREVIEW_VISITS: u64 = 50_000_000;
+
 /// `POST /api/preview`: the world's heights, boxes and top-down PNG.
 pub fn preview(body: &[u8]) -> Answer {
     let start = Instant::now();
@@ -158,6 +164,16 @@ pub fn preview(body: &[u8]) -> Answer {
             message: format!(
                 "a {}x{} grid ({cells} cells) is more than the editor previews ({MAX_PREVIEW_CELLS} cells, e.g. 500x500); save the scheme and use `rse-gen preview` or `rse-gen batch`, which take any size",
                 grid.nx, grid.ny
+            ),
+        }));
+    }
+    let visits = scheme.generation_visits();
+    if visits > MAX_PREVIEW_VISITS {
+        return Err(error(&FieldError {
+            row: None,
+            field: None,
+            message: format!(
+                "its obstacles reach {visits} cells in all, more than the editor previews ({MAX_PREVIEW_VISITS}): fewer or steeper peaks and walls; `rse-gen preview` takes any scheme"
             ),
         }));
     }
@@ -302,7 +318,7 @@ pub fn job(editor: &Editor) -> Value {
 /// The one-line `check` verdict on the worlds in `folder` (no physics), as
 /// the page shows it after a Generate: the verdict, and the first fault.
 fn check_summary(folder: &Path) -> String {
-    let report = match check_paths(&[folder.to_path_buf()], CheckOptions::default(), &|| {}) {
+    let report = match check_paths(&[folder.to_path_buf()], &CheckOptions::default(), &|| {}) {
         Ok(report) => report,
         Err(e) => return format!("check: {e}"),
     };

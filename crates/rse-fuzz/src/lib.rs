@@ -36,6 +36,8 @@ pub const TARGETS: &[(&str, Body)] = &[
     ("manifest", manifest),
     ("heightmap", heightmap),
     ("editor_api", editor_api),
+    ("atlas_record", atlas_record),
+    ("resume", resume),
 ];
 
 /// The scheme parser: any bytes load or give an error; a scheme that
@@ -142,7 +144,7 @@ pub fn manifest(data: &[u8]) {
     }
     let (_, root, good) = world_folder();
     std::fs::write(root.join(rse_world::MANIFEST), data).expect("rse.json is written");
-    let report = check_world(root, CheckOptions::default());
+    let report = check_world(root, &CheckOptions::default());
     if data == good.as_slice() {
         assert!(
             report.ok,
@@ -186,4 +188,120 @@ pub fn editor_api(data: &[u8]) {
     } else {
         rse_edit::api::preview(body)
     };
+}
+
+/// The most cell visits an atlas target builds (a larger atlas is slow,
+/// not wrong).
+const MAX_FUZZ_VISITS: u64 = 2_000_000;
+
+/// An atlas record as `rse.json` could hold one: rows, columns, border,
+/// patches and radii from the bytes, the tile scheme from the rest (a
+/// small default when it does not load). The size arithmetic must never
+/// wrap or panic; what is within a small budget must build, with every
+/// tile inside the map.
+pub fn atlas_record(data: &[u8]) {
+    use rse_core::{AtlasOptions, PatchOptions, build_atlas};
+    let mut word = data.chunks(4).map(|c| {
+        let mut b = [0u8; 4];
+        b[..c.len()].copy_from_slice(c);
+        u32::from_le_bytes(b)
+    });
+    let mut next = || word.next().unwrap_or(1);
+    let (rows, cols, border, count) = (next(), next(), next(), next());
+    let (patch_radius, spawn_radius, max_step) = (next(), next(), next());
+    let options = AtlasOptions {
+        rows,
+        cols,
+        border,
+        spawn_radius: f64::from(spawn_radius % 100_000) / 100.0,
+        patches: PatchOptions {
+            count,
+            radius: f64::from(patch_radius % 100_000) / 100.0,
+            max_step: (max_step % 70_000) as u16,
+        },
+        ..AtlasOptions::default()
+    };
+    let rest = data.get(28..).unwrap_or_default();
+    let scheme = Scheme::from_csv_bytes(rest, None)
+        .ok()
+        .filter(|s| s.grid().cells() <= MAX_FUZZ_CELLS)
+        .unwrap_or_else(|| {
+            Scheme::from_csv("# size: 6x5\ntype,height\nrandom,3\n", None).expect("a scheme")
+        });
+    let schemes = [scheme];
+    let tile = schemes[0].grid();
+    let [nx, ny] = options.map_cells([tile.nx, tile.ny]);
+    let visits = options.visits(&schemes);
+    assert!(
+        visits >= nx.min(u64::MAX / 2),
+        "the map's cells are visited at least once"
+    );
+    if visits > MAX_FUZZ_VISITS {
+        return;
+    }
+    // A layout refused (too large, bad options) is an answer too.
+    if let Ok(atlas) = build_atlas(&schemes, &options) {
+        let map = atlas.terrain().grid();
+        assert_eq!((u64::from(map.nx), u64::from(map.ny)), (nx, ny));
+        for t in atlas.tiles() {
+            assert!(t.region.x0 + t.region.nx <= map.nx && t.region.y0 + t.region.ny <= map.ny);
+            assert!(t.flat_patches.len() <= count as usize);
+        }
+    }
+}
+
+/// A batch rerun's comparison of a world folder already there with the
+/// world it would write: the first byte picks a file of the world, the
+/// rest replaces its content (or, past the last file, lands in a new
+/// file). Never a panic; the untouched world compares equal, any change
+/// is a conflict naming the folder.
+pub fn resume(data: &[u8]) {
+    use rse_world::{Error, Outcome, place_world};
+    let world = resume_world();
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let root = dir.path().join(&world.name);
+    for (path, bytes) in &world.files {
+        let path = root.join(path);
+        std::fs::create_dir_all(path.parent().expect("a parent")).expect("a folder");
+        std::fs::write(path, bytes).expect("a file");
+    }
+    let Some((&pick, content)) = data.split_first() else {
+        return;
+    };
+    let paths: Vec<&String> = world.files.keys().collect();
+    let (path, changed) = match paths.get(usize::from(pick)) {
+        Some(path) => ((*path).clone(), world.files[*path].as_slice() != content),
+        None => ("extra.txt".to_owned(), true),
+    };
+    std::fs::write(root.join(&path), content).expect("a file");
+    match place_world(dir.path(), world, false) {
+        Ok(Outcome::Skipped) => assert!(!changed, "{path} changed but the world compared equal"),
+        Err(Error::Conflict { .. }) => assert!(changed, "{path} unchanged but the world differs"),
+        other => panic!("{path}: {other:?}"),
+    }
+}
+
+/// The world the `resume` target compares: small, every target.
+fn resume_world() -> &'static rse_world::WorldFiles {
+    static WORLD: OnceLock<rse_world::WorldFiles> = OnceLock::new();
+    WORLD.get_or_init(|| {
+        let scheme = Scheme::from_csv(
+            "# size: 6x5\ntype,height,angle,x1,y1\nrandom,2,,,\npeak,3,45,2,2\n",
+            None,
+        )
+        .expect("the scheme loads");
+        let options = WorldOptions {
+            targets: Targets::parse("obj,gazebo,mujoco,urdf").expect("targets"),
+            ..WorldOptions::default()
+        };
+        build_world(
+            &scheme,
+            0,
+            0,
+            "world_0000".to_owned(),
+            &options,
+            &Templates::builtin(),
+        )
+        .expect("the world builds")
+    })
 }

@@ -5,26 +5,47 @@
 use pyo3::exceptions::{PyNotADirectoryError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use rse_verify::{CheckOptions, DiscoverError, check_paths};
+use rse_world::Templates;
 
 use crate::batch::pool;
 
 /// The `check` report of the worlds under `paths`, as JSON text.
 #[pyfunction]
-#[pyo3(signature = (paths, physics=false, jobs=None))]
+#[pyo3(signature = (paths, physics=false, jobs=None, strict=false, template=None, budget=1.0))]
 pub fn _check_json(
     py: Python<'_>,
     paths: Vec<std::path::PathBuf>,
     physics: bool,
     jobs: Option<usize>,
+    strict: bool,
+    template: Option<std::path::PathBuf>,
+    budget: f64,
 ) -> PyResult<String> {
     if physics && !rse_verify::PHYSICS {
         return Err(PyValueError::new_err(
             "physics=True: this build of rse has no physics smoke test (built without the `physics` feature)",
         ));
     }
+    if !(budget.is_finite() && budget > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "budget: {budget} is not a positive number (a multiple of check's default budget)"
+        )));
+    }
+    let templates = match template {
+        Some(dir) => Some(std::sync::Arc::new(
+            Templates::with_overrides(&dir).map_err(|e| PyValueError::new_err(e.to_string()))?,
+        )),
+        None => None,
+    };
+    let options = CheckOptions {
+        physics,
+        strict,
+        templates,
+        budget,
+    };
     let pool = pool(py, jobs)?;
     let report = py
-        .detach(|| pool.install(|| check_paths(&paths, CheckOptions { physics }, &|| {})))
+        .detach(|| pool.install(|| check_paths(&paths, &options, &|| {})))
         .map_err(|e| match e {
             DiscoverError::NotAFolder(_) => PyNotADirectoryError::new_err(e.to_string()),
             DiscoverError::Unreadable { .. } => PyOSError::new_err(e.to_string()),

@@ -8,10 +8,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use rse_world::{Leftover, MANIFEST};
+use rse_world::{Leftover, MANIFEST, Manifest, what_differs};
 use serde::Serialize;
 
-use crate::fault::{Fault, FaultKind};
+use crate::fault::{Fault, FaultKind, NotAWorld};
 use crate::world::{CheckOptions, WorldReport, check_world};
 
 /// A whole `check` run.
@@ -27,6 +27,9 @@ pub struct CheckReport {
     pub checked: usize,
     /// Worlds with at least one fault.
     pub failed: usize,
+    /// Good worlds some of whose files could be compared only with their
+    /// hashes (rendered from templates this check did not have).
+    pub hash_only: usize,
 }
 
 impl CheckReport {
@@ -39,12 +42,15 @@ impl CheckReport {
     /// when there are any: the verdict the CLI and the editor print.
     pub fn verdict(&self) -> String {
         let mut line = format!(
-            "checked {} {}: {} good, {} failed",
+            "checked {} {}: {} good",
             self.checked,
             if self.checked == 1 { "world" } else { "worlds" },
             self.checked - self.failed,
-            self.failed
         );
+        if self.hash_only > 0 {
+            let _ = write!(line, " ({} only by hash)", self.hash_only);
+        }
+        let _ = write!(line, ", {} failed", self.failed);
         if !self.batch_faults.is_empty() {
             let _ = write!(line, "; {} batch faults", self.batch_faults.len());
         }
@@ -84,7 +90,12 @@ pub enum DiscoverError {
     NoWorld(PathBuf),
 }
 
-/// The worlds under `paths`, with the batch faults found on the way.
+/// The worlds under `paths`, with the batch faults found on the way. A
+/// batch folder is taken whole: each of its sub-folders is a world (holds
+/// `rse.json`), a leftover of a run cut short, or a fault — a folder that
+/// lost its `rse.json` or never was a world, a link (never followed), a
+/// special file. Hidden entries and plain files (a report saved beside the
+/// worlds, the batch's lock) are not worlds and are let be.
 pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), DiscoverError> {
     let mut worlds = Vec::new();
     let mut faults = Vec::new();
@@ -103,27 +114,48 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
             reason: e.to_string(),
         };
         let mut found = Vec::new();
-        let mut leftovers = Vec::new();
+        let mut strays: Vec<(String, FaultKind)> = Vec::new();
         for entry in std::fs::read_dir(path).map_err(unreadable)? {
             let entry = entry.map_err(unreadable)?;
             let name = entry.file_name().to_string_lossy().into_owned();
-            let is_dir = entry.file_type().map_err(unreadable)?.is_dir();
-            if is_dir && Leftover::world_of(&name).is_some() {
-                leftovers.push(name);
-            } else if is_dir && entry.path().join(MANIFEST).exists() {
+            // The entry itself, never a link's target.
+            let kind = entry.file_type().map_err(unreadable)?;
+            let leftover = kind.is_dir() && Leftover::world_of(&name).is_some();
+            if !leftover && (name.starts_with('.') || kind.is_file()) {
+                continue; // not a world, and let be
+            }
+            if leftover {
+                strays.push((name, FaultKind::Leftover));
+            } else if kind.is_dir() && entry.path().join(MANIFEST).symlink_metadata().is_ok() {
                 found.push(entry.path());
+            } else if kind.is_dir() {
+                strays.push((
+                    name,
+                    FaultKind::NotAWorld {
+                        reason: NotAWorld::NoManifest,
+                    },
+                ));
+            } else if kind.is_symlink() {
+                strays.push((
+                    name,
+                    FaultKind::NotAWorld {
+                        reason: NotAWorld::Link,
+                    },
+                ));
+            } else {
+                strays.push((name, FaultKind::NotAFile));
             }
         }
-        if found.is_empty() && leftovers.is_empty() {
+        if found.is_empty() && strays.is_empty() {
             return Err(DiscoverError::NoWorld(path.clone()));
         }
         // By length, then text: world_9999 before world_10000.
         found.sort_by_key(|p| (p.as_os_str().len(), p.clone()));
-        leftovers.sort();
+        strays.sort_by(|a, b| a.0.cmp(&b.0));
         faults.extend(
-            leftovers
+            strays
                 .into_iter()
-                .map(|name| Fault::of(&path.join(name).display().to_string(), FaultKind::Leftover)),
+                .map(|(name, kind)| Fault::of(&path.join(name).display().to_string(), kind)),
         );
         worlds.extend(found);
     }
@@ -162,7 +194,7 @@ fn leftovers_of_world(world: &Path) -> Vec<Fault> {
 /// calling `progress` after each world.
 pub fn check_paths(
     paths: &[PathBuf],
-    options: CheckOptions,
+    options: &CheckOptions,
     progress: &(dyn Fn() + Sync),
 ) -> Result<CheckReport, DiscoverError> {
     let (worlds, mut batch_faults) = discover(paths)?;
@@ -175,10 +207,16 @@ pub fn check_paths(
         })
         .collect();
     batch_faults.extend(duplicates(&worlds, &reports));
+    batch_faults.extend(mixed_recipes(&worlds, &reports));
     let failed = reports.iter().filter(|r| !r.ok).count();
+    let hash_only = reports
+        .iter()
+        .filter(|r| r.ok && !r.hashed_only.is_empty())
+        .count();
     Ok(CheckReport {
         checked: reports.len(),
         failed,
+        hash_only,
         worlds: reports,
         batch_faults,
     })
@@ -203,6 +241,39 @@ fn duplicates(worlds: &[PathBuf], reports: &[WorldReport]) -> Vec<Fault> {
                     of: slot.get().display().to_string(),
                 },
             )),
+        }
+    }
+    faults
+}
+
+/// Worlds of one batch folder made from different recipes (scheme, seed,
+/// options, templates, version): shards written with different seeds into
+/// one folder, or a world copied in from another batch. Each world unlike
+/// the batch's first is named, with the first setting that differs.
+fn mixed_recipes(worlds: &[PathBuf], reports: &[WorldReport]) -> Vec<Fault> {
+    let mut first: BTreeMap<Option<&Path>, (&Path, &Manifest)> = BTreeMap::new();
+    let mut faults = Vec::new();
+    for (world, report) in worlds.iter().zip(reports) {
+        // An atlas is a world of its own recipe, not one of a batch's.
+        let Some(manifest) = report.manifest.as_deref().filter(|m| m.atlas.is_none()) else {
+            continue;
+        };
+        let Some(&(other, theirs)) = first.get(&world.parent()) else {
+            first.insert(world.parent(), (world, manifest));
+            continue;
+        };
+        // The index and name are each world's own; everything else is the batch's.
+        let mut alike = manifest.clone();
+        alike.index = theirs.index;
+        alike.world.clone_from(&theirs.world);
+        if let Some(difference) = what_differs(theirs, &alike) {
+            faults.push(Fault::of(
+                &world.display().to_string(),
+                FaultKind::MixedRecipes {
+                    first: other.display().to_string(),
+                    difference,
+                },
+            ));
         }
     }
     faults

@@ -44,9 +44,34 @@ impl std::fmt::Display for Fault {
     }
 }
 
+/// How a fault quotes text read from a world (a path, a reference):
+/// escaped (no control character or newline reaches a terminal) and cut
+/// to [`EXCERPT_CHARS`] characters. Only text that parsed as a world file's
+/// own format is quoted at all: a file that does not parse may be anyone's.
+pub(crate) fn excerpt(text: &str) -> String {
+    let escaped: String = text.chars().flat_map(char::escape_debug).collect();
+    match escaped.char_indices().nth(EXCERPT_CHARS) {
+        Some((at, _)) => format!("{}…", &escaped[..at]),
+        None => escaped,
+    }
+}
+
+/// The most characters of a world's text a fault quotes.
+pub const EXCERPT_CHARS: usize = 60;
+
 /// The 1-based line of byte `at` in `bytes` (the last line past the end).
 pub(crate) fn line_of(bytes: &[u8], at: usize) -> usize {
     bytes[..at.min(bytes.len())].split(|&b| b == b'\n').count()
+}
+
+/// Why a sub-folder of a batch folder is not a world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NotAWorld {
+    /// A folder without `rse.json`: a world that lost it, or anything else.
+    NoManifest,
+    /// A symbolic link: never followed.
+    Link,
 }
 
 /// The kinds of fault. In JSON, `kind` is the variant's snake-case name and
@@ -64,6 +89,13 @@ pub enum FaultKind {
     /// A symbolic link or other non-regular file: `rse` writes none, and
     /// following one could read outside the world.
     NotAFile,
+    /// A world file with more than one hard link: another name for it may
+    /// lie outside the world (anyone's file), so it is not read. `rse`
+    /// writes every file once.
+    HardLinked {
+        /// Its number of links.
+        links: u64,
+    },
     /// A file larger than any world's can be; refused before reading.
     TooLarge {
         /// Its size, bytes.
@@ -81,6 +113,26 @@ pub enum FaultKind {
     BadManifest {
         /// What the JSON reader said.
         reason: String,
+    },
+    /// Rebuilding the world `rse.json` describes would cost more than
+    /// `check`'s budget (`check --budget F` raises it): not rebuilt.
+    OverBudget {
+        /// Cells of the world.
+        cells: u64,
+        /// Memory the rebuild would take, bytes.
+        bytes: u64,
+        /// The memory budget, bytes.
+        bytes_budget: u64,
+        /// Cell visits the rebuild would cost, at most.
+        visits: u64,
+        /// The visit budget.
+        visits_budget: u64,
+    },
+    /// Files of the world could be compared only with their hashes in
+    /// `rse.json` (`check --strict` fails such a world).
+    HashOnly {
+        /// How many.
+        files: usize,
     },
     /// The scheme recorded in `rse.json` does not load.
     BadScheme {
@@ -184,6 +236,19 @@ pub enum FaultKind {
     /// A temporary folder left by a run (a batch, an atlas, a single world)
     /// that was cut short.
     Leftover,
+    /// A sub-folder of a batch folder that is not a world.
+    NotAWorld {
+        /// Why not.
+        reason: NotAWorld,
+    },
+    /// A world of a batch folder made from another recipe than the
+    /// batch's first world (shards of different seeds in one folder).
+    MixedRecipes {
+        /// The batch's first world.
+        first: String,
+        /// The first setting that differs, in words.
+        difference: String,
+    },
     /// Two world folders of one batch are the same world.
     Duplicate {
         /// The other folder.
@@ -192,12 +257,17 @@ pub enum FaultKind {
 }
 
 impl std::fmt::Display for FaultKind {
+    #[allow(clippy::too_many_lines)] // one short arm per kind
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             FaultKind::Unreadable { reason } => write!(f, "cannot be read: {reason}"),
             FaultKind::NotAFile => {
                 f.write_str("is a link or special file, not a regular file (not followed)")
             }
+            FaultKind::HardLinked { links } => write!(
+                f,
+                "has {links} hard links: another name for it may be outside the world (not read; rse writes each file once)"
+            ),
             FaultKind::TooLarge { bytes, cap } => write!(
                 f,
                 "is {bytes} bytes, over the cap of {cap} for this world (not read)"
@@ -269,6 +339,34 @@ impl std::fmt::Display for FaultKind {
                 "a temporary folder of a run that was cut short: rerun it to finish (it removes the folder)",
             ),
             FaultKind::Duplicate { of } => write!(f, "the same world (seed, index) as {of}"),
+            FaultKind::OverBudget {
+                cells,
+                bytes,
+                bytes_budget,
+                visits,
+                visits_budget,
+            } => write!(
+                f,
+                "asks for a world of {cells} cells whose rebuild would take {} MiB and {visits} cell visits, over check's budget of {} MiB and {visits_budget} visits: not rebuilt (check --budget F allows F times as much)",
+                bytes >> 20,
+                bytes_budget >> 20
+            ),
+            FaultKind::HashOnly { files } => write!(
+                f,
+                "{files} files could be compared only with their hashes in rse.json (rendered from templates this check does not have: give them with --template DIR); --strict fails such a world"
+            ),
+            FaultKind::NotAWorld {
+                reason: NotAWorld::NoManifest,
+            } => f.write_str(
+                "is in a batch folder but is not a world: it holds no rse.json (lost, or never a world)",
+            ),
+            FaultKind::NotAWorld {
+                reason: NotAWorld::Link,
+            } => f.write_str("is a link in a batch folder, not a world folder (not followed)"),
+            FaultKind::MixedRecipes { first, difference } => write!(
+                f,
+                "was made from another recipe than {first}, the batch's first world: {difference}"
+            ),
         }
     }
 }

@@ -1,13 +1,14 @@
-//! A world folder as `check` sees it: its regular files, listed without
-//! following any link, read only by their listed names and only up to a
-//! cap, so nothing outside the folder is ever read and no file is read
-//! whole before its size is known.
+//! A world folder as `check` sees it: opened once, its regular files
+//! listed and read through that descriptor without following any link
+//! ([`OpenFolder`]), only by their listed names and only up to a cap, so
+//! nothing outside the folder is ever read, no special file is waited on,
+//! and no file is read whole before its size is known.
 
 use std::collections::BTreeMap;
-use std::io::Read as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub use rse_world::inside;
+use rse_world::{Listed, OpenFolder, ReadError};
 
 use crate::fault::{Fault, FaultKind};
 
@@ -15,80 +16,44 @@ use crate::fault::{Fault, FaultKind};
 /// with their sizes.
 #[derive(Debug)]
 pub struct Folder {
-    root: PathBuf,
+    open: Option<OpenFolder>,
     sizes: BTreeMap<String, u64>,
 }
 
 impl Folder {
     /// Lists `root`. Links and special files are faults and are left out;
-    /// so is anything that cannot be read. Never follows a link.
+    /// so is anything that cannot be read. Never follows a link below
+    /// `root`.
     pub fn list(root: &Path) -> (Folder, Vec<Fault>) {
         let mut folder = Folder {
-            root: root.to_path_buf(),
+            open: None,
             sizes: BTreeMap::new(),
         };
-        let mut faults = Vec::new();
-        folder.walk(root, "", &mut faults);
-        (folder, faults)
-    }
-
-    fn walk(&mut self, dir: &Path, prefix: &str, faults: &mut Vec<Fault>) {
-        let entries = match std::fs::read_dir(dir) {
-            Ok(entries) => entries,
+        let open = match OpenFolder::open(root, true) {
+            Ok(open) => open,
             Err(e) => {
-                let at = prefix.trim_end_matches('/');
-                faults.push(Fault::new(
-                    (!at.is_empty()).then_some(at),
-                    FaultKind::Unreadable {
-                        reason: e.to_string(),
-                    },
-                ));
-                return;
+                let reason = e.to_string();
+                return (
+                    folder,
+                    vec![Fault::new(None, FaultKind::Unreadable { reason })],
+                );
             }
         };
-        let mut entries: Vec<_> = entries.collect();
-        entries.sort_by_key(|e| e.as_ref().ok().map(std::fs::DirEntry::file_name));
-        for entry in entries {
-            let entry = match entry {
-                Ok(entry) => entry,
-                Err(e) => {
-                    faults.push(Fault::new(
-                        None,
-                        FaultKind::Unreadable {
-                            reason: e.to_string(),
-                        },
-                    ));
-                    continue;
+        let mut faults = Vec::new();
+        for (path, listed) in open.list() {
+            let at = (!path.is_empty()).then_some(path.as_str());
+            match listed {
+                Listed::File { size, .. } => {
+                    folder.sizes.insert(path, size);
                 }
-            };
-            let name = entry.file_name();
-            let Some(name) = name.to_str() else {
-                faults.push(Fault::of(
-                    &format!("{prefix}{}", name.to_string_lossy()),
-                    FaultKind::Unreadable {
-                        reason: "the file name is not UTF-8".to_owned(),
-                    },
-                ));
-                continue;
-            };
-            let relative = format!("{prefix}{name}");
-            // `symlink_metadata` describes the link itself, never its target.
-            match std::fs::symlink_metadata(entry.path()) {
-                Ok(meta) if meta.is_dir() => {
-                    self.walk(&entry.path(), &format!("{relative}/"), faults);
+                Listed::NotAFile => faults.push(Fault::new(at, FaultKind::NotAFile)),
+                Listed::Unreadable(reason) => {
+                    faults.push(Fault::new(at, FaultKind::Unreadable { reason }));
                 }
-                Ok(meta) if meta.is_file() => {
-                    self.sizes.insert(relative, meta.len());
-                }
-                Ok(_) => faults.push(Fault::of(&relative, FaultKind::NotAFile)),
-                Err(e) => faults.push(Fault::of(
-                    &relative,
-                    FaultKind::Unreadable {
-                        reason: e.to_string(),
-                    },
-                )),
             }
         }
+        folder.open = Some(open);
+        (folder, faults)
     }
 
     /// The listed files' paths, sorted.
@@ -101,31 +66,25 @@ impl Folder {
         self.sizes.contains_key(path)
     }
 
-    /// The bytes of the listed file `path`, if it is at most `cap` bytes.
-    /// The size is checked before reading, and reading stops past the cap
-    /// should the file have grown since it was listed.
+    /// The bytes of the listed file `path`, if it is at most `cap` bytes
+    /// and this folder's alone: a file with another hard link may be
+    /// anyone's, and is a fault, not read. Opened without following a
+    /// link, checked to be a regular file and read from that descriptor,
+    /// never past the cap, should it have changed since it was listed.
     pub fn read(&self, path: &str, cap: u64) -> Result<Vec<u8>, FaultKind> {
-        let Some(&size) = self.sizes.get(path) else {
+        let (Some(open), true) = (&self.open, self.has(path)) else {
             return Err(FaultKind::Missing);
         };
-        if size > cap {
-            return Err(FaultKind::TooLarge { bytes: size, cap });
+        match open.read(path, cap) {
+            Ok(file) if file.links > 1 => Err(FaultKind::HardLinked { links: file.links }),
+            Ok(file) => Ok(file.bytes),
+            Err(ReadError::Missing) => Err(FaultKind::Missing),
+            Err(ReadError::NotAFile) => Err(FaultKind::NotAFile),
+            Err(ReadError::TooLarge { bytes, cap }) => Err(FaultKind::TooLarge { bytes, cap }),
+            Err(ReadError::Io(e)) => Err(FaultKind::Unreadable {
+                reason: e.to_string(),
+            }),
         }
-        let unreadable = |e: std::io::Error| FaultKind::Unreadable {
-            reason: e.to_string(),
-        };
-        let file = std::fs::File::open(self.root.join(path)).map_err(unreadable)?;
-        let mut bytes = Vec::with_capacity(size as usize);
-        file.take(cap.saturating_add(1))
-            .read_to_end(&mut bytes)
-            .map_err(unreadable)?;
-        if bytes.len() as u64 > cap {
-            return Err(FaultKind::TooLarge {
-                bytes: bytes.len() as u64,
-                cap,
-            });
-        }
-        Ok(bytes)
     }
 }
 

@@ -12,7 +12,7 @@
 //!
 //! ```no_run
 //! use rse_verify::{CheckOptions, check_world};
-//! let report = check_world("out/world_0000".as_ref(), CheckOptions::default());
+//! let report = check_world("out/world_0000".as_ref(), &CheckOptions::default());
 //! for fault in &report.faults {
 //!     eprintln!("{}: {fault}", report.world);
 //! }
@@ -28,7 +28,7 @@ mod terrain;
 mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
-pub use fault::{Fault, FaultKind};
+pub use fault::{Fault, FaultKind, NotAWorld};
 pub use physics::PHYSICS;
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
 pub use world::{CheckOptions, WorldReport, check_world};

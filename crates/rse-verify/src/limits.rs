@@ -2,10 +2,9 @@
 //! or damaged world from making `check` read, allocate or loop without
 //! bound; each is far above what any world `rse` writes can need.
 
-/// `rse.json` larger than this is refused before it is read, bytes. A
-/// manifest holds the scheme, the drawn obstacles and one hash per file:
-/// kilobytes for any real scheme.
-pub const MAX_MANIFEST_BYTES: u64 = 16 << 20;
+/// `rse.json` larger than this is refused before it is read, bytes (a
+/// batch rerun reads it with the same cap).
+pub use rse_world::MAX_MANIFEST_BYTES;
 
 /// A file `check` cannot regenerate (a user template's output) may hold at
 /// most this many bytes per cell of the world's grid, plus
@@ -22,9 +21,27 @@ pub const FIXED_FILE_BYTES: u64 = 64 << 20;
 /// do) could be overrun by a file nesting thousands.
 pub const MAX_XML_DEPTH: usize = 256;
 
+/// An OBJ file with more `o` and `g` statements than this is a fault,
+/// not parsed: the reader makes a model of each, tens of times the bytes
+/// of the line. Ours have one.
+pub const MAX_OBJ_OBJECTS: usize = 1024;
+
 /// Relative tolerance of lengths and volumes read back from a mesh file:
 /// OBJ coordinates are printed from `f32`, about 7 significant digits.
 pub const MESH_RELATIVE_TOLERANCE: f64 = 1e-5;
+
+/// The cell visits one world's rebuild may cost under `check`'s default
+/// budget ([`rse_world::RebuildCost`]): some 10 s on one core of the
+/// development machine, a hundred times a 1000×1000 world with every
+/// target. `check --budget F` allows F times as much.
+pub const REBUILD_VISITS: u64 = 2_000_000_000;
+
+/// The memory one world's rebuild may take under the default budget: the
+/// memory available (`MemAvailable`) shared by the worlds checked at once,
+/// the rule a batch starts by; 8 GiB where that cannot be read.
+pub fn rebuild_bytes(at_once: usize) -> u64 {
+    rse_world::available_bytes().unwrap_or(8 << 30) / at_once.max(1) as u64
+}
 
 /// The byte cap of a file that cannot be regenerated, in a world of
 /// `cells` cells.

@@ -6,7 +6,7 @@
 use quick_xml::Reader;
 use quick_xml::events::Event;
 
-use crate::fault::{Fault, FaultKind, line_of};
+use crate::fault::{Fault, FaultKind, excerpt, line_of};
 use crate::folder::{Folder, resolve};
 use crate::limits::MAX_XML_DEPTH;
 
@@ -70,7 +70,7 @@ fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultK
     }
     if reference.starts_with('/') || reference.contains(":\\") {
         return Some(FaultKind::AbsoluteReference {
-            reference: reference.to_owned(),
+            reference: excerpt(reference),
         });
     }
     let target = match reference.strip_prefix("model://") {
@@ -81,11 +81,11 @@ fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultK
     };
     match target {
         None => Some(FaultKind::OutsideWorld {
-            path: reference.to_owned(),
+            path: excerpt(reference),
         }),
         Some(target) if folder.has(&target) => None,
         Some(_) => Some(FaultKind::MissingReference {
-            reference: reference.to_owned(),
+            reference: excerpt(reference),
         }),
     }
 }
@@ -103,7 +103,14 @@ fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
         let start = reader.buffer_position();
         let event = reader
             .read_event()
-            .map_err(|e| (line_at(reader.error_position()), e.to_string()))?;
+            // quick-xml's words quote the text it stumbled on, which may be
+            // anyone's: say where, not what.
+            .map_err(|_| {
+                (
+                    line_at(reader.error_position()),
+                    "is not well-formed XML".to_owned(),
+                )
+            })?;
         let fault = |reason: String| (line_at(start), reason);
         match event {
             Event::DocType(_) => {
@@ -122,11 +129,14 @@ fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
                 }
                 in_reference = matches!(e.local_name().into_inner(), "uri" | "sdf");
                 for attribute in e.attributes() {
-                    let attribute = attribute.map_err(|e| fault(e.to_string()))?;
+                    let attribute = attribute
+                        .map_err(|_| fault("an attribute is not well-formed".to_owned()))?;
                     if matches!(attribute.key.local_name().into_inner(), "file" | "filename") {
                         let value = attribute
                             .normalized_value(quick_xml::XmlVersion::Implicit1_0)
-                            .map_err(|e| fault(e.to_string()))?;
+                            .map_err(|_| {
+                                fault("an attribute value is not well-formed".to_owned())
+                            })?;
                         found.push(value.into_owned());
                     }
                 }

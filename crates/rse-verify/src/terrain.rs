@@ -3,10 +3,10 @@
 //! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
 use rse_core::mesh::invariants::{bounding_box, faults as mesh_faults, volume};
-use rse_core::{Heightmap, Terrain};
+use rse_core::{Heightmap, HeightmapCsvError, Terrain};
 
 use crate::fault::FaultKind;
-use crate::limits::MESH_RELATIVE_TOLERANCE;
+use crate::limits::{MAX_OBJ_OBJECTS, MESH_RELATIVE_TOLERANCE};
 
 /// Why `heightmap.csv` (its `bytes`) is not `terrain`'s heightmap; `None`
 /// when it is, or when it differs only in format (the byte comparison
@@ -18,6 +18,12 @@ pub fn heightmap_fault(bytes: &[u8], terrain: &Terrain) -> Option<FaultKind> {
     };
     let map = match Heightmap::from_csv(text) {
         Ok(map) => map,
+        // Where, not what: a value that is no height may be anyone's text.
+        Err(HeightmapCsvError::NotAHeight { line, column, .. }) => {
+            return bad(format!(
+                "line {line}, column {column} is not a height in steps"
+            ));
+        }
         Err(e) => return bad(e.to_string()),
     };
     let want = terrain.heightmap();
@@ -61,6 +67,10 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
     let bad = |reason: String| FaultKind::BadObj { reason };
     // tobj skips lines it does not know: garbage would read as an empty
     // mesh. Every line must be one of the statements of a polygon OBJ.
+    // tobj also makes a model of every `o`/`g` line, each with its own
+    // buffers: a file of nothing else costs tens of times its size, so
+    // there may be few (ours have one).
+    let mut objects = 0usize;
     for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let keyword = line
             .split(u8::is_ascii_whitespace)
@@ -80,12 +90,18 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
             b"p",
         ]
         .contains(&keyword);
+        if keyword == b"o" || keyword == b"g" {
+            objects += 1;
+            if objects > MAX_OBJ_OBJECTS {
+                return Err(bad(format!(
+                    "line {}: more than {MAX_OBJ_OBJECTS} objects and groups (ours have one)",
+                    i + 1
+                )));
+            }
+        }
         if !(keyword.is_empty() || keyword.starts_with(b"#") || known) {
-            return Err(bad(format!(
-                "line {}: `{}` is not an OBJ statement",
-                i + 1,
-                String::from_utf8_lossy(&keyword[..keyword.len().min(20)])
-            )));
+            // Not quoted: a line that is no OBJ may be anyone's text.
+            return Err(bad(format!("line {} is not an OBJ statement", i + 1)));
         }
     }
     let options = tobj::LoadOptions {

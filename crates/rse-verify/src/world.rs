@@ -6,25 +6,51 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
+use std::sync::Arc;
 
 use rse_core::Terrain;
 #[cfg(feature = "physics")]
 use rse_physics::PhysicsReport;
-use rse_world::{MANIFEST, Manifest, RebuildError, Rebuilt, Templates, sha256_hex};
+use rse_world::{MANIFEST, Manifest, RebuildCost, RebuildError, Rebuilt, Templates, sha256_hex};
 use serde::Serialize;
 
-use crate::fault::{Fault, FaultKind, line_of};
+use crate::fault::{Fault, FaultKind, excerpt, line_of};
 use crate::folder::{Folder, inside};
-use crate::limits::{MAX_MANIFEST_BYTES, file_cap};
+use crate::limits::{MAX_MANIFEST_BYTES, REBUILD_VISITS, file_cap, rebuild_bytes};
 use crate::{references, terrain};
 
-/// What to check beyond the static checks.
-#[derive(Debug, Clone, Copy, Default)]
+/// What to check beyond the static checks, and with what.
+#[derive(Debug, Clone)]
 pub struct CheckOptions {
     /// Run the rapier physics smoke test on the terrain. A build without
     /// the `physics` feature ([`PHYSICS`](crate::PHYSICS) is `false`)
     /// reports a fault instead.
     pub physics: bool,
+    /// Fail a world any of whose files could be compared only with its
+    /// hash in `rse.json` (rendered from templates this check does not
+    /// have): what such a world proves is only that its files are the ones
+    /// it lists.
+    pub strict: bool,
+    /// The templates to rebuild worlds with: ours (`None`), or ours
+    /// overlaid by a user's folder (`check --template DIR`), so that worlds
+    /// made with that folder are compared byte for byte too.
+    pub templates: Option<Arc<Templates>>,
+    /// The rebuild budget, as a multiple of the default
+    /// ([`REBUILD_VISITS`](crate::limits::REBUILD_VISITS) cell visits and
+    /// the memory available per world checked at once): a world whose
+    /// recipe costs more is a fault, not rebuilt.
+    pub budget: f64,
+}
+
+impl Default for CheckOptions {
+    fn default() -> Self {
+        CheckOptions {
+            physics: false,
+            strict: false,
+            templates: None,
+            budget: 1.0,
+        }
+    }
 }
 
 /// What was found in one world.
@@ -45,6 +71,10 @@ pub struct WorldReport {
     /// The world's index in its batch, when `rse.json` could be read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub index: Option<u64>,
+    /// The manifest, when it could be read: the batch compares its worlds'
+    /// recipes with it.
+    #[serde(skip)]
+    pub manifest: Option<Box<Manifest>>,
     /// The physics smoke test of each exact collider the world's simulators
     /// load, when asked for and the terrain could be rebuilt.
     #[cfg(feature = "physics")]
@@ -55,7 +85,7 @@ pub struct WorldReport {
 /// Checks the world folder `path`. Never panics on what is in the folder,
 /// reads nothing outside it, and reads no file larger than a cap
 /// (`limits`).
-pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
+pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
     let (folder, mut faults) = Folder::list(path);
     let mut report = WorldReport {
         world: path.display().to_string(),
@@ -64,6 +94,7 @@ pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
         hashed_only: Vec::new(),
         seed: None,
         index: None,
+        manifest: None,
         #[cfg(feature = "physics")]
         physics: Vec::new(),
     };
@@ -83,6 +114,15 @@ pub fn check_world(path: &Path, options: CheckOptions) -> WorldReport {
             report.seed = Some(manifest.seed);
             report.index = Some(manifest.index);
             check_against_manifest(&folder, &manifest, options, &mut report, &mut faults);
+            if options.strict && !report.hashed_only.is_empty() {
+                faults.push(Fault::new(
+                    None,
+                    FaultKind::HashOnly {
+                        files: report.hashed_only.len(),
+                    },
+                ));
+            }
+            report.manifest = Some(Box::new(manifest));
         }
     }
     // One fault per file and kind: a mesh named twice is missing once.
@@ -98,15 +138,37 @@ fn read_manifest(folder: &Folder) -> Result<Manifest, FaultKind> {
     let bytes = folder.read(MANIFEST, MAX_MANIFEST_BYTES)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| FaultKind::NotText)?;
     Manifest::from_json(text).map_err(|e| FaultKind::BadManifest {
-        reason: e.to_string(),
+        reason: json_reason(&e),
     })
+}
+
+/// What is wrong with `rse.json`, in serde's words less the text it
+/// quotes from the file (the variant of "unknown variant …", the string
+/// of "invalid type: string …"): that text may be anyone's. A missing
+/// field is ours to name.
+fn json_reason(e: &serde_json::Error) -> String {
+    let words = e.to_string();
+    let words = words
+        .rsplit_once(" at line ")
+        .map_or(words.as_str(), |(words, _)| words);
+    let quoted = words.find(['`', '"']);
+    let said = match quoted {
+        Some(at) if !words.starts_with("missing field") => {
+            let close = words[at + 1..]
+                .find(&words[at..=at])
+                .map_or(words.len(), |end| at + 1 + end + 1);
+            format!("{}…{}", &words[..at], &words[close..])
+        }
+        _ => words.to_owned(),
+    };
+    format!("{said} at line {}, column {}", e.line(), e.column())
 }
 
 /// Every check that needs the manifest.
 fn check_against_manifest(
     folder: &Folder,
     manifest: &Manifest,
-    options: CheckOptions,
+    options: &CheckOptions,
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) {
@@ -116,15 +178,33 @@ fn check_against_manifest(
         faults.push(Fault::of(
             MANIFEST,
             FaultKind::OutsideWorld {
-                path: (*path).clone(),
+                path: excerpt(path),
             },
         ));
     }
+    // `rse.json` is input: what it asks to rebuild is held to a budget
+    // before anything is built.
+    match manifest.rebuild_cost() {
+        Ok(cost) => {
+            if let Some(kind) = over_budget(cost, options.budget) {
+                faults.push(Fault::of(MANIFEST, kind));
+                return;
+            }
+        }
+        Err(e) => {
+            faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
+            return;
+        }
+    }
+    let templates = options
+        .templates
+        .as_deref()
+        .unwrap_or_else(|| Templates::builtin_shared());
     let Rebuilt {
         terrain,
         files: expected,
         hashed_only,
-    } = match manifest.rebuild(Templates::builtin_shared()) {
+    } = match manifest.rebuild(templates) {
         Ok(rebuilt) => rebuilt,
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
@@ -134,9 +214,10 @@ fn check_against_manifest(
     let cells = u64::from(terrain.grid().nx) * u64::from(terrain.grid().ny);
     let mut contents: BTreeMap<&str, Vec<u8>> = BTreeMap::new();
     for (path, want) in &expected {
-        // A file longer than the rebuilt one is read up to the cap all the
-        // same, so the checks below can say what is wrong with it.
-        match folder.read(path, file_cap(cells).max(want.len() as u64)) {
+        // No more is read than the rebuilt file holds: a longer file is a
+        // fault as it stands, and whatever parses it below (a mesh) parses
+        // at most that much.
+        match folder.read(path, want.len() as u64) {
             Ok(bytes) => {
                 if let Some(kind) = difference(path, &bytes, want, &terrain) {
                     faults.push(Fault::of(path, kind));
@@ -178,7 +259,10 @@ fn check_against_manifest(
     // Copies of one mesh (meshes/ and the Gazebo model's) are read and
     // checked once; each copy gets the faults found.
     let mut checked: Vec<(&[u8], Vec<FaultKind>)> = Vec::new();
-    for (path, bytes) in contents.iter().filter(|(p, _)| is_obj(p)) {
+    // Only the meshes rebuilt here: a terrain mesh is never rendered from a
+    // template, and each is read no longer than ours.
+    let rebuilt_obj = |p: &str| is_obj(p) && expected.contains_key(p);
+    for (path, bytes) in contents.iter().filter(|(p, _)| rebuilt_obj(p)) {
         let bytes = bytes.as_slice();
         if let Some((_, found)) = checked.iter().find(|(b, _)| *b == bytes) {
             faults.extend(found.iter().map(|kind| Fault::of(path, kind.clone())));
@@ -222,6 +306,21 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
     Some(FaultKind::Differs {
         line: text.then(|| line_of(want, byte)),
         byte,
+    })
+}
+
+/// The fault of a world whose rebuild would cost more than `scale` times
+/// the default budget, or `None` when it is within it.
+fn over_budget(cost: RebuildCost, scale: f64) -> Option<FaultKind> {
+    let scaled = |budget: u64| (budget as f64 * scale.max(0.0)).min(u64::MAX as f64) as u64;
+    let bytes_budget = scaled(rebuild_bytes(rayon::current_num_threads()));
+    let visits_budget = scaled(REBUILD_VISITS);
+    (cost.bytes > bytes_budget || cost.visits > visits_budget).then_some(FaultKind::OverBudget {
+        cells: cost.cells,
+        bytes: cost.bytes,
+        bytes_budget,
+        visits: cost.visits,
+        visits_budget,
     })
 }
 

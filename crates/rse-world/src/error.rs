@@ -68,6 +68,13 @@ pub enum Error {
         /// The system's error.
         source: std::io::Error,
     },
+    /// A link or special file (FIFO, device, socket) where a world's file
+    /// or folder is: never followed, opened or replaced.
+    #[error("{} is a link or special file, not a regular file or folder: rse writes neither, and neither follows nor reads one; remove it, or write to another folder", path.display())]
+    NotAFile {
+        /// Where it is.
+        path: PathBuf,
+    },
     /// A world folder already holds something else.
     #[error("{} holds a different world: {reason}", path.display())]
     Conflict {

@@ -3,7 +3,7 @@
 //! batches written in parallel, atomically and resumably.
 //!
 //! Modules, each using only those above it (a test keeps it so):
-//! `digest`, `error`, `tree`, `memory`, `options` → `atlas_record` →
+//! `digest`, `error`, `tree`, `nofollow`, `memory`, `options` → `atlas_record` →
 //! `manifest` → `context` → `templates` → `world` → `files`, `place` →
 //! `folder`, `batch` → `atlas` → `rebuild`.
 //!
@@ -26,6 +26,7 @@ mod files;
 mod folder;
 mod manifest;
 mod memory;
+mod nofollow;
 mod options;
 mod place;
 mod rebuild;
@@ -43,11 +44,12 @@ pub use digest::sha256_hex;
 pub use error::Error;
 pub use files::{mesh_format, write_atomically, write_mesh};
 pub use folder::{place_folder, write_world_at};
-pub use manifest::{MANIFEST, Manifest, TemplateSet, what_differs};
-pub use memory::WORLD_BYTES_PER_CELL;
+pub use manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, TemplateSet, what_differs};
+pub use memory::{WORLD_BYTES_PER_CELL, available_bytes};
+pub use nofollow::{FileBytes, Listed, OpenFolder, ReadError};
 pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
 pub use place::{Leftover, Outcome, place_world};
-pub use rebuild::{RebuildError, Rebuilt};
+pub use rebuild::{FILE_VISITS_PER_CELL, RebuildCost, RebuildError, Rebuilt};
 pub use templates::Templates;
 pub use tree::{inside, list_files};
 pub use world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

@@ -13,6 +13,11 @@ use crate::options::{Target, WorldOptions};
 /// The manifest's file name in a world folder.
 pub const MANIFEST: &str = "rse.json";
 
+/// `rse.json` larger than this is refused before it is read, bytes. A
+/// manifest holds the scheme, the drawn obstacles and one hash per file:
+/// kilobytes for any real scheme.
+pub const MAX_MANIFEST_BYTES: u64 = 16 << 20;
+
 /// The contents of `rse.json`.
 ///
 /// Keys are written in field order; `options` is flattened into the

@@ -33,7 +33,7 @@ pub(crate) fn check_memory_for(cells: u64, at_once: u64) -> Result<(), Error> {
 
 /// `MemAvailable` of `/proc/meminfo`, bytes; `None` where it cannot be
 /// read (not Linux).
-fn available_bytes() -> Option<u64> {
+pub fn available_bytes() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     parse_meminfo(&text)
 }

@@ -9,8 +9,8 @@ use std::path::Path;
 
 use crate::digest::sha256_hex;
 use crate::error::Error;
-use crate::manifest::{MANIFEST, Manifest, what_differs};
-use crate::tree::list_files;
+use crate::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, what_differs};
+use crate::nofollow::{Listed, OpenFolder, ReadError};
 use crate::world::WorldFiles;
 
 /// What happened to one world.
@@ -76,28 +76,58 @@ pub(crate) fn remove_leftovers(parent: &Path, mine: impl Fn(&str) -> bool) -> Re
     Ok(())
 }
 
-/// An exclusive lock on `what` in the folder `out` (a lock file in the
-/// system's temp folder, named after both), or `busy()` when another run
-/// holds it. Dropping the file releases it; so does the process dying.
+/// An exclusive lock on `what` in the folder `out`, or `busy()` when
+/// another run holds it. The lock file lives in `out` itself
+/// (`.rse-<hash of what>.lock`, hidden, never a world): anyone who can
+/// write the worlds can take it, no one else can, and nothing is made in
+/// the shared temporary folder. It is created without following a link
+/// (a link planted there is an error, never written through) and kept
+/// after the run: removing it could let two runs hold two locks. Dropping
+/// the file releases it; so does the process dying.
 pub(crate) fn lock_in(
     out: &Path,
     what: &str,
     busy: impl FnOnce() -> Error,
 ) -> Result<std::fs::File, Error> {
-    let canonical = out.canonicalize().map_err(Error::io("read", out))?;
-    let key = sha256_hex(canonical.as_os_str().as_encoded_bytes());
-    let what = sha256_hex(what.as_bytes());
-    let path = std::env::temp_dir().join(format!("rse-batch-{}-{}.lock", &key[..16], &what[..16]));
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&path)
-        .map_err(Error::io("create", &path))?;
+    let path = out.join(format!(".rse-{}.lock", &sha256_hex(what.as_bytes())[..16]));
+    let file = create_no_follow(&path).map_err(|e| match e.raw_os_error() {
+        // ELOOP: the name is a link.
+        #[cfg(unix)]
+        Some(code) if code == rustix::io::Errno::LOOP.raw_os_error() => {
+            Error::NotAFile { path: path.clone() }
+        }
+        _ => Error::io("create", &path)(e),
+    })?;
     match file.try_lock() {
         Ok(()) => Ok(file),
         Err(std::fs::TryLockError::WouldBlock) => Err(busy()),
         Err(std::fs::TryLockError::Error(e)) => Err(Error::io("lock", &path)(e)),
+    }
+}
+
+/// Opens `path` for writing, creating it if needed, refusing a link.
+fn create_no_follow(path: &Path) -> std::io::Result<std::fs::File> {
+    #[cfg(unix)]
+    {
+        use rustix::fs::{Mode, OFlags};
+        let flags =
+            OFlags::WRONLY | OFlags::CREATE | OFlags::NOFOLLOW | OFlags::NONBLOCK | OFlags::CLOEXEC;
+        let fd = rustix::fs::open(path, flags, Mode::from_raw_mode(0o644))?;
+        let file = std::fs::File::from(fd);
+        // Not a FIFO or device planted under the name: those would be
+        // "locked" without being ours.
+        if !file.metadata()?.is_file() {
+            return Err(std::io::Error::other("not a regular file"));
+        }
+        Ok(file)
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(path)
     }
 }
 
@@ -161,15 +191,28 @@ fn write_tree(root: &Path, world: &WorldFiles) -> Result<(), Error> {
 /// How the folder `dest` differs from `world`, or `None` if it holds
 /// exactly its files with exactly their bytes: the setting its `rse.json`
 /// records differently when there is one (`targets gazebo there,
-/// gazebo,mujoco now`), else the first file that differs.
+/// gazebo,mujoco now`), else the first file that differs. Read by
+/// descriptor ([`OpenFolder`]), no file past the size of ours: a link or
+/// special file anywhere in it stops the run with its path.
 fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
-    let Some(file) = file_difference(dest, world)? else {
+    let meta = std::fs::symlink_metadata(dest).map_err(Error::io("read", dest))?;
+    if meta.is_file() {
+        return Ok(Some("not a folder".to_owned()));
+    }
+    if !meta.is_dir() {
+        return Err(Error::NotAFile {
+            path: dest.to_path_buf(),
+        });
+    }
+    let folder = OpenFolder::open(dest, false).map_err(|e| refused(dest, "", e))?;
+    let Some(file) = file_difference(&folder, world)? else {
         return Ok(None);
     };
     let manifest = |bytes: &[u8]| serde_json::from_slice::<Manifest>(bytes).ok();
-    let there = std::fs::read(dest.join(MANIFEST))
+    let there = folder
+        .read(MANIFEST, MAX_MANIFEST_BYTES)
         .ok()
-        .and_then(|b| manifest(&b));
+        .and_then(|file| manifest(&file.bytes));
     let now = world.files.get(MANIFEST).and_then(|b| manifest(b));
     Ok(Some(match (there, now) {
         (Some(there), Some(now)) => what_differs(&there, &now).unwrap_or_else(|| {
@@ -179,28 +222,49 @@ fn difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> 
     }))
 }
 
-/// The first file of the folder `dest` that is not `world`'s, or `None`.
-fn file_difference(dest: &Path, world: &WorldFiles) -> Result<Option<String>, Error> {
-    if !dest.is_dir() {
-        return Ok(Some("not a folder".to_owned()));
-    }
-    for path in &list_files(dest).map_err(Error::io("read", dest))? {
-        if !world.files.contains_key(path) {
-            return Ok(Some(format!("unexpected file {path}")));
+/// The first file of `folder` that is not `world`'s, or `None`.
+fn file_difference(folder: &OpenFolder, world: &WorldFiles) -> Result<Option<String>, Error> {
+    let dest = folder.path();
+    for (path, listed) in folder.list() {
+        match listed {
+            Listed::File { .. } if world.files.contains_key(&path) => {}
+            Listed::File { .. } => return Ok(Some(format!("unexpected file {path}"))),
+            Listed::NotAFile => {
+                return Err(Error::NotAFile {
+                    path: dest.join(path),
+                });
+            }
+            Listed::Unreadable(reason) => {
+                return Err(Error::io("read", dest.join(path))(std::io::Error::other(
+                    reason,
+                )));
+            }
         }
     }
     for (path, bytes) in &world.files {
-        let file = dest.join(path);
-        match std::fs::read(&file) {
-            Ok(on_disk) if on_disk == *bytes => {}
-            Ok(_) => return Ok(Some(format!("{path} differs"))),
-            Err(e) if e.kind() == ErrorKind::NotFound => {
-                return Ok(Some(format!("{path} is missing")));
-            }
-            Err(e) => return Err(Error::io("read", file)(e)),
+        // A longer file differs: read no more of it than ours holds.
+        match folder.read(path, bytes.len() as u64) {
+            Ok(file) if file.bytes == *bytes => {}
+            Ok(_) | Err(ReadError::TooLarge { .. }) => return Ok(Some(format!("{path} differs"))),
+            Err(ReadError::Missing) => return Ok(Some(format!("{path} is missing"))),
+            Err(e) => return Err(refused(dest, path, e)),
         }
     }
     Ok(None)
+}
+
+/// The error of reading `path` in the world folder `dest`.
+fn refused(dest: &Path, path: &str, e: ReadError) -> Error {
+    let at = if path.is_empty() {
+        dest.to_path_buf()
+    } else {
+        dest.join(path)
+    };
+    match e {
+        ReadError::NotAFile => Error::NotAFile { path: at },
+        ReadError::Io(e) => Error::io("read", at)(e),
+        other => Error::io("read", at)(std::io::Error::other(other.to_string())),
+    }
 }
 
 #[cfg(test)]

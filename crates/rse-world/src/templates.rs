@@ -77,6 +77,16 @@ pub struct Templates {
     digest: String,
 }
 
+impl std::fmt::Debug for Templates {
+    /// The set and its digest: the parsed templates themselves say little.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Templates")
+            .field("set", &self.set())
+            .field("digest", &self.digest())
+            .finish_non_exhaustive()
+    }
+}
+
 impl Templates {
     /// Our own templates (`templates/` of the repository).
     ///

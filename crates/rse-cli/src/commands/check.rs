@@ -19,10 +19,19 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
         );
     }
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    let templates = match &args.template {
+        Some(dir) => Some(std::sync::Arc::new(rse_world::Templates::with_overrides(
+            dir,
+        )?)),
+        None => None,
+    };
     let options = CheckOptions {
         physics: args.physics,
+        strict: args.strict,
+        templates,
+        budget: args.budget.unwrap_or(1.0),
     };
-    let report = check_paths(&args.paths, options, &|| bar.inc(1))?;
+    let report = check_paths(&args.paths, &options, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let mut out = std::io::stdout().lock();
     if args.json {

@@ -64,6 +64,9 @@ class CheckReport:
     batch_faults: list[Fault]
     checked: int
     failed: int
+    hash_only: int = 0
+    """Good worlds some of whose files could be compared only with their
+    hashes in ``rse.json`` (rendered from templates this check did not have)."""
 
     @property
     def ok(self) -> bool:
@@ -79,16 +82,25 @@ def check(
     physics: bool = False,
     *,
     jobs: Optional[int] = None,
+    strict: bool = False,
+    template: Optional[PathLike] = None,
+    budget: float = 1.0,
 ) -> CheckReport:
     """Check world folders, or batch folders of them, as ``rse-gen check``:
     every file rebuilt from ``rse.json`` and compared byte for byte, meshes
     re-read, with ``physics=True`` the rapier smoke test too.
 
+    ``template``: the folder of templates custom worlds were made with, so
+    their files are rebuilt and compared byte for byte too; ``strict``:
+    fail every world some of whose files could be compared only with their
+    hashes; ``budget``: a multiple of the rebuild budget (a world whose
+    ``rse.json`` asks for more is a fault, not rebuilt).
+
     Raises ``NotADirectoryError`` for a path that is not a folder and
     ``ValueError`` for a folder that holds no world.
     """
     paths = [path] if isinstance(path, (str, os.PathLike)) else list(path)
-    raw = json.loads(_check_json(paths, physics, jobs))
+    raw = json.loads(_check_json(paths, physics, jobs, strict, template, budget))
     worlds = [
         WorldReport(
             world=w["world"],
@@ -106,4 +118,5 @@ def check(
         batch_faults=[Fault._from_json(f) for f in raw["batch_faults"]],
         checked=raw["checked"],
         failed=raw["failed"],
+        hash_only=raw["hash_only"],
     )

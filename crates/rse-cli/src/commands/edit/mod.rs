@@ -13,6 +13,13 @@ use crate::ExitStatus;
 use crate::args::{EditArgs, SchemeOverrides};
 use rse_edit::{Editor, PageScheme, api};
 
+/// Requests served at once: one client stalling, or one long preview or
+/// batch, holds one worker while the others go on serving.
+const WORKERS: usize = 4;
+
+/// How long a connection may stay silent in the middle of a request.
+const READ_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(5);
+
 /// The editor's listening socket on 127.0.0.1:`port` (0: a free port).
 ///
 /// Loopback only: the editor reads and writes files for whoever talks to it.
@@ -20,12 +27,17 @@ use rse_edit::{Editor, PageScheme, api};
 /// accepted connection: `tiny_http` writes a response's headers and its body
 /// separately, and with Nagle's algorithm the body then waits for the browser's
 /// delayed ACK of the headers, 40 ms on every preview.
+///
+/// A read timeout is set on it too, handed on the same way: a client that
+/// stalls mid-request (announcing a body it never sends) is dropped after
+/// [`READ_TIMEOUT`] instead of holding a worker for ever.
 fn listener(port: u16) -> std::io::Result<std::net::TcpListener> {
     use socket2::{Domain, Protocol, Socket, Type};
     let socket = Socket::new(Domain::IPV4, Type::STREAM, Some(Protocol::TCP))?;
     // As std's TcpListener::bind does: a restarted editor can take its port back.
     socket.set_reuse_address(true)?;
     socket.set_tcp_nodelay(true)?;
+    socket.set_read_timeout(Some(READ_TIMEOUT))?;
     socket.bind(&std::net::SocketAddr::from(([127, 0, 0, 1], port)).into())?;
     socket.listen(128)?;
     Ok(socket.into())
@@ -61,14 +73,21 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
     if args.open {
         open_in_browser(url.clone());
     }
-    for mut request in server.incoming_requests() {
-        let reply = match http::refusal(&request, port) {
-            Some(refused) => refused,
-            None => route(&editor, &mut request),
-        };
-        // A client that went away is not the editor's problem.
-        let _ = request.respond(reply);
-    }
+    let serve = || {
+        while let Ok(mut request) = server.recv() {
+            let reply = match http::refusal(&request, port) {
+                Some(refused) => refused,
+                None => route(&editor, &mut request),
+            };
+            // A client that went away is not the editor's problem.
+            let _ = request.respond(reply);
+        }
+    };
+    std::thread::scope(|scope| {
+        for _ in 0..WORKERS {
+            scope.spawn(serve);
+        }
+    });
     Ok(ExitStatus::Success)
 }
 
@@ -143,7 +162,8 @@ mod tests {
         assert!(address.ip().is_loopback());
         let _client = TcpStream::connect(address).unwrap();
         let (accepted, _) = listener.accept().unwrap();
-        // The option tiny_http's connections rely on, inherited from the listener.
+        // The options tiny_http's connections rely on, inherited from the listener.
         assert!(accepted.nodelay().unwrap());
+        assert_eq!(accepted.read_timeout().unwrap(), Some(super::READ_TIMEOUT));
     }
 }

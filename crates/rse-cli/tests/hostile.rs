@@ -1,0 +1,228 @@
+//! Hostile input to `batch` and the scheme reader (issue 22): planted
+//! links and FIFOs in a folder a rerun compares, a lock planted as a link,
+//! a file size limit, schemes that look right and are not.
+
+use std::path::Path;
+use std::process::Command;
+
+use super::{rse_gen, stderr, stdout, write_scheme};
+
+fn batch(out: &Path, extra: &[&str]) -> std::process::Output {
+    let out = out.to_str().unwrap();
+    let mut args = vec![
+        "batch",
+        "schemes/six_obstacles.csv",
+        "-o",
+        out,
+        "--amount",
+        "2",
+    ];
+    args.extend_from_slice(extra);
+    rse_gen(&args)
+}
+
+/// Item 3: a rerun compares the worlds already there by descriptor: a
+/// `heightmap.csv` planted as a link to `/dev/zero` (2 GB read before
+/// ENOMEM) or as a FIFO (the batch hung) stops the run with the path.
+#[test]
+fn a_rerun_stops_at_a_planted_link_or_fifo_with_its_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    stdout(&batch(&out, &[]));
+    let planted = out.join("world_0001/heightmap.csv");
+    std::fs::remove_file(&planted).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", &planted).unwrap();
+    let done = batch(&out, &[]);
+    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
+    assert!(
+        stderr(&done).contains("world_0001/heightmap.csv is a link or special file"),
+        "{}",
+        stderr(&done)
+    );
+
+    std::fs::remove_file(&planted).unwrap();
+    assert!(
+        Command::new("mkfifo")
+            .arg(&planted)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let done = batch(&out, &["--force"]);
+    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
+    assert!(
+        stderr(&done).contains("world_0001/heightmap.csv is a link or special file"),
+        "{}",
+        stderr(&done)
+    );
+    // A world folder that is a link is not followed either.
+    std::fs::remove_file(&planted).unwrap();
+    let moved = dir.path().join("elsewhere");
+    std::fs::rename(out.join("world_0001"), &moved).unwrap();
+    std::os::unix::fs::symlink(&moved, out.join("world_0001")).unwrap();
+    let done = batch(&out, &[]);
+    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
+    assert!(
+        stderr(&done).contains("world_0001 is a link or special file"),
+        "{}",
+        stderr(&done)
+    );
+}
+
+/// Item 8: the lock lives in the output folder, hidden, and nothing is
+/// made in the shared temporary folder; a lock planted as a link is
+/// refused, its target never created.
+#[test]
+fn the_lock_lives_with_the_output_and_a_planted_link_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let temp = dir.path().join("tmp");
+    std::fs::create_dir(&temp).unwrap();
+    let out = dir.path().join("out");
+    let run = |out: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_rse-gen"))
+            .args(["batch", "schemes/wall.csv", "--amount", "1", "-o"])
+            .arg(out)
+            .current_dir(super::repo())
+            .env("TMPDIR", &temp)
+            .output()
+            .unwrap()
+    };
+    stdout(&run(&out));
+    assert_eq!(
+        std::fs::read_dir(&temp).unwrap().count(),
+        0,
+        "nothing in the temporary folder"
+    );
+    let locks: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.starts_with(".rse-") && Path::new(n).extension().is_some_and(|e| e == "lock"))
+        .collect();
+    assert_eq!(locks.len(), 1, "{locks:?}");
+    // The batch folder still checks whole: the lock is not a world.
+    let checked = rse_gen(&["check", out.to_str().unwrap()]);
+    assert!(checked.status.success(), "{}", stderr(&checked));
+
+    let lock = out.join(&locks[0]);
+    std::fs::remove_file(&lock).unwrap();
+    let target = dir.path().join("created-through-the-link");
+    std::os::unix::fs::symlink(&target, &lock).unwrap();
+    let done = run(&out);
+    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
+    assert!(
+        stderr(&done).contains("is a link or special file"),
+        "{}",
+        stderr(&done)
+    );
+    assert!(!target.exists(), "the link's target was created");
+}
+
+/// Item 11: under `ulimit -f` the write fails with EFBIG and the batch
+/// stops with the path, exit 2, as on a full disk (it died of SIGXFSZ
+/// without a word).
+#[test]
+fn a_file_size_limit_stops_the_batch_with_the_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let done = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -f 8; exec \"$0\" batch schemes/six_obstacles.csv --target obj -o \"$1\"")
+        .arg(env!("CARGO_BIN_EXE_rse-gen"))
+        .arg(&out)
+        .current_dir(super::repo())
+        .output()
+        .unwrap();
+    assert_eq!(
+        done.status.code(),
+        Some(2),
+        "{:?} {}",
+        done.status,
+        stderr(&done)
+    );
+    let said = stderr(&done);
+    assert!(
+        said.contains("cannot write") && said.contains("too large"),
+        "{said}"
+    );
+}
+
+/// Item 9: a comment spelling a global's name with a slip is an error
+/// with a "did you mean", not a note silently ignored; free text stays a
+/// note.
+#[test]
+fn a_misspelt_global_in_a_comment_is_an_error_with_a_suggestion() {
+    let dir = tempfile::tempdir().unwrap();
+    for (line, near) in [
+        ("# step-height: 0.05", "step_height"),
+        ("# Seeds: 3", "seed"),
+        ("# block size: 0.2", "block_size"),
+    ] {
+        let scheme = write_scheme(
+            dir.path(),
+            &format!("{line}\n# size: 5x5\ntype,height\nrandom,2\n"),
+        );
+        let done = rse_gen(&["heightmap", &scheme]);
+        assert_eq!(done.status.code(), Some(2), "{line}");
+        assert!(
+            stderr(&done).contains(&format!("did you mean `{near}`")),
+            "{line}: {}",
+            stderr(&done)
+        );
+        assert!(stderr(&done).contains("scheme.csv:1"), "{}", stderr(&done));
+    }
+    let free = write_scheme(
+        dir.path(),
+        "# A stepfield for the Husky: run 2\n# size: 5x5\ntype,height\nrandom,2\n",
+    );
+    stdout(&rse_gen(&["heightmap", &free]));
+}
+
+/// Item 9: lengths the mesh cannot hold apart are refused, `-0` is told
+/// as what it is, and a huge field is quoted short.
+#[test]
+fn tiny_lengths_negative_zero_and_huge_fields_are_told_plainly() {
+    let dir = tempfile::tempdir().unwrap();
+    for (global, value) in [
+        ("step_height", "1e-7"),
+        ("base", "1e-320"),
+        ("block_size", "1e-320"),
+    ] {
+        let scheme = write_scheme(
+            dir.path(),
+            &format!("# size: 5x5\n# {global}: {value}\ntype,height\nrandom,2\n"),
+        );
+        let done = rse_gen(&["heightmap", &scheme]);
+        assert_eq!(done.status.code(), Some(2), "{global}");
+        assert!(
+            stderr(&done).contains(global) && stderr(&done).contains("0.001 m"),
+            "{}",
+            stderr(&done)
+        );
+    }
+    let scheme = write_scheme(dir.path(), "# size: 5x5\ntype,height\nrandom,-0\n");
+    let done = rse_gen(&["heightmap", &scheme]);
+    assert_eq!(done.status.code(), Some(2));
+    assert!(
+        !stderr(&done).contains("above the largest"),
+        "{}",
+        stderr(&done)
+    );
+    assert!(
+        stderr(&done).contains("`-0` is not a whole number"),
+        "{}",
+        stderr(&done)
+    );
+
+    let field = "x".repeat(10 << 20);
+    let scheme = write_scheme(
+        dir.path(),
+        &format!("# size: 5x5\ntype,height\nrandom,{field}\n"),
+    );
+    let done = rse_gen(&["heightmap", &scheme]);
+    assert_eq!(done.status.code(), Some(2));
+    assert!(
+        done.stderr.len() < 1000,
+        "{} bytes of stderr",
+        done.stderr.len()
+    );
+}
