@@ -6,6 +6,7 @@
 
 mod common;
 
+use std::fmt::Write as _;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -62,7 +63,7 @@ fn ten_thousand_map_wide_peaks_are_refused_by_the_budget() {
     let world = good_world(dir.path());
     let mut scheme = "# size: 1000x1000\ntype,height,angle,x1,y1\n".to_owned();
     for i in 0..10_000 {
-        scheme.push_str(&format!("peak,60,0.5,{},{}\n", i % 1000, (i * 7) % 1000));
+        writeln!(scheme, "peak,60,0.5,{},{}", i % 1000, (i * 7) % 1000).unwrap();
     }
     edit_manifest(&world, |m| m.scheme = scheme);
     let report = check(&world);
@@ -117,7 +118,7 @@ fn a_million_flat_patches_are_sampled_fast_and_the_forgery_found() {
     let dir = tempfile::tempdir().unwrap();
     let atlas = atlas_world(dir.path(), 200, 4);
     edit_manifest(&atlas, |m| {
-        m.atlas.as_mut().unwrap().flat_patches.count = 1_000_000
+        m.atlas.as_mut().unwrap().flat_patches.count = 1_000_000;
     });
     let report = check(&atlas);
     assert!(!over_budget(&report), "{:#?}", report.faults);
