@@ -254,8 +254,11 @@ fn mixed_recipes(worlds: &[PathBuf], reports: &[WorldReport]) -> Vec<Fault> {
     let mut first: BTreeMap<Option<&Path>, (&Path, &Manifest)> = BTreeMap::new();
     let mut faults = Vec::new();
     for (world, report) in worlds.iter().zip(reports) {
-        // An atlas is a world of its own recipe, not one of a batch's.
-        let Some(manifest) = report.manifest.as_deref().filter(|m| m.atlas.is_none()) else {
+        // An atlas is a world of its own recipe, not one of a batch's; a
+        // world with faults of its own is reported for them, its recipe
+        // not trusted.
+        let manifest = report.manifest.as_deref().filter(|_| report.ok);
+        let Some(manifest) = manifest.filter(|m| m.atlas.is_none()) else {
             continue;
         };
         let Some(&(other, theirs)) = first.get(&world.parent()) else {

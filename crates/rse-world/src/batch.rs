@@ -11,7 +11,7 @@ use rse_core::Scheme;
 use crate::error::Error;
 use crate::memory::check_memory_for;
 use crate::options::{Targets, WorldOptions};
-use crate::place::{Outcome, lock_in, place_world, remove_leftovers};
+use crate::place::{Lock, Outcome, lock_in, place_world, remove_leftovers};
 use crate::templates::Templates;
 use crate::world::build_world;
 
@@ -285,12 +285,12 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
 /// Locks shard `shard` of the output folder `out` for this run, or says
 /// another run holds it: two identical batches at once raced (one renamed
 /// a world onto the other's and failed with "Directory not empty"). The
-/// lock file lives in the system's temporary folder, named by a hash of
-/// `out`'s canonical path, so the output folder holds worlds only (shards
-/// still merge into identical trees). An advisory `flock`: released by the
-/// system when the process ends, however it ends; it guards runs on one
-/// machine (not several machines writing to one network folder).
-fn lock_shard(out: &Path, shard: Shard) -> Result<std::fs::File, Error> {
+/// lock file lives in `out` itself and is removed at the end of the run,
+/// so a finished output folder holds worlds only (shards still merge into
+/// identical trees). An advisory `flock`: released by the system when the
+/// process ends, however it ends; it guards runs on one machine (not
+/// several machines writing to one network folder).
+fn lock_shard(out: &Path, shard: Shard) -> Result<Lock, Error> {
     lock_in(out, &format!("shard-{}-of-{}", shard.k, shard.n), || {
         Error::Busy {
             path: out.to_path_buf(),
@@ -354,7 +354,10 @@ mod tests {
         let elsewhere = tempfile::tempdir().unwrap();
         let _there = lock_shard(elsewhere.path(), whole).unwrap();
         drop(held);
-        let _again = lock_shard(dir.path(), whole).unwrap();
+        let again = lock_shard(dir.path(), whole).unwrap();
+        drop((again, _other));
+        // Released locks leave nothing behind.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         for bad in ["4/4", "1", "a/2", "1/0", "-1/2"] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }

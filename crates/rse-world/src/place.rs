@@ -80,28 +80,67 @@ pub(crate) fn remove_leftovers(parent: &Path, mine: impl Fn(&str) -> bool) -> Re
 /// another run holds it. The lock file lives in `out` itself
 /// (`.rse-<hash of what>.lock`, hidden, never a world): anyone who can
 /// write the worlds can take it, no one else can, and nothing is made in
-/// the shared temporary folder. It is created without following a link
-/// (a link planted there is an error, never written through) and kept
-/// after the run: removing it could let two runs hold two locks. Dropping
-/// the file releases it; so does the process dying.
-pub(crate) fn lock_in(
-    out: &Path,
-    what: &str,
-    busy: impl FnOnce() -> Error,
-) -> Result<std::fs::File, Error> {
+/// the shared temporary folder. It is created without following a link (a
+/// link planted there is an error, never written through), and removed
+/// when the lock is dropped, so a finished run leaves the folder as it
+/// found it but for the worlds; the process dying releases it too (the
+/// file then stays, and the next run takes it over).
+pub(crate) fn lock_in(out: &Path, what: &str, busy: impl FnOnce() -> Error) -> Result<Lock, Error> {
     let path = out.join(format!(".rse-{}.lock", &sha256_hex(what.as_bytes())[..16]));
-    let file = create_no_follow(&path).map_err(|e| match e.raw_os_error() {
-        // ELOOP: the name is a link.
-        #[cfg(unix)]
-        Some(code) if code == rustix::io::Errno::LOOP.raw_os_error() => {
-            Error::NotAFile { path: path.clone() }
+    loop {
+        let file = create_no_follow(&path).map_err(|e| match e.raw_os_error() {
+            // ELOOP: the name is a link.
+            #[cfg(unix)]
+            Some(code) if code == rustix::io::Errno::LOOP.raw_os_error() => {
+                Error::NotAFile { path: path.clone() }
+            }
+            _ => Error::io("create", &path)(e),
+        })?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => return Err(busy()),
+            Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("lock", &path)(e)),
         }
-        _ => Error::io("create", &path)(e),
-    })?;
-    match file.try_lock() {
-        Ok(()) => Ok(file),
-        Err(std::fs::TryLockError::WouldBlock) => Err(busy()),
-        Err(std::fs::TryLockError::Error(e)) => Err(Error::io("lock", &path)(e)),
+        // The holder before us may have removed the file between our open
+        // and our lock: then we hold a lock on a name no one else sees,
+        // and must take the file that is there now.
+        if still_named(&file, &path) {
+            return Ok(Lock { file, path });
+        }
+    }
+}
+
+/// A lock taken by [`lock_in`]: its file is removed, then released, when
+/// dropped.
+#[derive(Debug)]
+pub(crate) struct Lock {
+    file: std::fs::File,
+    path: std::path::PathBuf,
+}
+
+impl Drop for Lock {
+    fn drop(&mut self) {
+        // Removed while still held: a run that opens the name after this
+        // makes a new file, one that opened it before finds it unnamed.
+        let _ = std::fs::remove_file(&self.path);
+        let _ = self.file.unlock();
+    }
+}
+
+/// `true` when `path` still names the open `file` (same device and inode).
+fn still_named(file: &std::fs::File, path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt as _;
+        match (file.metadata(), std::fs::symlink_metadata(path)) {
+            (Ok(open), Ok(named)) => open.dev() == named.dev() && open.ino() == named.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (file, path);
+        true
     }
 }
 
