@@ -17,7 +17,9 @@ seconds=${FUZZ_SECONDS:-12}
 # AddressSanitizer: rse forbids unsafe code, and what it would guard (out
 # of bounds, use after free) is checked by Rust itself; a runaway
 # allocation is still a finding (-rss_limit_mb). Nor cargo-fuzz's one
-# codegen unit: these runs last seconds, the build minutes.
+# codegen unit or opt-level 3 (fuzz/Cargo.toml): these runs last seconds,
+# the build minutes. Overflow checks and debug assertions are on: a size
+# that wraps is a finding.
 # `cargo fuzz run <target>` works on the same layout for longer sessions.
 triple=$(rustc -vV | awk '/^host:/ { print $2 }')
 coverage="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4"

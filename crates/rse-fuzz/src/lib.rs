@@ -233,7 +233,7 @@ pub fn atlas_record(data: &[u8]) {
     let [nx, ny] = options.map_cells([tile.nx, tile.ny]);
     let visits = options.visits(&schemes);
     assert!(
-        visits >= nx.min(u64::MAX / 2),
+        visits >= nx.saturating_mul(ny),
         "the map's cells are visited at least once"
     );
     if visits > MAX_FUZZ_VISITS {
