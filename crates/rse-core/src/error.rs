@@ -240,12 +240,18 @@ pub enum SchemeErrorKind {
     },
 }
 
-/// How an error quotes text from a scheme: escaped (no control character
-/// or newline reaches a terminal) and cut to [`QUOTE_CHARS`] characters, so
-/// a 10 MB field is not echoed whole.
+/// How an error quotes text from a scheme: [`excerpt`] of
+/// [`QUOTE_CHARS`], so a 10 MB field is not echoed whole.
 pub(crate) fn quote(text: &str) -> String {
+    excerpt(text, QUOTE_CHARS)
+}
+
+/// `text` as a message may quote it: escaped (no control character or
+/// newline reaches a terminal) and cut to `chars` characters, with `…`
+/// where it was cut.
+pub fn excerpt(text: &str, chars: usize) -> String {
     let escaped: String = text.chars().flat_map(char::escape_debug).collect();
-    match escaped.char_indices().nth(QUOTE_CHARS) {
+    match escaped.char_indices().nth(chars) {
         Some((at, _)) => format!("{}…", &escaped[..at]),
         None => escaped,
     }

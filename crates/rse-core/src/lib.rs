@@ -52,7 +52,7 @@ mod terrain;
 
 pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
-pub use error::{Error, SchemeError, SchemeErrorKind};
+pub use error::{Error, QUOTE_CHARS, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
 pub use globals::{
     DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,

@@ -45,15 +45,11 @@ impl std::fmt::Display for Fault {
 }
 
 /// How a fault quotes text read from a world (a path, a reference):
-/// escaped (no control character or newline reaches a terminal) and cut
-/// to [`EXCERPT_CHARS`] characters. Only text that parsed as a world file's
-/// own format is quoted at all: a file that does not parse may be anyone's.
+/// [`rse_core::excerpt`], escaped and cut to [`EXCERPT_CHARS`] characters.
+/// Only text that parsed as a world file's own format is quoted at all: a
+/// file that does not parse may be anyone's.
 pub(crate) fn excerpt(text: &str) -> String {
-    let escaped: String = text.chars().flat_map(char::escape_debug).collect();
-    match escaped.char_indices().nth(EXCERPT_CHARS) {
-        Some((at, _)) => format!("{}…", &escaped[..at]),
-        None => escaped,
-    }
+    rse_core::excerpt(text, EXCERPT_CHARS)
 }
 
 /// The most characters of a world's text a fault quotes.

@@ -102,11 +102,7 @@ fn atlas_world(dir: &Path, tile: u32, patches: u32) -> std::path::PathBuf {
     )
     .unwrap();
     let root = dir.join("atlas");
-    for (path, bytes) in &world.files {
-        let path = root.join(path);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, bytes).unwrap();
-    }
+    write_files(&root, &world);
     root
 }
 
@@ -292,11 +288,7 @@ fn worlds_of_different_seeds_in_one_batch_are_a_fault() {
             &Templates::builtin(),
         )
         .unwrap();
-        for (path, bytes) in &world.files {
-            let path = batch.join(&name).join(path);
-            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-            std::fs::write(path, bytes).unwrap();
-        }
+        write_files(&batch.join(&name), &world);
     }
     let report = check_paths(
         std::slice::from_ref(&batch),
@@ -449,11 +441,7 @@ fn a_sound_world_passes_strict() {
         &Templates::builtin(),
     )
     .unwrap();
-    for (path, bytes) in &world.files {
-        let path = dir.path().join("w").join(path);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, bytes).unwrap();
-    }
+    write_files(&dir.path().join("w"), &world);
     let strict = CheckOptions {
         strict: true,
         ..CheckOptions::default()

@@ -350,12 +350,12 @@ mod tests {
         assert!(matches!(busy, Error::Busy { .. }), "{busy}");
         assert!(busy.to_string().contains("another rse-gen batch"), "{busy}");
         // Another shard, or another folder, is free.
-        let _other = lock_shard(dir.path(), Shard::new(1, 2).unwrap()).unwrap();
+        let other = lock_shard(dir.path(), Shard::new(1, 2).unwrap()).unwrap();
         let elsewhere = tempfile::tempdir().unwrap();
         let _there = lock_shard(elsewhere.path(), whole).unwrap();
         drop(held);
         let again = lock_shard(dir.path(), whole).unwrap();
-        drop((again, _other));
+        drop((again, other));
         // Released locks leave nothing behind.
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         for bad in ["4/4", "1", "a/2", "1/0", "-1/2"] {

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use rse_core::Scheme;
 use rse_verify::{CheckOptions, FaultKind, WorldReport, check_world};
-use rse_world::{Manifest, MeshMode, Targets, Templates, WorldOptions, build_world, sha256_hex};
+use rse_world::{
+    Manifest, MeshMode, Targets, Templates, WorldFiles, WorldOptions, build_world, sha256_hex,
+};
 
 pub const ALL: &str = "obj,gazebo,webots,mujoco,urdf,usd";
 
@@ -16,6 +18,15 @@ pub const SCHEME: &str = "# size: 12x10\n# base: 0.05\ntype,height,angle,x1,y1,x
 
 pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Writes the files of `world` under `root`.
+pub fn write_files(root: &Path, world: &WorldFiles) {
+    for (path, bytes) in &world.files {
+        let path = root.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, bytes).unwrap();
+    }
 }
 
 /// Writes world `index` of `scheme` into `dir/name` and returns its path.
@@ -28,11 +39,7 @@ pub fn write_world(dir: &Path, name: &str, scheme: &str, templates: &Templates) 
     };
     let world = build_world(&scheme, 3, 1, name.to_owned(), &options, templates).unwrap();
     let root = dir.join(name);
-    for (path, bytes) in &world.files {
-        let path = root.join(path);
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(path, bytes).unwrap();
-    }
+    write_files(&root, &world);
     root
 }
 
