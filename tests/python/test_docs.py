@@ -48,6 +48,17 @@ def test_the_readme_walk_through_runs_as_written(tmp_path: Path) -> None:
     assert len(list((tmp_path / "out").glob("world_*"))) == 5, "the demo's worlds untouched"
 
 
+def test_the_env_terrains_page_runs_as_written(tmp_path: Path) -> None:
+    """docs/envs.md: its Python blocks, in order, from a folder with the samples."""
+    (tmp_path / "schemes").symlink_to(REPO / "schemes")
+    blocks = python_blocks((REPO / "docs" / "envs.md").read_text())
+    assert blocks
+    script = tmp_path / "envs_page.py"
+    script.write_text("\n\n".join(blocks))
+    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
 def test_the_python_api_page_is_up_to_date() -> None:
     done = subprocess.run(
         [sys.executable, str(REPO / "scripts" / "python_api_docs.py"), "--check"], capture_output=True, text=True

@@ -135,6 +135,10 @@ def test_bad_height_field_input_is_a_clear_error() -> None:
     np.testing.assert_array_equal(low.hfield_data, before)
     with pytest.raises(ValueError, match="shape"):
         terrain.hfield_into(np.empty((3, 3), dtype=np.float32), 2)
+    # A Fortran-ordered buffer of the right shape would be filled transposed.
+    nrow, ncol = terrain.hfield_shape(2)
+    with pytest.raises(ValueError, match="C-contiguous"):
+        terrain.hfield_into(np.empty((ncol, nrow), dtype=np.float32).T, 2)
 
 
 def test_rse_gen_hfield_refuses_a_bad_oversample(tmp_path: Path) -> None:

@@ -208,13 +208,16 @@ fn a_folder_without_worlds_is_a_usage_error() {
     );
 }
 
-/// Every sample scheme, 20 worlds each, through `check --physics`, with
-/// the mesh (obj) and the box set (urdf). Most of the whole suite's time:
-/// plain `cargo test` leaves it out, `make test` runs it
-/// (`--include-ignored`).
+/// Every sample scheme, 12 worlds each (over 300 rapier runs), through
+/// `check --physics`, with the mesh (obj) and the box set (urdf). Most of
+/// the whole suite's time: plain `cargo test` leaves it out, `make test`
+/// runs it (`--include-ignored`). Twelve worlds, not the twenty of
+/// before: 40 s less of `make test` (issue 21), and still every sample
+/// with both colliders on a dozen seeds.
 #[test]
-#[ignore = "slow (85 s): make test runs it with --include-ignored"]
+#[ignore = "slow (50 s): make test runs it with --include-ignored"]
 fn physics_finds_no_error_on_any_sample() {
+    const WORLDS: usize = 12;
     let dir = tempfile::tempdir().unwrap();
     let mut batches = Vec::new();
     for entry in std::fs::read_dir(super::repo().join("schemes")).unwrap() {
@@ -224,7 +227,7 @@ fn physics_finds_no_error_on_any_sample() {
             write_batch(
                 path.to_str().unwrap(),
                 &out,
-                &["--amount", "20", "--target", "obj,urdf"],
+                &["--amount", &WORLDS.to_string(), "--target", "obj,urdf"],
             );
             batches.push(out);
         }
@@ -242,7 +245,7 @@ fn physics_finds_no_error_on_any_sample() {
         .map(|w| format!("{}: {}", w["world"], w["faults"]))
         .collect();
     assert!(failures.is_empty(), "{failures:#?}");
-    assert_eq!(report["checked"], 20 * batches.len());
+    assert_eq!(report["checked"], WORLDS * batches.len());
     for world in report["worlds"].as_array().unwrap() {
         // obj collides the mesh, urdf (by default) the box set: both run.
         let runs = world["physics"].as_array().unwrap();

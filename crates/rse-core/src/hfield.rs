@@ -209,6 +209,21 @@ impl Terrain {
     /// `out[r·ncol + c] = (top of the cell under sample (r, c) − z0) / elevation`,
     /// clamped to `[0, 1]`.
     fn fill_hfield(&self, k: u32, z0: f64, elevation: f64, out: &mut [f32]) {
+        let ncol = self.heightmap().nx() as usize * k as usize;
+        self.fill_hfield_rows(k, z0, elevation, out, ncol);
+    }
+
+    /// [`fill_hfield`](Self::fill_hfield) into rows `stride` samples apart:
+    /// sample `(r, c)` at `out[r·stride + c]`, the rest of each row
+    /// untouched (a tile of a larger field).
+    pub(crate) fn fill_hfield_rows(
+        &self,
+        k: u32,
+        z0: f64,
+        elevation: f64,
+        out: &mut [f32],
+        stride: usize,
+    ) {
         let map = self.heightmap();
         let (k, nx) = (k as usize, map.nx() as usize);
         let ncol = nx * k;
@@ -218,13 +233,14 @@ impl Terrain {
             (((top - z0) / elevation).clamp(0.0, 1.0)) as f32
         };
         for (y, row) in (0..map.ny()).map(|y| (y as usize, map.row(y))) {
-            let first = &mut out[y * k * ncol..(y * k + 1) * ncol];
+            let start = y * k * stride;
+            let first = &mut out[start..start + ncol];
             for (x, &h) in row.iter().enumerate() {
                 first[x * k..(x + 1) * k].fill(value(h));
             }
             // The other k − 1 sample rows of this cell row are copies.
             for j in 1..k {
-                out.copy_within(y * k * ncol..(y * k + 1) * ncol, (y * k + j) * ncol);
+                out.copy_within(start..start + ncol, start + j * stride);
             }
         }
     }

@@ -31,6 +31,7 @@
 
 mod atlas;
 mod difficulty;
+mod env_terrains;
 mod error;
 pub mod export;
 mod generate;
@@ -52,6 +53,7 @@ mod terrain;
 
 pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
+pub use env_terrains::{ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvTerrains, env_world};
 pub use error::{Error, QUOTE_CHARS, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
 pub use globals::{

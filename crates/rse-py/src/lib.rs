@@ -14,6 +14,7 @@ mod atlas;
 mod batch;
 mod check;
 mod cli;
+mod envs;
 mod errors;
 mod options;
 mod scheme;
@@ -45,6 +46,7 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scheme::Scheme>()?;
     m.add_class::<terrain::Terrain>()?;
     m.add_class::<atlas::Atlas>()?;
+    m.add_class::<envs::EnvTerrains>()?;
     m.add_function(wrap_pyfunction!(batch::generate_batch, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;

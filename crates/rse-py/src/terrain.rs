@@ -326,6 +326,11 @@ impl Terrain {
                 "out has shape {shape:?}, but the height field of this terrain at oversample {oversample} is ({nrow}, {ncol})"
             )));
         }
+        // numpy's slice view also takes a Fortran-ordered array, which
+        // would be filled in the wrong order.
+        if !out.is_c_contiguous() {
+            return Err(PyValueError::new_err("out must be C-contiguous"));
+        }
         let mut view = out
             .try_readwrite()
             .map_err(|e| PyValueError::new_err(format!("out: {e}")))?;

@@ -2,7 +2,7 @@
 
 import os
 from collections.abc import Sequence
-from typing import Literal, Optional, Union, final
+from typing import Any, Literal, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -18,6 +18,7 @@ __all__ = [
     "Scheme",
     "Terrain",
     "Atlas",
+    "EnvTerrains",
     "generate_batch",
     "write_world",
     "write_worlds",
@@ -216,6 +217,53 @@ class Atlas:
         mujoco_collider: Optional[_MujocoCollider] = None,
         oversample: Optional[int] = None,
     ) -> str: ...
+
+@final
+class EnvTerrains:
+    def __new__(
+        cls,
+        scheme: Scheme,
+        num_envs: int,
+        oversample: int = 2,
+        seed: Optional[int] = None,
+        difficulty: float = 1.0,
+        layout: Literal["slots", "tiles"] = "slots",
+        *,
+        cols: Optional[int] = None,
+        border: int = 0,
+        env_offset: int = 0,
+        spawn_radius: float = 0.3,
+    ) -> EnvTerrains: ...
+    @property
+    def num_envs(self) -> int: ...
+    @property
+    def samples(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def episode(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def difficulty(self) -> npt.NDArray[np.float64]: ...
+    @difficulty.setter
+    def difficulty(self, values: Union[Sequence[float], npt.NDArray[np.floating]]) -> None: ...
+    @property
+    def origins(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def layout(self) -> Literal["slots", "tiles"]: ...
+    @property
+    def field_shape(self) -> tuple[int, int]: ...
+    @property
+    def hfield_size(self) -> tuple[float, float, float, float]: ...
+    @property
+    def hfield_pos(self) -> tuple[float, float, float]: ...
+    def reset(
+        self,
+        env_ids: Union[Sequence[int], npt.NDArray[np.integer]],
+        difficulty: Union[None, float, Sequence[float], npt.NDArray[np.floating]] = None,
+    ) -> None: ...
+    def terrain(self, env: int) -> Terrain: ...
+    def heights_at(
+        self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike
+    ) -> npt.NDArray[np.float64]: ...
+    def write(self, out: Any, env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None) -> None: ...
 
 def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: float = 1.0

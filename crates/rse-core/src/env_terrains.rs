@@ -1,0 +1,617 @@
+//! Every parallel environment its own terrain, new every episode (docs/envs.md):
+//! the terrains of `num_envs` environments of one scheme, each a pure
+//! function of (scheme, seed, global env id, episode, difficulty), and
+//! their MuJoCo height-field samples written into one caller's buffer —
+//! one slot per environment (a pool of same-shaped height fields, for
+//! simulators that route a field per world) or one tile per environment
+//! of a single shared field (for those with one terrain for all).
+
+use rayon::prelude::*;
+
+use crate::difficulty::Difficulty;
+use crate::generate::generate_at;
+use crate::hfield::{HFieldError, MAX_HFIELD_SAMPLES};
+use crate::scheme::Scheme;
+use crate::spawn::Region;
+use crate::terrain::Terrain;
+
+/// Global environment ids and episodes are each below `2^ENV_BITS`: the
+/// world index of env `g` at episode `k` is `k·2^32 + g` ([`env_world`]).
+pub const ENV_BITS: u32 = 32;
+
+/// The world index (as [`generate_at`] takes it) of global environment
+/// `env` at episode `episode`: `episode·2³² + env`. Distinct for every pair,
+/// so no two environments, on any process, ever share a terrain, and any
+/// episode of any environment can be rebuilt from its global id alone.
+/// `None` when either is `2³²` or more.
+pub fn env_world(env: u64, episode: u64) -> Option<u64> {
+    (env >> ENV_BITS == 0 && episode >> ENV_BITS == 0).then_some((episode << ENV_BITS) | env)
+}
+
+/// Where each environment's samples go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EnvLayout {
+    /// One height field per environment, all of one shape: the buffer is
+    /// `num_envs × nrow × ncol`.
+    Slots,
+    /// One shared field of tiles, `cols` along x, rows along y as many as
+    /// needed, `border` cells of height 0 between tiles and around them;
+    /// environment `e`'s tile is row `e / cols`, column `e % cols`.
+    Tiles {
+        /// Tiles along x.
+        cols: u32,
+        /// Cells of height 0 between and around the tiles.
+        border: u32,
+    },
+}
+
+/// How the terrains of [`EnvTerrains`] are made.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnvOptions {
+    /// Environments.
+    pub num_envs: usize,
+    /// Height-field samples per cell along each axis.
+    pub oversample: u32,
+    /// Base seed of every terrain.
+    pub seed: u64,
+    /// The global id of environment 0 (one process per device: each its
+    /// own range of ids).
+    pub env_offset: u64,
+    /// Slots or tiles.
+    pub layout: EnvLayout,
+    /// The starting difficulty of every environment.
+    pub difficulty: Difficulty,
+    /// Radius of the disc whose highest top an origin stands on, metres.
+    pub spawn_radius: f64,
+}
+
+impl Default for EnvOptions {
+    fn default() -> Self {
+        EnvOptions {
+            num_envs: 1,
+            oversample: 2,
+            seed: 0,
+            env_offset: 0,
+            layout: EnvLayout::Slots,
+            difficulty: Difficulty::FULL,
+            spawn_radius: 0.3,
+        }
+    }
+}
+
+/// Why per-environment terrains cannot be made or reset as asked. Each
+/// names the argument at fault.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EnvError {
+    /// An argument out of its range.
+    #[error("{argument}: {reason}")]
+    Bad {
+        /// The argument, as the Python API names it.
+        argument: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The height field cannot be made.
+    #[error(transparent)]
+    HField(#[from] HFieldError),
+}
+
+fn bad(argument: &'static str, reason: impl Into<String>) -> EnvError {
+    EnvError::Bad {
+        argument,
+        reason: reason.into(),
+    }
+}
+
+/// The terrains of many environments and their height-field samples.
+#[derive(Debug, Clone)]
+pub struct EnvTerrains {
+    scheme: Scheme,
+    options: EnvOptions,
+    terrains: Vec<Terrain>,
+    episodes: Vec<u64>,
+    /// Samples of one environment's field: (rows along y, columns along x).
+    field: (usize, usize),
+    /// The whole buffer: (slots, rows, columns).
+    shape: (usize, usize, usize),
+    /// Tile rows, for the tiles layout.
+    tile_rows: u32,
+    elevation: f64,
+}
+
+impl EnvTerrains {
+    /// The terrains of episode 0 of every environment. Refused, naming the
+    /// argument: no environments, global ids past 2³², an oversample that
+    /// gives a field MuJoCo cannot take, a buffer of more than
+    /// [`MAX_HFIELD_SAMPLES`] per field or 2³² in all, tiles with no column.
+    pub fn new(scheme: Scheme, options: EnvOptions) -> Result<Self, EnvError> {
+        let n = options.num_envs;
+        if n == 0 {
+            return Err(bad("num_envs", "expected 1 or more environments"));
+        }
+        let last = options.env_offset.checked_add(n as u64 - 1);
+        if last.is_none_or(|last| last >> ENV_BITS != 0) {
+            return Err(bad(
+                "env_offset",
+                format!(
+                    "{} + {n} environments run past the largest global id, 2^32 - 1",
+                    options.env_offset
+                ),
+            ));
+        }
+        if !(options.spawn_radius.is_finite() && options.spawn_radius >= 0.0) {
+            return Err(bad("spawn_radius", "expected a length of 0 m or more"));
+        }
+        let grid = scheme.grid();
+        let k = options.oversample;
+        let probe = generate_at(&scheme, options.seed, 0, Difficulty::FULL);
+        let (nrow, ncol) = probe.hfield_shape(k)?;
+        let field = (nrow as usize, ncol as usize);
+        let (shape, tile_rows) = match options.layout {
+            EnvLayout::Slots => ((n, field.0, field.1), 0),
+            EnvLayout::Tiles { cols, border } => {
+                if cols == 0 {
+                    return Err(bad("cols", "expected 1 or more tiles along x"));
+                }
+                let rows = n.div_ceil(cols as usize) as u64;
+                let b = u64::from(border);
+                let side = |tiles: u64, cells: u32| {
+                    tiles
+                        .saturating_mul(u64::from(cells) + b)
+                        .saturating_add(b)
+                        .saturating_mul(u64::from(k))
+                };
+                let (r, c) = (side(rows, grid.ny), side(u64::from(cols), grid.nx));
+                if r.saturating_mul(c) > MAX_HFIELD_SAMPLES {
+                    return Err(bad(
+                        "cols",
+                        format!("a {r}x{c} tile map is more than {MAX_HFIELD_SAMPLES} samples"),
+                    ));
+                }
+                ((1, r as usize, c as usize), rows as u32)
+            }
+        };
+        let total = (shape.0 as u64)
+            .saturating_mul(shape.1 as u64)
+            .saturating_mul(shape.2 as u64);
+        if total > 1 << 32 {
+            return Err(bad(
+                "num_envs",
+                format!("{total} samples in all, more than 2^32 (16 GiB of float32)"),
+            ));
+        }
+        let mut envs = EnvTerrains {
+            elevation: scheme.max_top(),
+            scheme,
+            options,
+            terrains: Vec::new(),
+            episodes: vec![0; n],
+            field,
+            shape,
+            tile_rows,
+        };
+        envs.terrains = (0..n)
+            .into_par_iter()
+            .map(|e| envs.make(e, 0, options.difficulty))
+            .collect();
+        Ok(envs)
+    }
+
+    /// Environment `e`'s terrain at `episode`, at `difficulty`.
+    fn make(&self, e: usize, episode: u64, difficulty: Difficulty) -> Terrain {
+        let world = env_world(self.options.env_offset + e as u64, episode)
+            .expect("ids and episodes checked below 2^32");
+        generate_at(&self.scheme, self.options.seed, world, difficulty)
+    }
+
+    /// The options it was made with.
+    pub fn options(&self) -> &EnvOptions {
+        &self.options
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> &Scheme {
+        &self.scheme
+    }
+
+    /// Environments.
+    pub fn num_envs(&self) -> usize {
+        self.terrains.len()
+    }
+
+    /// Environment `e`'s current terrain.
+    pub fn terrain(&self, e: usize) -> &Terrain {
+        &self.terrains[e]
+    }
+
+    /// Environment `e`'s current episode (0 until its first reset).
+    pub fn episode(&self, e: usize) -> u64 {
+        self.episodes[e]
+    }
+
+    /// The buffer's shape: `(num_envs, nrow, ncol)` for slots, `(1, rows,
+    /// columns)` of the whole map for tiles.
+    pub fn buffer_shape(&self) -> (usize, usize, usize) {
+        self.shape
+    }
+
+    /// One environment's field: `(nrow, ncol)`.
+    pub fn field_shape(&self) -> (usize, usize) {
+        self.field
+    }
+
+    /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
+    /// `[radius_x, radius_y, elevation, base]`, the surface at sample 1
+    /// being the scheme's highest possible top above the geom (placed at
+    /// z = 0) and the box under it one step deep.
+    pub fn hfield_size(&self) -> [f64; 4] {
+        let k = f64::from(self.options.oversample);
+        let s = self.scheme.globals().block_size;
+        let spacing = s / k;
+        let (width, depth) = (self.shape.2 as f64 * spacing, self.shape.1 as f64 * spacing);
+        [
+            (width - spacing) / 2.0,
+            (depth - spacing) / 2.0,
+            self.elevation,
+            self.scheme.globals().step_height,
+        ]
+    }
+
+    /// Where the field's geom goes in its own frame (slots: the terrain's,
+    /// corner at the origin; tiles: the map's), metres: the centre, z = 0.
+    pub fn hfield_pos(&self) -> [f64; 3] {
+        let [rx, ry, ..] = self.hfield_size();
+        let half = self.scheme.globals().block_size / f64::from(self.options.oversample) / 2.0;
+        [rx + half, ry + half, 0.0]
+    }
+
+    /// The sample of a cell of height 0 (`base / elevation`): what the
+    /// borders of a tile map hold, which [`write`](Self::write) never
+    /// touches; fill a new buffer with it first.
+    pub fn ground_sample(&self) -> f32 {
+        (self.scheme.globals().base / self.elevation) as f32
+    }
+
+    /// Environment `e`'s tile's first cell in the map, `(x0, y0)`; `(0, 0)`
+    /// for slots.
+    fn tile_origin(&self, e: usize) -> (u32, u32) {
+        match self.options.layout {
+            EnvLayout::Slots => (0, 0),
+            EnvLayout::Tiles { cols, border } => {
+                let grid = self.scheme.grid();
+                let (row, col) = ((e / cols as usize) as u32, (e % cols as usize) as u32);
+                (
+                    border + col * (grid.nx + border),
+                    border + row * (grid.ny + border),
+                )
+            }
+        }
+    }
+
+    /// Environment `e`'s spawn point `[x, y, z]`, metres: the centre of its
+    /// terrain on the highest top within the spawn radius, in its slot's
+    /// frame (slots) or the map's (tiles).
+    pub fn origin(&self, e: usize) -> [f64; 3] {
+        let terrain = &self.terrains[e];
+        let [x, y, z] = terrain.spawn_origin(terrain.region(), self.options.spawn_radius);
+        let (x0, y0) = self.tile_origin(e);
+        let s = terrain.block_size();
+        [x + f64::from(x0) * s, y + f64::from(y0) * s, z]
+    }
+
+    /// The top under `(x, y)` of environment `e` (its slot's frame, or the
+    /// map's for tiles), metres; NaN off its terrain.
+    pub fn height_at(&self, e: usize, x: f64, y: f64) -> f64 {
+        let terrain = &self.terrains[e];
+        let (x0, y0) = self.tile_origin(e);
+        let s = terrain.block_size();
+        terrain
+            .height_at(x - f64::from(x0) * s, y - f64::from(y0) * s)
+            .unwrap_or(f64::NAN)
+    }
+
+    /// Checks `envs` (each below `num_envs`) and `difficulty` (one per
+    /// named environment, or none).
+    fn check_envs(
+        &self,
+        envs: &[usize],
+        difficulty: Option<&[Difficulty]>,
+    ) -> Result<(), EnvError> {
+        if let Some(&e) = envs.iter().find(|&&e| e >= self.num_envs()) {
+            return Err(bad(
+                "env_ids",
+                format!("{e} is not an environment (0 to {})", self.num_envs() - 1),
+            ));
+        }
+        if let Some(d) = difficulty
+            && d.len() != envs.len()
+        {
+            return Err(bad(
+                "difficulty",
+                format!("{} values for {} environments", d.len(), envs.len()),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Moves each of `envs` to its next episode with a new terrain, at
+    /// `difficulty[i]` for `envs[i]`. Other environments are untouched; an
+    /// environment named twice moves twice. Nothing changes when an
+    /// argument is refused.
+    pub fn reset(&mut self, envs: &[usize], difficulty: &[Difficulty]) -> Result<(), EnvError> {
+        self.check_envs(envs, Some(difficulty))?;
+        if let Some(&e) = envs
+            .iter()
+            .find(|&&e| (self.episodes[e] + 1) >> ENV_BITS != 0)
+        {
+            return Err(bad(
+                "env_ids",
+                format!("environment {e} has run 2^32 episodes"),
+            ));
+        }
+        // Repeats apply in order: each one's episode is counted first.
+        let mut jobs: Vec<(usize, u64, Difficulty)> = Vec::with_capacity(envs.len());
+        for (&e, &d) in envs.iter().zip(difficulty) {
+            self.episodes[e] += 1;
+            jobs.push((e, self.episodes[e], d));
+        }
+        let made: Vec<Terrain> = jobs
+            .par_iter()
+            .map(|&(e, episode, d)| self.make(e, episode, d))
+            .collect();
+        for ((e, ..), terrain) in jobs.into_iter().zip(made) {
+            self.terrains[e] = terrain;
+        }
+        Ok(())
+    }
+
+    /// Writes the samples of `envs` into `out` (the whole buffer,
+    /// [`buffer_shape`](Self::buffer_shape), row-major float32): each into
+    /// its slot or tile, the rest of `out` untouched. A sample is `top /
+    /// elevation` ([`hfield_size`](Self::hfield_size)), in `[0, 1]`.
+    pub fn write(&self, envs: &[usize], out: &mut [f32]) -> Result<(), EnvError> {
+        self.check_envs(envs, None)?;
+        let (n, rows, cols) = self.shape;
+        if out.len() != n * rows * cols {
+            return Err(bad(
+                "out",
+                format!("{} samples, but the buffer is {n}x{rows}x{cols}", out.len()),
+            ));
+        }
+        let mut named = vec![false; self.num_envs()];
+        for &e in envs {
+            named[e] = true;
+        }
+        let k = self.options.oversample;
+        let (nrow, ncol) = self.field;
+        match self.options.layout {
+            EnvLayout::Slots => {
+                out.par_chunks_mut(nrow * ncol)
+                    .enumerate()
+                    .filter(|(e, _)| named[*e])
+                    .for_each(|(e, slot)| {
+                        self.terrains[e].fill_hfield_rows(k, 0.0, self.elevation, slot, ncol);
+                    });
+            }
+            EnvLayout::Tiles {
+                cols: per_row,
+                border,
+            } => {
+                // One chunk per tile row (with the border rows above it):
+                // tiles of different rows are written in parallel.
+                let b = border as usize * k as usize;
+                let band = (b + nrow) * cols;
+                let per_row = per_row as usize;
+                out.par_chunks_mut(band)
+                    .take(self.tile_rows as usize)
+                    .enumerate()
+                    .for_each(|(row, chunk)| {
+                        let first = row * per_row;
+                        for e in
+                            (first..(first + per_row).min(self.num_envs())).filter(|&e| named[e])
+                        {
+                            let (x0, _) = self.tile_origin(e);
+                            let at = b * cols + x0 as usize * k as usize;
+                            self.terrains[e].fill_hfield_rows(
+                                k,
+                                0.0,
+                                self.elevation,
+                                &mut chunk[at..],
+                                cols,
+                            );
+                        }
+                    });
+            }
+        }
+        Ok(())
+    }
+
+    /// The region of environment `e`'s terrain in its own grid.
+    pub fn region(&self, e: usize) -> Region {
+        self.terrains[e].region()
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::float_cmp)] // sentinels and tops compared exactly: both are computed the same way
+mod tests {
+    use super::*;
+
+    fn scheme() -> Scheme {
+        Scheme::from_csv(
+            "# size: 6x5\n# base: 0.05\ntype,height,angle,x1,y1\nrandom,0..3,,,\npeak,2..4,45,1..4,1..3\n",
+            None,
+        )
+        .unwrap()
+    }
+
+    fn envs(n: usize, layout: EnvLayout) -> EnvTerrains {
+        let options = EnvOptions {
+            num_envs: n,
+            seed: 7,
+            env_offset: 100,
+            layout,
+            ..EnvOptions::default()
+        };
+        EnvTerrains::new(scheme(), options).unwrap()
+    }
+
+    fn d(v: f64) -> Difficulty {
+        Difficulty::new(v).unwrap()
+    }
+
+    #[test]
+    fn the_world_index_pairs_env_and_episode() {
+        assert_eq!(env_world(5, 0), Some(5));
+        assert_eq!(env_world(5, 3), Some(3 * (1 << 32) + 5));
+        assert_eq!(env_world(1 << 32, 0), None);
+        assert_eq!(env_world(0, 1 << 32), None);
+    }
+
+    #[test]
+    fn a_terrain_depends_on_its_env_episode_and_difficulty_alone() {
+        let mut a = envs(3, EnvLayout::Slots);
+        let mut b = envs(3, EnvLayout::Slots);
+        a.reset(&[0, 2], &[d(0.5), d(1.0)]).unwrap();
+        a.reset(&[1], &[d(0.25)]).unwrap();
+        a.reset(&[2], &[d(1.0)]).unwrap();
+        b.reset(&[2, 1, 0, 2], &[d(1.0), d(0.25), d(0.5), d(1.0)])
+            .unwrap();
+        for e in 0..3 {
+            assert_eq!(a.episode(e), b.episode(e));
+            assert_eq!(
+                a.terrain(e).heightmap(),
+                b.terrain(e).heightmap(),
+                "env {e}"
+            );
+            let world = env_world(100 + e as u64, a.episode(e)).unwrap();
+            let alone = generate_at(&scheme(), 7, world, a.terrain(e).difficulty());
+            assert_eq!(a.terrain(e).heightmap(), alone.heightmap());
+        }
+        assert_eq!([a.episode(0), a.episode(1), a.episode(2)], [1, 1, 2]);
+    }
+
+    #[test]
+    fn slots_hold_each_env_field_and_a_write_touches_only_the_named() {
+        let mut e = envs(3, EnvLayout::Slots);
+        let (n, rows, cols) = e.buffer_shape();
+        assert_eq!((n, rows, cols), (3, 10, 12));
+        let mut out = vec![-1.0f32; n * rows * cols];
+        e.write(&[0, 1, 2], &mut out).unwrap();
+        let elevation = e.hfield_size()[2];
+        for env in 0..3 {
+            let mut want = vec![0.0f32; rows * cols];
+            e.terrain(env)
+                .hfield_into(2, 0.0, elevation, &mut want)
+                .unwrap();
+            assert_eq!(
+                &out[env * rows * cols..(env + 1) * rows * cols],
+                want.as_slice()
+            );
+        }
+        let before = out.clone();
+        e.reset(&[1], &[d(1.0)]).unwrap();
+        out[rows * cols..2 * rows * cols].fill(-1.0);
+        e.write(&[1], &mut out).unwrap();
+        assert_eq!(out[..rows * cols], before[..rows * cols]);
+        assert_eq!(out[2 * rows * cols..], before[2 * rows * cols..]);
+        assert!(
+            out[rows * cols..2 * rows * cols]
+                .iter()
+                .all(|v| (0.0..=1.0).contains(v))
+        );
+    }
+
+    #[test]
+    fn tiles_hold_each_env_in_its_tile_and_borders_stay() {
+        let e = envs(5, EnvLayout::Tiles { cols: 2, border: 1 });
+        let (n, rows, cols) = e.buffer_shape();
+        // 3 tile rows of 5 cells and 4 borders, 2 tile columns of 6 and 3 borders; k = 2.
+        assert_eq!((n, rows, cols), (1, (3 * 5 + 4) * 2, (2 * 6 + 3) * 2));
+        let mut out = vec![-1.0f32; rows * cols];
+        e.write(&[0, 1, 2, 3, 4], &mut out).unwrap();
+        let elevation = e.hfield_size()[2];
+        for env in 0..5 {
+            let (x0, y0) = e.tile_origin(env);
+            let mut want = vec![0.0f32; 10 * 12];
+            e.terrain(env)
+                .hfield_into(2, 0.0, elevation, &mut want)
+                .unwrap();
+            for r in 0..10 {
+                let at = (y0 as usize * 2 + r) * cols + x0 as usize * 2;
+                assert_eq!(
+                    &out[at..at + 12],
+                    &want[r * 12..(r + 1) * 12],
+                    "env {env} row {r}"
+                );
+            }
+            let [x, y, z] = e.origin(env);
+            assert!(
+                z + 1e-12 >= e.height_at(env, x, y),
+                "the origin stands on the highest top near it"
+            );
+        }
+        // The border and the empty sixth tile are untouched.
+        assert!(out[..cols * 2].iter().all(|&v| v == -1.0));
+        // The sixth tile's first cell: column 1, row 2.
+        let (x5, y5) = (1 + 7, 1 + 2 * 6);
+        assert!(out[y5 * 2 * cols + x5 * 2] == -1.0);
+        // Heights in the map frame: env 3 is tile (1, 1).
+        let (x0, y0) = e.tile_origin(3);
+        assert_eq!((x0, y0), (8, 7));
+        let s = 0.1;
+        assert_eq!(
+            e.height_at(3, (f64::from(x0) + 0.5) * s, (f64::from(y0) + 0.5) * s),
+            e.terrain(3).height_at(0.05, 0.05).unwrap()
+        );
+        assert!(e.height_at(3, 0.05, 0.05).is_nan(), "off its tile");
+    }
+
+    #[test]
+    fn bad_arguments_are_named() {
+        let named = |r: Result<EnvTerrains, EnvError>| match r.unwrap_err() {
+            EnvError::Bad { argument, .. } => argument,
+            other => panic!("{other}"),
+        };
+        let with = |o: EnvOptions| EnvTerrains::new(scheme(), o);
+        assert_eq!(
+            named(with(EnvOptions {
+                num_envs: 0,
+                ..EnvOptions::default()
+            })),
+            "num_envs"
+        );
+        assert_eq!(
+            named(with(EnvOptions {
+                num_envs: 2,
+                env_offset: u64::from(u32::MAX),
+                ..EnvOptions::default()
+            })),
+            "env_offset"
+        );
+        assert_eq!(
+            named(with(EnvOptions {
+                layout: EnvLayout::Tiles { cols: 0, border: 0 },
+                ..EnvOptions::default()
+            })),
+            "cols"
+        );
+        assert!(matches!(
+            with(EnvOptions {
+                oversample: 0,
+                ..EnvOptions::default()
+            }),
+            Err(EnvError::HField(_))
+        ));
+        let mut e = envs(2, EnvLayout::Slots);
+        let argument = |r: Result<(), EnvError>| match r.unwrap_err() {
+            EnvError::Bad { argument, .. } => argument,
+            other => panic!("{other}"),
+        };
+        assert_eq!(argument(e.reset(&[2], &[d(1.0)])), "env_ids");
+        assert_eq!(argument(e.reset(&[0, 1], &[d(1.0)])), "difficulty");
+        assert_eq!([e.episode(0), e.episode(1)], [0, 0], "nothing changed");
+        assert_eq!(argument(e.write(&[0], &mut [0.0; 7])), "out");
+    }
+}

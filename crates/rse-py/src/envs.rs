@@ -1,0 +1,382 @@
+//! `rse.EnvTerrains`: every parallel environment its own terrain, new every
+//! episode (docs/envs.md). The state lives in rse-core; this class owns the
+//! numpy arrays Python sees (`samples`, `episode`, `difficulty`, `origins`)
+//! and fills them with the GIL released.
+
+use std::sync::Arc;
+
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+use crate::scheme::Scheme;
+use crate::terrain::Terrain;
+
+/// The terrains of `num_envs` environments, each new at every reset.
+#[pyclass(module = "rse")]
+pub struct EnvTerrains {
+    inner: rse_core::EnvTerrains,
+    scheme: Arc<rse_core::Scheme>,
+    samples: Py<PyArray3<f32>>,
+    episode: Py<PyArray1<i64>>,
+    difficulty: Py<PyArray1<f64>>,
+    origins: Py<PyArray2<f64>>,
+}
+
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// `env_ids` as indices below `n`, or a `ValueError` naming it.
+fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
+    let ids: Vec<i64> = ids.extract().map_err(|_| {
+        PyValueError::new_err("env_ids: expected a sequence of environment numbers")
+    })?;
+    ids.into_iter()
+        .map(|e| {
+            usize::try_from(e).ok().filter(|&e| e < n).ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "env_ids: {e} is not an environment (0 to {})",
+                    n - 1
+                ))
+            })
+        })
+        .collect()
+}
+
+/// One difficulty, or a `ValueError` naming `difficulty`.
+fn difficulty(d: f64) -> PyResult<rse_core::Difficulty> {
+    rse_core::Difficulty::new(d).map_err(|e| PyValueError::new_err(format!("difficulty: {e}")))
+}
+
+impl EnvTerrains {
+    /// Writes the samples and origins of `envs` into the Python arrays.
+    fn publish(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
+        let samples = self.samples.bind(py);
+        let mut view = samples
+            .try_readwrite()
+            .map_err(|e| PyValueError::new_err(format!("samples: {e}")))?;
+        let slice = view.as_slice_mut().map_err(value_error)?;
+        let inner = &self.inner;
+        py.detach(|| inner.write(envs, slice))
+            .map_err(value_error)?;
+        let origins = self.origins.bind(py);
+        let mut origins = origins.try_readwrite().map_err(value_error)?;
+        let mut episode = self.episode.bind(py).try_readwrite().map_err(value_error)?;
+        let (origins, episode) = (
+            origins.as_slice_mut().map_err(value_error)?,
+            episode.as_slice_mut().map_err(value_error)?,
+        );
+        for &e in envs {
+            origins[3 * e..3 * e + 3].copy_from_slice(&inner.origin(e));
+            episode[e] = inner.episode(e) as i64;
+        }
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl EnvTerrains {
+    #[new]
+    #[pyo3(signature = (scheme, num_envs, oversample=2, seed=None, difficulty=1.0, layout="slots", *, cols=None, border=0, env_offset=0, spawn_radius=0.3))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        scheme: &Bound<'_, Scheme>,
+        num_envs: usize,
+        oversample: u32,
+        seed: Option<u64>,
+        difficulty: f64,
+        layout: &str,
+        cols: Option<u32>,
+        border: u32,
+        env_offset: u64,
+        spawn_radius: f64,
+    ) -> PyResult<Self> {
+        let scheme = Arc::clone(&scheme.get().inner);
+        let layout = match layout {
+            "slots" if cols.is_none() && border == 0 => rse_core::EnvLayout::Slots,
+            "slots" => {
+                return Err(PyValueError::new_err(
+                    "cols, border: only with layout=\"tiles\"",
+                ));
+            }
+            "tiles" => rse_core::EnvLayout::Tiles {
+                cols: cols.unwrap_or_else(|| (num_envs as f64).sqrt().ceil() as u32),
+                border,
+            },
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "layout: {other:?} is not \"slots\" or \"tiles\""
+                )));
+            }
+        };
+        let options = rse_core::EnvOptions {
+            num_envs,
+            oversample,
+            seed: seed.unwrap_or(scheme.globals().seed),
+            env_offset,
+            layout,
+            difficulty: self::difficulty(difficulty)?,
+            spawn_radius,
+        };
+        let owned = (*scheme).clone();
+        let inner = py
+            .detach(|| rse_core::EnvTerrains::new(owned, options))
+            .map_err(value_error)?;
+        let (n, rows, cols) = inner.buffer_shape();
+        // Tile borders are cells of height 0: the slab's top, as in an atlas.
+        let ground = numpy::ndarray::Array3::from_elem([n, rows, cols], inner.ground_sample());
+        let envs = EnvTerrains {
+            samples: numpy::IntoPyArray::into_pyarray(ground, py).unbind(),
+            episode: PyArray1::zeros(py, num_envs, false).unbind(),
+            difficulty: PyArray1::from_vec(py, vec![options.difficulty.get(); num_envs]).unbind(),
+            origins: PyArray2::zeros(py, [num_envs, 3], false).unbind(),
+            inner,
+            scheme,
+        };
+        let all: Vec<usize> = (0..num_envs).collect();
+        envs.publish(py, &all)?;
+        Ok(envs)
+    }
+
+    /// Environments.
+    #[getter]
+    fn num_envs(&self) -> usize {
+        self.inner.num_envs()
+    }
+
+    /// The height-field samples, float32 in [0, 1]: `(num_envs, nrow, ncol)`
+    /// for slots, `(1, rows, columns)` of the whole map for tiles. The same
+    /// array every time; `reset` rewrites the reset environments' parts.
+    #[getter]
+    fn samples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f32>> {
+        self.samples.bind(py).clone()
+    }
+
+    /// Each environment's episode (int64; 0 until its first reset).
+    #[getter]
+    fn episode<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        self.episode.bind(py).clone()
+    }
+
+    /// Each environment's difficulty (float64 in [0, 1]), used at its next
+    /// reset: the curriculum's knob. Set it whole, or write into it.
+    #[getter]
+    fn difficulty<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.difficulty.bind(py).clone()
+    }
+
+    #[setter(difficulty)]
+    fn set_difficulty(&self, py: Python<'_>, values: Vec<f64>) -> PyResult<()> {
+        if values.len() != self.inner.num_envs() {
+            return Err(PyValueError::new_err(format!(
+                "difficulty: {} values for {} environments",
+                values.len(),
+                self.inner.num_envs()
+            )));
+        }
+        for &d in &values {
+            difficulty(d)?;
+        }
+        let array = self.difficulty.bind(py);
+        let mut view = array.try_readwrite().map_err(value_error)?;
+        view.as_slice_mut()
+            .map_err(value_error)?
+            .copy_from_slice(&values);
+        Ok(())
+    }
+
+    /// Each environment's spawn point `(num_envs, 3)`, metres: its terrain's
+    /// centre on the highest top within `spawn_radius`, in its slot's frame
+    /// (slots: the terrain's corner at the origin) or the map's (tiles).
+    #[getter]
+    fn origins<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.origins.bind(py).clone()
+    }
+
+    /// `"slots"` or `"tiles"`.
+    #[getter]
+    fn layout(&self) -> &'static str {
+        match self.inner.options().layout {
+            rse_core::EnvLayout::Slots => "slots",
+            rse_core::EnvLayout::Tiles { .. } => "tiles",
+        }
+    }
+
+    /// One environment's field, `(nrow, ncol)`.
+    #[getter]
+    fn field_shape(&self) -> (usize, usize) {
+        self.inner.field_shape()
+    }
+
+    /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
+    /// `(radius_x, radius_y, elevation, base)`, metres; sample 1 is the
+    /// scheme's highest possible top above the geom, which goes at `hfield_pos`.
+    #[getter]
+    fn hfield_size(&self) -> (f64, f64, f64, f64) {
+        let [a, b, c, d] = self.inner.hfield_size();
+        (a, b, c, d)
+    }
+
+    /// Where the field's geom goes in its slot's (or the map's) frame, metres.
+    #[getter]
+    fn hfield_pos(&self) -> (f64, f64, f64) {
+        let [x, y, z] = self.inner.hfield_pos();
+        (x, y, z)
+    }
+
+    /// Moves each of `env_ids` to its next episode with a new terrain,
+    /// written into its slot or tile only; `difficulty` (one value, or one
+    /// per id) is stored for those envs first, else each keeps its own.
+    /// Env e's terrain at episode k is world `k·2³² + (env_offset + e)` of
+    /// the scheme at the base seed, at its difficulty.
+    #[pyo3(signature = (env_ids, difficulty=None))]
+    fn reset(
+        &mut self,
+        py: Python<'_>,
+        env_ids: &Bound<'_, PyAny>,
+        difficulty: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let envs = self::env_ids(env_ids, self.inner.num_envs())?;
+        let array = self.difficulty.bind(py).clone();
+        if let Some(given) = difficulty {
+            let values: Vec<f64> = match given.extract::<f64>() {
+                Ok(one) => vec![one; envs.len()],
+                Err(_) => given.extract().map_err(|_| {
+                    PyValueError::new_err("difficulty: expected a number or one per env id")
+                })?,
+            };
+            if values.len() != envs.len() {
+                return Err(PyValueError::new_err(format!(
+                    "difficulty: {} values for {} env ids",
+                    values.len(),
+                    envs.len()
+                )));
+            }
+            for &d in &values {
+                self::difficulty(d)?;
+            }
+            let mut view = array.try_readwrite().map_err(value_error)?;
+            let slice = view.as_slice_mut().map_err(value_error)?;
+            for (&e, &d) in envs.iter().zip(&values) {
+                slice[e] = d;
+            }
+        }
+        let levels: Vec<rse_core::Difficulty> = {
+            let view = array.try_readonly().map_err(value_error)?;
+            let slice = view.as_slice().map_err(value_error)?;
+            envs.iter()
+                .map(|&e| self::difficulty(slice[e]))
+                .collect::<PyResult<_>>()?
+        };
+        let inner = &mut self.inner;
+        py.detach(|| inner.reset(&envs, &levels))
+            .map_err(value_error)?;
+        self.publish(py, &envs)
+    }
+
+    /// Environment `env`'s current terrain.
+    fn terrain(&self, env: usize) -> PyResult<Terrain> {
+        if env >= self.inner.num_envs() {
+            return Err(PyValueError::new_err(format!(
+                "env: {env} is not an environment (0 to {})",
+                self.inner.num_envs() - 1
+            )));
+        }
+        Ok(Terrain {
+            inner: self.inner.terrain(env).clone(),
+            scheme: Some(Arc::clone(&self.scheme)),
+        })
+    }
+
+    /// The exact tops under `points` (`(len(env_ids), P, 2)`, metres, each
+    /// env's slot frame or the map's for tiles): float64 `(len(env_ids), P)`,
+    /// NaN off an env's terrain. The height scan a policy observes.
+    fn heights_at<'py>(
+        &self,
+        py: Python<'py>,
+        env_ids: &Bound<'py, PyAny>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let envs = self::env_ids(env_ids, self.inner.num_envs())?;
+        let points = py
+            .import("numpy")?
+            .call_method1("ascontiguousarray", (points, "float64"))?;
+        let points = points
+            .cast::<PyArrayDyn<f64>>()
+            .map_err(|_| PyValueError::new_err("points: expected an array of float"))?;
+        let shape = points.shape().to_vec();
+        if shape.len() != 3 || shape[0] != envs.len() || shape[2] != 2 {
+            return Err(PyValueError::new_err(format!(
+                "points: shape {shape:?}, expected ({}, P, 2)",
+                envs.len()
+            )));
+        }
+        let view = points.try_readonly().map_err(value_error)?;
+        let xy = view.as_slice().map_err(value_error)?;
+        let per = shape[1];
+        let inner = &self.inner;
+        let heights: Vec<f64> = py.detach(|| {
+            envs.iter()
+                .enumerate()
+                .flat_map(|(i, &e)| (0..per).map(move |p| (i, e, p)))
+                .map(|(i, e, p)| {
+                    let at = 2 * (i * per + p);
+                    inner.height_at(e, xy[at], xy[at + 1])
+                })
+                .collect()
+        });
+        PyArray1::from_vec(py, heights)
+            .reshape([envs.len(), per])
+            .map_err(value_error)
+    }
+
+    /// Writes the samples of `env_ids` (all when None) into `out`, an array
+    /// of `samples`' shape and dtype (float32, C-contiguous, writable):
+    /// numpy, or anything exposing `__dlpack__` or the buffer protocol on the CPU.
+    #[pyo3(signature = (out, env_ids=None))]
+    fn write(
+        &self,
+        py: Python<'_>,
+        out: &Bound<'_, PyAny>,
+        env_ids: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let envs = match env_ids {
+            Some(ids) => self::env_ids(ids, self.inner.num_envs())?,
+            None => (0..self.inner.num_envs()).collect(),
+        };
+        let numpy = py.import("numpy")?;
+        let array =
+            if out.cast::<PyArrayDyn<f32>>().is_ok() || out.hasattr("__array_interface__")? {
+                numpy.call_method1("asarray", (out,))?
+            } else if out.hasattr("__dlpack__")? {
+                numpy.call_method1("from_dlpack", (out,))?
+            } else {
+                numpy.call_method1("asarray", (out,))?
+            };
+        let array = array
+            .cast::<PyArrayDyn<f32>>()
+            .map_err(|_| PyValueError::new_err("out: expected float32 samples"))?;
+        let (n, rows, cols) = self.inner.buffer_shape();
+        if array.shape() != [n, rows, cols] {
+            return Err(PyValueError::new_err(format!(
+                "out: shape {:?}, expected ({n}, {rows}, {cols})",
+                array.shape()
+            )));
+        }
+        // numpy's slice view also takes a Fortran-ordered array, which
+        // would be filled in the wrong order.
+        if !array.is_c_contiguous() {
+            return Err(PyValueError::new_err("out: must be C-contiguous"));
+        }
+        let mut view = array
+            .try_readwrite()
+            .map_err(|e| PyValueError::new_err(format!("out: not writable ({e})")))?;
+        let slice = view
+            .as_slice_mut()
+            .map_err(|_| PyValueError::new_err("out: must be C-contiguous"))?;
+        let inner = &self.inner;
+        py.detach(|| inner.write(&envs, slice)).map_err(value_error)
+    }
+}

@@ -1,0 +1,203 @@
+"""Every environment its own terrain, new every episode (issue 23):
+`rse.EnvTerrains` — each env's terrain a pure function of (scheme, seed,
+global id, episode, difficulty), resets that touch the named envs only, and
+its samples, sizes and origins read back in MuJoCo by ray casts, as a pool
+of height fields (slots) and as one tiled field (tiles)."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+import rse
+from conftest import SCHEMES
+
+SIX = rse.Scheme.load(SCHEMES / "six_obstacles.csv")
+SMALL = rse.Scheme.from_csv(
+    "# size: 12x10\n# base: 0.05\ntype,height,angle,x1,y1\nrandom,0..3,,,\npeak,2..5,45,2..9,2..7\n"
+)
+
+
+def test_a_terrain_is_its_env_episode_and_difficulty_alone() -> None:
+    a = rse.EnvTerrains(SMALL, 6, seed=3)
+    b = rse.EnvTerrains(SMALL, 6, seed=3)
+    a.reset([0, 4])
+    a.reset([1, 4], difficulty=[0.5, 0.25])
+    a.reset([5], difficulty=0.0)
+    b.reset([5, 4, 1, 0, 4], difficulty=[0.0, 1.0, 0.5, 1.0, 0.25])
+    assert a.episode.tolist() == b.episode.tolist() == [1, 1, 0, 0, 2, 1]
+    assert np.array_equal(a.samples, b.samples)
+    assert np.array_equal(a.origins, b.origins)
+    for e in range(6):
+        k = int(a.episode[e])
+        alone = SMALL.generate(seed=3, index=k * 2**32 + e, difficulty=float(a.difficulty[e]))
+        assert np.array_equal(a.terrain(e).heights, alone.heights), e
+    # Global ids: 2 processes of 3 envs are one of 6.
+    second = rse.EnvTerrains(SMALL, 3, seed=3, env_offset=3)
+    second.reset([2])
+    fresh = rse.EnvTerrains(SMALL, 6, seed=3)
+    fresh.reset([5])
+    assert np.array_equal(second.terrain(2).heights, fresh.terrain(5).heights)
+    assert np.array_equal(second.samples[2], fresh.samples[5])
+
+
+def test_a_reset_touches_the_named_envs_only() -> None:
+    envs = rse.EnvTerrains(SIX, 8, oversample=2, seed=1)
+    before = envs.samples.copy()
+    origins = envs.origins.copy()
+    envs.reset(np.array([2, 6]))
+    changed = [e for e in range(8) if not np.array_equal(envs.samples[e], before[e])]
+    assert changed == [2, 6]
+    assert np.array_equal(envs.origins[[0, 1, 3, 4, 5, 7]], origins[[0, 1, 3, 4, 5, 7]])
+    assert envs.episode.tolist() == [0, 0, 1, 0, 0, 0, 1, 0]
+    assert envs.samples.dtype == np.float32 and envs.samples.min() >= 0 and envs.samples.max() <= 1
+    # The difficulty is the curriculum's knob: set, then used at the next reset.
+    envs.difficulty = np.linspace(0, 1, 8)
+    envs.reset([0])
+    assert envs.terrain(0).difficulty == 0.0 and envs.terrain(0).heights.max() <= 1  # frames only
+    envs.difficulty[1] = 0.5  # in place, too
+    envs.reset([1])
+    assert envs.terrain(1).difficulty == 0.5
+
+
+def test_bad_arguments_name_themselves() -> None:
+    envs = rse.EnvTerrains(SMALL, 4)
+    cases = [
+        (lambda: envs.reset([4]), "env_ids"),
+        (lambda: envs.reset([-1]), "env_ids"),
+        (lambda: envs.reset([0, 1], difficulty=[0.5]), "difficulty"),
+        (lambda: envs.reset([0], difficulty=1.5), "difficulty"),
+        (lambda: setattr(envs, "difficulty", [0.5] * 3), "difficulty"),
+        (lambda: setattr(envs, "difficulty", [0.5, 0.5, 0.5, 2.0]), "difficulty"),
+        (lambda: envs.write(np.zeros((4, 5, 5), np.float32)), "out"),
+        (lambda: envs.write(np.zeros(envs.samples.shape, np.float64)), "out"),
+        (lambda: envs.write(np.zeros(envs.samples.shape[::-1], np.float32).T), "out"),
+        (lambda: envs.heights_at([0], np.zeros((2, 3, 2))), "points"),
+        (lambda: envs.terrain(9), "env"),
+        (lambda: rse.EnvTerrains(SMALL, 0), "num_envs"),
+        (lambda: rse.EnvTerrains(SMALL, 2, layout="grid"), "layout"),
+        (lambda: rse.EnvTerrains(SMALL, 2, cols=2), "cols"),
+        (lambda: rse.EnvTerrains(SMALL, 2, env_offset=2**32 - 1), "env_offset"),
+    ]
+    for call, argument in cases:
+        with pytest.raises(ValueError, match=f"^{argument}"):
+            call()
+    assert envs.episode.tolist() == [0, 0, 0, 0], "nothing changed"
+
+
+class DLPackOnly:
+    """An array that offers DLPack alone (as a torch CPU tensor would)."""
+
+    def __init__(self, array: np.ndarray) -> None:
+        self.array = array
+
+    def __dlpack__(self, **kwargs):
+        return self.array.__dlpack__(**kwargs)
+
+    def __dlpack_device__(self):
+        return self.array.__dlpack_device__()
+
+
+def test_write_into_a_callers_array_by_numpy_dlpack_or_buffer() -> None:
+    envs = rse.EnvTerrains(SMALL, 3)
+    target = np.full(envs.samples.shape, -1.0, np.float32)
+    envs.write(target, [1])
+    assert np.array_equal(target[1], envs.samples[1]) and (target[[0, 2]] == -1).all()
+    backing = np.zeros(envs.samples.shape, np.float32)
+    envs.write(DLPackOnly(backing))
+    assert np.array_equal(backing, envs.samples)
+    raw = bytearray(envs.samples.nbytes)
+    envs.write(memoryview(raw).cast("B").cast("f", envs.samples.shape))
+    assert np.array_equal(np.frombuffer(raw, np.float32).reshape(envs.samples.shape), envs.samples)
+
+
+def ray_down(model, data, x: float, y: float, geom: int) -> float:
+    hit = np.zeros(1, dtype=np.int32)
+    dist = mujoco.mj_ray(model, data, np.array([x, y, 20.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, hit)
+    assert dist >= 0 and hit[0] == geom, (x, y, hit)
+    return 20.0 - dist
+
+
+def cell_centres(envs: rse.EnvTerrains, e: int) -> np.ndarray:
+    """The centre of every cell of env e's terrain, in its slot's frame."""
+    t = envs.terrain(e)
+    ny, nx = t.heights.shape
+    ys, xs = np.mgrid[0:ny, 0:nx]
+    return np.stack([(xs.ravel() + 0.5) * t.block_size, (ys.ravel() + 0.5) * t.block_size], axis=1)
+
+
+def test_slots_are_a_pool_of_mujoco_height_fields_each_env_its_own() -> None:
+    """One height field per env, each geom in its own place: MuJoCo's
+    surface over every cell centre is the env's top, and after resetting
+    some envs and copying their slots only, theirs change, the others not."""
+    n = 4
+    envs = rse.EnvTerrains(SMALL, n, oversample=2, seed=5)
+    nrow, ncol = envs.field_shape
+    spec = mujoco.MjSpec()
+    gap = 3.0
+    for e in range(n):
+        # MuJoCo needs data to compile (and rescales it): the exact samples
+        # are copied into the compiled model below.
+        hfield = spec.add_hfield(
+            name=f"slot{e}", nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[e].ravel()
+        )
+        x, y, z = envs.hfield_pos
+        spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_HFIELD, hfieldname=hfield.name, pos=[x + e * gap, y, z])
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    view = lambda e: model.hfield_data[model.hfield_adr[e] : model.hfield_adr[e] + nrow * ncol]  # noqa: E731
+
+    def sync(ids) -> None:
+        for e in ids:
+            view(e)[:] = envs.samples[e].ravel()
+        mujoco.mj_forward(model, data)
+
+    def seen(e: int) -> np.ndarray:
+        return np.array([ray_down(model, data, x + e * gap, y, e) for x, y in cell_centres(envs, e)])
+
+    sync(range(n))
+    for e in range(n):
+        expected = envs.heights_at([e], cell_centres(envs, e)[None])[0]
+        assert np.allclose(seen(e), expected, atol=1e-5), e
+    before = [seen(e) for e in range(n)]
+    envs.reset([1, 3])
+    sync([1, 3])
+    after = [seen(e) for e in range(n)]
+    for e in (0, 2):
+        assert np.array_equal(after[e], before[e]), e
+    for e in (1, 3):
+        assert not np.array_equal(after[e], before[e]), e
+        assert np.allclose(after[e], envs.heights_at([e], cell_centres(envs, e)[None])[0], atol=1e-5)
+    # Each env stands on its own terrain: no two alike.
+    assert len({a.tobytes() for a in after}) == n
+
+
+def test_tiles_are_one_mujoco_height_field_each_env_in_its_tile() -> None:
+    n, cols, border = 5, 2, 2
+    envs = rse.EnvTerrains(SMALL, n, oversample=2, seed=9, layout="tiles", cols=cols, border=border)
+    _, rows, columns = envs.samples.shape
+    spec = mujoco.MjSpec()
+    spec.add_hfield(name="map", nrow=rows, ncol=columns, size=list(envs.hfield_size), userdata=envs.samples[0].ravel())
+    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_HFIELD, hfieldname="map", pos=list(envs.hfield_pos))
+    model = spec.compile()
+    data = mujoco.MjData(model)
+
+    def sync() -> None:
+        model.hfield_data[:] = envs.samples.ravel()
+        mujoco.mj_forward(model, data)
+
+    sync()
+    s = SMALL.block_size
+    for e in range(n):
+        row, col = divmod(e, cols)
+        x0, y0 = (border + col * (12 + border)) * s, (border + row * (10 + border)) * s
+        points = cell_centres(envs, e) + [x0, y0]
+        expected = envs.heights_at([e], points[None])[0]
+        seen = np.array([ray_down(model, data, x, y, 0) for x, y in points])
+        assert np.allclose(seen, expected, atol=1e-5), e
+        # The origin is over the env's tile, on its top.
+        ox, oy, oz = envs.origins[e]
+        assert x0 <= ox <= x0 + 12 * s and y0 <= oy <= y0 + 10 * s
+        assert oz >= envs.heights_at([e], [[[ox, oy]]])[0, 0] - 1e-9
+    # Borders are ground (height 0, the slab's top).
+    assert ray_down(model, data, 0.05, 0.05, 0) == pytest.approx(SMALL.base, abs=1e-5)
