@@ -10,6 +10,7 @@ import mujoco
 import numpy as np
 import pytest
 import rse
+import rse.mujoco
 from conftest import SCHEMES
 
 SIX = rse.Scheme.load(SCHEMES / "six_obstacles.csv")
@@ -132,28 +133,21 @@ def test_slots_are_a_pool_of_mujoco_height_fields_each_env_its_own() -> None:
     some envs and copying their slots only, theirs change, the others not."""
     n = 4
     envs = rse.EnvTerrains(SMALL, n, oversample=2, seed=5)
-    nrow, ncol = envs.field_shape
     spec = mujoco.MjSpec()
     gap = 3.0
-    for e in range(n):
-        # MuJoCo needs data to compile (and rescales it): the exact samples
-        # are copied into the compiled model below.
-        hfield = spec.add_hfield(
-            name=f"slot{e}", nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[e].ravel()
-        )
-        x, y, z = envs.hfield_pos
-        spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_HFIELD, hfieldname=hfield.name, pos=[x + e * gap, y, z])
+    names = rse.mujoco.add_env_hfields(spec, envs)
+    assert names == [f"rse_env{e}" for e in range(n)]
+    for e, hfield in enumerate(names):
+        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
     model = spec.compile()
     data = mujoco.MjData(model)
-    view = lambda e: model.hfield_data[model.hfield_adr[e] : model.hfield_adr[e] + nrow * ncol]  # noqa: E731
 
     def sync(ids) -> None:
-        for e in ids:
-            view(e)[:] = envs.samples[e].ravel()
+        rse.mujoco.sync_env_hfields(model, envs, ids)
         mujoco.mj_forward(model, data)
 
     def seen(e: int) -> np.ndarray:
-        return np.array([ray_down(model, data, x + e * gap, y, e) for x, y in cell_centres(envs, e)])
+        return np.array([ray_down(model, data, px + e * gap, py, e) for px, py in cell_centres(envs, e)])
 
     sync(range(n))
     for e in range(n):
@@ -177,13 +171,13 @@ def test_tiles_are_one_mujoco_height_field_each_env_in_its_tile() -> None:
     envs = rse.EnvTerrains(SMALL, n, oversample=2, seed=9, layout="tiles", cols=cols, border=border)
     _, rows, columns = envs.samples.shape
     spec = mujoco.MjSpec()
-    spec.add_hfield(name="map", nrow=rows, ncol=columns, size=list(envs.hfield_size), userdata=envs.samples[0].ravel())
-    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_HFIELD, hfieldname="map", pos=list(envs.hfield_pos))
+    (hfield,) = rse.mujoco.add_env_hfields(spec, envs, name="map")
+    rse.mujoco.add_env_geom(spec, envs, hfield)
     model = spec.compile()
     data = mujoco.MjData(model)
 
     def sync() -> None:
-        model.hfield_data[:] = envs.samples.ravel()
+        rse.mujoco.sync_env_hfields(model, envs, name="map")
         mujoco.mj_forward(model, data)
 
     sync()

@@ -37,9 +37,19 @@ from typing import Any, Union
 
 import numpy as np
 
-from rse._rse import DEFAULT_OVERSAMPLE, Scheme, Terrain
+from rse._rse import DEFAULT_OVERSAMPLE, EnvTerrains, Scheme, Terrain
 
-__all__ = ["HFieldSlot", "add_hfield", "hfield_mjcf", "max_top", "set_hfield"]
+__all__ = [
+    "HFieldSlot",
+    "add_env_geom",
+    "add_env_hfields",
+    "add_hfield",
+    "env_hfield_names",
+    "hfield_mjcf",
+    "max_top",
+    "set_hfield",
+    "sync_env_hfields",
+]
 
 
 def _hfield_id(model: Any, hfield: Union[int, str]) -> int:
@@ -215,3 +225,70 @@ def hfield_mjcf(
   </worldbody>
 </mujoco>
 """
+
+
+def env_hfield_names(envs: EnvTerrains, name: str = "rse_env") -> list[str]:
+    """The height-field assets ``add_env_hfields`` makes: ``name0`` …
+    ``name{n-1}`` for slots, ``name`` for tiles."""
+    if envs.layout == "tiles":
+        return [name]
+    return [f"{name}{e}" for e in range(envs.num_envs)]
+
+
+def add_env_hfields(spec: Any, envs: EnvTerrains, *, name: str = "rse_env") -> list[str]:
+    """Adds to ``spec`` (a ``mujoco.MjSpec``) the height fields of
+    ``envs`` (an ``rse.EnvTerrains``): one per environment for slots (the
+    pool a batched simulator routes per world), one for the tile map; each
+    sized ``envs.hfield_size`` and holding the current samples (copy them
+    again after compiling: MuJoCo rescales data given before it, see
+    ``sync_env_hfields``). Returns their names. Add geoms with
+    ``add_env_geom``."""
+    names = env_hfield_names(envs, name)
+    nrow, ncol = envs.samples.shape[1:]
+    for i, hfield in enumerate(names):
+        spec.add_hfield(name=hfield, nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[i].ravel())
+    return names
+
+
+def add_env_geom(
+    spec: Any,
+    envs: EnvTerrains,
+    hfield: str,
+    *,
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    name: Union[str, None] = None,
+    group: int = 2,
+) -> Any:
+    """Adds to the world body of ``spec`` a geom showing the height field
+    ``hfield`` (one of ``add_env_hfields``'s), placed at ``envs.hfield_pos``
+    plus ``offset``: its slot's (or the map's) frame moved by ``offset``.
+    Returns the geom's spec."""
+    import mujoco
+
+    x, y, z = envs.hfield_pos
+    return spec.worldbody.add_geom(
+        name=name or hfield,
+        type=mujoco.mjtGeom.mjGEOM_HFIELD,
+        hfieldname=hfield,
+        pos=[x + offset[0], y + offset[1], z + offset[2]],
+        rgba=[0.76, 0.6, 0.42, 1.0],
+        group=group,
+    )
+
+
+def sync_env_hfields(model: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
+    """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
+    the compiled ``model``'s height fields made by ``add_env_hfields``
+    (slots: each env's own; tiles: the map, whole). Call it after
+    ``envs.reset(env_ids)``; the model is not recompiled."""
+    names = env_hfield_names(envs, name)
+    if envs.layout == "tiles":
+        ids: Any = [0]
+    else:
+        ids = range(envs.num_envs) if env_ids is None else np.asarray(env_ids).ravel()
+    for i in ids:
+        hid = _hfield_id(model, names[int(i)])
+        adr, n = int(model.hfield_adr[hid]), int(model.hfield_nrow[hid]) * int(model.hfield_ncol[hid])
+        if n != envs.samples[int(i)].size:
+            raise ValueError(f"height field {names[int(i)]} holds {n} samples, but the envs' field has {envs.samples[int(i)].size}")
+        model.hfield_data[adr : adr + n] = envs.samples[int(i)].ravel()
