@@ -29,44 +29,32 @@ fn a_rerun_stops_at_a_planted_link_or_fifo_with_its_path() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     stdout(&batch(&out, &[]));
+    // A rerun (with or without --force) must stop naming `what`, exit 2.
+    let stops_at = |extra: &[&str], what: &str| {
+        let done = batch(&out, extra);
+        let said = stderr(&done);
+        assert_eq!(done.status.code(), Some(2), "{said}");
+        assert!(
+            said.contains(&format!("{what} is a link or special file")),
+            "{said}"
+        );
+    };
     let planted = out.join("world_0001/heightmap.csv");
     std::fs::remove_file(&planted).unwrap();
     std::os::unix::fs::symlink("/dev/zero", &planted).unwrap();
-    let done = batch(&out, &[]);
-    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
-    assert!(
-        stderr(&done).contains("world_0001/heightmap.csv is a link or special file"),
-        "{}",
-        stderr(&done)
-    );
+    stops_at(&[], "world_0001/heightmap.csv");
 
     std::fs::remove_file(&planted).unwrap();
-    assert!(
-        Command::new("mkfifo")
-            .arg(&planted)
-            .status()
-            .unwrap()
-            .success()
-    );
-    let done = batch(&out, &["--force"]);
-    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
-    assert!(
-        stderr(&done).contains("world_0001/heightmap.csv is a link or special file"),
-        "{}",
-        stderr(&done)
-    );
+    let fifo = Command::new("mkfifo").arg(&planted).status().unwrap();
+    assert!(fifo.success());
+    stops_at(&["--force"], "world_0001/heightmap.csv");
+
     // A world folder that is a link is not followed either.
     std::fs::remove_file(&planted).unwrap();
     let moved = dir.path().join("elsewhere");
     std::fs::rename(out.join("world_0001"), &moved).unwrap();
     std::os::unix::fs::symlink(&moved, out.join("world_0001")).unwrap();
-    let done = batch(&out, &[]);
-    assert_eq!(done.status.code(), Some(2), "{}", stderr(&done));
-    assert!(
-        stderr(&done).contains("world_0001 is a link or special file"),
-        "{}",
-        stderr(&done)
-    );
+    stops_at(&[], "world_0001");
 }
 
 /// Item 8: the lock lives in the output folder, hidden, and nothing is
