@@ -78,7 +78,7 @@ pip_pid=$!
 say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
 scripts/fuzz.sh
 
-say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, usd-core; libsdformat; gz-physics)"
+say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, MuJoCo Warp, usd-core; libsdformat; gz-physics)"
 wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r tests/requirements.txt failed" >&2; exit 1; }
 if [ -n "$apt_pid" ]; then
     wait "$apt_pid" || { cat "$apt_log" >&2; echo "scripts/test.sh: apt-get install failed" >&2; exit 1; }

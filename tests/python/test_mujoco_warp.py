@@ -1,0 +1,106 @@
+"""`rse.mujoco_warp` inside MuJoCo Warp 4.0 on the CPU device (issue 23):
+each world stands on its own env's terrain (rays straight down in every
+world over every cell centre, and a sphere resting on its world's top),
+and after resetting some envs and syncing them, those worlds change and
+the others do not."""
+
+from __future__ import annotations
+
+import mujoco
+import mujoco_warp as mjw
+import numpy as np
+import rse
+import rse.mujoco_warp
+import warp as wp
+
+SCHEME = rse.Scheme.from_csv(
+    "# size: 10x8\n# base: 0.05\ntype,height,angle,x1,y1\nrandom,0..3,,,\npeak,2..5,45,2..7,2..5\n"
+)
+NWORLD = 4
+RADIUS = 0.03
+
+
+def model(envs: rse.EnvTerrains):
+    spec = mujoco.MjSpec()
+    spec.option.timestep = 0.005
+    rse.mujoco_warp.add_terrain(spec, envs)
+    ball = spec.worldbody.add_body(name="ball", pos=[0.35, 0.35, 1.0])
+    ball.add_freejoint()
+    ball.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[RADIUS, 0, 0])
+    mjm = spec.compile()
+    return mjm, rse.mujoco_warp.put_model(mjm, envs)
+
+
+def centres(envs: rse.EnvTerrains) -> np.ndarray:
+    ny, nx = envs.terrain(0).heights.shape
+    s = envs.terrain(0).block_size
+    ys, xs = np.mgrid[0:ny, 0:nx]
+    return np.stack([(xs.ravel() + 0.5) * s, (ys.ravel() + 0.5) * s], axis=1)
+
+
+def rays(m, d, points: np.ndarray) -> np.ndarray:
+    """Each world's terrain top under every point: (NWORLD, P)."""
+    p = len(points)
+    origin = np.zeros((NWORLD, p, 3))
+    origin[:, :, :2] = points
+    origin[:, :, 2] = 3.0
+    down = np.tile([0.0, 0.0, -1.0], (NWORLD, p, 1))
+    dist = wp.zeros((NWORLD, p), dtype=float)
+    geom = wp.zeros((NWORLD, p), dtype=int)
+    normal = wp.zeros((NWORLD, p), dtype=wp.vec3)
+    every_group = wp.types.vector(length=6, dtype=float)(*[-1.0] * 6)
+    nobody = wp.array(np.full(p, -1, dtype=np.int32), dtype=int)
+    mjw.rays(m, d, wp.array(origin, dtype=wp.vec3), wp.array(down, dtype=wp.vec3), every_group, True, nobody, dist, geom, normal)
+    assert (geom.numpy() == 0).all(), "every ray hits the terrain geom"
+    return 3.0 - dist.numpy()
+
+
+def test_every_world_stands_on_its_own_env_and_a_reset_changes_only_its_worlds() -> None:
+    envs = rse.EnvTerrains(SCHEME, NWORLD, oversample=2, seed=4)
+    mjm, m = model(envs)
+    d = mjw.make_data(mjm, nworld=NWORLD, nconmax=32, njmax=64)
+    # The ball far away while the rays look at the terrain.
+    qpos = d.qpos.numpy()
+    qpos[:, 0:3] = [50.0, 50.0, 5.0]
+    d.qpos.assign(qpos)
+    mjw.kinematics(m, d)
+    points = centres(envs)
+    expected = np.stack([envs.heights_at([w], points[None])[0] for w in range(NWORLD)])
+    seen = rays(m, d, points)
+    assert np.allclose(seen, expected, atol=1e-4)
+    assert len({row.tobytes() for row in np.round(seen, 6)}) == NWORLD, "every world its own terrain"
+
+    envs.reset([1, 3])
+    rse.mujoco_warp.sync(m, mjm, envs, [1, 3])
+    after = rays(m, d, points)
+    expected = np.stack([envs.heights_at([w], points[None])[0] for w in range(NWORLD)])
+    assert np.allclose(after, expected, atol=1e-4)
+    assert np.array_equal(after[[0, 2]], seen[[0, 2]]), "worlds 0 and 2 untouched"
+    assert not np.allclose(after[1], seen[1]) and not np.allclose(after[3], seen[3])
+
+
+def test_a_ball_rests_on_its_worlds_top() -> None:
+    envs = rse.EnvTerrains(SCHEME, NWORLD, oversample=2, seed=8)
+    mjm, m = model(envs)
+    d = mjw.make_data(mjm, nworld=NWORLD, nconmax=32, njmax=64)
+    mjw.reset_data(m, d)
+    for _ in range(300):
+        mjw.step(m, d)
+    z = d.qpos.numpy()[:, 2]
+    tops = np.array([envs.heights_at([w], [[[0.35, 0.35]]])[0, 0] for w in range(NWORLD)])
+    assert np.allclose(z, tops + RADIUS, atol=5e-3), (z, tops)
+    assert len(set(np.round(tops, 6))) > 1, "the worlds' tops differ under the ball"
+
+
+def test_bad_input_is_named() -> None:
+    import pytest
+
+    tiles = rse.EnvTerrains(SCHEME, 2, layout="tiles")
+    with pytest.raises(ValueError, match="^envs"):
+        rse.mujoco_warp.add_terrain(mujoco.MjSpec(), tiles)
+    envs = rse.EnvTerrains(SCHEME, NWORLD)
+    mjm, m = model(envs)
+    with pytest.raises(ValueError, match="^env_ids"):
+        rse.mujoco_warp.sync(m, mjm, envs, [NWORLD])
+    with pytest.raises(ValueError, match="^mjm"):
+        rse.mujoco_warp.put_model(mujoco.MjModel.from_xml_string("<mujoco/>"), envs)
