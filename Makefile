@@ -38,6 +38,7 @@ bench:
 	bench/check.sh
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 	.venv/bin/python bench/hfield.py
+	.venv/bin/python bench/envs.py
 	.venv/bin/python bench/boxes.py
 	.venv/bin/python bench/editor.py
 

@@ -92,22 +92,42 @@ def _hfield(mjm: Any, name: str) -> int:
     return hid
 
 
+def _pool(mjm: Any, envs: EnvTerrains, name: str) -> tuple[np.ndarray, int]:
+    """The address in ``hfield_data`` of every env's field, and its size:
+    ``add_env_hfields`` adds them one after the other, so the first and
+    last names bound them."""
+    names = env_hfield_names(envs, name)
+    first, last = _hfield(mjm, names[0]), _hfield(mjm, names[-1])
+    if last - first != len(names) - 1:
+        raise ValueError(f"mjm: the height fields {names[0]} … {names[-1]} are not one pool (add them with add_terrain)")
+    n = int(mjm.hfield_nrow[first]) * int(mjm.hfield_ncol[first])
+    if n != envs.samples[0].size:
+        raise ValueError(f"m: height field {names[0]} holds {n} samples, but the envs' field has {envs.samples[0].size}")
+    return np.asarray(mjm.hfield_adr[first : last + 1], dtype=np.int64), n
+
+
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
     """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
     the device model ``m``'s height fields, each into its own field only
-    (``wp.copy`` at the field's address; on the CPU device, from host memory
-    without a staging copy). Call it after ``envs.reset(env_ids)``."""
+    (on the CPU device a copy into a numpy view of the warp array; on a
+    GPU one ``wp.copy`` per env from the host samples, wrapped without a
+    copy).
+    Call it after ``envs.reset(env_ids)``."""
     import warp as wp
 
-    ids = range(envs.num_envs) if env_ids is None else [int(e) for e in np.asarray(env_ids).ravel()]
-    names = env_hfield_names(envs, name)
-    samples = envs.samples
-    for e in ids:
-        if not 0 <= e < envs.num_envs:
-            raise ValueError(f"env_ids: {e} is not an environment (0 to {envs.num_envs - 1})")
-        hid = _hfield(mjm, names[e])
-        n = int(mjm.hfield_nrow[hid]) * int(mjm.hfield_ncol[hid])
-        if n != samples[e].size:
-            raise ValueError(f"m: height field {names[e]} holds {n} samples, but the envs' field has {samples[e].size}")
-        source = wp.array(samples[e].reshape(-1), dtype=float, device="cpu", copy=False)
-        wp.copy(m.hfield_data, source, dest_offset=int(mjm.hfield_adr[hid]), count=n)
+    ids = np.arange(envs.num_envs) if env_ids is None else np.asarray(env_ids, dtype=np.int64).ravel()
+    bad = ids[(ids < 0) | (ids >= envs.num_envs)]
+    if bad.size:
+        raise ValueError(f"env_ids: {int(bad[0])} is not an environment (0 to {envs.num_envs - 1})")
+    adr, n = _pool(mjm, envs, name)
+    flat = envs.samples.reshape(-1)
+    if m.hfield_data.device.is_cpu:
+        # On the CPU device the warp array is host memory: a numpy view
+        # of it takes a plain copy, without a kernel launch per env.
+        view = m.hfield_data.numpy()
+        for e in ids.tolist():
+            view[adr[e] : adr[e] + n] = flat[e * n : (e + 1) * n]
+        return
+    source = wp.array(flat, dtype=float, device="cpu", copy=False)
+    for e in ids.tolist():
+        wp.copy(m.hfield_data, source, dest_offset=int(adr[e]), src_offset=e * n, count=n)
