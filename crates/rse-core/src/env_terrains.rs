@@ -10,9 +10,8 @@ use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
-use crate::hfield::{HFieldError, MAX_HFIELD_SAMPLES};
+use crate::hfield::{HFieldError, MAX_HFIELD_SAMPLES, hfield_shape_of};
 use crate::scheme::Scheme;
-use crate::spawn::Region;
 use crate::terrain::Terrain;
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
@@ -115,8 +114,6 @@ pub struct EnvTerrains {
     field: (usize, usize),
     /// The whole buffer: (slots, rows, columns).
     shape: (usize, usize, usize),
-    /// Tile rows, for the tiles layout.
-    tile_rows: u32,
     elevation: f64,
 }
 
@@ -145,11 +142,10 @@ impl EnvTerrains {
         }
         let grid = scheme.grid();
         let k = options.oversample;
-        let probe = generate_at(&scheme, options.seed, 0, Difficulty::FULL);
-        let (nrow, ncol) = probe.hfield_shape(k)?;
+        let (nrow, ncol) = hfield_shape_of(grid, k)?;
         let field = (nrow as usize, ncol as usize);
-        let (shape, tile_rows) = match options.layout {
-            EnvLayout::Slots => ((n, field.0, field.1), 0),
+        let shape = match options.layout {
+            EnvLayout::Slots => (n, field.0, field.1),
             EnvLayout::Tiles { cols, border } => {
                 if cols == 0 {
                     return Err(bad("cols", "expected 1 or more tiles along x"));
@@ -169,7 +165,7 @@ impl EnvTerrains {
                         format!("a {r}x{c} tile map is more than {MAX_HFIELD_SAMPLES} samples"),
                     ));
                 }
-                ((1, r as usize, c as usize), rows as u32)
+                (1, r as usize, c as usize)
             }
         };
         let total = (shape.0 as u64)
@@ -189,7 +185,6 @@ impl EnvTerrains {
             episodes: vec![0; n],
             field,
             shape,
-            tile_rows,
         };
         envs.terrains = (0..n)
             .into_par_iter()
@@ -404,7 +399,7 @@ impl EnvTerrains {
                 let band = (b + nrow) * cols;
                 let per_row = per_row as usize;
                 out.par_chunks_mut(band)
-                    .take(self.tile_rows as usize)
+                    .take(self.num_envs().div_ceil(per_row))
                     .enumerate()
                     .for_each(|(row, chunk)| {
                         let first = row * per_row;
@@ -425,11 +420,6 @@ impl EnvTerrains {
             }
         }
         Ok(())
-    }
-
-    /// The region of environment `e`'s terrain in its own grid.
-    pub fn region(&self, e: usize) -> Region {
-        self.terrains[e].region()
     }
 }
 

@@ -10,6 +10,7 @@
 //! span exactly `[0, 1]`, so [`HField`] always spans `[0, 1]` (or is all 0
 //! on a flat terrain) and puts its geom at the lowest top.
 
+use crate::globals::Grid;
 use crate::terrain::Terrain;
 
 /// At most this many samples (`nx·ny·k²`): 2^27 float32 are 512 MiB.
@@ -84,26 +85,7 @@ impl Terrain {
     /// [`MAX_HFIELD_SAMPLES`], and for fewer than 2 samples along an axis
     /// (MuJoCo needs 2).
     pub fn hfield_shape(&self, oversample: u32) -> Result<(u32, u32), HFieldError> {
-        let bad = |reason: String| HFieldError::Oversample { oversample, reason };
-        if oversample == 0 {
-            return Err(bad("expected 1 or more samples per cell".to_owned()));
-        }
-        let grid = self.grid();
-        let (nrow, ncol) = (
-            u64::from(grid.ny) * u64::from(oversample),
-            u64::from(grid.nx) * u64::from(oversample),
-        );
-        if nrow * ncol > MAX_HFIELD_SAMPLES {
-            return Err(bad(format!(
-                "{nrow}x{ncol} samples; at most {MAX_HFIELD_SAMPLES} are made"
-            )));
-        }
-        if nrow < 2 || ncol < 2 {
-            return Err(bad(format!(
-                "{nrow}x{ncol} samples; MuJoCo needs 2 or more along each axis"
-            )));
-        }
-        Ok((nrow as u32, ncol as u32))
+        hfield_shape_of(self.grid(), oversample)
     }
 
     /// The height field with `oversample` (k) samples per cell along each
@@ -246,6 +228,30 @@ impl Terrain {
     }
 }
 
+/// [`Terrain::hfield_shape`] of any terrain of `grid`: the shape depends on
+/// the grid and `oversample` alone.
+pub(crate) fn hfield_shape_of(grid: Grid, oversample: u32) -> Result<(u32, u32), HFieldError> {
+    let bad = |reason: String| HFieldError::Oversample { oversample, reason };
+    if oversample == 0 {
+        return Err(bad("expected 1 or more samples per cell".to_owned()));
+    }
+    let (nrow, ncol) = (
+        u64::from(grid.ny) * u64::from(oversample),
+        u64::from(grid.nx) * u64::from(oversample),
+    );
+    if nrow.saturating_mul(ncol) > MAX_HFIELD_SAMPLES {
+        return Err(bad(format!(
+            "{nrow}x{ncol} samples; at most {MAX_HFIELD_SAMPLES} are made"
+        )));
+    }
+    if nrow < 2 || ncol < 2 {
+        return Err(bad(format!(
+            "{nrow}x{ncol} samples; MuJoCo needs 2 or more along each axis"
+        )));
+    }
+    Ok((nrow as u32, ncol as u32))
+}
+
 impl HField {
     /// MuJoCo's binary height field file: `int32 nrow`, `int32 ncol`, then
     /// `nrow·ncol` `float32`, little-endian. MuJoCo reads it exactly: the
@@ -268,6 +274,17 @@ mod tests {
 
     fn terrain(text: &str) -> crate::Terrain {
         generate(&Scheme::from_csv(text, None).unwrap(), 0, 0)
+    }
+
+    /// An oversample read from a file may be anything: a sample count past
+    /// 2⁶⁴ is refused, never wrapped into a small one.
+    #[test]
+    fn a_huge_oversample_is_refused_not_wrapped() {
+        let t = terrain("# size: 5x5\ntype,height\nrandom,3\n");
+        assert!(matches!(
+            t.hfield_shape(u32::MAX),
+            Err(crate::HFieldError::Oversample { .. })
+        ));
     }
 
     #[test]
