@@ -9,8 +9,8 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedA
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::scheme::Scheme;
-use crate::terrain::Terrain;
+use crate::scheme::{Scheme, difficulty_arg};
+use crate::terrain::{Terrain, writable_samples};
 
 /// The terrains of `num_envs` environments, each new at every reset.
 #[pyclass(module = "rse")]
@@ -42,11 +42,6 @@ fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
             })
         })
         .collect()
-}
-
-/// One difficulty, or a `ValueError` naming `difficulty`.
-fn difficulty(d: f64) -> PyResult<rse_core::Difficulty> {
-    rse_core::Difficulty::new(d).map_err(|e| PyValueError::new_err(format!("difficulty: {e}")))
 }
 
 impl EnvTerrains {
@@ -117,7 +112,7 @@ impl EnvTerrains {
             seed: seed.unwrap_or(scheme.globals().seed),
             env_offset,
             layout,
-            difficulty: self::difficulty(difficulty)?,
+            difficulty: difficulty_arg(difficulty)?,
             spawn_radius,
         };
         let owned = (*scheme).clone();
@@ -177,7 +172,7 @@ impl EnvTerrains {
             )));
         }
         for &d in &values {
-            difficulty(d)?;
+            difficulty_arg(d)?;
         }
         let array = self.difficulty.bind(py);
         let mut view = array.try_readwrite().map_err(value_error)?;
@@ -255,7 +250,7 @@ impl EnvTerrains {
                 )));
             }
             for &d in &values {
-                self::difficulty(d)?;
+                difficulty_arg(d)?;
             }
             let mut view = array.try_readwrite().map_err(value_error)?;
             let slice = view.as_slice_mut().map_err(value_error)?;
@@ -267,7 +262,7 @@ impl EnvTerrains {
             let view = array.try_readonly().map_err(value_error)?;
             let slice = view.as_slice().map_err(value_error)?;
             envs.iter()
-                .map(|&e| self::difficulty(slice[e]))
+                .map(|&e| difficulty_arg(slice[e]))
                 .collect::<PyResult<_>>()?
         };
         let inner = &mut self.inner;
@@ -347,14 +342,18 @@ impl EnvTerrains {
             None => (0..self.inner.num_envs()).collect(),
         };
         let numpy = py.import("numpy")?;
-        let array =
-            if out.cast::<PyArrayDyn<f32>>().is_ok() || out.hasattr("__array_interface__")? {
-                numpy.call_method1("asarray", (out,))?
-            } else if out.hasattr("__dlpack__")? {
-                numpy.call_method1("from_dlpack", (out,))?
-            } else {
-                numpy.call_method1("asarray", (out,))?
-            };
+        // An object offering DLPack alone (a torch tensor) through
+        // `from_dlpack`; numpy's own arrays and the buffer protocol through
+        // `asarray`, which shares their memory.
+        let dlpack_only = out.cast::<PyArrayDyn<f32>>().is_err()
+            && !out.hasattr("__array_interface__")?
+            && out.hasattr("__dlpack__")?;
+        let convert = if dlpack_only {
+            "from_dlpack"
+        } else {
+            "asarray"
+        };
+        let array = numpy.call_method1(convert, (out,))?;
         let array = array
             .cast::<PyArrayDyn<f32>>()
             .map_err(|_| PyValueError::new_err("out: expected float32 samples"))?;
@@ -365,17 +364,8 @@ impl EnvTerrains {
                 array.shape()
             )));
         }
-        // numpy's slice view also takes a Fortran-ordered array, which
-        // would be filled in the wrong order.
-        if !array.is_c_contiguous() {
-            return Err(PyValueError::new_err("out: must be C-contiguous"));
-        }
-        let mut view = array
-            .try_readwrite()
-            .map_err(|e| PyValueError::new_err(format!("out: not writable ({e})")))?;
-        let slice = view
-            .as_slice_mut()
-            .map_err(|_| PyValueError::new_err("out: must be C-contiguous"))?;
+        let mut view = writable_samples(array, "out")?;
+        let slice = view.as_slice_mut().map_err(value_error)?;
         let inner = &self.inner;
         py.detach(|| inner.write(&envs, slice)).map_err(value_error)
     }

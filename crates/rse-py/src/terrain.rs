@@ -11,6 +11,23 @@ use std::sync::Arc;
 
 use crate::errors::{core_error, world_error};
 
+/// The caller's array `name` (float32 samples) borrowed for writing, if it
+/// is C-contiguous and writable; else a `ValueError` naming it. numpy's
+/// slice view alone would also take a Fortran-ordered array and fill it in
+/// the wrong order.
+pub(crate) fn writable_samples<'py, D: numpy::ndarray::Dimension>(
+    out: &Bound<'py, numpy::PyArray<f32, D>>,
+    name: &str,
+) -> PyResult<numpy::PyReadwriteArray<'py, f32, D>> {
+    if !out.is_c_contiguous() {
+        return Err(PyValueError::new_err(format!(
+            "{name}: must be C-contiguous"
+        )));
+    }
+    out.try_readwrite()
+        .map_err(|e| PyValueError::new_err(format!("{name}: not writable ({e})")))
+}
+
 /// One generated RSE.
 #[pyclass(module = "rse", frozen)]
 pub struct Terrain {
@@ -326,17 +343,10 @@ impl Terrain {
                 "out has shape {shape:?}, but the height field of this terrain at oversample {oversample} is ({nrow}, {ncol})"
             )));
         }
-        // numpy's slice view also takes a Fortran-ordered array, which
-        // would be filled in the wrong order.
-        if !out.is_c_contiguous() {
-            return Err(PyValueError::new_err("out must be C-contiguous"));
-        }
-        let mut view = out
-            .try_readwrite()
-            .map_err(|e| PyValueError::new_err(format!("out: {e}")))?;
+        let mut view = writable_samples(out, "out")?;
         let slice = view
             .as_slice_mut()
-            .map_err(|_| PyValueError::new_err("out must be C-contiguous"))?;
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let inner = &self.inner;
         py.detach(|| inner.hfield_into(oversample, z0, elevation, slice))
             .map_err(hfield_error)
