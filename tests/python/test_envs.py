@@ -195,3 +195,19 @@ def test_tiles_are_one_mujoco_height_field_each_env_in_its_tile() -> None:
         assert oz >= envs.heights_at([e], [[[ox, oy]]])[0, 0] - 1e-9
     # Borders are ground (height 0, the slab's top).
     assert ray_down(model, data, 0.05, 0.05, 0) == pytest.approx(SMALL.base, abs=1e-5)
+
+
+def test_a_model_without_the_pool_is_named() -> None:
+    envs = rse.EnvTerrains(SMALL, 2)
+    empty = mujoco.MjModel.from_xml_string("<mujoco/>")
+    with pytest.raises(ValueError, match="^model: no height field named 'rse_env0'"):
+        rse.mujoco.sync_env_hfields(empty, envs)
+    spec = mujoco.MjSpec()
+    rse.mujoco.add_env_hfields(spec, envs)
+    rse.mujoco.add_env_geom(spec, envs, "rse_env0")
+    model = spec.compile()
+    with pytest.raises(ValueError, match="^env_ids"):
+        rse.mujoco.sync_env_hfields(model, envs, [-1])
+    other = rse.EnvTerrains(SMALL, 2, oversample=3)
+    with pytest.raises(ValueError, match="^model: height field rse_env0 holds"):
+        rse.mujoco.sync_env_hfields(model, other)

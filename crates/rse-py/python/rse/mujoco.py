@@ -276,19 +276,53 @@ def add_env_geom(
     )
 
 
+def _env_ids(envs: EnvTerrains, env_ids: Any) -> list[int]:
+    """``env_ids`` (all when None) as ints, or ``ValueError`` naming it."""
+    ids = np.arange(envs.num_envs) if env_ids is None else np.asarray(env_ids, dtype=np.int64).ravel()
+    bad = ids[(ids < 0) | (ids >= envs.num_envs)]
+    if bad.size:
+        raise ValueError(f"env_ids: {int(bad[0])} is not an environment (0 to {envs.num_envs - 1})")
+    return ids.tolist()
+
+
+def _env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") -> tuple[int, np.ndarray, int]:
+    """The height fields ``add_env_hfields`` made in the compiled ``model``
+    (a ``MjModel``): the first one's id, every one's address in
+    ``hfield_data`` and the samples of each. They were added one after the
+    other, so the first and last names bound them; ``ValueError`` naming
+    ``argument`` when they are not there, not one run, or of another size."""
+    import mujoco
+
+    names = env_hfield_names(envs, name)
+
+    def hfield(n: str) -> int:
+        hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, n)
+        if hid < 0:
+            raise ValueError(f"{argument}: no height field named {n!r} (add them with add_env_hfields)")
+        return hid
+
+    first, last = hfield(names[0]), hfield(names[-1])
+    if last - first != len(names) - 1:
+        raise ValueError(f"{argument}: the height fields {names[0]} … {names[-1]} are not one pool (add them with add_env_hfields)")
+    size = int(model.hfield_nrow[first]) * int(model.hfield_ncol[first])
+    if size != envs.samples[0].size:
+        raise ValueError(f"{argument}: height field {names[0]} holds {size} samples, but the envs' field has {envs.samples[0].size}")
+    return first, np.asarray(model.hfield_adr[first : last + 1], dtype=np.int64), size
+
+
+def _copy_env_samples(data: np.ndarray, envs: EnvTerrains, ids: list[int], adr: np.ndarray, size: int) -> None:
+    """Copies the samples of ``ids`` into ``data`` (a model's
+    ``hfield_data``, or a host view of a device copy of it) at ``adr``."""
+    flat = envs.samples.reshape(-1)
+    for e in ids:
+        data[adr[e] : adr[e] + size] = flat[e * size : (e + 1) * size]
+
+
 def sync_env_hfields(model: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
     """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
     the compiled ``model``'s height fields made by ``add_env_hfields``
     (slots: each env's own; tiles: the map, whole). Call it after
     ``envs.reset(env_ids)``; the model is not recompiled."""
-    names = env_hfield_names(envs, name)
-    if envs.layout == "tiles":
-        ids: Any = [0]
-    else:
-        ids = range(envs.num_envs) if env_ids is None else np.asarray(env_ids).ravel()
-    for i in ids:
-        hid = _hfield_id(model, names[int(i)])
-        adr, n = int(model.hfield_adr[hid]), int(model.hfield_nrow[hid]) * int(model.hfield_ncol[hid])
-        if n != envs.samples[int(i)].size:
-            raise ValueError(f"height field {names[int(i)]} holds {n} samples, but the envs' field has {envs.samples[int(i)].size}")
-        model.hfield_data[adr : adr + n] = envs.samples[int(i)].ravel()
+    ids = [0] if envs.layout == "tiles" else _env_ids(envs, env_ids)
+    _, adr, size = _env_pool(model, envs, name)
+    _copy_env_samples(model.hfield_data, envs, ids, adr, size)

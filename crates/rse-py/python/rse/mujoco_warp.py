@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from rse._rse import EnvTerrains
-from rse.mujoco import add_env_geom, add_env_hfields, env_hfield_names, sync_env_hfields
+from rse.mujoco import _copy_env_samples, _env_ids, _env_pool, add_env_geom, add_env_hfields, sync_env_hfields
 
 __all__ = ["GEOM", "add_terrain", "put_model", "sync"]
 
@@ -70,40 +70,17 @@ def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str =
     import warp as wp
 
     gid = _terrain_geom(mjm, geom)
-    names = env_hfield_names(envs, name)
-    if len(names) != envs.num_envs or envs.layout != "slots":
+    if envs.layout != "slots":
         raise ValueError("envs: expected the slots layout, one field per world")
+    first, _, _ = _env_pool(mjm, envs, name, "mjm")
     sync_env_hfields(mjm, envs, name=name)
     batch = dict(kwargs.pop("batch_sizes", {}) or {})
     batch["geom_dataid"] = envs.num_envs
     m = mjw.put_model(mjm, batch_sizes=batch, **kwargs)
     dataid = np.tile(np.asarray(mjm.geom_dataid, dtype=np.int32), (envs.num_envs, 1))
-    dataid[:, gid] = [_hfield(mjm, n) for n in names]
+    dataid[:, gid] = first + np.arange(envs.num_envs)
     wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
     return m
-
-
-def _hfield(mjm: Any, name: str) -> int:
-    import mujoco
-
-    hid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, name)
-    if hid < 0:
-        raise ValueError(f"mjm: no height field named {name!r} (add them with rse.mujoco_warp.add_terrain)")
-    return hid
-
-
-def _pool(mjm: Any, envs: EnvTerrains, name: str) -> tuple[np.ndarray, int]:
-    """The address in ``hfield_data`` of every env's field, and its size:
-    ``add_env_hfields`` adds them one after the other, so the first and
-    last names bound them."""
-    names = env_hfield_names(envs, name)
-    first, last = _hfield(mjm, names[0]), _hfield(mjm, names[-1])
-    if last - first != len(names) - 1:
-        raise ValueError(f"mjm: the height fields {names[0]} … {names[-1]} are not one pool (add them with add_terrain)")
-    n = int(mjm.hfield_nrow[first]) * int(mjm.hfield_ncol[first])
-    if n != envs.samples[0].size:
-        raise ValueError(f"m: height field {names[0]} holds {n} samples, but the envs' field has {envs.samples[0].size}")
-    return np.asarray(mjm.hfield_adr[first : last + 1], dtype=np.int64), n
 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
@@ -115,19 +92,13 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     Call it after ``envs.reset(env_ids)``."""
     import warp as wp
 
-    ids = np.arange(envs.num_envs) if env_ids is None else np.asarray(env_ids, dtype=np.int64).ravel()
-    bad = ids[(ids < 0) | (ids >= envs.num_envs)]
-    if bad.size:
-        raise ValueError(f"env_ids: {int(bad[0])} is not an environment (0 to {envs.num_envs - 1})")
-    adr, n = _pool(mjm, envs, name)
-    flat = envs.samples.reshape(-1)
+    ids = _env_ids(envs, env_ids)
+    _, adr, size = _env_pool(mjm, envs, name, "mjm")
     if m.hfield_data.device.is_cpu:
         # On the CPU device the warp array is host memory: a numpy view
         # of it takes a plain copy, without a kernel launch per env.
-        view = m.hfield_data.numpy()
-        for e in ids.tolist():
-            view[adr[e] : adr[e] + n] = flat[e * n : (e + 1) * n]
+        _copy_env_samples(m.hfield_data.numpy(), envs, ids, adr, size)
         return
-    source = wp.array(flat, dtype=float, device="cpu", copy=False)
-    for e in ids.tolist():
-        wp.copy(m.hfield_data, source, dest_offset=int(adr[e]), src_offset=e * n, count=n)
+    source = wp.array(envs.samples.reshape(-1), dtype=float, device="cpu", copy=False)
+    for e in ids:
+        wp.copy(m.hfield_data, source, dest_offset=int(adr[e]), src_offset=e * size, count=size)
