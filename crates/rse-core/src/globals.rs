@@ -27,6 +27,15 @@ pub(crate) fn nearest_global(word: &str) -> Option<&'static str> {
         .map(|(_, key)| key)
 }
 
+/// The fault of global `key` holding `value`, with why it cannot.
+fn bad(key: &str, value: String, reason: &str) -> Result<(), SchemeError> {
+    Err(SchemeError::new(SchemeErrorKind::BadGlobal {
+        value,
+        reason: reason.to_owned(),
+    })
+    .with_field(key))
+}
+
 /// The shortest `block_size` and `step_height` (and `base`, unless 0), metres
 /// (docs/schemes.md, "Errors"): mesh vertices are `f32` and `check` tells
 /// heights apart to 10⁻⁵ m, so a step must be far above both.
@@ -142,13 +151,6 @@ impl Globals {
     /// `block_size` and `step_height` at least [`MIN_LENGTH`], `base` 0 or
     /// at least that; finite numbers all.
     fn validate_lengths(&self) -> Result<(), SchemeError> {
-        let bad = |key: &str, value: String, reason: &str| {
-            Err(SchemeError::new(SchemeErrorKind::BadGlobal {
-                value,
-                reason: reason.to_owned(),
-            })
-            .with_field(key))
-        };
         for (key, value) in [
             ("block_size", self.block_size),
             ("step_height", self.step_height),
@@ -180,13 +182,6 @@ impl Globals {
     /// Checks every value's domain and the grid size. The error's `field`
     /// names the global key.
     pub fn validate(&self) -> Result<(), SchemeError> {
-        let bad = |key: &str, value: String, reason: &str| {
-            Err(SchemeError::new(SchemeErrorKind::BadGlobal {
-                value,
-                reason: reason.to_owned(),
-            })
-            .with_field(key))
-        };
         self.validate_lengths()?;
         if self.amount == 0 {
             return bad("amount", "0".into(), "needs at least one world");
