@@ -90,12 +90,11 @@ pub fn obj(data: &[u8]) {
     }
 }
 
-/// A world folder written once per process, whose `rse.json` the
-/// `manifest` target replaces.
-fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
-    static WORLD: OnceLock<(tempfile::TempDir, PathBuf, Vec<u8>)> = OnceLock::new();
+/// The world the `manifest` and `resume` targets work on: small, every
+/// target, built once per process.
+fn fuzz_world() -> &'static rse_world::WorldFiles {
+    static WORLD: OnceLock<rse_world::WorldFiles> = OnceLock::new();
     WORLD.get_or_init(|| {
-        let dir = tempfile::tempdir().expect("a temporary folder");
         let scheme = Scheme::from_csv(
             "# size: 8x6\ntype,height,angle,x1,y1,x2,y2\nrandom,2,,,,,\nwall,3,45,1,1,6,4\n",
             None,
@@ -106,7 +105,7 @@ fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
             mesh: MeshMode::Auto,
             ..WorldOptions::default()
         };
-        let world = build_world(
+        build_world(
             &scheme,
             0,
             1,
@@ -114,13 +113,28 @@ fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
             &options,
             &Templates::builtin(),
         )
-        .expect("the world builds");
-        let root = dir.path().join("world_0001");
-        for (path, bytes) in &world.files {
-            let path = root.join(path);
-            std::fs::create_dir_all(path.parent().expect("a parent")).expect("a folder");
-            std::fs::write(path, bytes).expect("a file");
-        }
+        .expect("the world builds")
+    })
+}
+
+/// Writes every file of `world` under `root`.
+fn write_files(root: &std::path::Path, world: &rse_world::WorldFiles) {
+    for (path, bytes) in &world.files {
+        let path = root.join(path);
+        std::fs::create_dir_all(path.parent().expect("a parent")).expect("a folder");
+        std::fs::write(path, bytes).expect("a file");
+    }
+}
+
+/// The fuzz world's folder, written once per process, whose `rse.json`
+/// the `manifest` target replaces.
+fn world_folder() -> &'static (tempfile::TempDir, PathBuf, Vec<u8>) {
+    static WORLD: OnceLock<(tempfile::TempDir, PathBuf, Vec<u8>)> = OnceLock::new();
+    WORLD.get_or_init(|| {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let world = fuzz_world();
+        let root = dir.path().join(&world.name);
+        write_files(&root, world);
         let manifest = world.files[rse_world::MANIFEST].clone();
         (dir, root, manifest)
     })
@@ -257,14 +271,10 @@ pub fn atlas_record(data: &[u8]) {
 /// is a conflict naming the folder.
 pub fn resume(data: &[u8]) {
     use rse_world::{Error, Outcome, place_world};
-    let world = resume_world();
+    let world = fuzz_world();
     let dir = tempfile::tempdir().expect("a temporary folder");
     let root = dir.path().join(&world.name);
-    for (path, bytes) in &world.files {
-        let path = root.join(path);
-        std::fs::create_dir_all(path.parent().expect("a parent")).expect("a folder");
-        std::fs::write(path, bytes).expect("a file");
-    }
+    write_files(&root, world);
     let Some((&pick, content)) = data.split_first() else {
         return;
     };
@@ -279,29 +289,4 @@ pub fn resume(data: &[u8]) {
         Err(Error::Conflict { .. }) => assert!(changed, "{path} unchanged but the world differs"),
         other => panic!("{path}: {other:?}"),
     }
-}
-
-/// The world the `resume` target compares: small, every target.
-fn resume_world() -> &'static rse_world::WorldFiles {
-    static WORLD: OnceLock<rse_world::WorldFiles> = OnceLock::new();
-    WORLD.get_or_init(|| {
-        let scheme = Scheme::from_csv(
-            "# size: 6x5\ntype,height,angle,x1,y1\nrandom,2,,,\npeak,3,45,2,2\n",
-            None,
-        )
-        .expect("the scheme loads");
-        let options = WorldOptions {
-            targets: Targets::parse("obj,gazebo,mujoco,urdf").expect("targets"),
-            ..WorldOptions::default()
-        };
-        build_world(
-            &scheme,
-            0,
-            0,
-            "world_0000".to_owned(),
-            &options,
-            &Templates::builtin(),
-        )
-        .expect("the world builds")
-    })
 }
