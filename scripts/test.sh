@@ -71,14 +71,20 @@ cargo test --release -p rse-cli --locked -- --include-ignored 2>&1 | tee -a "$lo
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt \
-    >"$pip_log" 2>&1 &
+# MJX pins its own MuJoCo (3.17; .venv has 4.0): rse.mjx's tests get their own venv.
+if [ ! -x .venv-mjx/bin/python ]; then
+    python3 -m venv .venv-mjx
+fi
+(
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
+    .venv-mjx/bin/python -m pip install --quiet --disable-pip-version-check -r tests/mjx/requirements.txt
+) >"$pip_log" 2>&1 &
 pip_pid=$!
 
 say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
 scripts/fuzz.sh
 
-say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, MuJoCo Warp, usd-core; libsdformat; gz-physics)"
+say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, MuJoCo Warp, MJX, usd-core; libsdformat; gz-physics)"
 wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r tests/requirements.txt failed" >&2; exit 1; }
 if [ -n "$apt_pid" ]; then
     wait "$apt_pid" || { cat "$apt_log" >&2; echo "scripts/test.sh: apt-get install failed" >&2; exit 1; }
@@ -89,11 +95,18 @@ say "the Python package (pip install ./crates/rse-py: maturin, release build)"
 if .venv/bin/python -m pip show --quiet rse >/dev/null 2>&1; then
     .venv/bin/python -m pip uninstall --quiet --yes rse
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
+rm -rf target/py-wheel
+.venv/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
+for venv in .venv .venv-mjx; do
+    $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
+done
 cargo build --release --locked --quiet -p rse-cli  # built by the tests above: a no-op unless run alone
 say "pytest (tests/python, on every core)"
 RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
     .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" 2>&1 | tee -a "$log"
+
+say "pytest (tests/mjx: rse.mjx inside MJX, in .venv-mjx)"
+JAX_PLATFORMS=cpu .venv-mjx/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/mjx 2>&1 | tee -a "$log"
 
 say "the README's main command"
 rm -rf target/readme-demo

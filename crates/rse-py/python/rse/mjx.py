@@ -1,0 +1,144 @@
+"""Every world of MJX its own rse terrain, new at each of its resets
+(docs/envs.md).
+
+MJX (the JAX implementation, ``impl="jax"``) batches worlds with
+``jax.vmap``, and any model field can carry a leading world axis. So the
+model holds one height field of the slot shape, and its ``hfield_data`` is
+batched: row ``w`` is world ``w``'s whole ``hfield_data``, with env ``w``'s
+terrain in the rse field. Replacing rows keeps the array's shape, dtype and
+device, so the jitted step is not traced again::
+
+    import jax, mujoco, rse, rse.mjx
+    from mujoco import mjx
+
+    envs = rse.EnvTerrains(rse.Scheme.load("schemes/six_obstacles.csv"), nworld)
+    spec = mujoco.MjSpec.from_file("robot.xml")
+    rse.mjx.add_terrain(spec, envs)                  # one field of the slot shape, one geom
+    mjm = spec.compile()
+    m = rse.mjx.put_model(mjm, envs)                 # hfield_data: (nworld, nhfielddata)
+    step = jax.jit(jax.vmap(mjx.step, in_axes=(rse.mjx.in_axes(m), 0)))
+    ...
+    envs.reset(done_ids)                             # new terrains for the envs that ended
+    m = rse.mjx.sync(m, mjm, envs, done_ids)         # those rows only; no re-jit
+
+Memory: the batched field holds ``nworld`` copies of the model's whole
+``hfield_data`` (4096 worlds of 160 × 160 samples: 420 MB of float32).
+MJX collides height fields with spheres, boxes and capsules only (not
+cylinders or ellipsoids). MJX's Warp implementation keeps only row 0 of a
+batched ``geom_dataid``: use ``rse.mujoco_warp`` for MuJoCo Warp.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rse._rse import EnvTerrains
+from rse.mujoco import _env_ids, add_env_geom
+
+__all__ = ["GEOM", "add_terrain", "hfield_rows", "in_axes", "put_model", "sync"]
+
+GEOM = "rse_terrain"
+"""The name of the terrain geom ``add_terrain`` adds."""
+
+
+def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM) -> None:
+    """Adds to ``spec`` (a ``mujoco.MjSpec``) one height field ``name`` of
+    ``envs``' slot shape and size (``envs`` in the slots layout) and a geom
+    ``geom`` showing it, its slot's frame at the world origin (each env's
+    ``origins`` are then world coordinates). ``put_model`` gives each world
+    its own samples."""
+    if envs.layout != "slots":
+        raise ValueError('envs: MJX batches a field per world: make them with layout="slots"')
+    nrow, ncol = envs.samples.shape[1:]
+    spec.add_hfield(name=name, nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[0].ravel())
+    add_env_geom(spec, envs, name, name=geom)
+
+
+def _field(mjm: Any, envs: EnvTerrains, name: str) -> tuple[int, int]:
+    """The address and sample count of the rse field ``name`` in ``mjm``,
+    or ``ValueError`` naming ``mjm``."""
+    import mujoco
+
+    if envs.layout != "slots":
+        raise ValueError("envs: expected the slots layout, one field per world")
+    hid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, name)
+    if hid < 0:
+        raise ValueError(f"mjm: no height field named {name!r} (add it with rse.mjx.add_terrain)")
+    size = int(mjm.hfield_nrow[hid]) * int(mjm.hfield_ncol[hid])
+    if size != envs.samples[0].size:
+        raise ValueError(f"mjm: height field {name!r} holds {size} samples, but the envs' field has {envs.samples[0].size}")
+    return int(mjm.hfield_adr[hid]), size
+
+
+def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> np.ndarray:
+    """World rows of ``hfield_data`` for ``env_ids`` (all when None):
+    float32 ``(len(env_ids), mjm.nhfielddata)``, each ``mjm``'s own
+    ``hfield_data`` with that env's samples in the field ``name``."""
+    adr, size = _field(mjm, envs, name)
+    ids = _env_ids(envs, env_ids)
+    rows = np.repeat(np.asarray(mjm.hfield_data, dtype=np.float32)[None], len(ids), axis=0)
+    rows[:, adr : adr + size] = envs.samples.reshape(envs.num_envs, size)[ids]
+    return rows
+
+
+def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", device: Any = None) -> Any:
+    """``mjx.put_model(mjm, impl="jax")`` with ``hfield_data`` batched per
+    world: row ``w`` holds env ``w``'s terrain. Step it under ``jax.vmap``
+    with ``in_axes(m)``."""
+    import jax
+    from mujoco import mjx
+
+    rows = hfield_rows(mjm, envs, name=name)
+    m = mjx.put_model(mjm, device=device, impl="jax")
+    # Committed to the model's device, as put_model's own arrays are: an
+    # uncommitted array changes jit's cache key and traces the step again.
+    return m.replace(hfield_data=jax.device_put(rows, m.hfield_data.devices().pop()))
+
+
+def in_axes(m: Any) -> Any:
+    """The ``jax.vmap`` ``in_axes`` tree for a model from ``put_model``:
+    world axis 0 on ``hfield_data``, none elsewhere."""
+    import jax
+
+    return jax.tree_util.tree_map(lambda _: None, m).replace(hfield_data=0)
+
+
+def _scatter(rows: Any, ids: Any, values: Any) -> Any:
+    return rows.at[ids].set(values)
+
+
+_SCATTER: dict[str, Any] = {}
+
+
+def _scatter_donating() -> Any:
+    """``_scatter`` jitted once, its first argument donated: XLA writes the
+    rows in place instead of copying the whole batched field."""
+    if "fn" not in _SCATTER:
+        import jax
+
+        _SCATTER["fn"] = jax.jit(_scatter, donate_argnums=0)
+    return _SCATTER["fn"]
+
+
+def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> Any:
+    """A model like ``m`` (from ``put_model``) whose rows ``env_ids`` (all
+    when None) hold those envs' current terrains; the other rows are
+    untouched and ``m``'s ``hfield_data`` is consumed (donated). Call it
+    after ``envs.reset(env_ids)``: same shape, dtype and device, so a
+    jitted step is not traced again."""
+    import jax
+
+    ids = _env_ids(envs, env_ids)
+    if m.hfield_data.shape != (envs.num_envs, mjm.nhfielddata):
+        raise ValueError(f"m: hfield_data is {m.hfield_data.shape}, expected ({envs.num_envs}, {mjm.nhfielddata}) (make it with rse.mjx.put_model)")
+    if not ids:
+        return m
+    device = m.hfield_data.devices().pop()
+    # Padded to a power of two by repeating the last id (it writes the same
+    # row again): the scatter compiles once per size class, not per count.
+    padded = ids + ids[-1:] * ((1 << (len(ids) - 1).bit_length()) - len(ids))
+    rows = jax.device_put(hfield_rows(mjm, envs, padded, name=name), device)
+    index = jax.device_put(np.asarray(padded, dtype=np.int32), device)
+    return m.replace(hfield_data=_scatter_donating()(m.hfield_data, index, rows))
