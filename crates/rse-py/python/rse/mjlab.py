@@ -35,6 +35,8 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._fit import SchemeLike, fit, framework_class, load, max_step, patches_in_ranges
+from rse._rse import EnvTerrains
+from rse.mujoco import add_env_geom, sync_env_hfields
 
 
 def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
@@ -113,4 +115,187 @@ else:
             return _function(self, difficulty, spec, rng)
 
 
-__all__ = ["RseTerrainCfg"]
+# --- Every environment its own terrain, new every episode -------------------
+
+
+def _probe(scheme: SchemeLike, oversample: int) -> EnvTerrains:
+    """One env of ``scheme``: the slot's shape and size, which do not
+    depend on the number of envs."""
+    return EnvTerrains(load(scheme), 1, oversample=oversample)
+
+
+def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: int = 2, name: str = "rse_env") -> None:
+    """Adds to an mjlab scene's ``spec`` the pool of ``num_envs`` height
+    fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
+    fills them), the terrain geom that shows one (``rse.mujoco_warp.GEOM``)
+    and a ground plane at the terrain's foot, so that a robot walking off
+    its slot keeps a floor."""
+    import mujoco
+
+    from rse.mujoco_warp import GEOM
+
+    probe = _probe(scheme, oversample)
+    nrow, ncol = probe.field_shape
+    zeros = np.zeros(nrow * ncol, dtype=np.float32)
+    for e in range(num_envs):
+        spec.add_hfield(name=f"{name}{e}", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
+    add_env_geom(spec, probe, f"{name}0", name=GEOM)
+    spec.worldbody.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1])
+
+
+class EnvTerrainsEvent:
+    """mjlab reset event term (``EventTermCfg(func=EnvTerrainsEvent,
+    mode="reset", params=...)``, before the terms that place the robots):
+    every env its own ``rse.EnvTerrains`` slot, a new terrain each time it
+    resets, spawned at its env's origin.
+
+    ``params``: ``scheme`` (a path or ``rse.Scheme``), and optionally
+    ``oversample``, ``seed``, ``difficulty``, ``spawn_radius``,
+    ``env_offset``, ``name`` as ``rse.EnvTerrains`` takes them. The scene
+    must hold the pool (``add_pool``; ``use_env_terrains`` wires both).
+
+    At construction it makes the ``EnvTerrains`` (``.envs``), expands the
+    model's ``geom_dataid`` per world (mjlab's ``expand_model_fields``) and
+    points each world's terrain geom at its env's field; each call resets
+    the named envs, copies their samples into the simulation's model (and
+    the host model, which mjlab's viewer draws) and writes their origins
+    into ``env.scene.env_origins``.
+    """
+
+    def __init__(self, cfg: Any, env: Any) -> None:
+        from rse.mujoco_warp import route
+
+        p = dict(cfg.params)
+        self.name = p.get("name", "rse_env")
+        self.envs = EnvTerrains(
+            load(p["scheme"]),
+            env.num_envs,
+            oversample=p.get("oversample", 2),
+            seed=p.get("seed"),
+            difficulty=p.get("difficulty", 1.0),
+            env_offset=p.get("env_offset", 0),
+            spawn_radius=p.get("spawn_radius", 0.3),
+        )
+        self._env = env
+        sim = env.sim
+        sim.expand_model_fields(("geom_dataid",))
+        route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
+        sync_env_hfields(sim.mj_model, self.envs, name=self.name)
+        self._write_origins(range(env.num_envs))
+
+    def _write_origins(self, ids: Any) -> None:
+        import torch
+
+        origins = self._env.scene.env_origins
+        index = torch.as_tensor(list(ids), dtype=torch.long, device=origins.device)
+        origins[index] = torch.as_tensor(self.envs.origins[index.cpu().numpy()], dtype=origins.dtype, device=origins.device)
+
+    def reset(self, env_ids: Any = None) -> None:
+        """mjlab's per-term reset hook: nothing to clear."""
+
+    def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
+        from rse.mujoco_warp import sync
+
+        ids = _ids(env, env_ids)
+        self.envs.reset(ids)
+        sync(env.sim.wp_model, env.sim.mj_model, self.envs, ids, name=self.name)
+        sync_env_hfields(env.sim.mj_model, self.envs, ids, name=self.name)
+        self._write_origins(ids)
+
+
+def _ids(env: Any, env_ids: Any) -> list[int]:
+    """mjlab's env ids (a tensor, a slice or None: all) as a list."""
+    if env_ids is None or isinstance(env_ids, slice):
+        return list(range(env.num_envs))[env_ids or slice(None)]
+    return [int(e) for e in env_ids.tolist()]
+
+
+def env_terrains(env: Any, term: str = "rse_terrain") -> EnvTerrains:
+    """The ``rse.EnvTerrains`` of a running mjlab ``env`` (its event term
+    ``term``): episodes, difficulties, origins, ``heights_at`` for height
+    scans."""
+    func = env.event_manager.get_term_cfg(term).func
+    if not isinstance(func, EnvTerrainsEvent):
+        raise ValueError(f"term: event term {term!r} is not an rse.mjlab.EnvTerrainsEvent")
+    return func.envs
+
+
+def terrain_difficulty(
+    env: Any,
+    env_ids: Any,
+    term: str = "rse_terrain",
+    asset_name: str = "robot",
+    step: float = 0.1,
+    command_name: Optional[str] = None,
+) -> dict[str, float]:
+    """mjlab curriculum term: mjlab's terrain-levels rule (as its velocity
+    task's ``terrain_levels_vel``), continuous. An env whose robot walked
+    farther than half its slot's shorter side from its origin gets
+    ``step`` more difficulty, one that walked less than half of what its
+    command asked (``command_name``; without one, a quarter of the slot)
+    ``step`` less, clamped to [0, 1]; ``EnvTerrainsEvent``, which runs
+    after the curriculum at a reset, then draws their new terrains at it.
+    Frozen on the first reset, before any step (the robots stand at their
+    spawn points). Returns the mean and max difficulty for mjlab's log."""
+    import torch
+
+    envs = env_terrains(env, term)
+    ids = _ids(env, env_ids)
+    if env.common_step_counter > 0 and ids:
+        index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
+        walked = torch.norm(env.scene[asset_name].data.root_link_pos_w[index, :2] - env.scene.env_origins[index, :2], dim=1)
+        t = envs.terrain(0)
+        half = 0.5 * min(t.block_size * t.heights.shape[1], t.block_size * t.heights.shape[0])
+        up = walked > half
+        if command_name is None:
+            down = walked < half / 2
+        else:
+            command = env.command_manager.get_command(command_name)
+            down = walked < torch.norm(command[index, :2], dim=1) * env.max_episode_length_s * 0.5
+        moves = (up.int() - (down & ~up).int()).cpu().numpy()
+        d = envs.difficulty
+        d[ids] = np.clip(d[ids] + step * moves, 0.0, 1.0)
+    return {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
+
+
+def use_env_terrains(
+    env_cfg: Any,
+    scheme: SchemeLike,
+    *,
+    oversample: int = 2,
+    seed: Optional[int] = None,
+    difficulty: float = 1.0,
+    spawn_radius: float = 0.3,
+    env_offset: int = 0,
+    curriculum: bool = False,
+    term: str = "rse_terrain",
+) -> None:
+    """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
+    terrain, new every episode: the pool in the scene (through its
+    ``spec_fn``, sized by ``env_cfg.scene.num_envs`` when the scene is
+    built), ``EnvTerrainsEvent`` as the first reset event ``term``, and
+    with ``curriculum`` the ``terrain_difficulty`` curriculum term. The
+    scene must have no terrain of its own (``scene.terrain = None``)."""
+    from mjlab.managers.curriculum_manager import CurriculumTermCfg
+    from mjlab.managers.event_manager import EventTermCfg
+
+    if env_cfg.scene.terrain is not None:
+        raise ValueError("env_cfg.scene.terrain: rse's pool is the terrain: set it to None")
+    load(scheme)  # a bad scheme fails here, not when the scene is built
+    scene = env_cfg.scene
+    earlier = scene.spec_fn
+
+    def spec_fn(spec: Any) -> None:
+        if earlier is not None:
+            earlier(spec)
+        add_pool(spec, scheme, scene.num_envs, oversample=oversample)
+
+    scene.spec_fn = spec_fn
+    params = dict(scheme=scheme, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
+    env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
+    if curriculum:
+        env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(func=terrain_difficulty, params={"term": term})
+
+
+__all__ = ["EnvTerrainsEvent", "RseTerrainCfg", "add_pool", "env_terrains", "terrain_difficulty", "use_env_terrains"]

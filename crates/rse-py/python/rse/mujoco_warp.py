@@ -33,7 +33,7 @@ import numpy as np
 from rse._rse import EnvTerrains
 from rse.mujoco import _copy_env_samples, _env_ids, _env_pool, add_env_geom, add_env_hfields, sync_env_hfields
 
-__all__ = ["GEOM", "add_terrain", "put_model", "sync"]
+__all__ = ["GEOM", "add_terrain", "put_model", "route", "sync"]
 
 GEOM = "rse_terrain"
 """The name of the terrain geom ``add_terrain`` adds."""
@@ -67,20 +67,35 @@ def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str =
     ``w``'s terrain. ``kwargs`` go to ``put_model`` (``batch_sizes`` is
     merged)."""
     import mujoco_warp as mjw
-    import warp as wp
 
-    gid = _terrain_geom(mjm, geom)
+    _terrain_geom(mjm, geom)
     if envs.layout != "slots":
         raise ValueError("envs: expected the slots layout, one field per world")
-    first, _, _ = _env_pool(mjm, envs, name, "mjm")
+    _env_pool(mjm, envs, name, "mjm")
     sync_env_hfields(mjm, envs, name=name)
     batch = dict(kwargs.pop("batch_sizes", {}) or {})
     batch["geom_dataid"] = envs.num_envs
     m = mjw.put_model(mjm, batch_sizes=batch, **kwargs)
+    route(m, mjm, envs, name=name, geom=geom)
+    return m
+
+
+def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM) -> None:
+    """Points the terrain geom ``geom`` of world ``w`` of the device model
+    ``m`` at env ``w``'s field of the pool, in ``m``'s per-world
+    ``geom_dataid`` (batched by ``put_model``, or by a framework: mjlab's
+    ``Simulation.expand_model_fields``), and copies every env's samples
+    into ``m`` (``sync``)."""
+    import warp as wp
+
+    gid = _terrain_geom(mjm, geom)
+    first, _, _ = _env_pool(mjm, envs, name, "mjm")
+    if m.geom_dataid.shape[0] != envs.num_envs:
+        raise ValueError(f"m: geom_dataid holds {m.geom_dataid.shape[0]} worlds, expected one per env ({envs.num_envs})")
     dataid = np.tile(np.asarray(mjm.geom_dataid, dtype=np.int32), (envs.num_envs, 1))
     dataid[:, gid] = first + np.arange(envs.num_envs)
     wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
-    return m
+    sync(m, mjm, envs, name=name)
 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:

@@ -1,0 +1,134 @@
+"""`rse.mjlab.use_env_terrains` inside mjlab's own `ManagerBasedRlEnv`,
+its simulation (MuJoCo Warp) on the CPU device (issue 23): a ball dropped
+at each env's origin rests on that env's own terrain; resetting some envs
+through `env.reset(env_ids=...)` gives them new terrains (the balls rest on
+the new tops, the other worlds' balls and fields stay as they were); the
+curriculum term moves the difficulty of the envs that reset, and the next
+terrains are drawn at it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+import rse
+import torch
+from mjlab.entity import EntityCfg
+from mjlab.envs import ManagerBasedRlEnv, ManagerBasedRlEnvCfg
+from mjlab.scene import SceneCfg
+from rse.mjlab import EnvTerrainsEvent, env_terrains, use_env_terrains
+
+SCHEME = rse.Scheme.from_csv(
+    "# size: 10x8\n# base: 0.05\ntype,height,angle,x1,y1\nrandom,0..3,,,\npeak,2..5,45,2..7,2..5\n"
+)
+NUM_ENVS = 4
+RADIUS = 0.02
+# The ball starts above the centre of the block beside each env's origin
+# (the slot's centre, a block corner here): on a block centre at k = 2 a
+# 2 cm ball touches that block's flat top only.
+DROP = (0.05, 0.05, 0.2)
+
+
+def ball() -> mujoco.MjSpec:
+    spec = mujoco.MjSpec()
+    body = spec.worldbody.add_body(name="ball")
+    body.add_freejoint()
+    body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[RADIUS, 0, 0])
+    return spec
+
+
+def make_env(**options) -> ManagerBasedRlEnv:
+    cfg = ManagerBasedRlEnvCfg(
+        decimation=4,
+        scene=SceneCfg(
+            num_envs=NUM_ENVS,
+            entities={"robot": EntityCfg(spec_fn=ball, init_state=EntityCfg.InitialStateCfg(pos=DROP))},
+        ),
+    )
+    use_env_terrains(cfg, SCHEME, seed=11, **options)
+    return ManagerBasedRlEnv(cfg, device="cpu")
+
+
+def settle(env: ManagerBasedRlEnv, steps: int = 60) -> np.ndarray:
+    """Steps with no actions; every env's ball position."""
+    for _ in range(steps):
+        env.step(torch.zeros((env.num_envs, 0)))
+    return env.scene["robot"].data.root_link_pos_w.cpu().numpy().astype(np.float64)
+
+
+def under(envs: rse.EnvTerrains, pos: np.ndarray) -> np.ndarray:
+    return np.array([envs.heights_at([e], pos[e : e + 1, None, :2])[0, 0] for e in range(len(pos))])
+
+
+@pytest.fixture(scope="module")
+def env():
+    env = make_env()
+    yield env
+    env.close()
+
+
+def test_each_ball_rests_on_its_envs_terrain_and_a_reset_renews_only_the_named(env) -> None:
+    envs = env_terrains(env)
+    env.reset()
+    assert envs.episode.tolist() == [1] * NUM_ENVS
+    origins = env.scene.env_origins.cpu().numpy()
+    assert np.allclose(origins, envs.origins, atol=1e-6)
+    pos = settle(env)
+    assert np.allclose(pos[:, :2], origins[:, :2] + DROP[:2], atol=2e-3), "each ball comes down where it was dropped"
+    assert np.allclose(pos[:, 2], under(envs, pos) + RADIUS, atol=5e-3), (pos, under(envs, pos))
+    assert len(set(np.round(pos[:, 2], 4))) > 1, "the worlds stand on different terrains"
+    samples = envs.samples.copy()
+
+    env.reset(env_ids=torch.tensor([1, 2]))
+    assert envs.episode.tolist() == [1, 2, 2, 1]
+    assert np.array_equal(envs.samples[[0, 3]], samples[[0, 3]])
+    assert not np.array_equal(envs.samples[1], samples[1]) and not np.array_equal(envs.samples[2], samples[2])
+    hfield = env.sim.wp_model.hfield_data.numpy()
+    adr = env.sim.mj_model.hfield_adr
+    first = mujoco.mj_name2id(env.sim.mj_model, mujoco.mjtObj.mjOBJ_HFIELD, "rse_env0")
+    for e in range(NUM_ENVS):
+        slot = hfield[adr[first + e] : adr[first + e] + envs.samples[e].size]
+        assert np.array_equal(slot, envs.samples[e].ravel()), f"env {e}'s field in the simulation"
+    after = settle(env)
+    assert np.allclose(after[[0, 3]], pos[[0, 3]], atol=1e-4), "worlds 0 and 3 untouched"
+    assert np.allclose(after[:, 2], under(envs, after) + RADIUS, atol=5e-3)
+
+
+def test_every_env_terrain_is_the_pure_function_of_its_id_and_episode(env) -> None:
+    envs = env_terrains(env)
+    twin = rse.EnvTerrains(SCHEME, NUM_ENVS, seed=11)
+    for e in range(NUM_ENVS):
+        for _ in range(int(envs.episode[e])):
+            twin.reset([e])
+    assert np.array_equal(twin.samples, envs.samples)
+
+
+def test_the_curriculum_moves_the_difficulty_of_the_envs_that_reset() -> None:
+    env = make_env(curriculum=True, difficulty=0.5)
+    try:
+        envs = env_terrains(env)
+        env.reset()
+        assert envs.difficulty.tolist() == [0.5] * NUM_ENVS, "frozen at the first reset"
+        settle(env, 10)  # the balls stay near their origins: they walked less than a quarter slot
+        env.reset(env_ids=torch.tensor([0, 3]))
+        assert np.allclose(envs.difficulty, [0.4, 0.5, 0.5, 0.4])
+        twin = rse.EnvTerrains(SCHEME, NUM_ENVS, seed=11, difficulty=0.5)
+        twin.reset([0, 1, 2, 3])
+        twin.reset([0, 3], difficulty=[0.4, 0.4])
+        assert np.array_equal(twin.samples, envs.samples), "the new terrains are drawn at the new difficulty"
+    finally:
+        env.close()
+
+
+def test_bad_configurations_are_named() -> None:
+    from mjlab.terrains import TerrainEntityCfg
+
+    cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, terrain=TerrainEntityCfg()))
+    with pytest.raises(ValueError, match="^env_cfg.scene.terrain"):
+        use_env_terrains(cfg, SCHEME)
+    cfg.scene.terrain = None
+    with pytest.raises(OSError, match="no/such/scheme.csv"):
+        use_env_terrains(cfg, Path("no/such/scheme.csv"))
+    assert isinstance(EnvTerrainsEvent, type)
