@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The RL framework adapters (rse.mjlab, rse.isaaclab) run inside the real
-# frameworks' terrain generators.
+# The RL framework adapters (rse.mjlab, rse.isaaclab, rse.genesis) run inside
+# the real frameworks: their terrain generators, mjlab's own RL env, Genesis's
+# scene.
 # mjlab pins MuJoCo 3.11 and pulls torch (several GB), so it gets its own
 # venv, .venv-frameworks, apart from make test's .venv. See docs/frameworks.md.
 set -euo pipefail
@@ -14,7 +15,19 @@ say "mjlab, pytest and Isaac Lab's terrain generator's imports (tests/frameworks
 .venv-frameworks/bin/python -m pip install --quiet --disable-pip-version-check -r tests/frameworks/requirements.txt
 say "Isaac Lab, without its dependencies (they pull Isaac Sim; the terrain generator needs none of it)"
 .venv-frameworks/bin/python -m pip install --quiet --disable-pip-version-check --no-deps isaaclab==2.3.2.post1
-say "the rse package"
-.venv-frameworks/bin/python -m pip install --quiet --disable-pip-version-check ./crates/rse-py
-say "tests/frameworks"
+# Genesis pulls its own torch and compilers (8.5 GB): a venv of its own.
+if [ ! -x .venv-genesis/bin/python ]; then
+    python3 -m venv .venv-genesis
+fi
+say "Genesis (tests/genesis/requirements.txt)"
+.venv-genesis/bin/python -m pip install --quiet --disable-pip-version-check -r tests/genesis/requirements.txt
+say "the rse package (one wheel for every venv)"
+rm -rf target/py-wheel
+.venv-frameworks/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
+for venv in .venv-frameworks .venv-genesis; do
+    $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
+done
+say "tests/frameworks (mjlab, Isaac Lab 2.3)"
 .venv-frameworks/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/frameworks
+say "tests/genesis (Genesis on the CPU; the first run builds the terrain's SDF, a few minutes)"
+.venv-genesis/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/genesis
