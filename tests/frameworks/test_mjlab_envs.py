@@ -132,3 +132,18 @@ def test_bad_configurations_are_named() -> None:
     with pytest.raises(OSError, match="no/such/scheme.csv"):
         use_env_terrains(cfg, Path("no/such/scheme.csv"))
     assert isinstance(EnvTerrainsEvent, type)
+
+
+def test_the_docs_example_runs_as_written(tmp_path) -> None:
+    """docs/envs.md's ```python mjlab block, from a folder with the samples."""
+    import re
+    import subprocess
+    import sys
+
+    repo = Path(__file__).resolve().parents[2]
+    (tmp_path / "schemes").symlink_to(repo / "schemes")
+    blocks = re.findall(r"^```python mjlab\n(.*?)^```", (repo / "docs" / "envs.md").read_text(), flags=re.S | re.M)
+    assert len(blocks) == 1
+    (tmp_path / "example.py").write_text(blocks[0])
+    done = subprocess.run([sys.executable, "example.py"], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-3000:]

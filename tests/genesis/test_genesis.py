@@ -7,6 +7,8 @@ map."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import genesis as gs
 import numpy as np
 import pytest
@@ -84,3 +86,18 @@ def test_bad_input_is_named(world) -> None:
     other = rse.EnvTerrains(SCHEME, N_ENVS + 2, layout="tiles", cols=2, border=2)
     with pytest.raises(ValueError, match="^terrain"):
         rse.genesis.sync(scene, terrain, other)
+
+
+def test_the_docs_example_runs_as_written(tmp_path) -> None:
+    """docs/envs.md's ```python genesis block, from a folder with the samples."""
+    import re
+    import subprocess
+    import sys
+
+    repo = Path(__file__).resolve().parents[2]
+    (tmp_path / "schemes").symlink_to(repo / "schemes")
+    blocks = re.findall(r"^```python genesis\n(.*?)^```", (repo / "docs" / "envs.md").read_text(), flags=re.S | re.M)
+    assert len(blocks) == 1
+    (tmp_path / "example.py").write_text(blocks[0])
+    done = subprocess.run([sys.executable, "example.py"], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-3000:]
