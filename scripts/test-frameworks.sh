@@ -21,13 +21,27 @@ if [ ! -x .venv-genesis/bin/python ]; then
 fi
 say "Genesis (tests/genesis/requirements.txt)"
 .venv-genesis/bin/python -m pip install --quiet --disable-pip-version-check -r tests/genesis/requirements.txt
+# Isaac Lab 3.0 runs on Python 3.12 only (its terrain generator, importer
+# and Newton physics, without Isaac Sim): a venv of its own.
+if [ ! -x .venv-isaaclab3/bin/python ]; then
+    py312=$(command -v python3.12 || ls -d "$HOME"/.pyenv/versions/3.12*/bin/python 2>/dev/null | tail -1 || true)
+    if [ -z "$py312" ]; then
+        echo "scripts/test-frameworks.sh: Isaac Lab 3.0 needs Python 3.12: install it (e.g. pyenv install 3.12) and rerun" >&2
+        exit 2
+    fi
+    "$py312" -m venv .venv-isaaclab3
+fi
+say "Isaac Lab 3.0 (tests/isaaclab3/requirements.txt)"
+.venv-isaaclab3/bin/python -m pip install --quiet --disable-pip-version-check -r tests/isaaclab3/requirements.txt
 say "the rse package (one wheel for every venv)"
 rm -rf target/py-wheel
 .venv-frameworks/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
-for venv in .venv-frameworks .venv-genesis; do
+for venv in .venv-frameworks .venv-genesis .venv-isaaclab3; do
     $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
 done
 say "tests/frameworks (mjlab, Isaac Lab 2.3)"
 .venv-frameworks/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/frameworks
+say "tests/isaaclab3 (Isaac Lab 3.0, Newton on the CPU)"
+.venv-isaaclab3/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/isaaclab3
 say "tests/genesis (Genesis on the CPU; the first run builds the terrain's SDF, a few minutes)"
 .venv-genesis/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/genesis
