@@ -39,6 +39,7 @@ bench:
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 	.venv/bin/python bench/hfield.py
 	.venv/bin/python bench/envs.py
+	[ ! -x .venv-mjx/bin/python ] || { .venv-mjx/bin/python -m pip install --quiet --no-deps ./crates/rse-py && .venv-mjx/bin/python bench/envs_mjx.py; }
 	.venv/bin/python bench/boxes.py
 	.venv/bin/python bench/editor.py
 

@@ -117,3 +117,18 @@ def test_each_ball_rests_on_rse_tops_over_its_origin(dropped) -> None:
         tops.append(terrain.elevation[cy, cx])
     assert np.allclose(pos[:, 2], np.array(tops) + RADIUS, atol=5e-3), (pos, tops)
     assert len(set(np.round(tops, 4))) > 1, "the envs stand on different tops"
+
+
+def test_the_docs_example_runs_as_written(tmp_path) -> None:
+    """docs/envs.md's ```python isaaclab3 block, from a folder with the samples."""
+    import re
+    import subprocess
+    import sys
+
+    repo = Path(__file__).resolve().parents[2]
+    (tmp_path / "schemes").symlink_to(repo / "schemes")
+    blocks = re.findall(r"^```python isaaclab3\n(.*?)^```", (repo / "docs" / "envs.md").read_text(), flags=re.S | re.M)
+    assert len(blocks) == 1
+    (tmp_path / "example.py").write_text(blocks[0])
+    done = subprocess.run([sys.executable, "example.py"], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-3000:]

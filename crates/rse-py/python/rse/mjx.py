@@ -78,6 +78,8 @@ def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str =
     ``hfield_data`` with that env's samples in the field ``name``."""
     adr, size = _field(mjm, envs, name)
     ids = _env_ids(envs, env_ids)
+    if size == mjm.nhfielddata:  # the rse field is the model's only one
+        return envs.samples.reshape(envs.num_envs, size)[ids]
     rows = np.repeat(np.asarray(mjm.hfield_data, dtype=np.float32)[None], len(ids), axis=0)
     rows[:, adr : adr + size] = envs.samples.reshape(envs.num_envs, size)[ids]
     return rows
