@@ -335,28 +335,59 @@ impl EnvTerrains {
     /// environment named twice moves twice. Nothing changes when an
     /// argument is refused.
     pub fn reset(&mut self, envs: &[usize], difficulty: &[Difficulty]) -> Result<(), EnvError> {
+        let jobs = self.advance(envs, difficulty)?;
+        let made: Vec<(usize, Terrain)> = jobs
+            .into_par_iter()
+            .map(|(e, episode, d)| (e, self.make(e, episode, d)))
+            .collect();
+        for (e, terrain) in made {
+            self.terrains[e] = terrain;
+        }
+        Ok(())
+    }
+
+    /// Checks a reset's arguments, then counts each named environment's
+    /// episodes (repeats in order) and returns what to make: each env once,
+    /// at its last episode and difficulty — the terrains of earlier repeats
+    /// would be replaced unseen.
+    fn advance(
+        &mut self,
+        envs: &[usize],
+        difficulty: &[Difficulty],
+    ) -> Result<Vec<(usize, u64, Difficulty)>, EnvError> {
         self.check_envs(envs, Some(difficulty))?;
+        let mut times = vec![0u64; self.num_envs()];
+        for &e in envs {
+            times[e] += 1;
+        }
         if let Some(&e) = envs
             .iter()
-            .find(|&&e| (self.episodes[e] + 1) >> ENV_BITS != 0)
+            .find(|&&e| (self.episodes[e] + times[e]) >> ENV_BITS != 0)
         {
             return Err(bad(
                 "env_ids",
                 format!("environment {e} has run 2^32 episodes"),
             ));
         }
-        // Repeats apply in order: each one's episode is counted first.
-        let mut jobs: Vec<(usize, u64, Difficulty)> = Vec::with_capacity(envs.len());
-        for (&e, &d) in envs.iter().zip(difficulty) {
-            self.episodes[e] += 1;
-            jobs.push((e, self.episodes[e], d));
+        let mut jobs = Vec::with_capacity(envs.len());
+        for (&e, &d) in envs.iter().zip(difficulty).rev() {
+            if times[e] > 0 {
+                self.episodes[e] += times[e];
+                times[e] = 0;
+                jobs.push((e, self.episodes[e], d));
+            }
         }
-        let made: Vec<Terrain> = jobs
-            .par_iter()
-            .map(|&(e, episode, d)| self.make(e, episode, d))
-            .collect();
-        for ((e, ..), terrain) in jobs.into_iter().zip(made) {
-            self.terrains[e] = terrain;
+        Ok(jobs)
+    }
+
+    /// Refuses an `out` that is not the whole buffer.
+    fn check_out(&self, out: &[f32]) -> Result<(), EnvError> {
+        let (n, rows, cols) = self.shape;
+        if out.len() != n * rows * cols {
+            return Err(bad(
+                "out",
+                format!("{} samples, but the buffer is {n}x{rows}x{cols}", out.len()),
+            ));
         }
         Ok(())
     }
@@ -367,13 +398,8 @@ impl EnvTerrains {
     /// elevation` ([`hfield_size`](Self::hfield_size)), in `[0, 1]`.
     pub fn write(&self, envs: &[usize], out: &mut [f32]) -> Result<(), EnvError> {
         self.check_envs(envs, None)?;
-        let (n, rows, cols) = self.shape;
-        if out.len() != n * rows * cols {
-            return Err(bad(
-                "out",
-                format!("{} samples, but the buffer is {n}x{rows}x{cols}", out.len()),
-            ));
-        }
+        self.check_out(out)?;
+        let cols = self.shape.2;
         let mut named = vec![false; self.num_envs()];
         for &e in envs {
             named[e] = true;
@@ -510,6 +536,20 @@ mod tests {
             out[rows * cols..2 * rows * cols]
                 .iter()
                 .all(|v| (0.0..=1.0).contains(v))
+        );
+    }
+
+    #[test]
+    fn repeats_count_in_order_and_the_last_terrain_stays() {
+        let mut e = envs(4, EnvLayout::Slots);
+        e.reset(&[2, 0, 2, 3], &[d(0.2), d(1.0), d(0.7), d(0.5)])
+            .unwrap();
+        assert_eq!((e.episode(2), e.episode(0), e.episode(1)), (2, 1, 0));
+        // Env 2 named twice: its second episode, at the second difficulty.
+        let world = env_world(100 + 2, 2).unwrap();
+        assert_eq!(
+            e.terrain(2).heightmap(),
+            generate_at(&e.scheme, 7, world, d(0.7)).heightmap()
         );
     }
 
