@@ -197,6 +197,21 @@ def test_tiles_are_one_mujoco_height_field_each_env_in_its_tile() -> None:
     assert ray_down(model, data, 0.05, 0.05, 0) == pytest.approx(SMALL.base, abs=1e-5)
 
 
+@pytest.mark.parametrize("layout", ["slots", "tiles"])
+def test_the_pool_as_mjcf_loads_in_mujoco_and_takes_the_samples(layout: str) -> None:
+    """env_hfields_mjcf: MuJoCo loads the text; after sync_env_hfields the
+    first field's geom shows env 0's terrain under every cell centre."""
+    envs = rse.EnvTerrains(SMALL, 3, oversample=2, seed=2, layout=layout, **({"cols": 2} if layout == "tiles" else {}))
+    model = mujoco.MjModel.from_xml_string(rse.mujoco.env_hfields_mjcf(envs))
+    assert model.nhfield == (3 if layout == "slots" else 1)
+    rse.mujoco.sync_env_hfields(model, envs)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    points = cell_centres(envs, 0)  # env 0's slot, or its tile at the map's corner (no border)
+    seen = np.array([ray_down(model, data, x, y, 0) for x, y in points])
+    assert np.allclose(seen, envs.heights_at([0], points[None])[0], atol=1e-5)
+
+
 def test_a_model_without_the_pool_is_named() -> None:
     envs = rse.EnvTerrains(SMALL, 2)
     empty = mujoco.MjModel.from_xml_string("<mujoco/>")

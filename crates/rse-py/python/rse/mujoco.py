@@ -45,6 +45,7 @@ __all__ = [
     "add_env_hfields",
     "add_hfield",
     "env_hfield_names",
+    "env_hfields_mjcf",
     "hfield_mjcf",
     "max_top",
     "set_hfield",
@@ -274,6 +275,31 @@ def add_env_geom(
         rgba=[0.76, 0.6, 0.42, 1.0],
         group=group,
     )
+
+
+def env_hfields_mjcf(envs: EnvTerrains, *, name: str = "rse_env") -> str:
+    """An MJCF model holding the height fields of ``envs`` (as
+    ``add_env_hfields``: the pool for slots, the map for tiles) and a geom
+    showing the first (``name0``; ``name`` for tiles) at ``hfield_pos``.
+    The fields start flat (MJCF rescales given samples to span [0, 1]):
+    compile, then ``sync_env_hfields(model, envs)``. Merge it into a robot
+    model with ``MjSpec.attach`` or by editing the text."""
+    nrow, ncol = envs.samples.shape[1:]
+    rx, ry, top, base = envs.hfield_size
+    x, y, z = envs.hfield_pos
+    names = env_hfield_names(envs, name)
+    fields = "\n".join(
+        f'    <hfield name="{n}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {base!r}"/>' for n in names
+    )
+    return f"""<mujoco model="rse_env_hfields">
+  <asset>
+{fields}
+  </asset>
+  <worldbody>
+    <geom name="{names[0]}" type="hfield" hfield="{names[0]}" pos="{x!r} {y!r} {z!r}" rgba="0.76 0.6 0.42 1" group="2"/>
+  </worldbody>
+</mujoco>
+"""
 
 
 def _env_ids(envs: EnvTerrains, env_ids: Any) -> list[int]:
