@@ -11,7 +11,6 @@ make test makes .venv-mjx).
 from __future__ import annotations
 
 import os
-import statistics
 import sys
 import time
 from pathlib import Path
@@ -24,16 +23,8 @@ import numpy as np
 import rse
 import rse.mjx
 
-SIX = Path(__file__).resolve().parents[1] / "schemes" / "six_obstacles.csv"
-
-
-def median_s(fn, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from envs import SIX, timed  # noqa: E402  (bench/envs.py: the same scheme, the same timer)
 
 
 def main() -> None:
@@ -56,14 +47,14 @@ def main() -> None:
         state["m"].hfield_data.block_until_ready()
 
     sync64()  # compiles the scatter once
-    ours = median_s(sync64, 50)
+    ours = timed(sync64, 50)
     device = state["m"].hfield_data.devices().pop()
 
     def whole() -> None:
         state["m"] = state["m"].replace(hfield_data=jax.device_put(rse.mjx.hfield_rows(mjm, envs), device))
         state["m"].hfield_data.block_until_ready()
 
-    theirs = median_s(whole, 5)
+    theirs = timed(whole, 5)
     size = state["m"].hfield_data.nbytes / 2**20
     print(f"MJX (jax CPU), {n} worlds of 160x160 samples: put_model with the batched field {put:.2f} s")
     print(f"  reset 64 envs + rse.mjx.sync of their rows: {ours * 1e3:.2f} ms")
