@@ -422,7 +422,9 @@ fn a_mesh_bomb_is_bounded() {
     );
 }
 
-/// The world the other tests damage, whole, checks good with every option.
+/// A sound world of every target, its terrain as blocks, checks good under
+/// `strict` (the others damage the single-mesh `good_world`, which
+/// `faults.rs` checks whole).
 #[test]
 fn a_sound_world_passes_strict() {
     let dir = tempfile::tempdir().unwrap();

@@ -180,33 +180,34 @@ class EnvTerrainsEvent:
         sim = env.sim
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
-        sync_env_hfields(sim.mj_model, self.envs, name=self.name)
-        self._write_origins(range(env.num_envs))
+        self._copy_out(list(range(env.num_envs)))
 
-    def _write_origins(self, ids: Any) -> None:
+    def _copy_out(self, ids: list[int]) -> None:
+        """Copies the terrains of ``ids`` into the simulation's model and
+        the host model, and their origins into ``env_origins``."""
         import torch
 
-        origins = self._env.scene.env_origins
-        index = torch.as_tensor(list(ids), dtype=torch.long, device=origins.device)
-        origins[index] = torch.as_tensor(self.envs.origins[index.cpu().numpy()], dtype=origins.dtype, device=origins.device)
-
-    def reset(self, env_ids: Any = None) -> None:
-        """mjlab's per-term reset hook: nothing to clear."""
-
-    def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
         from rse.mujoco_warp import sync
 
+        sim = self._env.sim
+        sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
+        sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
+        origins = self._env.scene.env_origins
+        index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
+        origins[index] = torch.as_tensor(self.envs.origins[ids], dtype=origins.dtype, device=origins.device)
+
+    def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
         ids = _ids(env, env_ids)
         self.envs.reset(ids)
-        sync(env.sim.wp_model, env.sim.mj_model, self.envs, ids, name=self.name)
-        sync_env_hfields(env.sim.mj_model, self.envs, ids, name=self.name)
-        self._write_origins(ids)
+        self._copy_out(ids)
 
 
 def _ids(env: Any, env_ids: Any) -> list[int]:
     """mjlab's env ids (a tensor, a slice or None: all) as a list."""
-    if env_ids is None or isinstance(env_ids, slice):
-        return list(range(env.num_envs))[env_ids or slice(None)]
+    if env_ids is None:
+        return list(range(env.num_envs))
+    if isinstance(env_ids, slice):
+        return list(range(env.num_envs)[env_ids])
     return [int(e) for e in env_ids.tolist()]
 
 
@@ -245,7 +246,7 @@ def terrain_difficulty(
         index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
         walked = torch.norm(env.scene[asset_name].data.root_link_pos_w[index, :2] - env.scene.env_origins[index, :2], dim=1)
         t = envs.terrain(0)
-        half = 0.5 * min(t.block_size * t.heights.shape[1], t.block_size * t.heights.shape[0])
+        half = 0.5 * t.block_size * min(t.heights.shape)
         up = walked > half
         if command_name is None:
             down = walked < half / 2

@@ -30,6 +30,7 @@ batched ``geom_dataid``: use ``rse.mujoco_warp`` for MuJoCo Warp.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -107,21 +108,14 @@ def in_axes(m: Any) -> Any:
     return jax.tree_util.tree_map(lambda _: None, m).replace(hfield_data=0)
 
 
-def _scatter(rows: Any, ids: Any, values: Any) -> Any:
-    return rows.at[ids].set(values)
-
-
-_SCATTER: dict[str, Any] = {}
-
-
+@functools.cache
 def _scatter_donating() -> Any:
-    """``_scatter`` jitted once, its first argument donated: XLA writes the
-    rows in place instead of copying the whole batched field."""
-    if "fn" not in _SCATTER:
-        import jax
+    """A jitted ``rows.at[ids].set(values)``, made once, its first
+    argument donated: XLA writes the rows in place instead of copying the
+    whole batched field."""
+    import jax
 
-        _SCATTER["fn"] = jax.jit(_scatter, donate_argnums=0)
-    return _SCATTER["fn"]
+    return jax.jit(lambda rows, ids, values: rows.at[ids].set(values), donate_argnums=0)
 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> Any:

@@ -84,8 +84,8 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: s
     """Points the terrain geom ``geom`` of world ``w`` of the device model
     ``m`` at env ``w``'s field of the pool, in ``m``'s per-world
     ``geom_dataid`` (batched by ``put_model``, or by a framework: mjlab's
-    ``Simulation.expand_model_fields``), and copies every env's samples
-    into ``m`` (``sync``)."""
+    ``Simulation.expand_model_fields``). The samples are ``sync``'s job
+    (``put_model`` uploads them with the host model)."""
     import warp as wp
 
     gid = _terrain_geom(mjm, geom)
@@ -95,7 +95,6 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: s
     dataid = np.tile(np.asarray(mjm.geom_dataid, dtype=np.int32), (envs.num_envs, 1))
     dataid[:, gid] = first + np.arange(envs.num_envs)
     wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
-    sync(m, mjm, envs, name=name)
 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
