@@ -89,10 +89,13 @@ pub(crate) struct Slope {
 impl Slope {
     pub(crate) fn new(height: u32, angle_degrees: f64, units: Units) -> Self {
         // tan(90°) in floating point is finite but huge; make it exact.
+        // A scheme's `-0` passes the 0..=90 check, and tan(-0) = -0 would
+        // make the reach -inf (an empty span: nothing drawn, no cells
+        // budgeted, an overflow in debug): -0 is 0.
         let tan = if angle_degrees >= 90.0 {
             f64::INFINITY
         } else {
-            libm::tan(angle_degrees * (std::f64::consts::PI / 180.0))
+            libm::tan(angle_degrees * (std::f64::consts::PI / 180.0)).abs()
         };
         Slope { height, tan, units }
     }
@@ -278,6 +281,22 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_angle_of_minus_zero_is_zero() {
+        let units = Units {
+            block_size: 0.1,
+            step_height: 0.05,
+        };
+        assert_eq!(Slope::new(3, -0.0, units).reach(), f64::INFINITY);
+        let wall = |angle: &str| {
+            let text =
+                format!("# size: 8x6\ntype,height,angle,x1,y1,x2,y2\nwall,3,{angle},1,1,6,4\n");
+            let scheme = crate::Scheme::from_csv(&text, None).unwrap();
+            crate::generate::generate_at(&scheme, 0, 1, crate::Difficulty::new(1.0).unwrap())
+        };
+        assert_eq!(wall("-0").heightmap(), wall("0").heightmap());
+    }
 
     #[test]
     fn slope_table_gives_what_the_formula_gives_for_every_key() {
