@@ -33,6 +33,7 @@ bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
 	cargo bench -p rse-core --bench atlas
+	cargo bench -p rse-core --bench env_terrains
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
 	bench/check.sh

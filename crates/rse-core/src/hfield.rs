@@ -209,22 +209,44 @@ impl Terrain {
         let map = self.heightmap();
         let (k, nx) = (k as usize, map.nx() as usize);
         let ncol = nx * k;
-        // One value per height in steps that occurs: tops repeat a lot.
-        let value = |h: u16| {
-            let top = self.base() + f64::from(h) * self.step_height();
-            (((top - z0) / elevation).clamp(0.0, 1.0)) as f32
-        };
+        // Heights in steps are few and repeat a lot: each sample value is
+        // computed once per height (the same formula, so the same bits) and
+        // looked up per cell — the division per cell was most of the write.
+        let highest = map.cells().iter().copied().max().unwrap_or(0);
+        let value: Vec<f32> = (0..=highest)
+            .map(|h| {
+                let top = self.base() + f64::from(h) * self.step_height();
+                (((top - z0) / elevation).clamp(0.0, 1.0)) as f32
+            })
+            .collect();
         for (y, row) in (0..map.ny()).map(|y| (y as usize, map.row(y))) {
             let start = y * k * stride;
             let first = &mut out[start..start + ncol];
-            for (x, &h) in row.iter().enumerate() {
-                first[x * k..(x + 1) * k].fill(value(h));
+            // Fixed widths for the usual oversamples let the compiler emit
+            // straight stores instead of a fill loop per cell.
+            match k {
+                1 => spread::<1>(row, &value, first),
+                2 => spread::<2>(row, &value, first),
+                4 => spread::<4>(row, &value, first),
+                _ => first
+                    .chunks_exact_mut(k)
+                    .zip(row)
+                    .for_each(|(samples, &h)| samples.fill(value[usize::from(h)])),
             }
             // The other k − 1 sample rows of this cell row are copies.
             for j in 1..k {
                 out.copy_within(start..start + ncol, start + j * stride);
             }
         }
+    }
+}
+
+/// Each cell's value `K` times along a sample row.
+#[inline]
+fn spread<const K: usize>(row: &[u16], value: &[f32], out: &mut [f32]) {
+    let (samples, _) = out.as_chunks_mut::<K>();
+    for (samples, &h) in samples.iter_mut().zip(row) {
+        *samples = [value[usize::from(h)]; K];
     }
 }
 

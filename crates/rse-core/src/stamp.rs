@@ -202,10 +202,64 @@ impl<'a> Profile<'a> {
             table: None,
         };
         if last_key.is_finite() && last_key < TABLE_LIMIT as f64 {
-            let keys = last_key.ceil() as u64 + 1;
-            profile.table = Some((0..keys).map(|k| profile.compute(k) as u16).collect());
+            profile.table = Some(profile.table_of(last_key.ceil() as u64 + 1));
         }
         profile
+    }
+
+    /// `compute(key)` for every key below `keys`. The steps never grow
+    /// with the key (every operation of the formula is monotone: sqrt,
+    /// division and multiplication by positive numbers, floor, min), so the
+    /// table is a few runs of equal values; the end of each is found by
+    /// bisection — a few dozen evaluations instead of one per key, the same
+    /// values (tested key by key).
+    fn table_of(&self, keys: u64) -> Vec<u16> {
+        let mut table = Vec::with_capacity(keys as usize);
+        let mut key = 0;
+        while key < keys {
+            let steps = self.compute(key);
+            // compute(lo) == steps; hi is past the run (or the end).
+            let (mut lo, mut hi) = (key, keys);
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if self.compute(mid) == steps {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            table.resize(hi as usize, steps as u16);
+            key = hi;
+        }
+        table
+    }
+
+    /// The cells of row `wy` (relative to the obstacle's first point) that
+    /// can get steps, as a range of `wx`: those whose centre projects onto
+    /// the segment and whose key is inside the table. Every other cell gets
+    /// 0 steps, which changes nothing, so skipping them changes no result;
+    /// a diagonal wall's box is mostly such cells. `None`: no cell.
+    /// Without a table, every projecting cell.
+    fn row_span(&self, wy: i64, v: (i64, i64), len2: i64) -> Option<(i64, i64)> {
+        let (vx, vy) = v;
+        let full = (i64::MIN, i64::MAX);
+        let keys = self.table.as_ref().map(|t| t.len() as i64);
+        if len2 == 0 {
+            // key = wx² + wy² < keys.
+            let Some(keys) = keys else { return Some(full) };
+            let room = keys - 1 - wy * wy;
+            let r = u64::try_from(room).ok()?.isqrt() as i64;
+            return Some((-r, r));
+        }
+        // 0 ≤ wx·vx + wy·vy ≤ len2: the centre projects onto the segment.
+        let (a0, a1) = multiples_within(vx, -wy * vy, len2 - wy * vy)?;
+        let Some(keys) = keys else {
+            return Some((a0, a1));
+        };
+        // key = |vx·wy − vy·wx| < keys.
+        let (b0, b1) = multiples_within(vy, vx * wy - (keys - 1), vx * wy + (keys - 1))?;
+        let span = (a0.max(b0), a1.min(b1));
+        (span.0 <= span.1).then_some(span)
     }
 
     #[inline]
@@ -254,17 +308,19 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
     let y_range = (y0.min(y1) - margin).max(0)..=(y0.max(y1) + margin).min(ny - 1);
 
     for y in y_range {
-        let row = map.row_mut(y as u32);
         let wy = y - y0;
-        for x in x_range.clone() {
+        let Some((first, last)) = profile.row_span(wy, (vx, vy), len2) else {
+            continue;
+        };
+        let xs = (*x_range.start()).max(x0.saturating_add(first))
+            ..=(*x_range.end()).min(x0.saturating_add(last));
+        let row = map.row_mut(y as u32);
+        for x in xs {
             let wx = x - x0;
             let key = if len2 == 0 {
                 (wx * wx + wy * wy) as u64
             } else {
-                let dot = wx * vx + wy * vy;
-                if dot < 0 || dot > len2 {
-                    continue; // does not project onto the segment
-                }
+                debug_assert!((0..=len2).contains(&(wx * vx + wy * vy)), "projects");
                 (vx * wy - vy * wx).unsigned_abs()
             };
             let steps = profile.steps(key);
@@ -276,6 +332,22 @@ fn apply_segment(map: &mut Heightmap, from: [u32; 2], to: [u32; 2], slope: &Slop
             }
         }
     }
+}
+
+/// The integers `w` with `lo ≤ a·w ≤ hi`, as `(first, last)`: every
+/// integer when `a = 0` and `lo ≤ 0 ≤ hi`; `None` when there are none.
+fn multiples_within(a: i64, lo: i64, hi: i64) -> Option<(i64, i64)> {
+    let (a, lo, hi) = if a < 0 { (-a, -hi, -lo) } else { (a, lo, hi) };
+    let (first, last) = if a == 0 {
+        if lo > 0 || hi < 0 {
+            return None;
+        }
+        (i64::MIN, i64::MAX)
+    } else {
+        // ceil(lo / a), floor(hi / a) for a > 0.
+        (-(-lo).div_euclid(a), hi.div_euclid(a))
+    };
+    (first <= last).then_some((first, last))
 }
 
 #[cfg(test)]
@@ -297,6 +369,58 @@ mod tests {
             crate::generate::generate_at(&scheme, 0, 1, crate::Difficulty::new(1.0).unwrap())
         };
         assert_eq!(wall("-0").heightmap(), wall("0").heightmap());
+    }
+
+    #[test]
+    fn multiples_within_are_exactly_the_solutions() {
+        for a in -5i64..=5 {
+            for lo in -12i64..=12 {
+                for hi in -12i64..=12 {
+                    let span = multiples_within(a, lo, hi);
+                    for w in -40i64..=40 {
+                        let solves = (lo..=hi).contains(&(a * w));
+                        let inside = span.is_some_and(|(f, l)| (f..=l).contains(&w));
+                        assert_eq!(solves, inside, "a {a}, [{lo}, {hi}], w {w}: {span:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every cell a row span leaves out projects off the segment or gets
+    /// 0 steps; every cell it keeps projects onto it.
+    #[test]
+    fn row_spans_keep_every_cell_that_gets_steps() {
+        let units = Units {
+            block_size: 0.1,
+            step_height: 0.05,
+        };
+        for angle in [5.0, 30.0, 45.0, 70.0, 90.0] {
+            let slope = Slope::new(4, angle, units);
+            for (vx, vy) in [(0, 0), (1, 0), (0, -3), (4, 4), (3, -7), (-9, 2), (25, 1)] {
+                let len2 = vx * vx + vy * vy;
+                let profile = Profile::new(&slope, Metric::of(vx, vy));
+                for wy in -40i64..=40 {
+                    let span = profile.row_span(wy, (vx, vy), len2);
+                    for wx in -60i64..=60 {
+                        let dot = wx * vx + wy * vy;
+                        let projects = len2 == 0 || (0..=len2).contains(&dot);
+                        let key = if len2 == 0 {
+                            (wx * wx + wy * wy) as u64
+                        } else {
+                            (vx * wy - vy * wx).unsigned_abs()
+                        };
+                        let kept = span.is_some_and(|(f, l)| (f..=l).contains(&wx));
+                        let case = format!("angle {angle}, v ({vx}, {vy}), w ({wx}, {wy})");
+                        if kept {
+                            assert!(projects, "{case}");
+                        } else {
+                            assert!(!projects || profile.compute(key) == 0, "{case}");
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
