@@ -109,6 +109,8 @@ pub struct EnvTerrains {
     scheme: Scheme,
     options: EnvOptions,
     terrains: Vec<Terrain>,
+    /// Each environment's spawn point, computed with its terrain.
+    origins: Vec<[f64; 3]>,
     episodes: Vec<u64>,
     /// Samples of one environment's field: (rows along y, columns along x).
     field: (usize, usize),
@@ -182,22 +184,38 @@ impl EnvTerrains {
             scheme,
             options,
             terrains: Vec::new(),
+            origins: Vec::new(),
             episodes: vec![0; n],
             field,
             shape,
         };
-        envs.terrains = (0..n)
+        let made: Vec<Made> = (0..n)
             .into_par_iter()
-            .map(|e| envs.make(e, 0, options.difficulty))
+            .map(|e| envs.make((e, 0, options.difficulty)))
             .collect();
+        (envs.terrains, envs.origins) = made.into_iter().map(|m| (m.terrain, m.origin)).unzip();
         Ok(envs)
     }
 
-    /// Environment `e`'s terrain at `episode`, at `difficulty`.
-    fn make(&self, e: usize, episode: u64, difficulty: Difficulty) -> Terrain {
+    /// Environment `e`'s terrain at `episode`, at `difficulty`, and its
+    /// spawn point.
+    fn make(&self, (e, episode, difficulty): Job) -> Made {
         let world = env_world(self.options.env_offset + e as u64, episode)
             .expect("ids and episodes checked below 2^32");
-        generate_at(&self.scheme, self.options.seed, world, difficulty)
+        let terrain = generate_at(&self.scheme, self.options.seed, world, difficulty);
+        let [x, y, z] = terrain.spawn_origin(terrain.region(), self.options.spawn_radius);
+        let (x0, y0) = self.tile_origin(e);
+        let s = terrain.block_size();
+        let origin = [x + f64::from(x0) * s, y + f64::from(y0) * s, z];
+        Made { e, terrain, origin }
+    }
+
+    /// Keeps what a reset made.
+    fn store(&mut self, made: Vec<Made>) {
+        for Made { e, terrain, origin } in made {
+            self.terrains[e] = terrain;
+            self.origins[e] = origin;
+        }
     }
 
     /// The options it was made with.
@@ -288,11 +306,7 @@ impl EnvTerrains {
     /// terrain on the highest top within the spawn radius, in its slot's
     /// frame (slots) or the map's (tiles).
     pub fn origin(&self, e: usize) -> [f64; 3] {
-        let terrain = &self.terrains[e];
-        let [x, y, z] = terrain.spawn_origin(terrain.region(), self.options.spawn_radius);
-        let (x0, y0) = self.tile_origin(e);
-        let s = terrain.block_size();
-        [x + f64::from(x0) * s, y + f64::from(y0) * s, z]
+        self.origins[e]
     }
 
     /// The top under `(x, y)` of environment `e` (its slot's frame, or the
@@ -336,13 +350,66 @@ impl EnvTerrains {
     /// argument is refused.
     pub fn reset(&mut self, envs: &[usize], difficulty: &[Difficulty]) -> Result<(), EnvError> {
         let jobs = self.advance(envs, difficulty)?;
-        let made: Vec<(usize, Terrain)> = jobs
-            .into_par_iter()
-            .map(|(e, episode, d)| (e, self.make(e, episode, d)))
-            .collect();
-        for (e, terrain) in made {
-            self.terrains[e] = terrain;
-        }
+        let made = jobs.into_par_iter().map(|job| self.make(job)).collect();
+        self.store(made);
+        Ok(())
+    }
+
+    /// [`reset`](Self::reset), then [`write`](Self::write) of the same
+    /// environments, fused: each new terrain is written into its slot or
+    /// tile by the thread that made it, so the writes (bound by memory)
+    /// overlap the generation of other terrains (bound by the CPU) — the
+    /// reset of a training step. Nothing changes, in `self` or in `out`,
+    /// when an argument is refused.
+    pub fn reset_into(
+        &mut self,
+        envs: &[usize],
+        difficulty: &[Difficulty],
+        out: &mut [f32],
+    ) -> Result<(), EnvError> {
+        self.check_envs(envs, Some(difficulty))?;
+        self.check_out(out)?;
+        let mut jobs = self.advance(envs, difficulty)?;
+        jobs.sort_unstable_by_key(|&(e, ..)| e);
+        let this = &*self;
+        let made = match self.options.layout {
+            EnvLayout::Slots => {
+                let slots = chunks_at(out, this.slot_len(), jobs.iter().map(|&(e, ..)| e));
+                jobs.into_par_iter()
+                    .zip(slots)
+                    .map(|(job, slot)| {
+                        let made = this.make(job);
+                        this.write_slot(&made.terrain, slot);
+                        made
+                    })
+                    .collect()
+            }
+            EnvLayout::Tiles { cols, .. } => {
+                // Tiles of one tile row share its rows of samples: a task
+                // per tile row, its terrains made in parallel too.
+                let per_row = cols as usize;
+                let groups: Vec<&[Job]> = jobs
+                    .chunk_by(|a, b| a.0 / per_row == b.0 / per_row)
+                    .collect();
+                let bands = chunks_at(
+                    out,
+                    this.band_len(),
+                    groups.iter().map(|g| g[0].0 / per_row),
+                );
+                groups
+                    .into_par_iter()
+                    .zip(bands)
+                    .flat_map_iter(|(group, band)| {
+                        let made: Vec<Made> = group.par_iter().map(|&job| this.make(job)).collect();
+                        for m in &made {
+                            this.write_tile(m.e, &m.terrain, band);
+                        }
+                        made
+                    })
+                    .collect()
+            }
+        };
+        self.store(made);
         Ok(())
     }
 
@@ -350,11 +417,7 @@ impl EnvTerrains {
     /// episodes (repeats in order) and returns what to make: each env once,
     /// at its last episode and difficulty — the terrains of earlier repeats
     /// would be replaced unseen.
-    fn advance(
-        &mut self,
-        envs: &[usize],
-        difficulty: &[Difficulty],
-    ) -> Result<Vec<(usize, u64, Difficulty)>, EnvError> {
+    fn advance(&mut self, envs: &[usize], difficulty: &[Difficulty]) -> Result<Vec<Job>, EnvError> {
         self.check_envs(envs, Some(difficulty))?;
         let mut times = vec![0u64; self.num_envs()];
         for &e in envs {
@@ -399,54 +462,95 @@ impl EnvTerrains {
     pub fn write(&self, envs: &[usize], out: &mut [f32]) -> Result<(), EnvError> {
         self.check_envs(envs, None)?;
         self.check_out(out)?;
-        let cols = self.shape.2;
         let mut named = vec![false; self.num_envs()];
         for &e in envs {
             named[e] = true;
         }
-        let k = self.options.oversample;
-        let (nrow, ncol) = self.field;
         match self.options.layout {
             EnvLayout::Slots => {
-                out.par_chunks_mut(nrow * ncol)
+                out.par_chunks_mut(self.slot_len())
                     .enumerate()
                     .filter(|(e, _)| named[*e])
-                    .for_each(|(e, slot)| {
-                        self.terrains[e].fill_hfield_rows(k, 0.0, self.elevation, slot, ncol);
-                    });
+                    .for_each(|(e, slot)| self.write_slot(&self.terrains[e], slot));
             }
-            EnvLayout::Tiles {
-                cols: per_row,
-                border,
-            } => {
+            EnvLayout::Tiles { cols, .. } => {
                 // One chunk per tile row (with the border rows above it):
                 // tiles of different rows are written in parallel.
-                let b = border as usize * k as usize;
-                let band = (b + nrow) * cols;
-                let per_row = per_row as usize;
-                out.par_chunks_mut(band)
+                let per_row = cols as usize;
+                out.par_chunks_mut(self.band_len())
                     .take(self.num_envs().div_ceil(per_row))
                     .enumerate()
-                    .for_each(|(row, chunk)| {
+                    .for_each(|(row, band)| {
                         let first = row * per_row;
                         for e in
                             (first..(first + per_row).min(self.num_envs())).filter(|&e| named[e])
                         {
-                            let (x0, _) = self.tile_origin(e);
-                            let at = b * cols + x0 as usize * k as usize;
-                            self.terrains[e].fill_hfield_rows(
-                                k,
-                                0.0,
-                                self.elevation,
-                                &mut chunk[at..],
-                                cols,
-                            );
+                            self.write_tile(e, &self.terrains[e], band);
                         }
                     });
             }
         }
         Ok(())
     }
+
+    /// Samples in one slot.
+    fn slot_len(&self) -> usize {
+        self.field.0 * self.field.1
+    }
+
+    /// Samples in one tile row of the map with the border rows above it.
+    fn band_len(&self) -> usize {
+        let b = match self.options.layout {
+            EnvLayout::Tiles { border, .. } => border as usize,
+            EnvLayout::Slots => 0,
+        };
+        (b * self.options.oversample as usize + self.field.0) * self.shape.2
+    }
+
+    /// Writes `terrain` into a slot.
+    fn write_slot(&self, terrain: &Terrain, slot: &mut [f32]) {
+        let k = self.options.oversample;
+        terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.field.1);
+    }
+
+    /// Writes `terrain` as environment `e`'s tile into the band of its tile
+    /// row.
+    fn write_tile(&self, e: usize, terrain: &Terrain, band: &mut [f32]) {
+        let k = self.options.oversample as usize;
+        let cols = self.shape.2;
+        let border_rows = band.len() / cols - self.field.0;
+        let (x0, _) = self.tile_origin(e);
+        let at = border_rows * cols + x0 as usize * k;
+        terrain.fill_hfield_rows(k as u32, 0.0, self.elevation, &mut band[at..], cols);
+    }
+}
+
+/// What [`EnvTerrains::make`] makes: environment `e`'s terrain of an
+/// episode and its spawn point.
+struct Made {
+    e: usize,
+    terrain: Terrain,
+    origin: [f64; 3],
+}
+
+/// Environment, episode, difficulty: one terrain to make.
+type Job = (usize, u64, Difficulty);
+
+/// The chunks of `size` samples at `indices` (ascending, distinct, in
+/// range) of `out`, each borrowed apart so threads can fill them.
+fn chunks_at(
+    out: &mut [f32],
+    size: usize,
+    indices: impl Iterator<Item = usize>,
+) -> Vec<&mut [f32]> {
+    let mut chunks = out.chunks_mut(size).enumerate();
+    indices
+        .map(|i| {
+            chunks
+                .find_map(|(j, chunk)| (j == i).then_some(chunk))
+                .expect("indices ascending and inside the buffer")
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -598,6 +702,30 @@ mod tests {
         assert!(e.height_at(3, 0.05, 0.05).is_nan(), "off its tile");
     }
 
+    /// The fused reset makes and writes what a reset then a write would,
+    /// in both layouts, whatever order and repeats the ids come in.
+    #[test]
+    fn reset_into_is_reset_then_write() {
+        for layout in [EnvLayout::Slots, EnvLayout::Tiles { cols: 2, border: 1 }] {
+            let (mut fused, mut apart) = (envs(5, layout), envs(5, layout));
+            let (n, rows, cols) = fused.buffer_shape();
+            let mut a = vec![-1.0f32; n * rows * cols];
+            let mut b = a.clone();
+            let (ids, levels) = ([4, 0, 3, 4, 1], [d(0.3), d(1.0), d(0.6), d(0.9), d(0.1)]);
+            fused.reset_into(&ids, &levels, &mut a).unwrap();
+            apart.reset(&ids, &levels).unwrap();
+            apart.write(&ids, &mut b).unwrap();
+            assert_eq!(a, b, "{layout:?}");
+            for e in 0..5 {
+                assert_eq!(fused.episode(e), apart.episode(e));
+                assert_eq!(fused.terrain(e).heightmap(), apart.terrain(e).heightmap());
+                assert_eq!(fused.origin(e), apart.origin(e));
+            }
+            // Env 2 was not named: its slot or tile still holds -1.
+            assert!(a.contains(&-1.0));
+        }
+    }
+
     #[test]
     fn bad_arguments_are_named() {
         let named = |r: Result<EnvTerrains, EnvError>| match r.unwrap_err() {
@@ -643,5 +771,18 @@ mod tests {
         assert_eq!(argument(e.reset(&[0, 1], &[d(1.0)])), "difficulty");
         assert_eq!([e.episode(0), e.episode(1)], [0, 0], "nothing changed");
         assert_eq!(argument(e.write(&[0], &mut [0.0; 7])), "out");
+        let mut short = [0.5f32; 7];
+        assert_eq!(argument(e.reset_into(&[0], &[d(1.0)], &mut short)), "out");
+        let (n, rows, cols) = e.buffer_shape();
+        let mut whole = vec![0.5f32; n * rows * cols];
+        assert_eq!(
+            argument(e.reset_into(&[0, 9], &[d(1.0); 2], &mut whole)),
+            "env_ids"
+        );
+        assert_eq!([e.episode(0), e.episode(1)], [0, 0], "nothing changed");
+        assert!(
+            whole.iter().chain(&short).all(|&v| v == 0.5),
+            "nothing written"
+        );
     }
 }

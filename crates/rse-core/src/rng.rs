@@ -70,24 +70,30 @@ impl WorldRng {
     /// Fills `out` with `up_to(max)` values, drawing from the stream exactly
     /// as successive `up_to` calls would, in bulk. A rejection is rare
     /// (`threshold / 2³²` per draw, about 1 in 10⁹ for the heights of a
-    /// scheme), so the words are mapped in one pass the compiler vectorizes
-    /// that also notes whether any was rejected; only then is the batch
-    /// redrawn from its first word the careful way.
+    /// scheme), so the batch is checked and mapped in bulk; only when a
+    /// draw is rejected is it redrawn from its first word the careful way.
     pub(crate) fn fill_up_to(&mut self, max: u32, out: &mut [u32]) {
         const WORD: u64 = 1 << 32;
         let span = u64::from(max) + 1;
         let threshold = (WORD - span) % span;
         let start = self.0.get_word_pos();
         self.fill_words(out);
-        let mut rejected = false;
-        for value in out.iter_mut() {
-            let product = u64::from(*value) * span;
-            rejected |= product % WORD < threshold;
-            *value = (product >> 32) as u32;
-        }
-        if rejected {
+        // A draw is rejected when the low word of `draw · span` is below the
+        // threshold (then span < 2³², so that word is a wrapping product).
+        // Two simple passes, each vectorized: the lowest such word, then
+        // the values.
+        let lowest = out
+            .iter()
+            .map(|&w| w.wrapping_mul(span as u32))
+            .min()
+            .unwrap_or(u32::MAX);
+        if u64::from(lowest) < threshold {
             self.0.set_word_pos(start);
             self.fill_up_to_rejecting(max, out);
+            return;
+        }
+        for w in out.iter_mut() {
+            *w = ((u64::from(*w) * span) >> 32) as u32;
         }
     }
 

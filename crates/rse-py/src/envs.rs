@@ -29,9 +29,14 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 
 /// `env_ids` as indices below `n`, or a `ValueError` naming it.
 fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
-    let ids: Vec<i64> = ids.extract().map_err(|_| {
-        PyValueError::new_err("env_ids: expected a sequence of environment numbers")
-    })?;
+    // An int64 numpy array is read in place; anything else (lists, other
+    // dtypes, tensors) item by item.
+    let ids: Vec<i64> = match ids.extract::<numpy::PyReadonlyArray1<'_, i64>>() {
+        Ok(array) => array.as_array().to_vec(),
+        Err(_) => ids.extract().map_err(|_| {
+            PyValueError::new_err("env_ids: expected a sequence of environment numbers")
+        })?,
+    };
     ids.into_iter()
         .map(|e| {
             usize::try_from(e).ok().filter(|&e| e < n).ok_or_else(|| {
@@ -45,16 +50,19 @@ fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
 }
 
 impl EnvTerrains {
-    /// Writes the samples and origins of `envs` into the Python arrays.
-    fn publish(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
+    /// Writes the samples of `envs` into `samples` (GIL released).
+    fn write_samples(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
         let samples = self.samples.bind(py);
         let mut view = samples
             .try_readwrite()
             .map_err(|e| PyValueError::new_err(format!("samples: {e}")))?;
         let slice = view.as_slice_mut().map_err(value_error)?;
         let inner = &self.inner;
-        py.detach(|| inner.write(envs, slice))
-            .map_err(value_error)?;
+        py.detach(|| inner.write(envs, slice)).map_err(value_error)
+    }
+
+    /// Copies the origins and episodes of `envs` into the Python arrays.
+    fn publish(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
         let origins = self.origins.bind(py);
         let mut origins = origins.try_readwrite().map_err(value_error)?;
         let mut episode = self.episode.bind(py).try_readwrite().map_err(value_error)?;
@@ -63,8 +71,8 @@ impl EnvTerrains {
             episode.as_slice_mut().map_err(value_error)?,
         );
         for &e in envs {
-            origins[3 * e..3 * e + 3].copy_from_slice(&inner.origin(e));
-            episode[e] = inner.episode(e) as i64;
+            origins[3 * e..3 * e + 3].copy_from_slice(&self.inner.origin(e));
+            episode[e] = self.inner.episode(e) as i64;
         }
         Ok(())
     }
@@ -131,6 +139,7 @@ impl EnvTerrains {
             scheme,
         };
         let all: Vec<usize> = (0..num_envs).collect();
+        envs.write_samples(py, &all)?;
         envs.publish(py, &all)?;
         Ok(envs)
     }
@@ -265,8 +274,15 @@ impl EnvTerrains {
                 .map(|&e| difficulty_arg(slice[e]))
                 .collect::<PyResult<_>>()?
         };
+        // New terrains made and written into `samples` in one pass, each by
+        // the thread that made it (rse-core's `reset_into`).
+        let samples = self.samples.bind(py);
+        let mut view = samples
+            .try_readwrite()
+            .map_err(|e| PyValueError::new_err(format!("samples: {e}")))?;
+        let slice = view.as_slice_mut().map_err(value_error)?;
         let inner = &mut self.inner;
-        py.detach(|| inner.reset(&envs, &levels))
+        py.detach(|| inner.reset_into(&envs, &levels, slice))
             .map_err(value_error)?;
         self.publish(py, &envs)
     }
