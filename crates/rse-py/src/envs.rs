@@ -128,10 +128,19 @@ impl EnvTerrains {
             .detach(|| rse_core::EnvTerrains::new(owned, options))
             .map_err(value_error)?;
         let (n, rows, cols) = inner.buffer_shape();
-        // Tile borders are cells of height 0: the slab's top, as in an atlas.
-        let ground = numpy::ndarray::Array3::from_elem([n, rows, cols], inner.ground_sample());
+        // Allocated by numpy, not Rust: numpy asks the kernel for huge
+        // pages for large arrays, which makes the writes of a reset ~10%
+        // faster (fewer TLB misses across a pool of hundreds of MiB).
+        let samples = PyArray3::<f32>::zeros(py, [n, rows, cols], false);
+        {
+            // Tile borders are cells of height 0: the slab's top, as in an atlas.
+            let mut view = samples.try_readwrite().map_err(value_error)?;
+            let slice = view.as_slice_mut().map_err(value_error)?;
+            let ground = inner.ground_sample();
+            py.detach(|| slice.fill(ground));
+        }
         let envs = EnvTerrains {
-            samples: numpy::IntoPyArray::into_pyarray(ground, py).unbind(),
+            samples: samples.unbind(),
             episode: PyArray1::zeros(py, num_envs, false).unbind(),
             difficulty: PyArray1::from_vec(py, vec![options.difficulty.get(); num_envs]).unbind(),
             origins: PyArray2::zeros(py, [num_envs, 3], false).unbind(),
