@@ -78,22 +78,21 @@ impl WorldRng {
         let threshold = (WORD - span) % span;
         let start = self.0.get_word_pos();
         self.fill_words(out);
-        // A draw is rejected when the low word of `draw · span` is below the
-        // threshold (then span < 2³², so that word is a wrapping product).
-        // Two simple passes, each vectorized: the lowest such word, then
-        // the values.
-        let lowest = out
-            .iter()
-            .map(|&w| w.wrapping_mul(span as u32))
-            .min()
-            .unwrap_or(u32::MAX);
+        let Ok(span) = u32::try_from(span) else {
+            return; // max = u32::MAX: every word is its own value, none rejected
+        };
+        // One pass the compiler vectorizes (32×32-bit products): the values,
+        // and the lowest low word, which a rejected draw has below the
+        // threshold.
+        let mut lowest = u32::MAX;
+        for w in out.iter_mut() {
+            let product = u64::from(*w) * u64::from(span);
+            lowest = lowest.min(product as u32);
+            *w = (product >> 32) as u32;
+        }
         if u64::from(lowest) < threshold {
             self.0.set_word_pos(start);
             self.fill_up_to_rejecting(max, out);
-            return;
-        }
-        for w in out.iter_mut() {
-            *w = ((u64::from(*w) * span) >> 32) as u32;
         }
     }
 
@@ -148,9 +147,17 @@ pub(crate) struct ClampedRoundedNormal {
     /// The value for each top byte of the word, or `MIXED` where a
     /// threshold falls inside that byte's range and the full search decides.
     by_top_byte: [u32; 256],
+    /// Thresholds of 0, below every draw.
+    always: u32,
+    /// The thresholds strictly between 0 and 2³², as words.
+    live: Vec<u32>,
 }
 
 const MIXED: u32 = u32::MAX;
+
+/// Most thresholds for which [`ClampedRoundedNormal::fill_values`] counts
+/// them word by word rather than looking each word up.
+const COUNTED: usize = 16;
 
 impl ClampedRoundedNormal {
     pub(crate) fn new(mean: f64, sigma: f64, max: u32) -> Self {
@@ -185,9 +192,49 @@ impl ClampedRoundedNormal {
                 below as u32
             }
         });
+        let always = thresholds.iter().filter(|&&t| t == 0).count() as u32;
+        let live = thresholds
+            .iter()
+            .filter_map(|&t| u32::try_from(t).ok().filter(|&t| t > 0))
+            .collect();
         ClampedRoundedNormal {
             thresholds,
             by_top_byte,
+            always,
+            live,
+        }
+    }
+
+    /// [`value_of`](Self::value_of) of each of `words`, into `values`. With
+    /// few thresholds strictly inside the word range (a gaussian's sigma
+    /// of a step or so leaves a dozen at most), a word's value is counted as
+    /// how many of them it reaches, one vectorized pass per threshold; with
+    /// more, each word is looked up.
+    pub(crate) fn fill_values(&self, words: &[u32], values: &mut [u32]) {
+        if self.live.len() > COUNTED {
+            for (v, &w) in values.iter_mut().zip(words) {
+                *v = self.value_of(w);
+            }
+            return;
+        }
+        match self.live.len() {
+            0..=4 => self.count::<4>(words, values),
+            5..=8 => self.count::<8>(words, values),
+            _ => self.count::<COUNTED>(words, values),
+        }
+    }
+
+    /// The values of `words` counted against the live thresholds padded
+    /// to `N` with zeros (reached by every word, so taken off again): a
+    /// fixed number of comparisons per word, which the compiler unrolls
+    /// and vectorizes. `N ≥ live.len()`.
+    fn count<const N: usize>(&self, words: &[u32], values: &mut [u32]) {
+        let mut live = [0u32; N];
+        live[..self.live.len()].copy_from_slice(&self.live);
+        let base = self.always.wrapping_sub((N - self.live.len()) as u32);
+        for (v, &w) in values.iter_mut().zip(words) {
+            let reached: u32 = live.iter().map(|&t| u32::from(w >= t)).sum();
+            *v = base.wrapping_add(reached);
         }
     }
 
@@ -271,30 +318,45 @@ mod tests {
         assert_eq!(rng.real_in(5.0, 5.0), 5.0);
     }
 
-    /// The byte table gives what the full search gives, at each byte's
-    /// edges and around every threshold.
+    /// The byte table, and the bulk values, give what the full search
+    /// gives, at each byte's edges and around every threshold.
     #[test]
     fn rounded_normal_table_agrees_with_the_search() {
+        let mut paths = Vec::new();
         for (mean, sigma, max) in [
             (1.5, 0.5, 3),
             (2.0, 1.0, 4),
             (0.5, 0.01, 1),
             (9.0, 3.0, 18),
             (1.0, 0.0, 2),
+            // 5 to 8, then 9 to 16 thresholds inside the word range: counted.
+            (3.0, 1.0, 7),
+            (5.0, 1.5, 12),
+            // More thresholds inside the word range than are counted: looked up.
+            (40.0, 8.0, 80),
         ] {
             let normal = ClampedRoundedNormal::new(mean, sigma, max);
+            paths.push(normal.live.len());
             let search = |w: u32| normal.thresholds.partition_point(|&t| t <= u64::from(w)) as u32;
             let edges = (0..=255u32).flat_map(|b| [b << 24, (b << 24) | 0x00ff_ffff]);
             let near = normal.thresholds.iter().flat_map(|&t| {
                 [t.saturating_sub(1), t, t + 1].map(|w| w.min(u64::from(u32::MAX)) as u32)
             });
-            for w in edges.chain(near) {
-                assert_eq!(
-                    normal.value_of(w),
-                    search(w),
-                    "N({mean}, {sigma}) to {max}, word {w:#x}"
-                );
+            let words: Vec<u32> = edges.chain(near).collect();
+            let mut values = vec![0; words.len()];
+            normal.fill_values(&words, &mut values);
+            for (&w, &v) in words.iter().zip(&values) {
+                let case = format!("N({mean}, {sigma}) to {max}, word {w:#x}");
+                assert_eq!(normal.value_of(w), search(w), "{case}");
+                assert_eq!(v, search(w), "{case}: in bulk");
             }
+        }
+        // Every way of filling values was taken: 4, 8 and 16 counted, looked up.
+        for band in [0..=4, 5..=8, 9..=COUNTED, COUNTED + 1..=usize::MAX] {
+            assert!(
+                paths.iter().any(|n| band.contains(n)),
+                "{band:?}: {paths:?}"
+            );
         }
     }
 

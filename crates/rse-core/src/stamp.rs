@@ -44,14 +44,15 @@ pub(crate) fn apply(
         ObstacleKind::Gaussian => {
             let sigma = obstacle.sigma.expect("a drawn gaussian has its sigma");
             let normal = ClampedRoundedNormal::new(f64::from(height) / 2.0, sigma, height);
-            let mut words = [0u32; CHUNK];
+            let (mut words, mut values) = ([0u32; CHUNK], [0u32; CHUNK]);
             for cells in map.cells_mut().chunks_mut(CHUNK) {
-                let words = &mut words[..cells.len()];
+                let (words, values) = (&mut words[..cells.len()], &mut values[..cells.len()]);
                 rng.fill_words(words);
+                normal.fill_values(words, values);
                 cells
                     .iter_mut()
-                    .zip(words.iter())
-                    .for_each(|(c, &w)| raise(c, normal.value_of(w)));
+                    .zip(values.iter())
+                    .for_each(|(c, &v)| raise(c, v));
             }
         }
         ObstacleKind::Peak | ObstacleKind::Pit | ObstacleKind::Wall | ObstacleKind::LongPit => {
