@@ -1,8 +1,8 @@
 //! Per-environment terrains (issue 23) in Rust, without Python: 4096
 //! environments of `six_obstacles.csv` at 80×80 cells, k = 2; a reset of 64
-//! (new terrains, written into their slots or tiles, origins read), and its
-//! parts: the generation of one terrain, the write of 64 into a pool that
-//! is not in cache, their origins.
+//! (new terrains written into their slots or tiles by `reset_into`, origins
+//! read), and its parts: the generation of one terrain, the write of 64
+//! into a pool that is not in cache.
 //! bench/envs.py measures the same through the Python package.
 //!
 //! `cargo bench -p rse-core --bench env_terrains`
@@ -65,22 +65,12 @@ fn bench(c: &mut Criterion) {
             });
         });
         // Where a reset's time goes beyond generation: the write of 64
-        // terrains into a pool that is not in cache, and their origins.
+        // terrains into a pool that is not in cache.
         group.bench_function(name.replace("reset", "write"), |b| {
             b.iter(|| {
                 let ids: Vec<usize> = (0..64).map(|i| (next + i * 61) % NUM_ENVS).collect();
                 next += 1;
                 envs.write(&ids, &mut out).expect("the whole buffer");
-            });
-        });
-        group.bench_function(name.replace("reset", "origins"), |b| {
-            b.iter(|| {
-                next += 1;
-                black_box(
-                    (0..64)
-                        .map(|i| envs.origin((next + i * 61) % NUM_ENVS)[2])
-                        .sum::<f64>(),
-                )
             });
         });
     }
