@@ -164,8 +164,8 @@ impl AtlasOptions {
 
     /// At most how many cells building this atlas of `schemes` visits: the
     /// map once, each tile's generation ([`Scheme::generation_visits`] of
-    /// its column's scheme), and per tile its spawn disc and flat patches
-    /// (each candidate cell's disc, then about 32 visits per candidate for
+    /// its column's scheme), and per tile its spawn disc (kept to the map)
+    /// and flat patches (each candidate cell's disc, then about 32 visits per candidate for
     /// the sampling). Saturates rather than wraps: options read from a file
     /// may ask for anything. What `check` budgets before it rebuilds one.
     pub fn visits(&self, schemes: &[Scheme]) -> u64 {
@@ -175,15 +175,23 @@ impl AtlasOptions {
         let grid = first.grid();
         let [nx, ny] = self.map_cells([grid.nx, grid.ny]);
         let tile_cells = grid.cells() as u64;
-        let disc = |radius: f64| {
+        let side = |radius: f64| {
             let r = (radius / first.globals().block_size).min(f64::from(u32::MAX));
-            let side = (2.0 * r.ceil() + 1.0) as u64;
-            side.saturating_mul(side).min(tile_cells)
+            (2.0 * r.ceil() + 1.0) as u64
         };
-        let per_tile = disc(self.spawn_radius).saturating_add(if self.patches.count == 0 {
+        // The spawn disc is kept to the map, not the tile (a body on a
+        // tile's edge stands on its neighbour too): a wide one crosses many
+        // tiles. A patch's disc lies inside its tile.
+        let spawn = side(self.spawn_radius)
+            .min(nx)
+            .saturating_mul(side(self.spawn_radius).min(ny));
+        let patch = side(self.patches.radius)
+            .saturating_mul(side(self.patches.radius))
+            .min(tile_cells);
+        let per_tile = spawn.saturating_add(if self.patches.count == 0 {
             0
         } else {
-            tile_cells.saturating_mul(disc(self.patches.radius).saturating_add(32))
+            tile_cells.saturating_mul(patch.saturating_add(32))
         });
         // Tiles per scheme: column c uses scheme c mod len.
         let rows = u64::from(self.rows);

@@ -250,3 +250,25 @@ fn the_visit_estimate_counts_tiles_and_patches() {
     o.patches.count = 0;
     assert!(o.visits(std::slice::from_ref(&scheme)) < base);
 }
+
+/// A spawn disc is kept to the map, not to its tile, so a wide one is
+/// counted as the cells of the map it covers for every tile (a record with
+/// a spawn radius of kilometres once slipped past the estimate: found by
+/// the atlas_record fuzz target, kept in fuzz/regressions).
+#[test]
+fn the_visit_estimate_counts_spawn_discs_across_tiles() {
+    let scheme = Scheme::from_csv("# size: 6x5\ntype,height\nrandom,3\n", None).unwrap();
+    let wide = AtlasOptions {
+        rows: 200,
+        cols: 3,
+        spawn_radius: 5_000.0,
+        patches: rse_core::PatchOptions {
+            count: 0,
+            ..rse_core::PatchOptions::default()
+        },
+        ..AtlasOptions::default()
+    };
+    let [nx, ny] = wide.map_cells([6, 5]);
+    let tiles = 200 * 3;
+    assert!(wide.visits(std::slice::from_ref(&scheme)) >= tiles * nx * ny);
+}
