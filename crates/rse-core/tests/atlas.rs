@@ -254,7 +254,7 @@ fn the_visit_estimate_counts_tiles_and_patches() {
 /// A spawn disc is kept to the map, not to its tile, so a wide one is
 /// counted as the cells of the map it covers for every tile (a record with
 /// a spawn radius of kilometres once slipped past the estimate: found by
-/// the atlas_record fuzz target, kept in fuzz/regressions).
+/// the `atlas_record` fuzz target, kept in fuzz/regressions).
 #[test]
 fn the_visit_estimate_counts_spawn_discs_across_tiles() {
     let scheme = Scheme::from_csv("# size: 6x5\ntype,height\nrandom,3\n", None).unwrap();
