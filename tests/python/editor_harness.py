@@ -61,14 +61,14 @@ def edit(page: Page, action) -> None:
     or a refusal)."""
     before = page.evaluate("window.rseEditor.answers")
     action()
-    page.wait_for_function(f"window.rseEditor.answers > {before}")
+    page.wait_for_function(f"window.rseEditor?.answers > {before}")
 
 
 def preview_round_trips(page: Page, url: str, count: int) -> list[float]:
     """Milliseconds from an edit to its new picture and 3D view, as the page
     times them, for `count` new draws of a 50x50 scheme."""
     page.goto(url)
-    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.wait_for_function("window.rseEditor?.previews >= 1")
     page.fill('[data-global="size"]', "50x50")
     page.wait_for_function("document.getElementById('timing').textContent.startsWith('50×50')")
     times = []

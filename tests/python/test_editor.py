@@ -59,7 +59,7 @@ def image_pixels(png_bytes: bytes) -> np.ndarray:
 def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page) -> None:
     url, folder = editor
     page.goto(url)
-    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.wait_for_function("window.rseEditor?.previews >= 1")
     first = page.locator("#heatmap").screenshot()
 
     # Replace the random field by a wall and a peak, then put the peak first.
@@ -91,7 +91,7 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
     assert scheme.obstacles[0].height == (2, 4)
     rows = table(page)
     page.reload()
-    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.wait_for_function("window.rseEditor?.previews >= 1")
     before = previews(page)
     page.set_input_files("#load", str(saved))
     page.wait_for_function(f"window.rseEditor.previews > {before}")
@@ -111,7 +111,7 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
 def test_the_3d_view_draws_blocks(editor, page: Page) -> None:
     url, _ = editor
     page.goto(url)
-    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.wait_for_function("window.rseEditor?.previews >= 1")
     pixels = image_pixels(page.locator("#blocks").screenshot())
     background = np.array([221, 221, 235])  # the clear colour, 0.87 0.87 0.92
     drawn = np.abs(pixels[:, :, :3].astype(int) - background).sum(axis=2) > 30
@@ -123,7 +123,7 @@ def test_the_3d_view_draws_blocks(editor, page: Page) -> None:
 def test_invalid_values_are_marked_at_the_field(editor, page: Page) -> None:
     url, _ = editor
     page.goto(url)
-    page.wait_for_function("window.rseEditor.previews >= 1")
+    page.wait_for_function("window.rseEditor?.previews >= 1")
     page.select_option('#table tbody tr[data-row="0"] select', "peak")
     cell(page, 0, "height").fill("2")
     cell(page, 0, "angle").fill("45")
@@ -192,7 +192,7 @@ def test_saving_keeps_the_schemes_notes(tmp_path: Path, page: Page) -> None:
     scheme.write_text("# A stepfield for the Husky tests\n# (see lab wiki, 2026)\n# size: 12x10\ntype,height\nrandom,2\n")
     with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
         page.goto(url)
-        page.wait_for_function("window.rseEditor.previews >= 1")
+        page.wait_for_function("window.rseEditor?.previews >= 1")
         assert page.input_value("#notes") == "A stepfield for the Husky tests\n(see lab wiki, 2026)"
         saved = tmp_path / "saved.csv"
         page.fill("#save-path", str(saved))
