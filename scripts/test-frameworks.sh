@@ -24,7 +24,16 @@ say "Genesis (tests/genesis/requirements.txt)"
 # Isaac Lab 3.0 runs on Python 3.12 only (its terrain generator, importer
 # and Newton physics, without Isaac Sim): a venv of its own.
 if [ ! -x .venv-isaaclab3/bin/python ]; then
-    py312=$(command -v python3.12 || ls -d "$HOME"/.pyenv/versions/3.12*/bin/python 2>/dev/null | tail -1 || true)
+    # The first Python 3.12 that runs: on PATH, else pyenv's (its shim for
+    # python3.12 is on PATH even when 3.12 is not the selected version, and
+    # then fails, so each candidate is tried).
+    py312=""
+    for candidate in "$(command -v python3.12 || true)" $(ls -d "$HOME"/.pyenv/versions/3.12*/bin/python 2>/dev/null | sort -rV); do
+        if [ -n "$candidate" ] && "$candidate" -c 'import sys; assert sys.version_info[:2] == (3, 12)' 2>/dev/null; then
+            py312=$candidate
+            break
+        fi
+    done
     if [ -z "$py312" ]; then
         echo "scripts/test-frameworks.sh: Isaac Lab 3.0 needs Python 3.12: install it (e.g. pyenv install 3.12) and rerun" >&2
         exit 2
