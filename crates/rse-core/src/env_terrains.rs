@@ -367,8 +367,8 @@ impl EnvTerrains {
         difficulty: &[Difficulty],
         out: &mut [f32],
     ) -> Result<(), EnvError> {
-        self.check_envs(envs, Some(difficulty))?;
         self.check_out(out)?;
+        // `advance` checks the ids and difficulties before it counts.
         let mut jobs = self.advance(envs, difficulty)?;
         jobs.sort_unstable_by_key(|&(e, ..)| e);
         let this = &*self;

@@ -211,16 +211,15 @@ impl ClampedRoundedNormal {
     /// how many of them it reaches, one vectorized pass per threshold; with
     /// more, each word is looked up.
     pub(crate) fn fill_values(&self, words: &[u32], values: &mut [u32]) {
-        if self.live.len() > COUNTED {
-            for (v, &w) in values.iter_mut().zip(words) {
-                *v = self.value_of(w);
-            }
-            return;
-        }
         match self.live.len() {
             0..=4 => self.count::<4>(words, values),
             5..=8 => self.count::<8>(words, values),
-            _ => self.count::<COUNTED>(words, values),
+            9..=COUNTED => self.count::<COUNTED>(words, values),
+            _ => {
+                for (v, &w) in values.iter_mut().zip(words) {
+                    *v = self.value_of(w);
+                }
+            }
         }
     }
 

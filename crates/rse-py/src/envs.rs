@@ -49,13 +49,20 @@ fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
         .collect()
 }
 
+/// `samples` borrowed for writing, or a `ValueError` naming it (when
+/// Python holds it borrowed elsewhere).
+fn writable<'py>(
+    samples: &Bound<'py, PyArray3<f32>>,
+) -> PyResult<numpy::PyReadwriteArray3<'py, f32>> {
+    samples
+        .try_readwrite()
+        .map_err(|e| PyValueError::new_err(format!("samples: {e}")))
+}
+
 impl EnvTerrains {
     /// Writes the samples of `envs` into `samples` (GIL released).
     fn write_samples(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
-        let samples = self.samples.bind(py);
-        let mut view = samples
-            .try_readwrite()
-            .map_err(|e| PyValueError::new_err(format!("samples: {e}")))?;
+        let mut view = writable(self.samples.bind(py))?;
         let slice = view.as_slice_mut().map_err(value_error)?;
         let inner = &self.inner;
         py.detach(|| inner.write(envs, slice)).map_err(value_error)
@@ -132,9 +139,10 @@ impl EnvTerrains {
         // pages for large arrays, which makes the writes of a reset ~10%
         // faster (fewer TLB misses across a pool of hundreds of MiB).
         let samples = PyArray3::<f32>::zeros(py, [n, rows, cols], false);
-        {
-            // Tile borders are cells of height 0: the slab's top, as in an atlas.
-            let mut view = samples.try_readwrite().map_err(value_error)?;
+        if matches!(inner.options().layout, rse_core::EnvLayout::Tiles { .. }) {
+            // Tile borders are cells of height 0: the slab's top, as in an
+            // atlas. (Slots are all written below.)
+            let mut view = writable(&samples)?;
             let slice = view.as_slice_mut().map_err(value_error)?;
             let ground = inner.ground_sample();
             py.detach(|| slice.fill(ground));
@@ -285,10 +293,7 @@ impl EnvTerrains {
         };
         // New terrains made and written into `samples` in one pass, each by
         // the thread that made it (rse-core's `reset_into`).
-        let samples = self.samples.bind(py);
-        let mut view = samples
-            .try_readwrite()
-            .map_err(|e| PyValueError::new_err(format!("samples: {e}")))?;
+        let mut view = writable(self.samples.bind(py))?;
         let slice = view.as_slice_mut().map_err(value_error)?;
         let inner = &mut self.inner;
         py.detach(|| inner.reset_into(&envs, &levels, slice))
