@@ -7,8 +7,9 @@ use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
-use crate::globals::{Grid, MAX_CELLS, MAX_EXTENT};
+use crate::globals::Grid;
 use crate::heightmap::Heightmap;
+use crate::limits::{MAX_CELLS, MAX_EXTENT};
 use crate::scheme::Scheme;
 use crate::spawn::Region;
 use crate::terrain::Terrain;

@@ -35,6 +35,8 @@ pub enum Error {
     Image(#[from] png::EncodingError),
 }
 
+use crate::limits::QUOTE_CHARS;
+
 /// A scheme that cannot be used, with the place of the fault.
 ///
 /// Its `Display` reads `file:line:column: field: message`, leaving out the
@@ -115,7 +117,7 @@ pub enum SchemeErrorKind {
     #[error("malformed CSV: {0}")]
     Csv(String),
     /// A `# key: value` line names no known global parameter.
-    #[error("unknown global parameter `{}` (known: {known})", quote(.0), known = crate::globals::GLOBAL_KEYS.join(", "))]
+    #[error("unknown global parameter `{}` (known: {known})", quote(.0), known = crate::limits::GLOBAL_KEYS.join(", "))]
     UnknownGlobal(String),
     /// A leading comment `# word: value` whose word is a global's name
     /// misspelt (`step-height`, `Seeds`): an error, not a note, since the
@@ -189,11 +191,11 @@ pub enum SchemeErrorKind {
     #[error("{0} is negative; heights are whole steps ≥ 0")]
     NegativeHeight(i64),
     /// A height above what a cell can hold.
-    #[error("{0} is above the largest supported height, {max} steps", max = crate::obstacle::MAX_HEIGHT)]
+    #[error("{0} is above the largest supported height, {max} steps", max = crate::limits::MAX_HEIGHT)]
     HeightTooLarge(u64),
     /// A height whose top is too high for the block size (see
     /// [`MAX_TOP_IN_BLOCKS`](crate::MAX_TOP_IN_BLOCKS)).
-    #[error("{height} steps reach {top} m, more than {max} block sizes ({limit} m): meshes of walls that slender are not exact in f32; use fewer steps, a smaller step_height or a larger block_size", max = crate::globals::MAX_TOP_IN_BLOCKS)]
+    #[error("{height} steps reach {top} m, more than {max} block sizes ({limit} m): meshes of walls that slender are not exact in f32; use fewer steps, a smaller step_height or a larger block_size", max = crate::limits::MAX_TOP_IN_BLOCKS)]
     TooTall {
         /// The height, steps (a range's upper end).
         height: u32,
@@ -231,7 +233,7 @@ pub enum SchemeErrorKind {
         ny: u32,
     },
     /// The grid has more cells than the generator accepts.
-    #[error("a {nx}x{ny} grid has {cells} cells, more than the limit of {limit}", cells = u64::from(*nx) * u64::from(*ny), limit = crate::globals::MAX_CELLS)]
+    #[error("a {nx}x{ny} grid has {cells} cells, more than the limit of {limit}", cells = u64::from(*nx) * u64::from(*ny), limit = crate::limits::MAX_CELLS)]
     GridTooLarge {
         /// Grid width.
         nx: u32,
@@ -256,6 +258,3 @@ pub fn excerpt(text: &str, chars: usize) -> String {
         None => escaped,
     }
 }
-
-/// The most characters of a field an error quotes.
-pub const QUOTE_CHARS: usize = 80;

@@ -2,7 +2,8 @@
 
 use crate::difficulty::Difficulty;
 use crate::heightmap::Heightmap;
-use crate::obstacle::{DEFAULT_SIGMA, DrawnObstacle, Obstacle, ObstacleKind};
+use crate::limits::DEFAULT_SIGMA;
+use crate::obstacle::{DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
 use crate::rng::WorldRng;
 use crate::scheme::Scheme;

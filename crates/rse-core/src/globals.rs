@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
+use crate::limits::{GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
 
 /// The global whose name `word` most likely misspells (any case, `-` or a
 /// space for `_`, one edit away for a short name, two for a long one), if
@@ -36,47 +37,8 @@ fn bad(key: &str, value: String, reason: &str) -> Result<(), SchemeError> {
     .with_field(key))
 }
 
-/// The shortest `block_size` and `step_height` (and `base`, unless 0), metres
-/// (docs/schemes.md, "Errors"): mesh vertices are `f32` and `check` tells
-/// heights apart to 10⁻⁵ m, so a step must be far above both.
-pub const MIN_LENGTH: f64 = 1e-3;
-
 const MIN_LENGTH_REASON: &str =
     "must be at least 0.001 m: shorter is not exact in an f32 mesh, nor told apart by check";
-
-/// Largest grid the generator accepts, in cells (docs/schemes.md,
-/// "Errors"). 10⁸ cells is a 1 km square at 10 cm blocks: 200 MB of
-/// heights, and several GB once meshed.
-pub const MAX_CELLS: u64 = 100_000_000;
-
-/// The longest side a grid may measure, metres (`nx·block_size`,
-/// `ny·block_size`). Meshes store `f32`: far below its range, and keeps a
-/// block's corners distinct in it.
-pub const MAX_EXTENT: f64 = 1e5;
-
-/// How many block sizes high a top may be (`base + h·step_height`). Past
-/// this a wall one block wide is so slender that its triangles' corners lie
-/// within one `f32` unit of their neighbours' edges: the mesh is no longer
-/// exact in the files (measured: `random,2000` at 0.1 m/0.1 m breaks 25 of
-/// 60 worlds, `random,1000` none of 620).
-pub const MAX_TOP_IN_BLOCKS: f64 = 1000.0;
-
-/// Pallet side in cells when a scheme turns pallets on without `pallet_size`:
-/// a NIST pallet holds 10×10 blocks inside its frame.
-pub const DEFAULT_PALLET_SIZE: u32 = 10;
-
-/// The `# key: value` names a scheme file may use, in the order they are written.
-pub const GLOBAL_KEYS: [&str; 9] = [
-    "size",
-    "pallets",
-    "pallet_size",
-    "pallet_boundary",
-    "block_size",
-    "step_height",
-    "base",
-    "amount",
-    "seed",
-];
 
 /// Pallet layout: `count[0] × count[1]` pallets of `size × size` cells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -4,7 +4,8 @@
 //! here and nowhere else).
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::globals::{self, DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Pallets};
+use crate::globals::{self, Globals, Pallets};
+use crate::limits::{DEFAULT_PALLET_SIZE, GLOBAL_KEYS};
 
 /// Global parameters, each `None` when not given. Every skin fills one in
 /// and [`apply`](GlobalsPatch::apply)s it onto the globals it starts from

@@ -39,6 +39,7 @@ mod globals;
 mod globals_patch;
 mod heightmap;
 pub mod hfield;
+mod limits;
 pub mod mesh;
 mod obstacle;
 mod param;
@@ -54,18 +55,17 @@ mod terrain;
 pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
 pub use env_terrains::{ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvTerrains, env_world};
-pub use error::{Error, QUOTE_CHARS, SchemeError, SchemeErrorKind, excerpt};
+pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
-pub use globals::{
-    DEFAULT_PALLET_SIZE, GLOBAL_KEYS, Globals, Grid, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS,
-    MIN_LENGTH, Pallets, format_dims, parse_dims,
-};
+pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};
 pub use globals_patch::GlobalsPatch;
 pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
-pub use obstacle::{
-    DEFAULT_SIGMA, DrawnObstacle, Field, MAX_HEIGHT, Obstacle, ObstacleFields, ObstacleKind, Usage,
+pub use limits::{
+    DEFAULT_PALLET_SIZE, DEFAULT_SIGMA, GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_HEIGHT,
+    MAX_TOP_IN_BLOCKS, MIN_LENGTH, QUOTE_CHARS,
 };
+pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};
 pub use scheme::Scheme;
 pub use terrain::Terrain;

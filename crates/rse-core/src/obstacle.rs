@@ -6,14 +6,8 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
+use crate::limits::MAX_HEIGHT;
 use crate::param::Param;
-
-/// Standard deviation in steps of a gaussian obstacle that sets no `sigma`
-/// (the paper's value).
-pub const DEFAULT_SIGMA: f64 = 1.0;
-
-/// Largest obstacle height in steps; cells are stored as `u16`.
-pub const MAX_HEIGHT: u32 = u16::MAX as u32;
 
 /// An obstacle type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -186,7 +180,7 @@ pub struct ObstacleFields {
     pub x2: Option<Param<u32>>,
     /// Second point, y cell.
     pub y2: Option<Param<u32>>,
-    /// Standard deviation in steps (gaussian; default [`DEFAULT_SIGMA`]).
+    /// Standard deviation in steps (gaussian; default [`DEFAULT_SIGMA`](crate::DEFAULT_SIGMA)).
     pub sigma: Option<Param<f64>>,
 }
 
@@ -270,21 +264,6 @@ impl Obstacle {
             }
         }
         Ok(Obstacle { kind, fields })
-    }
-
-    /// A row from its cells' text as a scheme file holds it (`("height",
-    /// "2..4")`; blank cells are not given), validated as [`Obstacle::new`]
-    /// does. The error's `field` names the faulty column.
-    pub fn from_cells<'a>(
-        cells: impl IntoIterator<Item = (Field, &'a str)>,
-    ) -> Result<Self, SchemeError> {
-        crate::scheme_csv::obstacle_of_cells(cells)
-    }
-
-    /// The text of each given cell, in column order, as a scheme file
-    /// writes it; [`Obstacle::from_cells`] reads it back to an equal row.
-    pub fn cells(&self) -> Vec<(Field, String)> {
-        crate::scheme_csv::cells_of(self)
     }
 
     /// The type.

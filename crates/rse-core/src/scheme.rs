@@ -69,7 +69,7 @@ impl Origin {
 pub struct Scheme {
     globals: Globals,
     obstacles: Vec<Obstacle>,
-    notes: Vec<String>,
+    pub(crate) notes: Vec<String>,
     origin: Origin,
 }
 
@@ -120,34 +120,6 @@ impl Scheme {
         Ok(Self::from_csv_bytes(&bytes, Some(&name))?)
     }
 
-    /// Parses scheme CSV text; `file` is the name used in error messages.
-    pub fn from_csv(text: &str, file: Option<&str>) -> Result<Self, SchemeError> {
-        crate::scheme_csv::parse(text, file)
-    }
-
-    /// Parses scheme CSV bytes, refusing text that is not UTF-8.
-    pub fn from_csv_bytes(bytes: &[u8], file: Option<&str>) -> Result<Self, SchemeError> {
-        match std::str::from_utf8(bytes) {
-            Ok(text) => Self::from_csv(text, file),
-            Err(e) => {
-                #[allow(clippy::naive_bytecount)] // once per bad file: not worth a crate
-                let line = bytes[..e.valid_up_to()]
-                    .iter()
-                    .filter(|&&b| b == b'\n')
-                    .count() as u64
-                    + 1;
-                let mut error = SchemeError::new(SchemeErrorKind::NotUtf8).at_line(line);
-                error.file = file.map(str::to_owned);
-                Err(error)
-            }
-        }
-    }
-
-    /// The canonical CSV text of this scheme; reading it back gives an equal scheme.
-    pub fn to_csv(&self) -> String {
-        crate::scheme_csv::write(self)
-    }
-
     /// The same table with other global parameters (e.g. command-line
     /// overrides), checked again. Errors still name the original file and line.
     pub fn with_globals(&self, globals: Globals) -> Result<Self, SchemeError> {
@@ -157,24 +129,6 @@ impl Scheme {
             self.notes.clone(),
             self.origin.clone(),
         )
-    }
-
-    /// The same scheme with other free-text notes (the comment lines written
-    /// above the table). A note a scheme file would read back as a global
-    /// parameter (`Author: me`) is refused: error field `notes`.
-    pub fn with_notes(mut self, notes: Vec<String>) -> Result<Self, SchemeError> {
-        let reads_as_global = notes
-            .iter()
-            .flat_map(|note| note.lines())
-            .find_map(|line| crate::scheme_csv::split_global(line).map(|(key, _)| key));
-        if let Some(key) = reads_as_global {
-            return Err(
-                SchemeError::new(SchemeErrorKind::NoteReadsAsGlobal(key.to_owned()))
-                    .with_field("notes"),
-            );
-        }
-        self.notes = notes;
-        Ok(self)
     }
 
     /// The global parameters.
@@ -244,7 +198,7 @@ fn check_height(obstacle: &Obstacle, globals: &Globals) -> Result<(), SchemeErro
     };
     let (top, limit) = (
         globals.top(height.hi()),
-        crate::globals::MAX_TOP_IN_BLOCKS * globals.block_size,
+        crate::limits::MAX_TOP_IN_BLOCKS * globals.block_size,
     );
     if top > limit {
         return Err(SchemeError::new(SchemeErrorKind::TooTall {

@@ -7,11 +7,79 @@
 use std::fmt::Write as _;
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::globals::{GLOBAL_KEYS, Globals};
+use crate::globals::Globals;
 use crate::globals_patch::GlobalsPatch;
+use crate::limits::GLOBAL_KEYS;
 use crate::obstacle::{Field, Obstacle, ObstacleFields, ObstacleKind};
 use crate::param::{Param, ParamTextError};
 use crate::scheme::{Origin, RowOrigin, Scheme};
+
+/// Schemes read from and written to the scheme file format.
+impl Scheme {
+    /// Parses scheme CSV text; `file` is the name used in error messages.
+    pub fn from_csv(text: &str, file: Option<&str>) -> Result<Self, SchemeError> {
+        parse(text, file)
+    }
+
+    /// Parses scheme CSV bytes, refusing text that is not UTF-8.
+    pub fn from_csv_bytes(bytes: &[u8], file: Option<&str>) -> Result<Self, SchemeError> {
+        match std::str::from_utf8(bytes) {
+            Ok(text) => Self::from_csv(text, file),
+            Err(e) => {
+                #[allow(clippy::naive_bytecount)] // once per bad file: not worth a crate
+                let line = bytes[..e.valid_up_to()]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count() as u64
+                    + 1;
+                let mut error = SchemeError::new(SchemeErrorKind::NotUtf8).at_line(line);
+                error.file = file.map(str::to_owned);
+                Err(error)
+            }
+        }
+    }
+
+    /// The canonical CSV text of this scheme; reading it back gives an equal scheme.
+    pub fn to_csv(&self) -> String {
+        write(self)
+    }
+
+    /// The same scheme with other free-text notes (the comment lines written
+    /// above the table). A note a scheme file would read back as a global
+    /// parameter (`Author: me`) is refused: error field `notes`.
+    pub fn with_notes(mut self, notes: Vec<String>) -> Result<Self, SchemeError> {
+        let reads_as_global = notes
+            .iter()
+            .flat_map(|note| note.lines())
+            .find_map(|line| split_global(line).map(|(key, _)| key));
+        if let Some(key) = reads_as_global {
+            return Err(
+                SchemeError::new(SchemeErrorKind::NoteReadsAsGlobal(key.to_owned()))
+                    .with_field("notes"),
+            );
+        }
+        self.notes = notes;
+        Ok(self)
+    }
+}
+
+/// Rows read from and written to a scheme file's cells.
+impl Obstacle {
+    /// A row from its cells' text as a scheme file holds it (`("height",
+    /// "2..4")`; blank cells are not given), validated as [`Obstacle::new`]
+    /// does. The error's `field` names the faulty column.
+    pub fn from_cells<'a>(
+        cells: impl IntoIterator<Item = (Field, &'a str)>,
+    ) -> Result<Self, SchemeError> {
+        obstacle_of_cells(cells)
+    }
+
+    /// The text of each given cell, in column order, as a scheme file
+    /// writes it; [`Obstacle::from_cells`] reads it back to an equal row.
+    pub fn cells(&self) -> Vec<(Field, String)> {
+        cells_of(self)
+    }
+}
 
 /// Parses scheme text; `file` is the name used in error messages.
 pub(crate) fn parse(text: &str, file: Option<&str>) -> Result<Scheme, SchemeError> {

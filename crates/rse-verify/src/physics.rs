@@ -6,7 +6,6 @@ use rse_world::Manifest;
 
 use crate::fault::{Fault, FaultKind};
 use crate::terrain::ObjMesh;
-use crate::world::WorldReport;
 
 /// `true` when this build runs the physics smoke test (feature `physics`).
 pub const PHYSICS: bool = cfg!(feature = "physics");
@@ -16,13 +15,13 @@ pub const PHYSICS: bool = cfg!(feature = "physics");
 /// each distinct mesh file (`meshes` holds one of each set of copies) where
 /// a target collides the mesh, the box set where one collides boxes.
 /// `MuJoCo`'s height field is approximate by design: not tested here.
+/// Returns each collider's report; its errors are also pushed on `faults`.
 pub(crate) fn run(
     manifest: &Manifest,
     meshes: Vec<(&str, ObjMesh)>,
     terrain: &Terrain,
-    report: &mut WorldReport,
     faults: &mut Vec<Fault>,
-) {
+) -> Vec<rse_physics::PhysicsReport> {
     use std::collections::BTreeSet;
 
     use rse_physics::{SmokeTest, TerrainModel, smoke_tests};
@@ -55,7 +54,8 @@ pub(crate) fn run(
     }
     let models: Vec<(&TerrainModel, Option<&str>)> =
         runs.iter().map(|(path, model)| (model, *path)).collect();
-    for physics in smoke_tests(&models, terrain, SmokeTest::default()) {
+    let reports = smoke_tests(&models, terrain, SmokeTest::default());
+    for physics in &reports {
         let path = physics.collider.file.as_deref();
         let kind = physics.collider.kind;
         faults.extend(physics.errors.iter().map(|error| {
@@ -66,18 +66,12 @@ pub(crate) fn run(
                 },
             )
         }));
-        report.physics.push(physics);
     }
+    reports
 }
 
 #[cfg(not(feature = "physics"))]
-pub(crate) fn run(
-    _: &Manifest,
-    _: Vec<(&str, ObjMesh)>,
-    _: &Terrain,
-    _: &mut WorldReport,
-    faults: &mut Vec<Fault>,
-) {
+pub(crate) fn run(_: &Manifest, _: Vec<(&str, ObjMesh)>, _: &Terrain, faults: &mut Vec<Fault>) {
     faults.push(Fault::new(
         None,
         FaultKind::Physics {

@@ -1,0 +1,52 @@
+//! The rules of ARCHITECTURE.md that the sources can break: no crate's
+//! modules use each other in a circle.
+
+use rse_layout::{crate_dirs, find_cycle, module_graph};
+
+#[test]
+fn every_crates_modules_form_a_dag() {
+    let dirs = crate_dirs();
+    assert!(dirs.len() >= 8, "found only {} crates", dirs.len());
+    let circles: Vec<String> = dirs
+        .iter()
+        .filter_map(|dir| {
+            let cycle = find_cycle(&module_graph(dir))?;
+            let name = dir.file_name().unwrap().to_string_lossy();
+            Some(format!("{name}: {}", cycle.join(" -> ")))
+        })
+        .collect();
+    assert!(
+        circles.is_empty(),
+        "modules use each other in a circle:\n{}",
+        circles.join("\n")
+    );
+}
+
+#[test]
+fn the_graph_sees_uses_and_cycles() {
+    // The reader itself, on a crate known to have edges: rse-world's
+    // `place` uses `nofollow`, and a made-up back edge is a circle.
+    let dir = crate_dirs()
+        .into_iter()
+        .find(|dir| dir.ends_with("rse-world"))
+        .unwrap();
+    let mut graph = module_graph(&dir);
+    assert!(graph["place"].contains("nofollow"), "{:?}", graph["place"]);
+    assert!(find_cycle(&graph).is_none());
+    graph
+        .get_mut("nofollow")
+        .unwrap()
+        .insert("place".to_owned());
+    let cycle = find_cycle(&graph).expect("a back edge is a cycle");
+    assert!(cycle.contains(&"place".to_owned()) && cycle.contains(&"nofollow".to_owned()));
+    // Nested modules: rse-core's mesh folder is read module by module.
+    let core = crate_dirs()
+        .into_iter()
+        .find(|dir| dir.ends_with("rse-core"))
+        .unwrap();
+    let core = module_graph(&core);
+    assert!(
+        core.contains_key("mesh/stitch") && core.contains_key("mesh"),
+        "{core:?}"
+    );
+}
