@@ -56,8 +56,8 @@ build:
 ## The Python wheel (distribution rse-gen, import rse, the rse-gen command inside) into dist/: one abi3 wheel for Python 3.9+.
 wheel:
 	[ -x target/wheel-venv/bin/pip ] || python3 -m venv target/wheel-venv
-	target/wheel-venv/bin/pip wheel --quiet --disable-pip-version-check --no-deps -w dist ./crates/rse-py
-	@ls dist/rse_gen-*.whl
+	target/wheel-venv/bin/pip wheel --quiet --disable-pip-version-check --no-deps -w dist ./crates/rse-cli ./crates/rse-py
+	@ls dist/rse_gen-*.whl dist/rse_gen_cli-*.whl
 
 ## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ for TARGETS (rse-gen batch; a rerun resumes).
 demo: build

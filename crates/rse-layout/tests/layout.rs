@@ -1,7 +1,8 @@
 //! The rules of ARCHITECTURE.md that the sources can break: no crate's
-//! modules use each other in a circle.
+//! modules use each other in a circle, and the command-line binary is a
+//! leaf that no crate (the Python extension included) links.
 
-use rse_layout::{crate_dirs, find_cycle, module_graph};
+use rse_layout::{crate_dirs, find_cycle, module_graph, workspace_dependencies};
 
 #[test]
 fn every_crates_modules_form_a_dag() {
@@ -49,4 +50,15 @@ fn the_graph_sees_uses_and_cycles() {
         core.contains_key("mesh/stitch") && core.contains_key("mesh"),
         "{core:?}"
     );
+}
+#[test]
+fn the_command_line_is_a_leaf() {
+    for dir in crate_dirs() {
+        let deps = workspace_dependencies(&dir);
+        assert!(
+            !deps.contains("rse-cli"),
+            "{} depends on rse-cli: the binary is a leaf (ARCHITECTURE.md)",
+            dir.display()
+        );
+    }
 }

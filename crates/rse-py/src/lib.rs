@@ -13,7 +13,6 @@ mod args;
 mod atlas;
 mod batch;
 mod check;
-mod cli;
 mod envs;
 mod errors;
 mod options;
@@ -52,6 +51,5 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
-    m.add_function(wrap_pyfunction!(cli::_main, m)?)?;
     Ok(())
 }

@@ -24,7 +24,6 @@ __all__ = [
     "write_worlds",
     "_time_generate",
     "_check_json",
-    "_main",
 ]
 
 __version__: str
@@ -295,7 +294,6 @@ def write_world(
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> str: ...
-def _main(argv: list[str]) -> int: ...
 def _time_generate(scheme: Scheme, count: int, seed: int = 0) -> float: ...
 def _check_json(
     paths: list[Union[str, os.PathLike[str]]],
