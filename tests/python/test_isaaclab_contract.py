@@ -74,13 +74,16 @@ def test_the_same_configuration_gives_the_same_terrains() -> None:
         assert not (len(a[0].vertices) == len(c[0].vertices) and np.array_equal(a[0].vertices, c[0].vertices))
 
 
-def test_difficulty_zero_is_the_flat_ground_and_out_of_range_is_clamped() -> None:
+def test_difficulty_zero_is_the_flat_ground_and_out_of_range_is_refused() -> None:
+    """The library's rule: a difficulty outside 0..1 (a difficulty_range
+    past 1 in Isaac Lab's generator) is an error naming it, not clamped."""
     cfg = RseTerrainCfg(scheme=SIX, size=(5.0, 5.0), index=4)
     meshes, origin = rse_terrain(0.0, cfg)
     assert len(meshes) == 1 and origin[2] == 0.0
     hard, _ = rse_terrain(1.0, cfg)
-    beyond, _ = rse_terrain(1.7, cfg)
-    assert np.array_equal(hard[0].vertices, beyond[0].vertices)
+    assert len(hard) == 2 and hard[0].vertices[:, 2].max() > 0
+    with pytest.raises(ValueError, match="difficulty 1.7: expected a number from 0 to 1"):
+        rse_terrain(1.7, cfg)
 
 
 def test_a_missing_scheme_is_a_clear_error() -> None:

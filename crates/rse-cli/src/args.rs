@@ -209,7 +209,7 @@ pub struct AtlasArgs {
     pub difficulty: (Difficulty, Difficulty),
 
     /// A tile's origin z is the highest top within this many metres of its centre.
-    #[arg(long, value_name = "M", default_value_t = 0.3, value_parser = non_negative_metres)]
+    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_SPAWN_RADIUS, value_parser = non_negative_metres)]
     pub spawn_radius: f64,
 
     /// Flat patches per tile to list in atlas.json (spawn or goal points).
@@ -217,7 +217,7 @@ pub struct AtlasArgs {
     pub flat_patches: u32,
 
     /// Radius in metres of the disc a flat patch must cover.
-    #[arg(long, value_name = "M", default_value_t = 0.3, value_parser = non_negative_metres)]
+    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_PATCH_RADIUS, value_parser = non_negative_metres)]
     pub patch_radius: f64,
 
     /// Largest height difference under a flat patch, in steps.

@@ -11,7 +11,7 @@ use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::limits::{MAX_CELLS, MAX_EXTENT};
 use crate::scheme::Scheme;
-use crate::spawn::Region;
+use crate::spawn::{DEFAULT_PATCH_RADIUS, DEFAULT_SPAWN_RADIUS, Region};
 use crate::terrain::Terrain;
 
 /// Flat patches to find on every tile (none when `count` is 0).
@@ -29,7 +29,7 @@ impl Default for PatchOptions {
     fn default() -> Self {
         PatchOptions {
             count: 0,
-            radius: 0.3,
+            radius: DEFAULT_PATCH_RADIUS,
             max_step: 0,
         }
     }
@@ -66,7 +66,7 @@ impl Default for AtlasOptions {
                 Difficulty::new(0.0).expect("0 is a difficulty"),
                 Difficulty::FULL,
             ),
-            spawn_radius: 0.3,
+            spawn_radius: DEFAULT_SPAWN_RADIUS,
             patches: PatchOptions::default(),
         }
     }

@@ -124,17 +124,13 @@ impl Terrain {
         } else {
             self.step_height()
         };
+        let (size, pos) = field_geometry(width, depth, spacing, elevation, base, lowest);
         Ok(HField {
             nrow,
             ncol,
             data: Vec::new(),
-            size: [
-                (width - spacing) / 2.0,
-                (depth - spacing) / 2.0,
-                elevation,
-                base,
-            ],
-            pos: [width / 2.0, depth / 2.0, lowest],
+            size,
+            pos,
         })
     }
 
@@ -252,6 +248,32 @@ fn spread<const K: usize>(row: &[u16], value: &[f32], out: &mut [f32]) {
 
 /// [`Terrain::hfield_shape`] of any terrain of `grid`: the shape depends on
 /// the grid and `oversample` alone.
+/// MuJoCo's `size` (`[radius_x, radius_y, elevation, base]`) and the geom's
+/// `pos` of a field `width × depth` metres across with samples `spacing`
+/// apart, its surface at sample 0 at height `z`: the one formula of every
+/// height field rse makes (a terrain's, a slot's, a tile map's). MuJoCo
+/// puts the first and last samples on the field's edges, so the radii are
+/// half of `width − spacing`, and the centre goes half a sample inside the
+/// first cell's centre line.
+pub(crate) fn field_geometry(
+    width: f64,
+    depth: f64,
+    spacing: f64,
+    elevation: f64,
+    base: f64,
+    z: f64,
+) -> ([f64; 4], [f64; 3]) {
+    (
+        [
+            (width - spacing) / 2.0,
+            (depth - spacing) / 2.0,
+            elevation,
+            base,
+        ],
+        [width / 2.0, depth / 2.0, z],
+    )
+}
+
 pub(crate) fn hfield_shape_of(grid: Grid, oversample: u32) -> Result<(u32, u32), HFieldError> {
     let bad = |reason: String| HFieldError::Oversample { oversample, reason };
     if oversample == 0 {

@@ -54,7 +54,10 @@ mod terrain;
 
 pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
-pub use env_terrains::{ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvTerrains, env_world};
+pub use env_terrains::{
+    DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
+    LayoutKind, env_world,
+};
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
 pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};

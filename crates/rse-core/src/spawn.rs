@@ -12,6 +12,15 @@ use crate::terrain::Terrain;
 /// edge exactly would otherwise miss it.
 const RADIUS_SLACK_CELLS: f64 = 1e-9;
 
+/// The radius, metres, of the disc whose highest top a spawn origin stands
+/// on when the user names none (an atlas's tiles, every environment of
+/// [`EnvTerrains`](crate::EnvTerrains), `Terrain.spawn_origin` in Python):
+/// the footprint of a quadruped the size of a Unitree Go1.
+pub const DEFAULT_SPAWN_RADIUS: f64 = 0.3;
+
+/// The radius, metres, of a flat patch when the user names none.
+pub const DEFAULT_PATCH_RADIUS: f64 = 0.3;
+
 impl Terrain {
     /// Every cell of the terrain as a region.
     pub fn region(&self) -> Region {

@@ -65,8 +65,7 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
 #[pymethods]
 impl Atlas {
     #[new]
-    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=None, spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0),
-           text_signature = "(schemes, rows, cols, *, seed=None, border=0, difficulty=(0.0, 1.0), spawn_radius=0.3, flat_patches=0, patch_radius=0.3, max_step=0)")]
+    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=None, spawn_radius=None, flat_patches=0, patch_radius=None, max_step=0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -76,14 +75,19 @@ impl Atlas {
         seed: Option<u64>,
         border: u32,
         difficulty: Option<Bound<'_, PyAny>>,
-        spawn_radius: f64,
+        spawn_radius: Option<f64>,
         flat_patches: u32,
-        patch_radius: f64,
+        patch_radius: Option<f64>,
         max_step: u16,
     ) -> PyResult<Self> {
-        let [easiest, hardest] = difficulty.map_or(Ok([0.0, 1.0]), |d| {
-            args::reals("difficulty", &d, "(0.0, 1.0)")
-        })?;
+        let defaults = AtlasOptions::default();
+        let difficulty = match difficulty {
+            None => defaults.difficulty,
+            Some(d) => {
+                let [easiest, hardest] = args::reals("difficulty", &d, "(0.0, 1.0)")?;
+                (difficulty_arg(easiest)?, difficulty_arg(hardest)?)
+            }
+        };
         let schemes = named_schemes(py, &schemes)?;
         let seed = seed.unwrap_or_else(|| schemes.first().map_or(0, |s| s.scheme.globals().seed));
         let options = AtlasOptions {
@@ -91,11 +95,11 @@ impl Atlas {
             cols,
             seed,
             border,
-            difficulty: (difficulty_arg(easiest)?, difficulty_arg(hardest)?),
-            spawn_radius,
+            difficulty,
+            spawn_radius: spawn_radius.unwrap_or(defaults.spawn_radius),
             patches: PatchOptions {
                 count: flat_patches,
-                radius: patch_radius,
+                radius: patch_radius.unwrap_or(defaults.patches.radius),
                 max_step,
             },
         };
@@ -161,14 +165,15 @@ impl Atlas {
     /// discs of `radius` metres inside the tile over which every cell is
     /// within `max_step` steps of the others, z the highest top under the
     /// disc. Shape `(rows, cols, n, 3)`; a tile with fewer has NaN rows.
-    #[pyo3(signature = (n, radius=0.3, max_step=0))]
+    #[pyo3(signature = (n, radius=None, max_step=0))]
     fn flat_patches<'py>(
         &self,
         py: Python<'py>,
         n: u32,
-        radius: f64,
+        radius: Option<f64>,
         max_step: u16,
     ) -> PyResult<Bound<'py, PyArray4<f64>>> {
+        let radius = radius.unwrap_or(rse_core::spawn::DEFAULT_PATCH_RADIUS);
         check_radius("radius", radius)?;
         let o = self.inner.options();
         let terrain = self.inner.terrain();

@@ -9,6 +9,7 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedA
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::options::PyLayout;
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
 
@@ -88,48 +89,35 @@ impl EnvTerrains {
 #[pymethods]
 impl EnvTerrains {
     #[new]
-    #[pyo3(signature = (scheme, num_envs, oversample=2, seed=None, difficulty=1.0, layout="slots", *, cols=None, border=0, env_offset=0, spawn_radius=0.3))]
+    #[pyo3(signature = (scheme, num_envs, oversample=None, seed=None, difficulty=None, layout=None, *, cols=None, border=None, env_offset=None, spawn_radius=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         scheme: &Bound<'_, Scheme>,
         num_envs: usize,
-        oversample: u32,
+        oversample: Option<u32>,
         seed: Option<u64>,
-        difficulty: f64,
-        layout: &str,
+        difficulty: Option<f64>,
+        layout: Option<PyLayout>,
         cols: Option<u32>,
-        border: u32,
-        env_offset: u64,
-        spawn_radius: f64,
+        border: Option<u32>,
+        env_offset: Option<u64>,
+        spawn_radius: Option<f64>,
     ) -> PyResult<Self> {
         let scheme = Arc::clone(&scheme.get().inner);
-        let layout = match layout {
-            "slots" if cols.is_none() && border == 0 => rse_core::EnvLayout::Slots,
-            "slots" => {
-                return Err(PyValueError::new_err(
-                    "cols, border: only with layout=\"tiles\"",
-                ));
-            }
-            "tiles" => rse_core::EnvLayout::Tiles {
-                cols: cols.unwrap_or_else(|| (num_envs as f64).sqrt().ceil() as u32),
-                border,
-            },
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "layout: {other:?} is not \"slots\" or \"tiles\""
-                )));
-            }
-        };
-        let options = rse_core::EnvOptions {
+        // What the user gave, `None` for the rest: rse-core resolves it.
+        let request = rse_core::EnvRequest {
             num_envs,
             oversample,
-            seed: seed.unwrap_or(scheme.globals().seed),
+            seed,
             env_offset,
-            layout,
-            difficulty: difficulty_arg(difficulty)?,
+            difficulty,
+            layout: layout.map(|l| l.0),
+            cols,
+            border,
             spawn_radius,
         };
+        let options = request.resolve(&scheme).map_err(value_error)?;
         let owned = (*scheme).clone();
         let inner = py
             .detach(|| rse_core::EnvTerrains::new(owned, options))
@@ -219,10 +207,7 @@ impl EnvTerrains {
     /// `"slots"` or `"tiles"`.
     #[getter]
     fn layout(&self) -> &'static str {
-        match self.inner.options().layout {
-            rse_core::EnvLayout::Slots => "slots",
-            rse_core::EnvLayout::Tiles { .. } => "tiles",
-        }
+        rse_core::LayoutKind::from(self.inner.options().layout).name()
     }
 
     /// One environment's field, `(nrow, ncol)`.

@@ -39,7 +39,18 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "MUJOCO_COLLIDERS",
         names(&rse_world::MujocoCollider::NAMES)?,
     )?;
+    // The library's defaults, for Python code that must name one (a
+    // dataclass field, a docstring); a keyword left `None` gets the same.
     m.add("DEFAULT_OVERSAMPLE", rse_core::DEFAULT_OVERSAMPLE)?;
+    m.add("DEFAULT_ENV_OVERSAMPLE", rse_core::DEFAULT_ENV_OVERSAMPLE)?;
+    m.add(
+        "DEFAULT_SPAWN_RADIUS",
+        rse_core::spawn::DEFAULT_SPAWN_RADIUS,
+    )?;
+    m.add(
+        "DEFAULT_PATCH_RADIUS",
+        rse_core::spawn::DEFAULT_PATCH_RADIUS,
+    )?;
     m.add("SchemeError", m.py().get_type::<errors::SchemeError>())?;
     m.add_class::<scheme::Obstacle>()?;
     m.add_class::<scheme::Scheme>()?;

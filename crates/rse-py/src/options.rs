@@ -51,6 +51,21 @@ impl<'a, 'py> FromPyObject<'a, 'py> for PyMeshMode {
     }
 }
 
+/// `layout=` of `EnvTerrains`: `"slots"` or `"tiles"`, parsed by rse-core's
+/// [`rse_core::LayoutKind`].
+pub struct PyLayout(pub rse_core::LayoutKind);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for PyLayout {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let text = string(obj, "layout")?;
+        text.parse()
+            .map(PyLayout)
+            .map_err(|e: rse_core::EnvError| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+    }
+}
+
 /// `mujoco_collider=`: `"boxes"` or `"hfield"` (its oversample is a
 /// keyword of its own).
 pub struct PyColliderName(String);

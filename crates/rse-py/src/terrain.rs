@@ -227,12 +227,13 @@ impl Terrain {
     /// A spawn point `[x, y, z]` in metres: the terrain's centre, on the
     /// highest top within `radius` metres of it (a body whose footprint
     /// fits in that disc starts inside no block).
-    #[pyo3(signature = (radius=0.3))]
+    #[pyo3(signature = (radius=None))]
     fn spawn_origin<'py>(
         &self,
         py: Python<'py>,
-        radius: f64,
+        radius: Option<f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let radius = radius.unwrap_or(rse_core::spawn::DEFAULT_SPAWN_RADIUS);
         check_radius("radius", radius)?;
         let origin = self.inner.spawn_origin(self.inner.region(), radius);
         Ok(origin.to_vec().into_pyarray(py))
@@ -243,14 +244,15 @@ impl Terrain {
     /// `max_step` steps of the others, z the highest top under the disc.
     /// Shape `(n, 3)`; when fewer are found the rest are NaN rows. The same
     /// points `rse.Atlas` and `rse-gen atlas` give.
-    #[pyo3(signature = (n, radius=0.3, max_step=0))]
+    #[pyo3(signature = (n, radius=None, max_step=0))]
     fn flat_patches<'py>(
         &self,
         py: Python<'py>,
         n: u32,
-        radius: f64,
+        radius: Option<f64>,
         max_step: u16,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let radius = radius.unwrap_or(rse_core::spawn::DEFAULT_PATCH_RADIUS);
         check_radius("radius", radius)?;
         let found = self
             .inner

@@ -10,7 +10,10 @@ The generator lives in Rust (``rse._rse``); this package re-exports it::
 """
 
 from rse._rse import (
+    DEFAULT_ENV_OVERSAMPLE,
     DEFAULT_OVERSAMPLE,
+    DEFAULT_PATCH_RADIUS,
+    DEFAULT_SPAWN_RADIUS,
     MESH_MODES,
     MUJOCO_COLLIDERS,
     TARGETS,
@@ -28,7 +31,10 @@ from rse._rse import (
 from rse._check import CheckReport, Fault, WorldReport, check
 
 __all__ = [
+    "DEFAULT_ENV_OVERSAMPLE",
     "DEFAULT_OVERSAMPLE",
+    "DEFAULT_PATCH_RADIUS",
+    "DEFAULT_SPAWN_RADIUS",
     "MESH_MODES",
     "MUJOCO_COLLIDERS",
     "TARGETS",

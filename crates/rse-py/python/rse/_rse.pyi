@@ -13,6 +13,9 @@ __all__ = [
     "MESH_MODES",
     "MUJOCO_COLLIDERS",
     "DEFAULT_OVERSAMPLE",
+    "DEFAULT_ENV_OVERSAMPLE",
+    "DEFAULT_SPAWN_RADIUS",
+    "DEFAULT_PATCH_RADIUS",
     "SchemeError",
     "Obstacle",
     "Scheme",
@@ -39,6 +42,11 @@ TARGETS: tuple[str, ...]
 MESH_MODES: tuple[str, ...]
 MUJOCO_COLLIDERS: tuple[str, ...]
 DEFAULT_OVERSAMPLE: int
+# The library's other defaults (rse-core's constants; a keyword left None
+# gets the same value).
+DEFAULT_ENV_OVERSAMPLE: int
+DEFAULT_SPAWN_RADIUS: float
+DEFAULT_PATCH_RADIUS: float
 
 # A value, or an inclusive (lo, hi) range drawn per world; numpy scalars
 # and length-2 arrays are taken too.
@@ -153,7 +161,7 @@ class Terrain:
     def difficulty(self) -> float: ...
     @property
     def drawn(self) -> list[dict[str, object]]: ...
-    def spawn_origin(self, radius: float = 0.3) -> npt.NDArray[np.float64]: ...
+    def spawn_origin(self, radius: Optional[float] = None) -> npt.NDArray[np.float64]: ...
     def hfield(
         self, oversample: Optional[int] = None, *, out: Optional[npt.NDArray[np.float32]] = None
     ) -> tuple[npt.NDArray[np.float32], tuple[float, float, float, float], tuple[float, float, float]]: ...
@@ -164,7 +172,7 @@ class Terrain:
     def hfield_into(
         self, out: npt.NDArray[np.float32], oversample: Optional[int] = None, z0: float = 0.0, elevation: float = 1.0
     ) -> None: ...
-    def flat_patches(self, n: int, radius: float = 0.3, max_step: int = 0) -> npt.NDArray[np.float64]: ...
+    def flat_patches(self, n: int, radius: Optional[float] = None, max_step: int = 0) -> npt.NDArray[np.float64]: ...
     def mesh(self) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]: ...
     def boxes(self) -> npt.NDArray[np.float64]: ...
     def mjcf(
@@ -187,10 +195,10 @@ class Atlas:
         *,
         seed: Optional[int] = None,
         border: int = 0,
-        difficulty: Union[tuple[_Float, _Float], list[_Float], npt.NDArray[np.floating]] = (0.0, 1.0),
-        spawn_radius: float = 0.3,
+        difficulty: Optional[Union[tuple[_Float, _Float], list[_Float], npt.NDArray[np.floating]]] = None,
+        spawn_radius: Optional[float] = None,
         flat_patches: int = 0,
-        patch_radius: float = 0.3,
+        patch_radius: Optional[float] = None,
         max_step: int = 0,
     ) -> Atlas: ...
     @property
@@ -204,7 +212,7 @@ class Atlas:
     @property
     def tiles(self) -> list[dict[str, object]]: ...
     def to_json(self) -> str: ...
-    def flat_patches(self, n: int, radius: float = 0.3, max_step: int = 0) -> npt.NDArray[np.float64]: ...
+    def flat_patches(self, n: int, radius: Optional[float] = None, max_step: int = 0) -> npt.NDArray[np.float64]: ...
     def write(
         self,
         out: Union[str, os.PathLike[str]],
@@ -223,15 +231,15 @@ class EnvTerrains:
         cls,
         scheme: Scheme,
         num_envs: int,
-        oversample: int = 2,
+        oversample: Optional[int] = None,
         seed: Optional[int] = None,
-        difficulty: float = 1.0,
-        layout: Literal["slots", "tiles"] = "slots",
+        difficulty: Optional[float] = None,
+        layout: Optional[Literal["slots", "tiles"]] = None,
         *,
         cols: Optional[int] = None,
-        border: int = 0,
-        env_offset: int = 0,
-        spawn_radius: float = 0.3,
+        border: Optional[int] = None,
+        env_offset: Optional[int] = None,
+        spawn_radius: Optional[float] = None,
     ) -> EnvTerrains: ...
     @property
     def num_envs(self) -> int: ...

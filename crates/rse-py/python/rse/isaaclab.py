@@ -22,8 +22,8 @@ The scheme's grid is fitted to ``cfg.size`` (``rse._fit.fit``: blocks keep
 their size). Isaac Lab passes the generator-wide seed (``cfg.seed``) and a
 difficulty, not a tile number, so the tile's world index is derived from the
 seed, the difficulty and the scheme (``rse._fit.tile_index``): the same
-configuration gives the same terrains. Difficulties outside ``[0, 1]`` are
-clamped. Give the scheme as a path: Isaac Lab hashes the configuration.
+configuration gives the same terrains. A difficulty outside ``[0, 1]`` is
+refused, as the library refuses it (keep ``difficulty_range`` inside it). Give the scheme as a path: Isaac Lab hashes the configuration.
 """
 
 from __future__ import annotations
@@ -46,10 +46,11 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
     if cfg.scheme is None:
         raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
     scheme = fit(load(cfg.scheme), tuple(cfg.size))
-    d = min(1.0, max(0.0, float(difficulty)))
-    seed = scheme.seed if cfg.rse_seed is None else cfg.rse_seed
+    d = float(difficulty)
     index = tile_index(getattr(cfg, "seed", None), d, scheme.to_csv()) if cfg.index is None else cfg.index
-    terrain = scheme.generate(seed=seed, index=index, difficulty=d)
+    # The library takes the seed's default and refuses a difficulty out of
+    # 0..1 (Isaac Lab's difficulty_range must stay inside it).
+    terrain = scheme.generate(seed=cfg.rse_seed, index=index, difficulty=d)
     meshes = []
     vertices, faces = terrain.mesh()
     if len(faces):
@@ -75,7 +76,7 @@ if _SubTerrainBaseCfg is not None:  # pragma: no cover - needs Isaac Lab
         scheme: Optional[str] = None
         rse_seed: Optional[int] = None
         index: Optional[int] = None
-        spawn_radius: float = 0.3
+        spawn_radius: Optional[float] = None
         ground_thickness: float = 1.0
 
 else:
@@ -97,8 +98,9 @@ else:
         """The base seed of the rse worlds; default the scheme's ``# seed:``."""
         index: Optional[int] = None
         """A fixed world index for every tile; default derived per tile."""
-        spawn_radius: float = 0.3
-        """Metres around the centre whose highest top is the origin's z."""
+        spawn_radius: Optional[float] = None
+        """Metres around the centre whose highest top is the origin's z;
+        default ``rse.DEFAULT_SPAWN_RADIUS``."""
         ground_thickness: float = 1.0
         """Thickness of the ground slab under the tile, metres."""
 

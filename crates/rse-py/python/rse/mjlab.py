@@ -46,10 +46,10 @@ def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) 
     if cfg.scheme is None:
         raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
     scheme = fit(load(cfg.scheme), tuple(cfg.size))
-    d = min(1.0, max(0.0, float(difficulty)))
-    seed = scheme.seed if cfg.rse_seed is None else cfg.rse_seed
     index = int(rng.integers(0, 2**62)) if cfg.index is None else cfg.index
-    terrain = scheme.generate(seed=seed, index=index, difficulty=d)
+    # The library takes the seed's default and refuses a difficulty out of
+    # 0..1 (mjlab's difficulty_range must stay inside it).
+    terrain = scheme.generate(seed=cfg.rse_seed, index=index, difficulty=float(difficulty))
     body = spec.body("terrain")
     geometries = []
     sx, sy = cfg.size
@@ -84,7 +84,7 @@ if _SubTerrainCfg is not None:  # pragma: no cover
         scheme: Optional[SchemeLike] = None
         rse_seed: Optional[int] = None
         index: Optional[int] = None
-        spawn_radius: float = 0.3
+        spawn_radius: Optional[float] = None
         ground_thickness: float = 1.0
 
         def function(self, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
@@ -106,8 +106,9 @@ else:
         """The base seed of the rse worlds; default the scheme's ``# seed:``."""
         index: Optional[int] = None
         """A fixed world index for every tile; default drawn from mjlab's rng."""
-        spawn_radius: float = 0.3
-        """Metres around the centre whose highest top is the origin's z."""
+        spawn_radius: Optional[float] = None
+        """Metres around the centre whose highest top is the origin's z;
+        default ``rse.DEFAULT_SPAWN_RADIUS``."""
         ground_thickness: float = 1.0
         """Thickness of the ground slab under the tile, metres."""
 
@@ -118,13 +119,13 @@ else:
 # --- Every environment its own terrain, new every episode -------------------
 
 
-def _probe(scheme: SchemeLike, oversample: int) -> EnvTerrains:
+def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
     """One env of ``scheme``: the slot's shape and size, which do not
     depend on the number of envs."""
     return EnvTerrains(load(scheme), 1, oversample=oversample)
 
 
-def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: int = 2, name: str = "rse_env") -> None:
+def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = "rse_env") -> None:
     """Adds to an mjlab scene's ``spec`` the pool of ``num_envs`` height
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
     fills them), the terrain geom that shows one (``rse.mujoco_warp.GEOM``)
@@ -170,11 +171,11 @@ class EnvTerrainsEvent:
         self.envs = EnvTerrains(
             load(p["scheme"]),
             env.num_envs,
-            oversample=p.get("oversample", 2),
+            oversample=p.get("oversample"),
             seed=p.get("seed"),
-            difficulty=p.get("difficulty", 1.0),
-            env_offset=p.get("env_offset", 0),
-            spawn_radius=p.get("spawn_radius", 0.3),
+            difficulty=p.get("difficulty"),
+            env_offset=p.get("env_offset"),
+            spawn_radius=p.get("spawn_radius"),
         )
         self._env = env
         sim = env.sim
@@ -263,11 +264,11 @@ def use_env_terrains(
     env_cfg: Any,
     scheme: SchemeLike,
     *,
-    oversample: int = 2,
+    oversample: Optional[int] = None,
     seed: Optional[int] = None,
-    difficulty: float = 1.0,
-    spawn_radius: float = 0.3,
-    env_offset: int = 0,
+    difficulty: Optional[float] = None,
+    spawn_radius: Optional[float] = None,
+    env_offset: Optional[int] = None,
     curriculum: bool = False,
     term: str = "rse_terrain",
 ) -> None:

@@ -5,14 +5,27 @@
 //! one slot per environment (a pool of same-shaped height fields, for
 //! simulators that route a field per world) or one tile per environment
 //! of a single shared field (for those with one terrain for all).
+//!
+//! This module holds the environments' state and episodes; `layout` the
+//! buffer (slots or tiles, its shape, the writes), `request` what a user
+//! asks for, resolved to [`EnvOptions`] with the library's defaults.
 
 use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
-use crate::hfield::{HFieldError, MAX_HFIELD_SAMPLES, hfield_shape_of};
+use crate::hfield::HFieldError;
 use crate::scheme::Scheme;
+use crate::spawn::DEFAULT_SPAWN_RADIUS;
 use crate::terrain::Terrain;
+
+mod layout;
+mod request;
+
+use layout::chunks_at;
+
+pub use layout::EnvLayout;
+pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
 /// world index of env `g` at episode `k` is `k·2^32 + g` ([`env_world`]).
@@ -27,27 +40,10 @@ pub fn env_world(env: u64, episode: u64) -> Option<u64> {
     (env >> ENV_BITS == 0 && episode >> ENV_BITS == 0).then_some((episode << ENV_BITS) | env)
 }
 
-/// Where each environment's samples go.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum EnvLayout {
-    /// One height field per environment, all of one shape: the buffer is
-    /// `num_envs × nrow × ncol`.
-    Slots,
-    /// One shared field of tiles, `cols` along x, rows along y as many as
-    /// needed, `border` cells of height 0 between tiles and around them;
-    /// environment `e`'s tile is row `e / cols`, column `e % cols`.
-    Tiles {
-        /// Tiles along x.
-        cols: u32,
-        /// Cells of height 0 between and around the tiles.
-        border: u32,
-    },
-}
-
 /// How the terrains of [`EnvTerrains`] are made.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnvOptions {
-    /// Environments.
+    /// How many environments: ids `0..num_envs` in this process.
     pub num_envs: usize,
     /// Height-field samples per cell along each axis.
     pub oversample: u32,
@@ -68,12 +64,12 @@ impl Default for EnvOptions {
     fn default() -> Self {
         EnvOptions {
             num_envs: 1,
-            oversample: 2,
+            oversample: DEFAULT_ENV_OVERSAMPLE,
             seed: 0,
             env_offset: 0,
             layout: EnvLayout::Slots,
             difficulty: Difficulty::FULL,
-            spawn_radius: 0.3,
+            spawn_radius: DEFAULT_SPAWN_RADIUS,
         }
     }
 }
@@ -123,7 +119,7 @@ impl EnvTerrains {
     /// The terrains of episode 0 of every environment. Refused, naming the
     /// argument: no environments, global ids past 2³², an oversample that
     /// gives a field MuJoCo cannot take, a buffer of more than
-    /// [`MAX_HFIELD_SAMPLES`] per field or 2³² in all, tiles with no column.
+    /// [`MAX_HFIELD_SAMPLES`](crate::MAX_HFIELD_SAMPLES) per field or 2³² in all, tiles with no column.
     pub fn new(scheme: Scheme, options: EnvOptions) -> Result<Self, EnvError> {
         let n = options.num_envs;
         if n == 0 {
@@ -142,43 +138,7 @@ impl EnvTerrains {
         if !(options.spawn_radius.is_finite() && options.spawn_radius >= 0.0) {
             return Err(bad("spawn_radius", "expected a length of 0 m or more"));
         }
-        let grid = scheme.grid();
-        let k = options.oversample;
-        let (nrow, ncol) = hfield_shape_of(grid, k)?;
-        let field = (nrow as usize, ncol as usize);
-        let shape = match options.layout {
-            EnvLayout::Slots => (n, field.0, field.1),
-            EnvLayout::Tiles { cols, border } => {
-                if cols == 0 {
-                    return Err(bad("cols", "expected 1 or more tiles along x"));
-                }
-                let rows = n.div_ceil(cols as usize) as u64;
-                let b = u64::from(border);
-                let side = |tiles: u64, cells: u32| {
-                    tiles
-                        .saturating_mul(u64::from(cells) + b)
-                        .saturating_add(b)
-                        .saturating_mul(u64::from(k))
-                };
-                let (r, c) = (side(rows, grid.ny), side(u64::from(cols), grid.nx));
-                if r.saturating_mul(c) > MAX_HFIELD_SAMPLES {
-                    return Err(bad(
-                        "cols",
-                        format!("a {r}x{c} tile map is more than {MAX_HFIELD_SAMPLES} samples"),
-                    ));
-                }
-                (1, r as usize, c as usize)
-            }
-        };
-        let total = (shape.0 as u64)
-            .saturating_mul(shape.1 as u64)
-            .saturating_mul(shape.2 as u64);
-        if total > 1 << 32 {
-            return Err(bad(
-                "num_envs",
-                format!("{total} samples in all, more than 2^32 (16 GiB of float32)"),
-            ));
-        }
+        let layout::Shapes { field, shape } = layout::buffer_shape_of(scheme.grid(), n, options)?;
         let mut envs = EnvTerrains {
             elevation: scheme.max_top(),
             scheme,
@@ -191,7 +151,13 @@ impl EnvTerrains {
         };
         let made: Vec<Made> = (0..n)
             .into_par_iter()
-            .map(|e| envs.make((e, 0, options.difficulty)))
+            .map(|e| {
+                envs.make(Renewal {
+                    env: e,
+                    episode: 0,
+                    difficulty: options.difficulty,
+                })
+            })
             .collect();
         (envs.terrains, envs.origins) = made.into_iter().map(|m| (m.terrain, m.origin)).unzip();
         Ok(envs)
@@ -199,7 +165,14 @@ impl EnvTerrains {
 
     /// Environment `e`'s terrain at `episode`, at `difficulty`, and its
     /// spawn point.
-    fn make(&self, (e, episode, difficulty): Job) -> Made {
+    fn make(
+        &self,
+        Renewal {
+            env: e,
+            episode,
+            difficulty,
+        }: Renewal,
+    ) -> Made {
         let world = env_world(self.options.env_offset + e as u64, episode)
             .expect("ids and episodes checked below 2^32");
         let terrain = generate_at(&self.scheme, self.options.seed, world, difficulty);
@@ -241,65 +214,6 @@ impl EnvTerrains {
     /// Environment `e`'s current episode (0 until its first reset).
     pub fn episode(&self, e: usize) -> u64 {
         self.episodes[e]
-    }
-
-    /// The buffer's shape: `(num_envs, nrow, ncol)` for slots, `(1, rows,
-    /// columns)` of the whole map for tiles.
-    pub fn buffer_shape(&self) -> (usize, usize, usize) {
-        self.shape
-    }
-
-    /// One environment's field: `(nrow, ncol)`.
-    pub fn field_shape(&self) -> (usize, usize) {
-        self.field
-    }
-
-    /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
-    /// `[radius_x, radius_y, elevation, base]`, the surface at sample 1
-    /// being the scheme's highest possible top above the geom (placed at
-    /// z = 0) and the box under it one step deep.
-    pub fn hfield_size(&self) -> [f64; 4] {
-        let k = f64::from(self.options.oversample);
-        let s = self.scheme.globals().block_size;
-        let spacing = s / k;
-        let (width, depth) = (self.shape.2 as f64 * spacing, self.shape.1 as f64 * spacing);
-        [
-            (width - spacing) / 2.0,
-            (depth - spacing) / 2.0,
-            self.elevation,
-            self.scheme.globals().step_height,
-        ]
-    }
-
-    /// Where the field's geom goes in its own frame (slots: the terrain's,
-    /// corner at the origin; tiles: the map's), metres: the centre, z = 0.
-    pub fn hfield_pos(&self) -> [f64; 3] {
-        let [rx, ry, ..] = self.hfield_size();
-        let half = self.scheme.globals().block_size / f64::from(self.options.oversample) / 2.0;
-        [rx + half, ry + half, 0.0]
-    }
-
-    /// The sample of a cell of height 0 (`base / elevation`): what the
-    /// borders of a tile map hold, which [`write`](Self::write) never
-    /// touches; fill a new buffer with it first.
-    pub fn ground_sample(&self) -> f32 {
-        (self.scheme.globals().base / self.elevation) as f32
-    }
-
-    /// Environment `e`'s tile's first cell in the map, `(x0, y0)`; `(0, 0)`
-    /// for slots.
-    fn tile_origin(&self, e: usize) -> (u32, u32) {
-        match self.options.layout {
-            EnvLayout::Slots => (0, 0),
-            EnvLayout::Tiles { cols, border } => {
-                let grid = self.scheme.grid();
-                let (row, col) = ((e / cols as usize) as u32, (e % cols as usize) as u32);
-                (
-                    border + col * (grid.nx + border),
-                    border + row * (grid.ny + border),
-                )
-            }
-        }
     }
 
     /// Environment `e`'s spawn point `[x, y, z]`, metres: the centre of its
@@ -370,11 +284,11 @@ impl EnvTerrains {
         self.check_out(out)?;
         // `advance` checks the ids and difficulties before it counts.
         let mut jobs = self.advance(envs, difficulty)?;
-        jobs.sort_unstable_by_key(|&(e, ..)| e);
+        jobs.sort_unstable_by_key(|job| job.env);
         let this = &*self;
         let made = match self.options.layout {
             EnvLayout::Slots => {
-                let slots = chunks_at(out, this.slot_len(), jobs.iter().map(|&(e, ..)| e));
+                let slots = chunks_at(out, this.slot_len(), jobs.iter().map(|job| job.env));
                 jobs.into_par_iter()
                     .zip(slots)
                     .map(|(job, slot)| {
@@ -388,13 +302,13 @@ impl EnvTerrains {
                 // Tiles of one tile row share its rows of samples: a task
                 // per tile row, its terrains made in parallel too.
                 let per_row = cols as usize;
-                let groups: Vec<&[Job]> = jobs
-                    .chunk_by(|a, b| a.0 / per_row == b.0 / per_row)
+                let groups: Vec<&[Renewal]> = jobs
+                    .chunk_by(|a, b| a.env / per_row == b.env / per_row)
                     .collect();
                 let bands = chunks_at(
                     out,
                     this.band_len(),
-                    groups.iter().map(|g| g[0].0 / per_row),
+                    groups.iter().map(|g| g[0].env / per_row),
                 );
                 groups
                     .into_par_iter()
@@ -417,7 +331,11 @@ impl EnvTerrains {
     /// episodes (repeats in order) and returns what to make: each env once,
     /// at its last episode and difficulty — the terrains of earlier repeats
     /// would be replaced unseen.
-    fn advance(&mut self, envs: &[usize], difficulty: &[Difficulty]) -> Result<Vec<Job>, EnvError> {
+    fn advance(
+        &mut self,
+        envs: &[usize],
+        difficulty: &[Difficulty],
+    ) -> Result<Vec<Renewal>, EnvError> {
         self.check_envs(envs, Some(difficulty))?;
         let mut times = vec![0u64; self.num_envs()];
         for &e in envs {
@@ -437,91 +355,14 @@ impl EnvTerrains {
             if times[e] > 0 {
                 self.episodes[e] += times[e];
                 times[e] = 0;
-                jobs.push((e, self.episodes[e], d));
+                jobs.push(Renewal {
+                    env: e,
+                    episode: self.episodes[e],
+                    difficulty: d,
+                });
             }
         }
         Ok(jobs)
-    }
-
-    /// Refuses an `out` that is not the whole buffer.
-    fn check_out(&self, out: &[f32]) -> Result<(), EnvError> {
-        let (n, rows, cols) = self.shape;
-        if out.len() != n * rows * cols {
-            return Err(bad(
-                "out",
-                format!("{} samples, but the buffer is {n}x{rows}x{cols}", out.len()),
-            ));
-        }
-        Ok(())
-    }
-
-    /// Writes the samples of `envs` into `out` (the whole buffer,
-    /// [`buffer_shape`](Self::buffer_shape), row-major float32): each into
-    /// its slot or tile, the rest of `out` untouched. A sample is `top /
-    /// elevation` ([`hfield_size`](Self::hfield_size)), in `[0, 1]`.
-    pub fn write(&self, envs: &[usize], out: &mut [f32]) -> Result<(), EnvError> {
-        self.check_envs(envs, None)?;
-        self.check_out(out)?;
-        let mut named = vec![false; self.num_envs()];
-        for &e in envs {
-            named[e] = true;
-        }
-        match self.options.layout {
-            EnvLayout::Slots => {
-                out.par_chunks_mut(self.slot_len())
-                    .enumerate()
-                    .filter(|(e, _)| named[*e])
-                    .for_each(|(e, slot)| self.write_slot(&self.terrains[e], slot));
-            }
-            EnvLayout::Tiles { cols, .. } => {
-                // One chunk per tile row (with the border rows above it):
-                // tiles of different rows are written in parallel.
-                let per_row = cols as usize;
-                out.par_chunks_mut(self.band_len())
-                    .take(self.num_envs().div_ceil(per_row))
-                    .enumerate()
-                    .for_each(|(row, band)| {
-                        let first = row * per_row;
-                        for e in
-                            (first..(first + per_row).min(self.num_envs())).filter(|&e| named[e])
-                        {
-                            self.write_tile(e, &self.terrains[e], band);
-                        }
-                    });
-            }
-        }
-        Ok(())
-    }
-
-    /// Samples in one slot.
-    fn slot_len(&self) -> usize {
-        self.field.0 * self.field.1
-    }
-
-    /// Samples in one tile row of the map with the border rows above it.
-    fn band_len(&self) -> usize {
-        let b = match self.options.layout {
-            EnvLayout::Tiles { border, .. } => border as usize,
-            EnvLayout::Slots => 0,
-        };
-        (b * self.options.oversample as usize + self.field.0) * self.shape.2
-    }
-
-    /// Writes `terrain` into a slot.
-    fn write_slot(&self, terrain: &Terrain, slot: &mut [f32]) {
-        let k = self.options.oversample;
-        terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.field.1);
-    }
-
-    /// Writes `terrain` as environment `e`'s tile into the band of its tile
-    /// row.
-    fn write_tile(&self, e: usize, terrain: &Terrain, band: &mut [f32]) {
-        let k = self.options.oversample as usize;
-        let cols = self.shape.2;
-        let border_rows = band.len() / cols - self.field.0;
-        let (x0, _) = self.tile_origin(e);
-        let at = border_rows * cols + x0 as usize * k;
-        terrain.fill_hfield_rows(k as u32, 0.0, self.elevation, &mut band[at..], cols);
     }
 }
 
@@ -533,24 +374,12 @@ struct Made {
     origin: [f64; 3],
 }
 
-/// Environment, episode, difficulty: one terrain to make.
-type Job = (usize, u64, Difficulty);
-
-/// The chunks of `size` samples at `indices` (ascending, distinct, in
-/// range) of `out`, each borrowed apart so threads can fill them.
-fn chunks_at(
-    out: &mut [f32],
-    size: usize,
-    indices: impl Iterator<Item = usize>,
-) -> Vec<&mut [f32]> {
-    let mut chunks = out.chunks_mut(size).enumerate();
-    indices
-        .map(|i| {
-            chunks
-                .find_map(|(j, chunk)| (j == i).then_some(chunk))
-                .expect("indices ascending and inside the buffer")
-        })
-        .collect()
+/// One environment's new terrain to make: its episode and difficulty.
+#[derive(Debug, Clone, Copy)]
+struct Renewal {
+    env: usize,
+    episode: u64,
+    difficulty: Difficulty,
 }
 
 #[cfg(test)]

@@ -1,0 +1,247 @@
+//! Where each environment's samples go in the caller's buffer: one slot
+//! per environment or one tile of a shared map, the buffer's shape, MuJoCo's
+//! `size` and `pos` of a slot or of the map, and the writes.
+
+use rayon::prelude::*;
+
+use super::{EnvError, EnvOptions, EnvTerrains, bad};
+use crate::globals::Grid;
+use crate::hfield::{MAX_HFIELD_SAMPLES, field_geometry, hfield_shape_of};
+use crate::terrain::Terrain;
+
+/// Where each environment's samples go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EnvLayout {
+    /// One height field per environment, all of one shape: the buffer is
+    /// `num_envs × nrow × ncol`.
+    Slots,
+    /// One shared field of tiles, `cols` along x, rows along y as many as
+    /// needed, `border` cells of height 0 between tiles and around them;
+    /// environment `e`'s tile is row `e / cols`, column `e % cols`.
+    Tiles {
+        /// Tiles along x.
+        cols: u32,
+        /// Cells of height 0 between and around the tiles.
+        border: u32,
+    },
+}
+
+/// One environment's field, `(nrow, ncol)`, and the whole buffer,
+/// `(slots, rows, columns)`.
+pub(super) struct Shapes {
+    pub field: (usize, usize),
+    pub shape: (usize, usize, usize),
+}
+
+/// The shape of one environment's field, `(nrow, ncol)`, and of the whole
+/// buffer, `(slots, rows, columns)`, for `n` environments of `grid` laid
+/// out as `options` say; refused, naming the argument, past MuJoCo's or
+/// memory's limits.
+pub(super) fn buffer_shape_of(
+    grid: Grid,
+    n: usize,
+    options: EnvOptions,
+) -> Result<Shapes, EnvError> {
+    let k = options.oversample;
+    let (nrow, ncol) = hfield_shape_of(grid, k)?;
+    let field = (nrow as usize, ncol as usize);
+    let shape = match options.layout {
+        EnvLayout::Slots => (n, field.0, field.1),
+        EnvLayout::Tiles { cols, border } => {
+            if cols == 0 {
+                return Err(bad("cols", "expected 1 or more tiles along x"));
+            }
+            let rows = n.div_ceil(cols as usize) as u64;
+            let b = u64::from(border);
+            let side = |tiles: u64, cells: u32| {
+                tiles
+                    .saturating_mul(u64::from(cells) + b)
+                    .saturating_add(b)
+                    .saturating_mul(u64::from(k))
+            };
+            let (r, c) = (side(rows, grid.ny), side(u64::from(cols), grid.nx));
+            if r.saturating_mul(c) > MAX_HFIELD_SAMPLES {
+                return Err(bad(
+                    "cols",
+                    format!("a {r}x{c} tile map is more than {MAX_HFIELD_SAMPLES} samples"),
+                ));
+            }
+            (1, r as usize, c as usize)
+        }
+    };
+    let total = (shape.0 as u64)
+        .saturating_mul(shape.1 as u64)
+        .saturating_mul(shape.2 as u64);
+    if total > 1 << 32 {
+        return Err(bad(
+            "num_envs",
+            format!("{total} samples in all, more than 2^32 (16 GiB of float32)"),
+        ));
+    }
+    Ok(Shapes { field, shape })
+}
+
+impl EnvTerrains {
+    /// The buffer's shape: `(num_envs, nrow, ncol)` for slots, `(1, rows,
+    /// columns)` of the whole map for tiles.
+    pub fn buffer_shape(&self) -> (usize, usize, usize) {
+        self.shape
+    }
+
+    /// One environment's field: `(nrow, ncol)`.
+    pub fn field_shape(&self) -> (usize, usize) {
+        self.field
+    }
+
+    /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
+    /// `[radius_x, radius_y, elevation, base]`, the surface at sample 1
+    /// being the scheme's highest possible top above the geom (placed at
+    /// z = 0) and the box under it one step deep.
+    pub fn hfield_size(&self) -> [f64; 4] {
+        self.geometry().0
+    }
+
+    /// Where the field's geom goes in its own frame (slots: the terrain's,
+    /// corner at the origin; tiles: the map's), metres: the centre, z = 0.
+    pub fn hfield_pos(&self) -> [f64; 3] {
+        self.geometry().1
+    }
+
+    /// [`hfield_size`](Self::hfield_size) and
+    /// [`hfield_pos`](Self::hfield_pos), by the formula every height field
+    /// of rse uses.
+    fn geometry(&self) -> ([f64; 4], [f64; 3]) {
+        let globals = self.scheme.globals();
+        let spacing = globals.block_size / f64::from(self.options.oversample);
+        let (width, depth) = (self.shape.2 as f64 * spacing, self.shape.1 as f64 * spacing);
+        field_geometry(
+            width,
+            depth,
+            spacing,
+            self.elevation,
+            globals.step_height,
+            0.0,
+        )
+    }
+
+    /// The sample of a cell of height 0 (`base / elevation`): what the
+    /// borders of a tile map hold, which [`write`](Self::write) never
+    /// touches; fill a new buffer with it first.
+    pub fn ground_sample(&self) -> f32 {
+        (self.scheme.globals().base / self.elevation) as f32
+    }
+
+    /// Environment `e`'s tile's first cell in the map, `(x0, y0)`; `(0, 0)`
+    /// for slots.
+    pub(super) fn tile_origin(&self, e: usize) -> (u32, u32) {
+        match self.options.layout {
+            EnvLayout::Slots => (0, 0),
+            EnvLayout::Tiles { cols, border } => {
+                let grid = self.scheme.grid();
+                let (row, col) = ((e / cols as usize) as u32, (e % cols as usize) as u32);
+                (
+                    border + col * (grid.nx + border),
+                    border + row * (grid.ny + border),
+                )
+            }
+        }
+    }
+
+    /// Refuses an `out` that is not the whole buffer.
+    pub(super) fn check_out(&self, out: &[f32]) -> Result<(), EnvError> {
+        let (n, rows, cols) = self.shape;
+        if out.len() != n * rows * cols {
+            return Err(bad(
+                "out",
+                format!("{} samples, but the buffer is {n}x{rows}x{cols}", out.len()),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Writes the samples of `envs` into `out` (the whole buffer,
+    /// [`buffer_shape`](Self::buffer_shape), row-major float32): each into
+    /// its slot or tile, the rest of `out` untouched. A sample is `top /
+    /// elevation` ([`hfield_size`](Self::hfield_size)), in `[0, 1]`.
+    pub fn write(&self, envs: &[usize], out: &mut [f32]) -> Result<(), EnvError> {
+        self.check_envs(envs, None)?;
+        self.check_out(out)?;
+        let mut named = vec![false; self.num_envs()];
+        for &e in envs {
+            named[e] = true;
+        }
+        match self.options.layout {
+            EnvLayout::Slots => {
+                out.par_chunks_mut(self.slot_len())
+                    .enumerate()
+                    .filter(|(e, _)| named[*e])
+                    .for_each(|(e, slot)| self.write_slot(&self.terrains[e], slot));
+            }
+            EnvLayout::Tiles { cols, .. } => {
+                // One chunk per tile row (with the border rows above it):
+                // tiles of different rows are written in parallel.
+                let per_row = cols as usize;
+                out.par_chunks_mut(self.band_len())
+                    .take(self.num_envs().div_ceil(per_row))
+                    .enumerate()
+                    .for_each(|(row, band)| {
+                        let first = row * per_row;
+                        for e in
+                            (first..(first + per_row).min(self.num_envs())).filter(|&e| named[e])
+                        {
+                            self.write_tile(e, &self.terrains[e], band);
+                        }
+                    });
+            }
+        }
+        Ok(())
+    }
+
+    /// Samples in one slot.
+    pub(super) fn slot_len(&self) -> usize {
+        self.field.0 * self.field.1
+    }
+
+    /// Samples in one tile row of the map with the border rows above it.
+    pub(super) fn band_len(&self) -> usize {
+        let b = match self.options.layout {
+            EnvLayout::Tiles { border, .. } => border as usize,
+            EnvLayout::Slots => 0,
+        };
+        (b * self.options.oversample as usize + self.field.0) * self.shape.2
+    }
+
+    /// Writes `terrain` into a slot.
+    pub(super) fn write_slot(&self, terrain: &Terrain, slot: &mut [f32]) {
+        let k = self.options.oversample;
+        terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.field.1);
+    }
+
+    /// Writes `terrain` as environment `e`'s tile into the band of its tile
+    /// row.
+    pub(super) fn write_tile(&self, e: usize, terrain: &Terrain, band: &mut [f32]) {
+        let k = self.options.oversample as usize;
+        let cols = self.shape.2;
+        let border_rows = band.len() / cols - self.field.0;
+        let (x0, _) = self.tile_origin(e);
+        let at = border_rows * cols + x0 as usize * k;
+        terrain.fill_hfield_rows(k as u32, 0.0, self.elevation, &mut band[at..], cols);
+    }
+}
+
+/// The chunks of `size` samples at `indices` (ascending, distinct, in
+/// range) of `out`, each borrowed apart so threads can fill them.
+pub(super) fn chunks_at(
+    out: &mut [f32],
+    size: usize,
+    indices: impl Iterator<Item = usize>,
+) -> Vec<&mut [f32]> {
+    let mut chunks = out.chunks_mut(size).enumerate();
+    indices
+        .map(|i| {
+            chunks
+                .find_map(|(j, chunk)| (j == i).then_some(chunk))
+                .expect("indices ascending and inside the buffer")
+        })
+        .collect()
+}

@@ -1,0 +1,204 @@
+//! What a user asks of [`EnvTerrains`](super::EnvTerrains): every setting
+//! but the number of environments optional, resolved and validated here,
+//! once, against the scheme and the library's defaults. The Python class,
+//! the framework adapters and any other front end pass what their user
+//! gave and `None` for the rest, so a default lives in one place.
+
+use std::str::FromStr;
+
+use super::{EnvError, EnvLayout, EnvOptions, bad};
+use crate::difficulty::Difficulty;
+use crate::scheme::Scheme;
+use crate::spawn::DEFAULT_SPAWN_RADIUS;
+
+/// Height-field samples per cell along each axis of an environment's field
+/// when the user names none. Lower than a world file's
+/// [`DEFAULT_OVERSAMPLE`](crate::DEFAULT_OVERSAMPLE) (4): a pool holds
+/// thousands of fields (4096 envs of 80×80 cells are 400 MiB at 2, 1.6 GiB
+/// at 4) and is rewritten every reset, while a step edge is still within
+/// a quarter block of where it is.
+pub const DEFAULT_ENV_OVERSAMPLE: u32 = 2;
+
+/// The two layouts by name, as a user picks one (`"slots"`, `"tiles"`);
+/// [`EnvLayout`] is the resolved layout with its tile columns and border.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LayoutKind {
+    /// One height field per environment.
+    #[default]
+    Slots,
+    /// One shared field of tiles.
+    Tiles,
+}
+
+impl LayoutKind {
+    /// The name a user writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            LayoutKind::Slots => "slots",
+            LayoutKind::Tiles => "tiles",
+        }
+    }
+}
+
+impl FromStr for LayoutKind {
+    type Err = EnvError;
+
+    fn from_str(text: &str) -> Result<Self, EnvError> {
+        match text {
+            "slots" => Ok(LayoutKind::Slots),
+            "tiles" => Ok(LayoutKind::Tiles),
+            other => Err(bad(
+                "layout",
+                format!("{other:?} is not \"slots\" or \"tiles\""),
+            )),
+        }
+    }
+}
+
+impl From<EnvLayout> for LayoutKind {
+    fn from(layout: EnvLayout) -> Self {
+        match layout {
+            EnvLayout::Slots => LayoutKind::Slots,
+            EnvLayout::Tiles { .. } => LayoutKind::Tiles,
+        }
+    }
+}
+
+/// The environments a user asks for: `None` is "the default".
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnvRequest {
+    /// How many environments.
+    pub num_envs: usize,
+    /// Samples per cell; default [`DEFAULT_ENV_OVERSAMPLE`].
+    pub oversample: Option<u32>,
+    /// Base seed; default the scheme's `# seed:`.
+    pub seed: Option<u64>,
+    /// Global id of environment 0; default 0.
+    pub env_offset: Option<u64>,
+    /// Starting difficulty of every environment, 0 to 1; default 1.
+    pub difficulty: Option<f64>,
+    /// Slots or tiles; default slots.
+    pub layout: Option<LayoutKind>,
+    /// Tiles along x (tiles only); default `ceil(sqrt(num_envs))`.
+    pub cols: Option<u32>,
+    /// Cells of height 0 between and around tiles (tiles only); default 0.
+    pub border: Option<u32>,
+    /// Radius of the disc under a spawn origin, metres; default
+    /// [`DEFAULT_SPAWN_RADIUS`].
+    pub spawn_radius: Option<f64>,
+}
+
+impl EnvRequest {
+    /// The options of [`EnvTerrains::new`](super::EnvTerrains::new) for
+    /// `scheme`, every unset field given its default. Refused, naming the
+    /// argument: a difficulty outside 0..=1, `cols` or `border` with slots.
+    /// The rest (counts, sizes, the radius) is checked by `EnvTerrains::new`.
+    pub fn resolve(&self, scheme: &Scheme) -> Result<EnvOptions, EnvError> {
+        let layout = match self.layout.unwrap_or_default() {
+            LayoutKind::Slots if self.cols.is_some() || self.border.is_some() => {
+                return Err(bad("cols, border", "only with layout=\"tiles\""));
+            }
+            LayoutKind::Slots => EnvLayout::Slots,
+            LayoutKind::Tiles => EnvLayout::Tiles {
+                cols: self
+                    .cols
+                    .unwrap_or_else(|| (self.num_envs as f64).sqrt().ceil() as u32),
+                border: self.border.unwrap_or(0),
+            },
+        };
+        let difficulty = match self.difficulty {
+            None => Difficulty::FULL,
+            Some(d) => Difficulty::new(d).map_err(|e| bad("difficulty", e.to_string()))?,
+        };
+        Ok(EnvOptions {
+            num_envs: self.num_envs,
+            oversample: self.oversample.unwrap_or(DEFAULT_ENV_OVERSAMPLE),
+            seed: self.seed.unwrap_or(scheme.globals().seed),
+            env_offset: self.env_offset.unwrap_or(0),
+            layout,
+            difficulty,
+            spawn_radius: self.spawn_radius.unwrap_or(DEFAULT_SPAWN_RADIUS),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scheme(seed: u64) -> Scheme {
+        Scheme::from_csv(
+            &format!("# size: 8x6\n# seed: {seed}\ntype,height\nrandom,2\n"),
+            None,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn unset_fields_take_the_library_defaults_and_the_scheme_seed() {
+        let options = EnvRequest {
+            num_envs: 10,
+            ..EnvRequest::default()
+        }
+        .resolve(&scheme(77))
+        .unwrap();
+        assert_eq!(options.seed, 77, "the scheme's # seed: rules");
+        assert_eq!(options.oversample, DEFAULT_ENV_OVERSAMPLE);
+        assert_eq!(
+            options.spawn_radius.to_bits(),
+            DEFAULT_SPAWN_RADIUS.to_bits()
+        );
+        assert_eq!(options.layout, EnvLayout::Slots);
+        assert_eq!(options.difficulty, Difficulty::FULL);
+        assert_eq!(options.env_offset, 0);
+        let defaults = EnvOptions::default();
+        assert_eq!(
+            (defaults.oversample, defaults.spawn_radius.to_bits()),
+            (options.oversample, options.spawn_radius.to_bits()),
+            "EnvOptions::default agrees"
+        );
+    }
+
+    #[test]
+    fn given_fields_win_and_tiles_get_a_square_by_default() {
+        let request = EnvRequest {
+            num_envs: 10,
+            seed: Some(3),
+            difficulty: Some(0.25),
+            layout: Some(LayoutKind::Tiles),
+            ..EnvRequest::default()
+        };
+        let options = request.resolve(&scheme(77)).unwrap();
+        assert_eq!(options.seed, 3);
+        assert_eq!(options.difficulty, Difficulty::new(0.25).unwrap());
+        assert_eq!(options.layout, EnvLayout::Tiles { cols: 4, border: 0 });
+    }
+
+    #[test]
+    fn refusals_name_the_argument() {
+        let refused = |request: EnvRequest| request.resolve(&scheme(0)).unwrap_err().to_string();
+        let base = EnvRequest {
+            num_envs: 4,
+            ..EnvRequest::default()
+        };
+        assert!(
+            refused(EnvRequest {
+                difficulty: Some(1.5),
+                ..base
+            })
+            .starts_with("difficulty: ")
+        );
+        assert!(
+            refused(EnvRequest {
+                border: Some(1),
+                ..base
+            })
+            .starts_with("cols, border: ")
+        );
+        let layout: Result<LayoutKind, _> = "grid".parse();
+        assert_eq!(
+            layout.unwrap_err().to_string(),
+            "layout: \"grid\" is not \"slots\" or \"tiles\""
+        );
+    }
+}
