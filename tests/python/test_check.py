@@ -109,3 +109,13 @@ def test_one_default_seed_everywhere(tmp_path: Path) -> None:
     rse.write_worlds(scheme, tmp_path / "w", amount=3, targets="obj")
     written = (tmp_path / "w" / "world_0002" / "heightmap.csv").read_text()
     assert [[int(v) for v in line.split(",")] for line in written.splitlines()] == cli_heights
+
+
+@pytest.mark.parametrize("budget", [0, -1.0, float("nan"), float("inf")])
+def test_a_bad_budget_is_refused_by_the_library_rule(tmp_path: Path, budget: float) -> None:
+    """The same rule and words as `rse-gen check --budget` (rse-verify's
+    `Budget`); `None` is the default budget."""
+    out = write(tmp_path / "batch", amount=1)
+    with pytest.raises(ValueError, match=r"budget: `.*` is not a number above 0"):
+        rse.check(out, budget=budget)
+    assert rse.check(out, budget=None).ok

@@ -127,16 +127,8 @@ pub struct CheckArgs {
 
     /// Allow each world's rebuild F times the default budget (2·10⁹ cell visits, and the memory
     /// available per world checked at once) [default: 1].
-    #[arg(long, value_name = "F", value_parser = positive_factor)]
-    pub budget: Option<f64>,
-}
-
-/// A budget factor: a finite number above 0.
-fn positive_factor(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(f) if f.is_finite() && f > 0.0 => Ok(f),
-        _ => Err(format!("`{text}` is not a number above 0")),
-    }
+    #[arg(long, value_name = "F")]
+    pub budget: Option<rse_verify::Budget>,
 }
 
 #[derive(Debug, Args)]
@@ -407,7 +399,7 @@ pub struct SchemeOverrides {
     pub size: Option<[u32; 2]>,
 
     /// Pallets along x and y, or `off`.
-    #[arg(long, value_name = "PXxPY|off", value_parser = parse_pallets)]
+    #[arg(long, value_name = "PXxPY|off", value_parser = pallets_flag)]
     pub pallets: Option<PalletsFlag>,
 
     /// Pallet side in cells (needs pallets).
@@ -450,10 +442,7 @@ impl SchemeOverrides {
     pub fn patch(&self) -> GlobalsPatch {
         GlobalsPatch {
             size: self.size,
-            pallets: self.pallets.map(|p| match p {
-                PalletsFlag::Off => None,
-                PalletsFlag::Count(count) => Some(count),
-            }),
+            pallets: self.pallets.map(|PalletsFlag(p)| p),
             pallet_size: self.pallet_size,
             pallet_boundary: self.pallet_boundary,
             block_size: self.block_size,
@@ -479,12 +468,10 @@ impl SchemeOverrides {
     }
 }
 
-/// `--pallets` is a layout or `off`.
+/// `--pallets`: a layout, or `None` for off (read by core's
+/// [`rse_core::parse_pallets`], as a scheme file's `pallets` is).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PalletsFlag {
-    Off,
-    Count([u32; 2]),
-}
+pub struct PalletsFlag(pub Option<[u32; 2]>);
 
 fn parse_dims(text: &str) -> Result<[u32; 2], String> {
     let dims = rse_core::parse_dims(text)?;
@@ -517,12 +504,8 @@ fn parse_difficulty_range(text: &str) -> Result<(Difficulty, Difficulty), String
     Ok((lo, hi))
 }
 
-fn parse_pallets(text: &str) -> Result<PalletsFlag, String> {
-    if text.eq_ignore_ascii_case("off") {
-        Ok(PalletsFlag::Off)
-    } else {
-        parse_dims(text).map(PalletsFlag::Count)
-    }
+fn pallets_flag(text: &str) -> Result<PalletsFlag, String> {
+    rse_core::parse_pallets(text).map(PalletsFlag)
 }
 
 fn positive_metres(text: &str) -> Result<f64, String> {

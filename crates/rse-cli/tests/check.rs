@@ -302,3 +302,19 @@ fn physics_runs_on_the_box_set_of_block_worlds() {
     assert_eq!(physics[0]["collider"], "boxes");
     assert_eq!(physics[0]["bodies"], 20);
 }
+
+/// `--budget` is read by rse-verify's `Budget` (the rule Python's
+/// `rse.check(budget=)` uses too): anything but a finite number above 0 is
+/// a usage error naming it, before any world is read.
+#[test]
+fn a_bad_budget_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    for bad in ["0", "-2", "nan", "inf", "lots"] {
+        let (code, text) = check_with(&["--budget", bad], dir.path());
+        assert_eq!(code, Some(2), "{bad}: {text}");
+        assert!(
+            text.contains(&format!("budget: `{bad}` is not a number above 0")),
+            "{bad}: {text}"
+        );
+    }
+}

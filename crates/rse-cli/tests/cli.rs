@@ -133,6 +133,16 @@ fn global_flags_override_the_scheme() {
         "off",
     ]));
     assert_eq!(out.lines().count(), 10);
+    // `--pallets` reads every word a scheme file's `pallets` takes.
+    for off in ["none", "No", "false"] {
+        let same = stdout(&rse_gen(&[
+            "heightmap",
+            "schemes/paper_pallets.csv",
+            "--pallets",
+            off,
+        ]));
+        assert_eq!(same, out, "--pallets {off}");
+    }
 }
 
 #[test]

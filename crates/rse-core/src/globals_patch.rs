@@ -156,11 +156,15 @@ impl Globals {
     }
 }
 
-/// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets.
-fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
+/// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets: the `pallets`
+/// value of a scheme file, the editor and `--pallets` alike.
+pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
     match value.trim().to_ascii_lowercase().as_str() {
         "off" | "none" | "false" | "no" => Ok(None),
-        _ => globals::parse_dims(value).map(Some),
+        _ => match globals::parse_dims(value)? {
+            dims if dims.contains(&0) => Err("needs at least one pallet each way".to_owned()),
+            dims => Ok(Some(dims)),
+        },
     }
 }
 

@@ -45,6 +45,7 @@ mod obstacle;
 mod param;
 pub mod preview;
 mod probe;
+mod request;
 mod rng;
 mod scheme;
 mod scheme_csv;
@@ -61,7 +62,7 @@ pub use env_terrains::{
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
 pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};
-pub use globals_patch::GlobalsPatch;
+pub use globals_patch::{GlobalsPatch, parse_pallets};
 pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use limits::{
@@ -70,6 +71,7 @@ pub use limits::{
 };
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};
+pub use request::{WorldAt, WorldRequest};
 pub use scheme::Scheme;
 pub use terrain::Terrain;
 

@@ -128,10 +128,11 @@ pub fn schema() -> Value {
 #[derive(Deserialize)]
 struct PreviewRequest {
     scheme: PageScheme,
+    /// The world's base seed; absent or null: the scheme's `# seed:`.
     #[serde(default)]
-    seed: u64,
+    seed: Option<u64>,
     #[serde(default)]
-    index: u64,
+    index: Option<u64>,
 }
 
 /// The largest grid the editor previews, in cells (500×500): its answer
@@ -177,7 +178,12 @@ pub fn preview(body: &[u8]) -> Answer {
             ),
         }));
     }
-    let terrain = rse_core::generate(&scheme, request.seed, request.index);
+    let terrain = rse_core::WorldRequest {
+        seed: request.seed,
+        index: request.index,
+        difficulty: None,
+    }
+    .generate(&scheme);
     let png = preview::png(&terrain, None).map_err(|e| bad(e.to_string()))?;
     let boxes: Vec<[f64; 6]> = terrain
         .boxes()
@@ -234,9 +240,12 @@ pub fn save(body: &[u8]) -> Answer {
 struct GenerateRequest {
     scheme: PageScheme,
     out: PathBuf,
-    amount: u64,
+    /// Absent or null: the scheme's `# amount:` and `# seed:`, as
+    /// `rse-gen batch` takes them.
     #[serde(default)]
-    seed: u64,
+    amount: Option<u64>,
+    #[serde(default)]
+    seed: Option<u64>,
     /// Target names; none given: the default targets.
     #[serde(default)]
     targets: Vec<String>,
@@ -262,19 +271,21 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         }
         *running = true;
     }
-    job.done.store(0, Ordering::SeqCst);
-    job.total.store(request.amount, Ordering::SeqCst);
-    *job.result.lock().expect("not poisoned") = None;
-    *job.check.lock().expect("not poisoned") = None;
+    let scheme_batch = BatchOptions::for_scheme(&scheme, request.out);
     let options = BatchOptions {
-        amount: request.amount,
-        seed: request.seed,
+        amount: request.amount.unwrap_or(scheme_batch.amount),
+        seed: request.seed.unwrap_or(scheme_batch.seed),
         world: WorldOptions {
             targets,
             ..WorldOptions::default()
         },
-        ..BatchOptions::for_scheme(&scheme, request.out)
+        ..scheme_batch
     };
+    job.done.store(0, Ordering::SeqCst);
+    job.total.store(options.amount, Ordering::SeqCst);
+    *job.result.lock().expect("not poisoned") = None;
+    *job.check.lock().expect("not poisoned") = None;
+    let total = options.amount;
     std::thread::spawn(move || {
         let outcome = write_batch(&scheme, &Templates::builtin(), &options, &|_| {
             job.done.fetch_add(1, Ordering::SeqCst);
@@ -294,7 +305,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         *job.result.lock().expect("not poisoned") = Some(result);
         *job.running.lock().expect("not poisoned") = false;
     });
-    Ok(json!({ "ok": true, "total": request.amount }))
+    Ok(json!({ "ok": true, "total": total }))
 }
 
 /// `GET /api/job`: the batch's progress and, once done, its summaries.
@@ -364,5 +375,43 @@ mod tests {
             patch.apply(&Globals::default()).unwrap(),
             Globals::default()
         );
+    }
+
+    /// A page scheme with `# seed: 9` and `# amount: 2` of `random,3`.
+    fn seeded_page_scheme() -> Value {
+        json!({
+            "globals": { "size": "6x5", "seed": "9", "amount": "2" },
+            "obstacles": [ { "type": "random", "height": ["3", ""] } ],
+        })
+    }
+
+    #[test]
+    fn the_scheme_seed_and_amount_rule_when_the_page_gives_none() {
+        let preview_of = |seed: Value| {
+            let body = json!({ "scheme": seeded_page_scheme(), "seed": seed, "index": null });
+            let answer = preview(body.to_string().as_bytes()).unwrap();
+            (answer["png"].clone(), answer["boxes"].clone())
+        };
+        assert_eq!(
+            preview_of(Value::Null),
+            preview_of(json!(9)),
+            "null is the scheme's seed"
+        );
+        assert_ne!(preview_of(Value::Null), preview_of(json!(0)), "not seed 0");
+
+        let dir = tempfile::tempdir().unwrap();
+        let editor = Editor::default();
+        let body = json!({ "scheme": seeded_page_scheme(), "out": dir.path().join("w"), "targets": ["obj"] });
+        let started = generate(&editor, body.to_string().as_bytes()).unwrap();
+        assert_eq!(started["total"], 2, "the scheme's amount");
+        while *editor.job.running.lock().unwrap() {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let manifest: Value = serde_json::from_slice(
+            &std::fs::read(dir.path().join("w/world_0001/rse.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(manifest["seed"], 9, "the scheme's seed");
+        assert!(!dir.path().join("w/world_0002").exists());
     }
 }

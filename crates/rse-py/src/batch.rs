@@ -21,19 +21,25 @@ pub fn pool(py: Python<'_>, jobs: Option<usize>) -> PyResult<rayon::ThreadPool> 
 /// else 0, as on the command line), generated in parallel on `jobs`
 /// threads with the GIL released; the same terrains whatever `jobs` is.
 #[pyfunction]
-#[pyo3(signature = (scheme, amount, seed=None, jobs=None, difficulty=1.0))]
+#[pyo3(signature = (scheme, amount, seed=None, jobs=None, difficulty=None))]
 pub fn generate_batch(
     py: Python<'_>,
     scheme: &Scheme,
     amount: u64,
     seed: Option<u64>,
     jobs: Option<usize>,
-    difficulty: f64,
+    difficulty: Option<f64>,
 ) -> PyResult<Vec<Terrain>> {
-    let difficulty = difficulty_arg(difficulty)?;
     let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
-    let seed = seed.unwrap_or(scheme.globals().seed);
+    let rse_core::WorldAt {
+        seed, difficulty, ..
+    } = rse_core::WorldRequest {
+        seed,
+        index: None,
+        difficulty: difficulty.map(difficulty_arg).transpose()?,
+    }
+    .resolve(scheme);
     Ok(py.detach(|| {
         pool.install(|| {
             (0..amount)
@@ -47,7 +53,7 @@ pub fn generate_batch(
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets=None, mesh=None, jobs=None, shard=None, template=None, force=false, difficulty=1.0, mujoco_collider=None, oversample=None))]
+#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets=None, mesh=None, jobs=None, shard=None, template=None, force=false, difficulty=None, mujoco_collider=None, oversample=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
@@ -61,7 +67,7 @@ pub fn write_worlds<'py>(
     shard: Option<&str>,
     template: Option<std::path::PathBuf>,
     force: bool,
-    difficulty: f64,
+    difficulty: Option<f64>,
     mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -73,7 +79,10 @@ pub fn write_worlds<'py>(
             py,
             targets,
             mesh,
-            difficulty_arg(difficulty)?,
+            difficulty
+                .map(difficulty_arg)
+                .transpose()?
+                .unwrap_or_default(),
             mujoco_collider,
             oversample,
         )?,

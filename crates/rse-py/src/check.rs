@@ -11,7 +11,7 @@ use crate::batch::pool;
 
 /// The `check` report of the worlds under `paths`, as JSON text.
 #[pyfunction]
-#[pyo3(signature = (paths, physics=false, jobs=None, strict=false, template=None, budget=1.0))]
+#[pyo3(signature = (paths, physics=false, jobs=None, strict=false, template=None, budget=None))]
 pub fn _check_json(
     py: Python<'_>,
     paths: Vec<std::path::PathBuf>,
@@ -19,18 +19,18 @@ pub fn _check_json(
     jobs: Option<usize>,
     strict: bool,
     template: Option<std::path::PathBuf>,
-    budget: f64,
+    budget: Option<f64>,
 ) -> PyResult<String> {
     if physics && !rse_verify::PHYSICS {
         return Err(PyValueError::new_err(
             "physics=True: this build of rse has no physics smoke test (built without the `physics` feature)",
         ));
     }
-    if !(budget.is_finite() && budget > 0.0) {
-        return Err(PyValueError::new_err(format!(
-            "budget: {budget} is not a positive number (a multiple of check's default budget)"
-        )));
-    }
+    let budget = budget
+        .map(rse_verify::Budget::new)
+        .transpose()
+        .map_err(|e| PyValueError::new_err(e.to_string()))?
+        .unwrap_or_default();
     let templates = match template {
         Some(dir) => Some(std::sync::Arc::new(
             Templates::with_overrides(&dir).map_err(|e| PyValueError::new_err(e.to_string()))?,

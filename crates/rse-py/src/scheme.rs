@@ -393,18 +393,22 @@ impl Scheme {
     /// scheme's `# seed:`, else 0, as on the command line), its obstacle
     /// heights scaled to `difficulty` (0 to 1: `h` becomes
     /// `floor(difficulty·h + 0.5)` steps, frames stay 1 step).
-    #[pyo3(signature = (seed=None, index=0, difficulty=1.0))]
+    #[pyo3(signature = (seed=None, index=0, difficulty=None))]
     fn generate(
         &self,
         py: Python<'_>,
         seed: Option<u64>,
         index: u64,
-        difficulty: f64,
+        difficulty: Option<f64>,
     ) -> PyResult<Terrain> {
-        let difficulty = difficulty_arg(difficulty)?;
+        let request = rse_core::WorldRequest {
+            seed,
+            index: Some(index),
+            difficulty: difficulty.map(difficulty_arg).transpose()?,
+        };
         let scheme = &self.inner;
-        let seed = seed.unwrap_or(scheme.globals().seed);
-        Ok(py.detach(|| Terrain::generate(scheme, seed, index, difficulty)))
+        let at = request.resolve(scheme);
+        Ok(py.detach(|| Terrain::generate(scheme, at.seed, at.index, at.difficulty)))
     }
 
     fn __eq__(&self, other: &Scheme) -> bool {

@@ -19,6 +19,7 @@
 //! ```
 
 mod batch;
+mod budget;
 mod fault;
 mod folder;
 pub mod limits;
@@ -28,6 +29,7 @@ mod terrain;
 mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
+pub use budget::{Budget, BudgetError};
 pub use fault::{Fault, FaultKind, NotAWorld};
 pub use physics::PHYSICS;
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};

@@ -14,6 +14,7 @@ use rse_physics::PhysicsReport;
 use rse_world::{MANIFEST, Manifest, RebuildCost, RebuildError, Rebuilt, Templates, sha256_hex};
 use serde::Serialize;
 
+use crate::budget::Budget;
 use crate::fault::{Fault, FaultKind, excerpt, line_of};
 use crate::folder::{Folder, inside};
 use crate::limits::{MAX_MANIFEST_BYTES, REBUILD_VISITS, file_cap, rebuild_bytes};
@@ -39,7 +40,7 @@ pub struct CheckOptions {
     /// ([`REBUILD_VISITS`](crate::limits::REBUILD_VISITS) cell visits and
     /// the memory available per world checked at once): a world whose
     /// recipe costs more is a fault, not rebuilt.
-    pub budget: f64,
+    pub budget: Budget,
 }
 
 impl Default for CheckOptions {
@@ -48,7 +49,7 @@ impl Default for CheckOptions {
             physics: false,
             strict: false,
             templates: None,
-            budget: 1.0,
+            budget: Budget::DEFAULT,
         }
     }
 }
@@ -331,10 +332,9 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
 
 /// The fault of a world whose rebuild would cost more than `scale` times
 /// the default budget, or `None` when it is within it.
-fn over_budget(cost: RebuildCost, scale: f64) -> Option<FaultKind> {
-    let scaled = |budget: u64| (budget as f64 * scale.max(0.0)).min(u64::MAX as f64) as u64;
-    let bytes_budget = scaled(rebuild_bytes(rayon::current_num_threads()));
-    let visits_budget = scaled(REBUILD_VISITS);
+fn over_budget(cost: RebuildCost, budget: Budget) -> Option<FaultKind> {
+    let bytes_budget = budget.scale(rebuild_bytes(rayon::current_num_threads()));
+    let visits_budget = budget.scale(REBUILD_VISITS);
     (cost.bytes > bytes_budget || cost.visits > visits_budget).then_some(FaultKind::OverBudget {
         cells: cost.cells,
         bytes: cost.bytes,

@@ -45,7 +45,7 @@ fn a_huge_recorded_scheme_is_refused_by_the_budget_not_rebuilt() {
     // A larger budget lets the memory through, so it is the flag that
     // decides; the work of 10⁸ cells is still over 100 times as much.
     let generous = CheckOptions {
-        budget: 1e-6,
+        budget: rse_verify::Budget::new(1e-6).unwrap(),
         ..CheckOptions::default()
     };
     let small = good_world(&dir.path().join("small"));

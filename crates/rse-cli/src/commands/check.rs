@@ -29,7 +29,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
         physics: args.physics,
         strict: args.strict,
         templates,
-        budget: args.budget.unwrap_or(1.0),
+        budget: args.budget.unwrap_or_default(),
     };
     let report = check_paths(&args.paths, &options, &|| bar.inc(1))?;
     bar.finish_and_clear();

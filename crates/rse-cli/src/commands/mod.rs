@@ -61,8 +61,12 @@ pub fn load_world(
 
 /// The world of `scheme` the flags name.
 pub fn world_of(scheme: &Scheme, world: &WorldArgs) -> Terrain {
-    let seed = world.seed.unwrap_or(scheme.globals().seed);
-    rse_core::generate_at(scheme, seed, world.index, world.difficulty.value)
+    rse_core::WorldRequest {
+        seed: world.seed,
+        index: Some(world.index),
+        difficulty: Some(world.difficulty.value),
+    }
+    .generate(scheme)
 }
 
 /// Reads the scheme at `path` and applies the command-line overrides.

@@ -120,12 +120,19 @@ function markError(error) {
   $("error").textContent = where + error.message;
 }
 
+// A number field as the API takes it: null when empty, so the server's
+// default rules (the scheme's `# seed:` and `# amount:`).
+function given(id) {
+  const text = $(id).value.trim();
+  return text === "" ? null : Number(text);
+}
+
 async function refresh() {
   const id = ++state.request;
   const started = performance.now();
   let answer;
   try {
-    answer = await api("/api/preview", { scheme: pageScheme(), seed: Number($("seed").value) || 0, index: Number($("index").value) || 0 });
+    answer = await api("/api/preview", { scheme: pageScheme(), seed: given("seed"), index: given("index") });
   } catch (e) { $("error").textContent = String(e.message); return; }
   if (id < state.shown) return; // an older answer arriving late
   state.shown = id;
@@ -267,8 +274,8 @@ $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
   const answer = await api("/api/generate", {
-    scheme: pageScheme(), out: $("gen-out").value.trim(), amount: Number($("gen-amount").value) || 1,
-    seed: Number($("seed").value) || 0, targets,
+    scheme: pageScheme(), out: $("gen-out").value.trim(), amount: given("gen-amount"),
+    seed: given("seed"), targets,
   });
   if (!answer.ok) { markError(answer.error); return; }
   const poll = async () => {

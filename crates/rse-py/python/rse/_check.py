@@ -84,7 +84,7 @@ def check(
     jobs: Optional[int] = None,
     strict: bool = False,
     template: Optional[PathLike] = None,
-    budget: float = 1.0,
+    budget: Optional[float] = None,
 ) -> CheckReport:
     """Check world folders, or batch folders of them, as ``rse-gen check``:
     every file rebuilt from ``rse.json`` and compared byte for byte, meshes
@@ -94,7 +94,8 @@ def check(
     their files are rebuilt and compared byte for byte too; ``strict``:
     fail every world some of whose files could be compared only with their
     hashes; ``budget``: a multiple of the rebuild budget (a world whose
-    ``rse.json`` asks for more is a fault, not rebuilt).
+    ``rse.json`` asks for more is a fault, not rebuilt; default 1, the
+    library's ``check`` budget; a finite number above 0).
 
     Raises ``NotADirectoryError`` for a path that is not a folder and
     ``ValueError`` for a folder that holds no world.

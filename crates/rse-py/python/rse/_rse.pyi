@@ -134,7 +134,7 @@ class Scheme:
     def amount(self) -> int: ...
     @property
     def seed(self) -> int: ...
-    def generate(self, seed: Optional[int] = None, index: int = 0, difficulty: float = 1.0) -> Terrain: ...
+    def generate(self, seed: Optional[int] = None, index: int = 0, difficulty: Optional[float] = None) -> Terrain: ...
 
 @final
 class Terrain:
@@ -273,7 +273,7 @@ class EnvTerrains:
     def write(self, out: Any, env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None) -> None: ...
 
 def generate_batch(
-    scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: float = 1.0
+    scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: Optional[float] = None
 ) -> list[Terrain]: ...
 def write_worlds(
     scheme: Scheme,
@@ -287,7 +287,7 @@ def write_worlds(
     shard: Optional[str] = None,
     template: Optional[Union[str, os.PathLike[str]]] = None,
     force: bool = False,
-    difficulty: float = 1.0,
+    difficulty: Optional[float] = None,
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> dict[str, int]: ...
@@ -309,5 +309,5 @@ def _check_json(
     jobs: Optional[int] = None,
     strict: bool = False,
     template: Optional[Union[str, os.PathLike[str]]] = None,
-    budget: float = 1.0,
+    budget: Optional[float] = None,
 ) -> str: ...

@@ -84,7 +84,7 @@ if _AntEnv is not None:
             self,
             scheme: Union[rse.Scheme, str, "os.PathLike[str]"] = "schemes/six_obstacles.csv",
             terrain_seed: Optional[int] = None,
-            difficulty: float = 1.0,
+            difficulty: Optional[float] = None,
             oversample: int = DEFAULT_OVERSAMPLE,
             footprint: float = 0.6,
             spawn_height: float = 0.75,
@@ -92,10 +92,12 @@ if _AntEnv is not None:
             **ant_kwargs: Any,
         ) -> None:
             self.scheme = scheme if isinstance(scheme, rse.Scheme) else rse.Scheme.load(scheme)
-            self.terrain_seed = self.scheme.seed if terrain_seed is None else int(terrain_seed)
-            if not 0.0 <= difficulty <= 1.0:
-                raise ValueError(f"difficulty {difficulty}: expected a number from 0 to 1")
-            self.difficulty = float(difficulty)
+            # None for either is the library's default (the scheme's
+            # `# seed:`, full difficulty); a bad difficulty is refused here,
+            # by the library, not at the first reset.
+            self.terrain_seed = terrain_seed
+            self.difficulty = difficulty
+            self.scheme.generate(seed=terrain_seed, index=0, difficulty=difficulty)
             self.oversample = int(oversample)
             self.footprint = float(footprint)
             self.spawn_height = float(spawn_height)
