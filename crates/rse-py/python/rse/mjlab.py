@@ -36,8 +36,12 @@ import numpy as np
 
 from rse._fit import SchemeLike, fit, framework_class, load, max_step, patches_in_ranges
 from rse._rse import EnvTerrains
-from rse.mujoco import add_env_geom, sync_env_hfields
+from rse._env_pool import POOL, add_env_geom, sync_env_hfields
 
+
+TERM = "rse_terrain"
+"""The default name of rse's reset event term in an mjlab env config (its
+difficulty curriculum term is ``TERM + "_difficulty"``)."""
 
 def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
     import mujoco
@@ -125,7 +129,7 @@ def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
     return EnvTerrains(load(scheme), 1, oversample=oversample)
 
 
-def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = "rse_env") -> None:
+def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = POOL) -> None:
     """Adds to an mjlab scene's ``spec`` the pool of ``num_envs`` height
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
     fills them), the terrain geom that shows one (``rse.mujoco_warp.GEOM``)
@@ -167,7 +171,7 @@ class EnvTerrainsEvent:
         from rse.mujoco_warp import route
 
         p = dict(cfg.params)
-        self.name = p.get("name", "rse_env")
+        self.name = p.get("name", POOL)
         self.envs = EnvTerrains(
             load(p["scheme"]),
             env.num_envs,
@@ -212,7 +216,7 @@ def _ids(env: Any, env_ids: Any) -> list[int]:
     return [int(e) for e in env_ids.tolist()]
 
 
-def env_terrains(env: Any, term: str = "rse_terrain") -> EnvTerrains:
+def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
     """The ``rse.EnvTerrains`` of a running mjlab ``env`` (its event term
     ``term``): episodes, difficulties, origins, ``heights_at`` for height
     scans."""
@@ -225,7 +229,7 @@ def env_terrains(env: Any, term: str = "rse_terrain") -> EnvTerrains:
 def terrain_difficulty(
     env: Any,
     env_ids: Any,
-    term: str = "rse_terrain",
+    term: str = TERM,
     asset_name: str = "robot",
     step: float = 0.1,
     command_name: Optional[str] = None,
@@ -270,7 +274,7 @@ def use_env_terrains(
     spawn_radius: Optional[float] = None,
     env_offset: Optional[int] = None,
     curriculum: bool = False,
-    term: str = "rse_terrain",
+    term: str = TERM,
 ) -> None:
     """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
     terrain, new every episode: the pool in the scene (through its

@@ -36,15 +36,14 @@ from typing import Any
 import numpy as np
 
 from rse._rse import EnvTerrains
-from rse.mujoco import _env_ids, add_env_geom
+from rse._env_pool import GEOM, POOL, add_env_geom, id_list
 
 __all__ = ["GEOM", "add_terrain", "hfield_rows", "in_axes", "put_model", "sync"]
 
-GEOM = "rse_terrain"
 """The name of the terrain geom ``add_terrain`` adds."""
 
 
-def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM) -> None:
+def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM) -> None:
     """Adds to ``spec`` (a ``mujoco.MjSpec``) one height field ``name`` of
     ``envs``' slot shape and size (``envs`` in the slots layout) and a geom
     ``geom`` showing it, its slot's frame at the world origin (each env's
@@ -73,12 +72,12 @@ def _field(mjm: Any, envs: EnvTerrains, name: str) -> tuple[int, int]:
     return int(mjm.hfield_adr[hid]), size
 
 
-def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> np.ndarray:
+def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> np.ndarray:
     """World rows of ``hfield_data`` for ``env_ids`` (all when None):
     float32 ``(len(env_ids), mjm.nhfielddata)``, each ``mjm``'s own
     ``hfield_data`` with that env's samples in the field ``name``."""
     adr, size = _field(mjm, envs, name)
-    ids = _env_ids(envs, env_ids)
+    ids = id_list(envs, env_ids)
     if size == mjm.nhfielddata:  # the rse field is the model's only one
         return envs.samples.reshape(envs.num_envs, size)[ids]
     rows = np.repeat(np.asarray(mjm.hfield_data, dtype=np.float32)[None], len(ids), axis=0)
@@ -86,7 +85,7 @@ def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str =
     return rows
 
 
-def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", device: Any = None) -> Any:
+def put_model(mjm: Any, envs: EnvTerrains, *, name: str = POOL, device: Any = None) -> Any:
     """``mjx.put_model(mjm, impl="jax")`` with ``hfield_data`` batched per
     world: row ``w`` holds env ``w``'s terrain. Step it under ``jax.vmap``
     with ``in_axes(m)``."""
@@ -118,7 +117,7 @@ def _scatter_donating() -> Any:
     return jax.jit(lambda rows, ids, values: rows.at[ids].set(values), donate_argnums=0)
 
 
-def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> Any:
+def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> Any:
     """A model like ``m`` (from ``put_model``) whose rows ``env_ids`` (all
     when None) hold those envs' current terrains; the other rows are
     untouched and ``m``'s ``hfield_data`` is consumed (donated). Call it
@@ -126,7 +125,7 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     jitted step is not traced again."""
     import jax
 
-    ids = _env_ids(envs, env_ids)
+    ids = id_list(envs, env_ids)
     if m.hfield_data.shape != (envs.num_envs, mjm.nhfielddata):
         raise ValueError(f"m: hfield_data is {m.hfield_data.shape}, expected ({envs.num_envs}, {mjm.nhfielddata}) (make it with rse.mjx.put_model)")
     if not ids:

@@ -31,15 +31,14 @@ from typing import Any
 import numpy as np
 
 from rse._rse import EnvTerrains
-from rse.mujoco import _copy_env_samples, _env_ids, _env_pool, add_env_geom, add_env_hfields, sync_env_hfields
+from rse._env_pool import GEOM, POOL, add_env_geom, add_env_hfields, copy_env_samples, env_pool, id_list, sync_env_hfields
 
 __all__ = ["GEOM", "add_terrain", "put_model", "route", "sync"]
 
-GEOM = "rse_terrain"
 """The name of the terrain geom ``add_terrain`` adds."""
 
 
-def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM) -> None:
+def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM) -> None:
     """Adds to ``spec`` (a ``mujoco.MjSpec``) the pool of ``envs``' height
     fields (``envs`` in the slots layout, one per world) and one geom
     ``geom`` showing the first, its slot's frame at the world origin (each
@@ -60,7 +59,7 @@ def _terrain_geom(mjm: Any, geom: str) -> int:
     return gid
 
 
-def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM, **kwargs: Any) -> Any:
+def put_model(mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM, **kwargs: Any) -> Any:
     """``mujoco_warp.put_model`` of ``mjm`` (compiled from a spec that
     ``add_terrain`` built) with every env's samples in its field and the
     terrain geom's data id batched per world: world ``w`` stands on env
@@ -71,7 +70,7 @@ def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str =
     _terrain_geom(mjm, geom)
     if envs.layout != "slots":
         raise ValueError("envs: expected the slots layout, one field per world")
-    _env_pool(mjm, envs, name, "mjm")
+    env_pool(mjm, envs, name, "mjm")
     sync_env_hfields(mjm, envs, name=name)
     batch = dict(kwargs.pop("batch_sizes", {}) or {})
     batch["geom_dataid"] = envs.num_envs
@@ -80,7 +79,7 @@ def put_model(mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str =
     return m
 
 
-def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: str = GEOM) -> None:
+def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM) -> None:
     """Points the terrain geom ``geom`` of world ``w`` of the device model
     ``m`` at env ``w``'s field of the pool, in ``m``'s per-world
     ``geom_dataid`` (batched by ``put_model``, or by a framework: mjlab's
@@ -89,7 +88,7 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: s
     import warp as wp
 
     gid = _terrain_geom(mjm, geom)
-    first, _, _ = _env_pool(mjm, envs, name, "mjm")
+    first, _, _ = env_pool(mjm, envs, name, "mjm")
     if m.geom_dataid.shape[0] != envs.num_envs:
         raise ValueError(f"m: geom_dataid holds {m.geom_dataid.shape[0]} worlds, expected one per env ({envs.num_envs})")
     dataid = np.tile(np.asarray(mjm.geom_dataid, dtype=np.int32), (envs.num_envs, 1))
@@ -97,7 +96,7 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = "rse_env", geom: s
     wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
 
 
-def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = "rse_env") -> None:
+def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> None:
     """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
     the device model ``m``'s height fields, each into its own field only
     (on the CPU device a copy into a numpy view of the warp array; on a
@@ -106,12 +105,12 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     Call it after ``envs.reset(env_ids)``."""
     import warp as wp
 
-    ids = _env_ids(envs, env_ids)
-    _, adr, size = _env_pool(mjm, envs, name, "mjm")
+    ids = id_list(envs, env_ids)
+    _, adr, size = env_pool(mjm, envs, name, "mjm")
     if m.hfield_data.device.is_cpu:
         # On the CPU device the warp array is host memory: a numpy view
         # of it takes a plain copy, without a kernel launch per env.
-        _copy_env_samples(m.hfield_data.numpy(), envs, ids, adr, size)
+        copy_env_samples(m.hfield_data.numpy(), envs, ids, adr, size)
         return
     source = wp.array(envs.samples.reshape(-1), dtype=float, device="cpu", copy=False)
     for e in ids:

@@ -1,0 +1,167 @@
+"""Every environment its own height field in MuJoCo: an ``EnvTerrains``
+pool (one field per env) or tile map in an ``MjSpec`` or as MJCF, the
+terrain geom that shows it, and the reset envs' samples copied into a live
+model. ``rse.mujoco`` re-exports the public functions; ``rse.mujoco_warp``
+and ``rse.mjx`` build on the helpers here (docs/envs.md).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rse._rse import EnvTerrains
+
+POOL = "rse_env"
+"""The default name of the pool's height fields (``rse_env_0``, …) and of
+the geom that shows them."""
+
+GEOM = "rse_terrain"
+"""The default name of the terrain geom whose data id is routed per world
+(MuJoCo Warp, MJX)."""
+
+FIELD_RGBA = (0.76, 0.6, 0.42, 1.0)
+"""The colour of rse's height-field geoms: wood."""
+
+FIELD_RGBA_TEXT = " ".join(f"{c:g}" for c in FIELD_RGBA)
+
+__all__ = [
+    "FIELD_RGBA",
+    "GEOM",
+    "POOL",
+    "add_env_geom",
+    "add_env_hfields",
+    "copy_env_samples",
+    "env_hfield_names",
+    "env_hfields_mjcf",
+    "env_pool",
+    "id_list",
+    "sync_env_hfields",
+]
+
+
+def env_hfield_names(envs: EnvTerrains, name: str = POOL) -> list[str]:
+    """The height-field assets ``add_env_hfields`` makes: ``name0`` …
+    ``name{n-1}`` for slots, ``name`` for tiles."""
+    if envs.layout == "tiles":
+        return [name]
+    return [f"{name}{e}" for e in range(envs.num_envs)]
+
+
+def add_env_hfields(spec: Any, envs: EnvTerrains, *, name: str = POOL) -> list[str]:
+    """Adds to ``spec`` (a ``mujoco.MjSpec``) the height fields of
+    ``envs`` (an ``rse.EnvTerrains``): one per environment for slots (the
+    pool a batched simulator routes per world), one for the tile map; each
+    sized ``envs.hfield_size`` and holding the current samples (copy them
+    again after compiling: MuJoCo rescales data given before it, see
+    ``sync_env_hfields``). Returns their names. Add geoms with
+    ``add_env_geom``."""
+    names = env_hfield_names(envs, name)
+    nrow, ncol = envs.samples.shape[1:]
+    for i, hfield in enumerate(names):
+        spec.add_hfield(name=hfield, nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[i].ravel())
+    return names
+
+
+def add_env_geom(
+    spec: Any,
+    envs: EnvTerrains,
+    hfield: str,
+    *,
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    name: Union[str, None] = None,
+    group: int = 2,
+) -> Any:
+    """Adds to the world body of ``spec`` a geom showing the height field
+    ``hfield`` (one of ``add_env_hfields``'s), placed at ``envs.hfield_pos``
+    plus ``offset``: its slot's (or the map's) frame moved by ``offset``.
+    Returns the geom's spec."""
+    import mujoco
+
+    x, y, z = envs.hfield_pos
+    return spec.worldbody.add_geom(
+        name=name or hfield,
+        type=mujoco.mjtGeom.mjGEOM_HFIELD,
+        hfieldname=hfield,
+        pos=[x + offset[0], y + offset[1], z + offset[2]],
+        rgba=list(FIELD_RGBA),
+        group=group,
+    )
+
+
+def env_hfields_mjcf(envs: EnvTerrains, *, name: str = POOL) -> str:
+    """An MJCF model holding the height fields of ``envs`` (as
+    ``add_env_hfields``: the pool for slots, the map for tiles) and a geom
+    showing the first (``name0``; ``name`` for tiles) at ``hfield_pos``.
+    The fields start flat (MJCF rescales given samples to span [0, 1]):
+    compile, then ``sync_env_hfields(model, envs)``. Merge it into a robot
+    model with ``MjSpec.attach`` or by editing the text."""
+    nrow, ncol = envs.samples.shape[1:]
+    rx, ry, top, base = envs.hfield_size
+    x, y, z = envs.hfield_pos
+    names = env_hfield_names(envs, name)
+    fields = "\n".join(
+        f'    <hfield name="{n}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {base!r}"/>' for n in names
+    )
+    return f"""<mujoco model="rse_env_hfields">
+  <asset>
+{fields}
+  </asset>
+  <worldbody>
+    <geom name="{names[0]}" type="hfield" hfield="{names[0]}" pos="{x!r} {y!r} {z!r}" rgba="{FIELD_RGBA_TEXT}" group="2"/>
+  </worldbody>
+</mujoco>
+"""
+
+
+def id_list(envs: EnvTerrains, env_ids: Any) -> list[int]:
+    """``env_ids`` (all when None) as ints, or ``ValueError`` naming it."""
+    ids = np.arange(envs.num_envs) if env_ids is None else np.asarray(env_ids, dtype=np.int64).ravel()
+    bad = ids[(ids < 0) | (ids >= envs.num_envs)]
+    if bad.size:
+        raise ValueError(f"env_ids: {int(bad[0])} is not an environment (0 to {envs.num_envs - 1})")
+    return ids.tolist()
+
+
+def env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") -> tuple[int, np.ndarray, int]:
+    """The height fields ``add_env_hfields`` made in the compiled ``model``
+    (a ``MjModel``): the first one's id, every one's address in
+    ``hfield_data`` and the samples of each. They were added one after the
+    other, so the first and last names bound them; ``ValueError`` naming
+    ``argument`` when they are not there, not one run, or of another size."""
+    import mujoco
+
+    names = env_hfield_names(envs, name)
+
+    def hfield(n: str) -> int:
+        hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, n)
+        if hid < 0:
+            raise ValueError(f"{argument}: no height field named {n!r} (add them with add_env_hfields)")
+        return hid
+
+    first, last = hfield(names[0]), hfield(names[-1])
+    if last - first != len(names) - 1:
+        raise ValueError(f"{argument}: the height fields {names[0]} … {names[-1]} are not one pool (add them with add_env_hfields)")
+    size = int(model.hfield_nrow[first]) * int(model.hfield_ncol[first])
+    if size != envs.samples[0].size:
+        raise ValueError(f"{argument}: height field {names[0]} holds {size} samples, but the envs' field has {envs.samples[0].size}")
+    return first, np.asarray(model.hfield_adr[first : last + 1], dtype=np.int64), size
+
+
+def copy_env_samples(data: np.ndarray, envs: EnvTerrains, ids: list[int], adr: np.ndarray, size: int) -> None:
+    """Copies the samples of ``ids`` into ``data`` (a model's
+    ``hfield_data``, or a host view of a device copy of it) at ``adr``."""
+    flat = envs.samples.reshape(-1)
+    for e in ids:
+        data[adr[e] : adr[e] + size] = flat[e * size : (e + 1) * size]
+
+
+def sync_env_hfields(model: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> None:
+    """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
+    the compiled ``model``'s height fields made by ``add_env_hfields``
+    (slots: each env's own; tiles: the map, whole). Call it after
+    ``envs.reset(env_ids)``; the model is not recompiled."""
+    ids = [0] if envs.layout == "tiles" else id_list(envs, env_ids)
+    _, adr, size = env_pool(model, envs, name)
+    copy_env_samples(model.hfield_data, envs, ids, adr, size)
