@@ -7,11 +7,15 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test lint bench bench-robots demo build fuzz test-frameworks wheel
+.PHONY: test test-quick lint bench bench-robots demo build fuzz test-frameworks wheel
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
 	scripts/test.sh
+
+## The edit-test loop (a few minutes warm; no apt, no browser): fmt, the Rust tests but the CLI's, the Python package's own tests.
+test-quick:
+	scripts/test-quick.sh
 
 ## The RL framework adapters inside the frameworks themselves (mjlab; see docs/frameworks.md).
 ## Heavy (torch, MuJoCo 3.11): its own venv, .venv-frameworks, not part of `make test`.

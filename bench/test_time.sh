@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Where `make test`'s time goes: clones HEAD into a scratch folder, runs
 # `.ci/run` there as CI does (CI=true, no terminal), and prints the seconds
-# each `== step` took and the total (the README's table, "Tests and
-# benchmarks"). Needs ../shared beside the clone as beside this checkout.
+# each `== step` took and the total (docs/testing.md's table, "Where
+# `make test`'s time goes"). Needs ../shared beside the clone as beside this checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scratch=${1:-$(mktemp -d)}

@@ -25,7 +25,7 @@ HEADER = """\
 Generated from the docstrings of the installed package by
 `scripts/python_api_docs.py` (the tests fail when it is stale: run
 `.venv/bin/python scripts/python_api_docs.py` after changing a docstring).
-Install: `pip install rse-gen` (README, "Python"); import: `import rse`.
+Install: `pip install rse-gen` (guide.md, "Python"); import: `import rse`.
 Lengths are metres, heights are whole steps, arrays are numpy, `(lo, hi)`
 pairs are inclusive ranges drawn per world.
 """

@@ -103,7 +103,7 @@ done
 cargo build --release --locked --quiet -p rse-cli  # built by the tests above: a no-op unless run alone
 say "pytest (tests/python, on every core)"
 RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
-    .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" 2>&1 | tee -a "$log"
+    .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" --durations=15 2>&1 | tee -a "$log"
 
 say "pytest (tests/mjx: rse.mjx inside MJX, in .venv-mjx)"
 JAX_PLATFORMS=cpu .venv-mjx/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/mjx 2>&1 | tee -a "$log"

@@ -1,8 +1,8 @@
-"""The documentation as a newcomer follows it (issue 15, item 6): the README
-walked top to bottom (`make demo`, then every Python block but the two that
-need Isaac Lab or mjlab, in one session, in the folder `make demo` wrote
-into), the generated Python API page up to date, and every relative link of
-the README and docs/ pointing at a file that exists."""
+"""The documentation as a newcomer follows it: the README and the user
+guide walked top to bottom (`make demo`, then every Python block but the two
+that need Isaac Lab or mjlab, in one session, in the folder `make demo`
+wrote into), the generated Python API page up to date, and every relative
+link of the README and docs/ pointing at a file that exists."""
 
 import os
 import re
@@ -14,6 +14,7 @@ import pytest
 from conftest import REPO
 
 README = REPO / "README.md"
+GUIDE = REPO / "docs" / "guide.md"
 PAGES = [README, REPO / "schemes" / "README.md", REPO / "templates" / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
 # Blocks that need a framework this venv does not have (tests/frameworks
 # runs them in its own: make test-frameworks).
@@ -35,10 +36,11 @@ def test_the_readme_walk_through_runs_as_written(tmp_path: Path) -> None:
     )
     assert demo.returncode == 0, demo.stderr
     assert len(list((tmp_path / "out").glob("world_*"))) == 5
-    blocks = [b for b in python_blocks(README.read_text()) if not any(f in b for f in NEEDS_FRAMEWORK)]
+    text = README.read_text() + GUIDE.read_text()
+    blocks = [b for b in python_blocks(text) if not any(f in b for f in NEEDS_FRAMEWORK)]
     assert len(blocks) >= 5
     script = tmp_path / "walk_through.py"
-    script.write_text("\n\n".join(f"# --- README block {i}\n{b}" for i, b in enumerate(blocks)))
+    script.write_text("\n\n".join(f"# --- README/guide block {i}\n{b}" for i, b in enumerate(blocks)))
     done = subprocess.run(
         [sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, env={**os.environ, "MUJOCO_GL": "egl"}
     )

@@ -20,6 +20,10 @@ from editor_harness import chromium_page, edit, preview_round_trips, running_edi
 from PIL import Image
 from playwright.sync_api import Page
 
+# Needs what only `make test` installs (Debian packages, a browser, or
+# the wheels' build): not in `make test-quick`.
+pytestmark = pytest.mark.thirdparty
+
 
 @pytest.fixture
 def editor(tmp_path: Path):

@@ -19,6 +19,10 @@ from conftest import REPO, SCHEMES
 sys.path.insert(0, str(REPO / "tests" / "gz_physics"))
 import gz  # noqa: E402
 
+# Needs what only `make test` installs (Debian packages, a browser, or
+# the wheels' build): not in `make test-quick`.
+pytestmark = pytest.mark.thirdparty
+
 SAMPLES = sorted(SCHEMES.glob("*.csv"))
 CASES = [("dartsim", "single"), ("dartsim", "blocks"), ("bullet", "blocks")]
 

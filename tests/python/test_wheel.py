@@ -9,8 +9,13 @@ import sys
 import zipfile
 from pathlib import Path
 
+import pytest
 import rse
 from conftest import REPO, SCHEMES, rse_gen_path
+
+# Needs what only `make test` installs (Debian packages, a browser, or
+# the wheels' build): not in `make test-quick`.
+pytestmark = pytest.mark.thirdparty
 
 
 def test_the_wheel_installs_rse_and_the_rse_gen_command(tmp_path: Path) -> None:

@@ -95,6 +95,7 @@ def test_heightmap_is_the_one_rse_gen_heightmap_prints(batches) -> None:
 # --- Gazebo: libsdformat ------------------------------------------------------
 
 
+@pytest.mark.thirdparty
 def test_every_sdf_passes_ign_sdf_check(batches) -> None:
     ign = shutil.which("ign")
     assert ign, "ign (Debian ignition-tools) is installed by the test command"
@@ -117,12 +118,14 @@ def sdf_check() -> Path:
     return binary
 
 
+@pytest.mark.thirdparty
 def test_every_sdf_passes_the_strict_libsdformat_check(batches, sdf_check: Path) -> None:
     files = [str(f) for world in worlds(batches) for f in sdf_files(world)]
     done = subprocess.run([str(sdf_check), *files], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
 
 
+@pytest.mark.thirdparty
 def test_the_strict_check_fails_on_what_ign_lets_pass(batches, sdf_check: Path, tmp_path: Path) -> None:
     world = next(iter(sorted(batches[("wall", "single")].glob("world_*"))))
     copy = tmp_path / "gazebo"

@@ -193,7 +193,7 @@ pub struct AtlasArgs {
     pub seed: Option<u64>,
 
     /// Cells of height 0 between tiles and around the outside.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = rse_core::AtlasOptions::default().border)]
     pub border: u32,
 
     /// Difficulty of the first row and of the last (`LO..HI`, or one value for every row).
@@ -205,7 +205,7 @@ pub struct AtlasArgs {
     pub spawn_radius: f64,
 
     /// Flat patches per tile to list in atlas.json (spawn or goal points).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = rse_core::AtlasOptions::default().patches.count)]
     pub flat_patches: u32,
 
     /// Radius in metres of the disc a flat patch must cover.
@@ -213,7 +213,7 @@ pub struct AtlasArgs {
     pub patch_radius: f64,
 
     /// Largest height difference under a flat patch, in steps.
-    #[arg(long, value_name = "K", default_value_t = 0)]
+    #[arg(long, value_name = "K", default_value_t = rse_core::AtlasOptions::default().patches.max_step)]
     pub max_step: u16,
 
     #[command(flatten)]

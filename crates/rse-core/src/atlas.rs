@@ -72,6 +72,18 @@ impl Default for AtlasOptions {
     }
 }
 
+impl AtlasOptions {
+    /// The base seed of an atlas of `schemes` when the user names none:
+    /// the first scheme's `# seed:` (0 without schemes), as a batch takes
+    /// its scheme's.
+    pub fn seed_of<'a>(schemes: impl IntoIterator<Item = &'a Scheme>) -> u64 {
+        schemes
+            .into_iter()
+            .next()
+            .map_or(0, |scheme| scheme.globals().seed)
+    }
+}
+
 /// One tile of an atlas.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tile {

@@ -65,7 +65,7 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
 #[pymethods]
 impl Atlas {
     #[new]
-    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=0, difficulty=None, spawn_radius=None, flat_patches=0, patch_radius=None, max_step=0))]
+    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=None, difficulty=None, spawn_radius=None, flat_patches=None, patch_radius=None, max_step=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -73,12 +73,12 @@ impl Atlas {
         rows: u32,
         cols: u32,
         seed: Option<u64>,
-        border: u32,
+        border: Option<u32>,
         difficulty: Option<Bound<'_, PyAny>>,
         spawn_radius: Option<f64>,
-        flat_patches: u32,
+        flat_patches: Option<u32>,
         patch_radius: Option<f64>,
-        max_step: u16,
+        max_step: Option<u16>,
     ) -> PyResult<Self> {
         let defaults = AtlasOptions::default();
         let difficulty = match difficulty {
@@ -89,18 +89,18 @@ impl Atlas {
             }
         };
         let schemes = named_schemes(py, &schemes)?;
-        let seed = seed.unwrap_or_else(|| schemes.first().map_or(0, |s| s.scheme.globals().seed));
+        let seed = seed.unwrap_or_else(|| AtlasOptions::seed_of(schemes.iter().map(|s| &s.scheme)));
         let options = AtlasOptions {
             rows,
             cols,
             seed,
-            border,
+            border: border.unwrap_or(defaults.border),
             difficulty,
             spawn_radius: spawn_radius.unwrap_or(defaults.spawn_radius),
             patches: PatchOptions {
-                count: flat_patches,
+                count: flat_patches.unwrap_or(defaults.patches.count),
                 radius: patch_radius.unwrap_or(defaults.patches.radius),
-                max_step,
+                max_step: max_step.unwrap_or(defaults.patches.max_step),
             },
         };
         let inner = py

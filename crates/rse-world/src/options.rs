@@ -163,7 +163,7 @@ impl fmt::Display for Targets {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MeshMode {
-    /// Each target's fastest exact collider, as measured (README "Which
+    /// Each target's fastest exact collider, as measured (docs/worlds.md, "Which
     /// collider each simulator gets"): the box set for URDF (`PyBullet`
     /// collides boxes faster than a concave mesh), the single mesh for every
     /// other target (`MuJoCo` collides boxes whatever the mode, and draws the

@@ -23,7 +23,9 @@ pub fn run(args: &AtlasArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
     let atlas_options = AtlasOptions {
         rows: args.rows,
         cols: args.cols,
-        seed: args.seed.unwrap_or(schemes[0].scheme.globals().seed),
+        seed: args
+            .seed
+            .unwrap_or_else(|| AtlasOptions::seed_of(schemes.iter().map(|s| &s.scheme))),
         border: args.border,
         difficulty: args.difficulty,
         spawn_radius: args.spawn_radius,

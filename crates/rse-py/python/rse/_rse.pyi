@@ -194,12 +194,12 @@ class Atlas:
         cols: int,
         *,
         seed: Optional[int] = None,
-        border: int = 0,
+        border: Optional[int] = None,
         difficulty: Optional[Union[tuple[_Float, _Float], list[_Float], npt.NDArray[np.floating]]] = None,
         spawn_radius: Optional[float] = None,
-        flat_patches: int = 0,
+        flat_patches: Optional[int] = None,
         patch_radius: Optional[float] = None,
-        max_step: int = 0,
+        max_step: Optional[int] = None,
     ) -> Atlas: ...
     @property
     def terrain(self) -> Terrain: ...
