@@ -48,7 +48,7 @@ bench:
 	.venv/bin/python bench/boxes.py
 	.venv/bin/python bench/editor.py
 
-## Robots and dropped bodies in MuJoCo, PyBullet and gz-physics, per collider (issue 14; ~25 min).
+## Robots and dropped bodies in MuJoCo, PyBullet and gz-physics, per collider (~25 min).
 bench-robots:
 	.venv/bin/python -m pip install --quiet ./crates/rse-py
 	.venv/bin/python bench/robots.py

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Batch throughput: 1000 worlds of the 50x50 six-obstacle sample, target
-# gazebo, 2 jobs, beside `cp -r` of the very same tree (issue "Mass
-# generation of simulator worlds": aim at under 2x the copy time).
+# gazebo, 2 jobs, beside `cp -r` of the very same tree (the aim: under 2x
+# the copy time).
 #
 # Usage: bench/batch.sh [AMOUNT] [JOBS]   (run by `make bench`)
 set -euo pipefail

@@ -1,4 +1,4 @@
-"""Box counts of the block model (issue 14): rse's cover (`Terrain.boxes()`,
+"""Box counts of the block model: rse's cover (`Terrain.boxes()`,
 boxes that may overlap inside the solid) beside the partition into
 rectangles of equal height it replaced (re-implemented here as the
 baseline: greedy, along x then y, the pre-0.1 `rse-core` algorithm) and a

@@ -1,4 +1,4 @@
-"""The editor's preview round trip (issue "`rse-gen edit`"): from an edit in
+"""The editor's preview round trip: from an edit in
 the page to the new top-down picture and 3D view, for a 50x50 scheme, in
 Debian's headless Chromium against the release `rse-gen edit`. Aim: under
 50 ms. Prints the median, the 90th percentile and the worst of 100 edits,

@@ -1,4 +1,4 @@
-"""A new terrain per environment (issue 23), printed, not asserted:
+"""A new terrain per environment, printed, not asserted:
 4096 envs of 8 m x 8 m tiles of six_obstacles.csv (80x80 cells of 0.1 m),
 k = 2 (160x160 samples each), on this machine's cores:
 

@@ -1,4 +1,4 @@
-"""A new terrain per environment in MJX (issue 23), printed, not asserted:
+"""A new terrain per environment in MJX, printed, not asserted:
 4096 worlds of 8 m x 8 m tiles of six_obstacles.csv at k = 2 (160x160
 samples each) on the CPU: rse.mjx.sync of 64 reset envs' rows into the
 batched hfield_data, beside replacing the whole batched field (the upload

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Install time and size of each framework venv the tests use (issue 23's
-# note quotes them): for each, a fresh venv in a scratch folder, `pip
+# Install time and size of each framework venv the tests use (docs/frameworks.md
+# quotes them): for each, a fresh venv in a scratch folder, `pip
 # install -r` its requirements, then the seconds and `du -sh`. Heavy: about
 # 15 minutes and 25 GB of scratch disk, removed as it goes.
 # Run: bench/framework_installs.sh [scratch dir]

@@ -1,4 +1,4 @@
-"""Gazebo's own physics on rse terrains (issue 14): gz-physics 5 from Debian,
+"""Gazebo's own physics on rse terrains: gz-physics 5 from Debian,
 the terrain model built as gz-sim's Physics system builds it
 (tests/gz_physics/harness.cc), 60 seeded bodies dropped on cell centres,
 5 s at 1 kHz; per engine and collider the steps per second as a ratio to

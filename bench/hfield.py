@@ -1,4 +1,4 @@
-"""Height fields in MuJoCo (issue 13), printed, not asserted:
+"""Height fields in MuJoCo, printed, not asserted:
 
 1. generate + write a new 50x50 terrain into a live model at k = 4
    (200x200 samples), median over many calls (target < 100 us);

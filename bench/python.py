@@ -1,4 +1,4 @@
-"""Python-side figures (issue "The Python package"), printed with ratios:
+"""Python-side figures, printed with ratios:
 
 1. generating a 50x50 six-obstacle terrain from Python against the same
    call timed inside Rust (aim: under 1.2x);

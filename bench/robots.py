@@ -1,5 +1,5 @@
-"""Robots nobody here wrote on rse terrains, in the real engines (issue 14,
-after the paper's §4): steps per second against a plane, contacts per step
+"""Robots nobody here wrote on rse terrains, in the real engines (after
+the paper's §4): steps per second against a plane, contacts per step
 and physics errors, for every collider rse can write beside the naive
 box-per-cell baseline. Printed, not asserted.
 

@@ -1,5 +1,5 @@
 """`rse.mjlab.use_env_terrains` inside mjlab's own `ManagerBasedRlEnv`,
-its simulation (MuJoCo Warp) on the CPU device (issue 23): a ball dropped
+its simulation (MuJoCo Warp) on the CPU device: a ball dropped
 at each env's origin rests on that env's own terrain; resetting some envs
 through `env.reset(env_ids=...)` gives them new terrains (the balls rest on
 the new tops, the other worlds' balls and fields stay as they were); the

@@ -1,4 +1,4 @@
-"""`rse.genesis` inside Genesis 1.4.5 on the CPU (issue 23), in its own
+"""`rse.genesis` inside Genesis 1.4.5 on the CPU, in its own
 venv (.venv-genesis, make test-frameworks): each env's ball rests on its
 own tile of the shared terrain; after resetting some envs and rewriting the
 field in the built scene, those envs' balls rest on their new tops and the

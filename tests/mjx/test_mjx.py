@@ -1,4 +1,4 @@
-"""`rse.mjx` inside MJX 3.17 (JAX, CPU) (issue 23): under ``jax.vmap``
+"""`rse.mjx` inside MJX 3.17 (JAX, CPU): under ``jax.vmap``
 each world's spheres come to rest on its own env's tops, and after
 resetting some envs and syncing them, those worlds' spheres rest on the
 new tops while the other worlds' come to rest exactly where they did, all

@@ -1,5 +1,5 @@
 """`rse-gen batch` when the disk is full: a clear message, exit 2, and no
-half-written world (issue "Mass generation of simulator worlds")."""
+half-written world."""
 
 import subprocess
 from pathlib import Path

@@ -1,4 +1,4 @@
-"""Curricula (issue 12): difficulty from Python is the CLI's, and bad
+"""Curricula: difficulty from Python is the CLI's, and bad
 difficulties are refused."""
 
 from pathlib import Path

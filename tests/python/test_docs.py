@@ -110,3 +110,19 @@ def test_architecture_names_every_module() -> None:
         assert f"`{crate}`" in text, crate
     missing = [f"{crate}: {name}" for crate, name in modules() if not re.search(rf"`{name}(\.rs|\.py)?`", text)]
     assert not missing, f"ARCHITECTURE.md does not name: {missing}"
+
+
+def test_no_file_cites_an_issue_the_repository_does_not_hold() -> None:
+    """Issues live in the team's tracker, not here: a reader of the code
+    cannot follow "issue 23", so comments and pages say what they mean."""
+    tracked = subprocess.run(["git", "ls-files"], cwd=REPO, capture_output=True, text=True, check=True).stdout.split()
+    cited = re.compile(r"\bissues? (?:#?\d|\")")
+    found = [
+        f"{name}:{number}"
+        for name in tracked
+        if name.endswith((".md", ".rs", ".py", ".pyi", ".sh", ".toml", ".j2", "Makefile"))
+        and name != "tests/python/test_docs.py"
+        for number, line in enumerate((REPO / name).read_text(errors="replace").splitlines(), 1)
+        if cited.search(line)
+    ]
+    assert not found, found

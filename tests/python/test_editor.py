@@ -1,6 +1,6 @@
 """`rse-gen edit` in a real headless Chromium (Debian's, driven by
 Playwright): build a scheme by clicking, watch the preview change, save,
-reload, generate, and the editor's defences (issue "`rse-gen edit`")."""
+reload, generate, and the editor's defences."""
 
 import io
 import json
@@ -143,8 +143,7 @@ def test_invalid_values_are_marked_at_the_field(editor, page: Page) -> None:
 
 
 def test_the_preview_round_trip_is_measured(editor, page: Page, capsys) -> None:
-    """Measures and prints the round trip (issue 7 asks for it from the browser
-    test); the figure is judged against its 50 ms aim in bench/editor.py,
+    """Measures and prints the round trip, from the browser; the figure is judged against its 50 ms aim in bench/editor.py,
     not here: a timed assertion fails on a busy machine, not on slow code."""
     url, _ = editor
     times = preview_round_trips(page, url, 15)
@@ -178,7 +177,7 @@ def test_oversized_requests_get_413(editor) -> None:
     refused.value.close()
 
 
-# --- issue 15, item 7 ---------------------------------------------------------
+# --- the editor's defences ------------------------------------------------------
 
 
 def post(url: str, path: str, body: dict) -> dict:

@@ -1,4 +1,4 @@
-"""Every environment its own terrain, new every episode (issue 23):
+"""Every environment its own terrain, new every episode:
 `rse.EnvTerrains` — each env's terrain a pure function of (scheme, seed,
 global id, episode, difficulty), resets that touch the named envs only, and
 its samples, sizes and origins read back in MuJoCo by ray casts, as a pool

@@ -1,4 +1,4 @@
-"""`rse.gym`: Gymnasium's Ant on a new stepfield every episode (issue 13),
+"""`rse.gym`: Gymnasium's Ant on a new stepfield every episode,
 checked with Gymnasium's own env checker and with ray casts under the
 robot; episode e's terrain is the same in fresh processes."""
 

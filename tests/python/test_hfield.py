@@ -1,4 +1,4 @@
-"""Height fields (issue 13): rse's terrains as MuJoCo height fields, checked
+"""Height fields: rse's terrains as MuJoCo height fields, checked
 in MuJoCo itself — ray casts against the heightmap, a live model rewritten
 in place, bodies resting on the new ground, the file `rse-gen hfield`
 writes, and the documented exactness bound."""

@@ -1,5 +1,5 @@
 """Our meshes loaded in real third-party readers: trimesh, manifold3d,
-pygltflib and PyBullet (issue "Meshes")."""
+pygltflib and PyBullet."""
 
 from pathlib import Path
 

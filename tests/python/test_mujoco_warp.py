@@ -1,4 +1,4 @@
-"""`rse.mujoco_warp` inside MuJoCo Warp 4.0 on the CPU device (issue 23):
+"""`rse.mujoco_warp` inside MuJoCo Warp 4.0 on the CPU device:
 each world stands on its own env's terrain (rays straight down in every
 world over every cell centre, and a sphere resting on its world's top),
 and after resetting some envs and syncing them, those worlds change and

@@ -1,4 +1,4 @@
-"""World options as Python takes them (issue 21): the same typed options
+"""World options as Python takes them: the same typed options
 and the same defaults as `rse-gen` (both are rse-world's `FromStr` and
 `Default`), the stub's `Literal`s equal to what the library takes."""
 

@@ -1,4 +1,4 @@
-"""The Python package `rse` (issue "The Python package"): the same terrains
+"""The Python package `rse`: the same terrains
 as the CLI and the batch, mesh arrays that are closed volumes in trimesh,
 MJCF that MuJoCo loads and that bodies rest on, hypothesis round trips and
 bad inputs, and stubs that match the module."""

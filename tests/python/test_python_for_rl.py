@@ -1,5 +1,4 @@
-"""The Python package as reinforcement-learning code calls it (issue 15,
-item 3): numpy numbers anywhere, pickling into worker processes, reprs that
+"""The Python package as reinforcement-learning code calls it: numpy numbers anywhere, pickling into worker processes, reprs that
 read back, heights under points, curricula by `replace`, MJCF fragments
 attached to a robot with `mujoco.MjSpec`, one terrain written as a world,
 the same validation and messages as the command line in Python's words."""

@@ -1,5 +1,4 @@
-"""Worlds of `rse-gen batch` loaded by the simulators' own parsers (issue
-"Mass generation of simulator worlds"): libsdformat (`ign sdf -k` and a
+"""Worlds of `rse-gen batch` loaded by the simulators' own parsers: libsdformat (`ign sdf -k` and a
 strict checker linked against it), MuJoCo, PyBullet and usd-core; Webots,
 which has no installable checker, parsed structurally."""
 

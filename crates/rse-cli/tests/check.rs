@@ -212,7 +212,7 @@ fn a_folder_without_worlds_is_a_usage_error() {
 /// `check --physics`, with the mesh (obj) and the box set (urdf). Most of
 /// the whole suite's time: plain `cargo test` leaves it out, `make test`
 /// runs it (`--include-ignored`). Twelve worlds, not the twenty of
-/// before: 40 s less of `make test` (issue 21), and still every sample
+/// before: 40 s less of `make test`, and still every sample
 /// with both colliders on a dozen seeds.
 #[test]
 #[ignore = "slow (50 s): make test runs it with --include-ignored"]

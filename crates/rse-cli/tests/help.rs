@@ -1,4 +1,4 @@
-//! Every `--help` page, kept as text in `tests/help/` (issue 15, item 5): a
+//! Every `--help` page, kept as text in `tests/help/`: a
 //! change of the help shows in review. `RSE_UPDATE_HELP=1 cargo test -p
 //! rse-cli --test cli help` writes the pages anew.
 

@@ -1,4 +1,4 @@
-//! Hostile input to `batch` and the scheme reader (issue 22): planted
+//! Hostile input to `batch` and the scheme reader: planted
 //! links and FIFOs in a folder a rerun compares, a lock planted as a link,
 //! a file size limit, schemes that look right and are not.
 

@@ -1,4 +1,4 @@
-//! Error messages as a newcomer reads them (issue 15, item 4): each names
+//! Error messages as a newcomer reads them: each names
 //! what is wrong in the user's terms and what to do, exits 2, and leaks no
 //! internal name (temporary files, empty values).
 

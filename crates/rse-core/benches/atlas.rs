@@ -5,7 +5,7 @@
 //! on every cell (Isaac Lab's and `legged_gym`'s grids); run with
 //! `cargo bench -p rse-core --bench atlas`.
 //!
-//! Targets (issue 12): heights + origins + flat patches + single mesh < 1 s
+//! Targets: heights + origins + flat patches + single mesh < 1 s
 //! on the 2-core machine; triangles ≤ 0.5× a box on every cell.
 
 use std::hint::black_box;

@@ -1,4 +1,4 @@
-//! Per-environment terrains (issue 23) in Rust, without Python: 4096
+//! Per-environment terrains in Rust, without Python: 4096
 //! environments of `six_obstacles.csv` at 80×80 cells, k = 2; a reset of 64
 //! (new terrains written into their slots or tiles by `reset_into`, origins
 //! read), and its parts: the generation of one terrain, the write of 64

@@ -2,7 +2,7 @@
 //! built from the same heightmaps. Prints a table; run with
 //! `cargo bench -p rse-core --bench mesh`.
 //!
-//! Targets (issue "Meshes"): 50×50 `random` of height 4 ≤ 20,000 triangles
+//! Targets: 50×50 `random` of height 4 ≤ 20,000 triangles
 //! (aim 15,000; Isaac Lab's random grid: 30,060); wall and peak samples ≥ 5×
 //! fewer than naive; flat 1000×1000 ≤ 12; meshing 1000×1000 random < 0.5 s.
 //!

@@ -93,11 +93,11 @@ pub struct Tile {
     pub col: u32,
     /// Which of the atlas's schemes it comes from.
     pub scheme: usize,
-    /// Base seed.
+    /// Base seed of the tile's world (the atlas's).
     pub seed: u64,
     /// World index: `row·cols + col`.
     pub index: u64,
-    /// Its difficulty.
+    /// The difficulty its row is drawn at.
     pub difficulty: Difficulty,
     /// The cells it covers in the atlas's grid.
     pub region: Region,
@@ -141,7 +141,7 @@ pub enum AtlasError {
         field: &'static str,
         /// The position of the scheme that differs.
         other: usize,
-        /// Its value.
+        /// That scheme's value, as text.
         found: String,
         /// Scheme 0's value.
         expected: String,

@@ -43,7 +43,7 @@ impl Difficulty {
         }
     }
 
-    /// The factor.
+    /// The factor `D`, from 0 to 1.
     pub fn get(self) -> f64 {
         self.0
     }

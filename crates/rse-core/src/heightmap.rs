@@ -9,9 +9,9 @@ pub enum HeightmapCsvError {
     /// A value that is not a height in steps (a whole number 0–65535).
     #[error("line {line}, column {column}: `{value}` is not a height")]
     NotAHeight {
-        /// The line.
+        /// 1-based line of the CSV text.
         line: usize,
-        /// The column.
+        /// 1-based column (field) on that line.
         column: usize,
         /// The text found there.
         value: String,
@@ -19,7 +19,7 @@ pub enum HeightmapCsvError {
     /// A line with another number of values than the first line.
     #[error("line {line}: {found} values, but line 1 has {expected}")]
     Ragged {
-        /// The line.
+        /// 1-based line of the CSV text.
         line: usize,
         /// Values on it.
         found: u32,

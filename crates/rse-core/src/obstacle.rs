@@ -266,7 +266,7 @@ impl Obstacle {
         Ok(Obstacle { kind, fields })
     }
 
-    /// The type.
+    /// Which of the six obstacle types the row is.
     pub fn kind(&self) -> ObstacleKind {
         self.kind
     }
@@ -294,7 +294,7 @@ fn check_order<T: Copy + PartialOrd + fmt::Display>(
 /// An obstacle as drawn for one world: every range resolved to a value.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DrawnObstacle {
-    /// The type.
+    /// Which of the six obstacle types it was.
     pub kind: ObstacleKind,
     /// Height in steps.
     pub height: u32,

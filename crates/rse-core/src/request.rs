@@ -23,11 +23,11 @@ pub struct WorldRequest {
 /// A world resolved: which world of which batch, at which difficulty.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldAt {
-    /// Base seed.
+    /// Base seed: the batch this world belongs to.
     pub seed: u64,
     /// Index in the batch.
     pub index: u64,
-    /// Difficulty.
+    /// Difficulty the obstacles are scaled to.
     pub difficulty: Difficulty,
 }
 

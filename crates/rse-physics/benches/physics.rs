@@ -3,7 +3,7 @@
 //! boxes, and a naive mesh of one closed box per cell. Prints a table; run
 //! with `cargo bench -p rse-physics --bench physics`.
 //!
-//! Target (issue "`rse-gen check`"): ratio under 1.3 for 50×50 with the
+//! Target: ratio under 1.3 for 50×50 with the
 //! single mesh.
 
 use rse_core::mesh::naive::box_per_cell;

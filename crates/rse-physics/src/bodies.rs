@@ -47,7 +47,7 @@ impl Shape {
 /// A body and where it starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Body {
-    /// Its shape.
+    /// Box, sphere or capsule, with its sizes.
     pub shape: Shape,
     /// Centre at the start, metres.
     pub start: [f64; 3],

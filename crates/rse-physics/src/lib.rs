@@ -1,5 +1,5 @@
-//! A rapier physics smoke test of a Random Step Environment (issue
-//! "`rse-gen check`"): drop a fixed, seeded set of robot-part-sized bodies
+//! A rapier physics smoke test of a Random Step Environment (what
+//! `rse-gen check --physics` runs): drop a fixed, seeded set of robot-part-sized bodies
 //! on the terrain, simulate, and report the mean step time beside the same
 //! bodies on a flat plane (the paper's RTF vs control RTF, §4) and every
 //! physics error — those `bench/robots.py` counts for robots (a state that

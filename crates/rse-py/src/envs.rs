@@ -149,7 +149,7 @@ impl EnvTerrains {
         Ok(envs)
     }
 
-    /// Environments.
+    /// How many environments (ids `0..num_envs` in this process).
     #[getter]
     fn num_envs(&self) -> usize {
         self.inner.num_envs()

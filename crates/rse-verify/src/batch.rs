@@ -23,13 +23,13 @@ pub struct CheckReport {
     /// Faults of batches as wholes (leftover temporary folders, duplicate
     /// worlds), with the batch folder in `file`.
     pub batch_faults: Vec<Fault>,
-    /// Worlds checked.
+    /// How many world folders were checked (each a world of some batch).
     pub checked: usize,
     /// Worlds with at least one fault.
     pub failed: usize,
     /// Good worlds some of whose files could be compared only with their
     /// hashes (rendered from templates this check did not have).
-    pub hash_only: usize,
+    pub worlds_hashed_only: usize,
 }
 
 impl CheckReport {
@@ -47,8 +47,8 @@ impl CheckReport {
             if self.checked == 1 { "world" } else { "worlds" },
             self.checked - self.failed,
         );
-        if self.hash_only > 0 {
-            let _ = write!(line, " ({} only by hash)", self.hash_only);
+        if self.worlds_hashed_only > 0 {
+            let _ = write!(line, " ({} only by hash)", self.worlds_hashed_only);
         }
         let _ = write!(line, ", {} failed", self.failed);
         if !self.batch_faults.is_empty() {
@@ -80,7 +80,7 @@ pub enum DiscoverError {
     /// The folder cannot be listed.
     #[error("cannot read {}: {reason}", path.display())]
     Unreadable {
-        /// The folder.
+        /// The path the user gave, which is not a folder.
         path: PathBuf,
         /// The system's reason.
         reason: String,
@@ -209,14 +209,14 @@ pub fn check_paths(
     batch_faults.extend(duplicates(&worlds, &reports));
     batch_faults.extend(mixed_recipes(&worlds, &reports));
     let failed = reports.iter().filter(|r| !r.ok).count();
-    let hash_only = reports
+    let worlds_hashed_only = reports
         .iter()
         .filter(|r| r.ok && !r.hashed_only.is_empty())
         .count();
     Ok(CheckReport {
         checked: reports.len(),
         failed,
-        hash_only,
+        worlds_hashed_only,
         worlds: reports,
         batch_faults,
     })

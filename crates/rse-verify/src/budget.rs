@@ -29,7 +29,7 @@ impl Budget {
         }
     }
 
-    /// The factor.
+    /// The multiple of the default budget, above 0.
     pub fn factor(self) -> f64 {
         self.0
     }

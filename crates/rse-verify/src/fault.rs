@@ -127,7 +127,7 @@ pub enum FaultKind {
     /// Files of the world could be compared only with their hashes in
     /// `rse.json` (`check --strict` fails such a world).
     HashOnly {
-        /// How many.
+        /// How many of its files were compared by hash alone.
         files: usize,
     },
     /// The scheme recorded in `rse.json` does not load.
@@ -234,7 +234,7 @@ pub enum FaultKind {
     Leftover,
     /// A sub-folder of a batch folder that is not a world.
     NotAWorld {
-        /// Why not.
+        /// What the folder is instead of a world.
         reason: NotAWorld,
     },
     /// A world of a batch folder made from another recipe than the

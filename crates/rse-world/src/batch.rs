@@ -82,7 +82,7 @@ pub struct BatchOptions {
     pub out: PathBuf,
     /// Worlds in the whole batch (all shards).
     pub amount: u64,
-    /// Base seed.
+    /// Base seed of every world of the batch (world `i` is `(seed, i)`).
     pub seed: u64,
     /// Targets and mesh mode.
     pub world: WorldOptions,

@@ -18,7 +18,7 @@ pub(crate) struct WorldContext {
     pub world: String,
     /// The terrain model's name.
     pub model: &'static str,
-    /// Seed pair.
+    /// Base seed of the batch the world belongs to.
     pub seed: u64,
     pub index: u64,
     /// `single` or `blocks`: the mode of the target being rendered

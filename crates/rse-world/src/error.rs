@@ -109,7 +109,7 @@ pub enum Error {
         field: &'static str,
         /// The scheme that differs, by name.
         scheme: String,
-        /// Its value.
+        /// That scheme's value, as text.
         found: String,
         /// The first scheme, by name.
         first: String,

@@ -43,7 +43,7 @@ pub struct Manifest {
     pub templates: TemplateSet,
     /// SHA-256 of the template files used.
     pub templates_sha256: String,
-    /// The grid.
+    /// The grid the scheme gave, in cells.
     pub grid: Grid,
     /// The resolved global parameters (command-line overrides applied).
     pub globals: Globals,

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 pub enum Listed {
     /// A regular file: its size in bytes and its number of hard links.
     File {
-        /// Bytes.
+        /// Its size, bytes.
         size: u64,
         /// Hard links to it (1 for a file only this folder holds).
         links: u64,
@@ -49,7 +49,7 @@ pub enum ReadError {
     TooLarge {
         /// Its size, bytes (at least `cap + 1` if it grew while read).
         bytes: u64,
-        /// The cap.
+        /// The largest size read, bytes.
         cap: u64,
     },
     /// Any other failure of the system.

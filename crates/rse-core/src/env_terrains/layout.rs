@@ -29,7 +29,7 @@ pub enum EnvLayout {
 /// One environment's field, `(nrow, ncol)`, and the whole buffer,
 /// `(slots, rows, columns)`.
 pub(super) struct Shapes {
-    pub field: (usize, usize),
+    pub env_shape: (usize, usize),
     pub shape: (usize, usize, usize),
 }
 
@@ -44,9 +44,9 @@ pub(super) fn buffer_shape_of(
 ) -> Result<Shapes, EnvError> {
     let k = options.oversample;
     let (nrow, ncol) = hfield_shape_of(grid, k)?;
-    let field = (nrow as usize, ncol as usize);
+    let env_shape = (nrow as usize, ncol as usize);
     let shape = match options.layout {
-        EnvLayout::Slots => (n, field.0, field.1),
+        EnvLayout::Slots => (n, env_shape.0, env_shape.1),
         EnvLayout::Tiles { cols, border } => {
             if cols == 0 {
                 return Err(bad("cols", "expected 1 or more tiles along x"));
@@ -78,7 +78,7 @@ pub(super) fn buffer_shape_of(
             format!("{total} samples in all, more than 2^32 (16 GiB of float32)"),
         ));
     }
-    Ok(Shapes { field, shape })
+    Ok(Shapes { env_shape, shape })
 }
 
 impl EnvTerrains {
@@ -90,7 +90,7 @@ impl EnvTerrains {
 
     /// One environment's field: `(nrow, ncol)`.
     pub fn field_shape(&self) -> (usize, usize) {
-        self.field
+        self.env_shape
     }
 
     /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
@@ -199,7 +199,7 @@ impl EnvTerrains {
 
     /// Samples in one slot.
     pub(super) fn slot_len(&self) -> usize {
-        self.field.0 * self.field.1
+        self.env_shape.0 * self.env_shape.1
     }
 
     /// Samples in one tile row of the map with the border rows above it.
@@ -208,13 +208,13 @@ impl EnvTerrains {
             EnvLayout::Tiles { border, .. } => border as usize,
             EnvLayout::Slots => 0,
         };
-        (b * self.options.oversample as usize + self.field.0) * self.shape.2
+        (b * self.options.oversample as usize + self.env_shape.0) * self.shape.2
     }
 
     /// Writes `terrain` into a slot.
     pub(super) fn write_slot(&self, terrain: &Terrain, slot: &mut [f32]) {
         let k = self.options.oversample;
-        terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.field.1);
+        terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.env_shape.1);
     }
 
     /// Writes `terrain` as environment `e`'s tile into the band of its tile
@@ -222,7 +222,7 @@ impl EnvTerrains {
     pub(super) fn write_tile(&self, e: usize, terrain: &Terrain, band: &mut [f32]) {
         let k = self.options.oversample as usize;
         let cols = self.shape.2;
-        let border_rows = band.len() / cols - self.field.0;
+        let border_rows = band.len() / cols - self.env_shape.0;
         let (x0, _) = self.tile_origin(e);
         let at = border_rows * cols + x0 as usize * k;
         terrain.fill_hfield_rows(k as u32, 0.0, self.elevation, &mut band[at..], cols);

@@ -109,7 +109,7 @@ pub struct EnvTerrains {
     origins: Vec<[f64; 3]>,
     episodes: Vec<u64>,
     /// Samples of one environment's field: (rows along y, columns along x).
-    field: (usize, usize),
+    env_shape: (usize, usize),
     /// The whole buffer: (slots, rows, columns).
     shape: (usize, usize, usize),
     elevation: f64,
@@ -138,7 +138,8 @@ impl EnvTerrains {
         if !(options.spawn_radius.is_finite() && options.spawn_radius >= 0.0) {
             return Err(bad("spawn_radius", "expected a length of 0 m or more"));
         }
-        let layout::Shapes { field, shape } = layout::buffer_shape_of(scheme.grid(), n, options)?;
+        let layout::Shapes { env_shape, shape } =
+            layout::buffer_shape_of(scheme.grid(), n, options)?;
         let mut envs = EnvTerrains {
             elevation: scheme.max_top(),
             scheme,
@@ -146,7 +147,7 @@ impl EnvTerrains {
             terrains: Vec::new(),
             origins: Vec::new(),
             episodes: vec![0; n],
-            field,
+            env_shape,
             shape,
         };
         let made: Vec<Made> = (0..n)
@@ -196,12 +197,12 @@ impl EnvTerrains {
         &self.options
     }
 
-    /// The scheme.
+    /// The scheme every environment draws its terrains from.
     pub fn scheme(&self) -> &Scheme {
         &self.scheme
     }
 
-    /// Environments.
+    /// How many environments (ids `0..num_envs` in this process).
     pub fn num_envs(&self) -> usize {
         self.terrains.len()
     }

@@ -1,7 +1,7 @@
 //! The boundary of the solid `{0 ≤ z ≤ base + h·step}` as axis-aligned
 //! rectangles and staircases on an integer lattice.
 //!
-//! A lattice point ([`Key`]) is `[x, y, level]`: `x`, `y` count cell corners
+//! A lattice point ([`LatticePoint`]) is `[x, y, level]`: `x`, `y` count cell corners
 //! and `level` codes a height: 0 is the ground `z = 0`, and `h + 1` is the top
 //! of a cell of `h` steps, `z = base + h·step` (with no slab, `h = 0` is the
 //! ground itself and codes 0). Levels grow with `z`, so order and collinearity
@@ -10,7 +10,7 @@
 use crate::heightmap::Heightmap;
 
 /// A lattice point `[x, y, level]`.
-pub(crate) type Key = [u32; 3];
+pub(crate) type LatticePoint = [u32; 3];
 
 /// The outward normal of a face; all faces are axis-aligned.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -56,7 +56,7 @@ impl Normal {
 /// A rectangle of the boundary: corners counter-clockwise seen from outside.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Rect {
-    pub corners: [Key; 4],
+    pub corners: [LatticePoint; 4],
     pub normal: Normal,
 }
 
@@ -71,7 +71,7 @@ pub(crate) enum Face<'a> {
     /// corners of its low-`w` edge, `outline[split..]` those of its
     /// high-`w` edge, each by increasing `u`.
     Staircase {
-        outline: &'a [Key],
+        outline: &'a [LatticePoint],
         split: usize,
         normal: Normal,
         axes: [u8; 2],
@@ -270,7 +270,7 @@ struct WallLine<'a, W, K> {
     along_y: bool,
 }
 
-impl<W: Fn(u32) -> Option<Wall>, K: Fn(u32, u32) -> Key> WallLine<'_, W, K> {
+impl<W: Fn(u32) -> Option<Wall>, K: Fn(u32, u32) -> LatticePoint> WallLine<'_, W, K> {
     /// Emits the run of walls that starts at segment `start` (which has
     /// one) and returns the segment after it. A run is the segments facing
     /// the same way, each overlapping the one before: a rectangle when they
@@ -336,8 +336,8 @@ impl<W: Fn(u32) -> Option<Wall>, K: Fn(u32, u32) -> Key> WallLine<'_, W, K> {
 fn outline(
     start: u32,
     spans: &[[u32; 2]],
-    key: impl Fn(u32, u32) -> Key,
-    outline: &mut Vec<Key>,
+    key: impl Fn(u32, u32) -> LatticePoint,
+    outline: &mut Vec<LatticePoint>,
 ) -> usize {
     outline.clear();
     let end = start + spans.len() as u32;
@@ -440,7 +440,7 @@ struct RunBuffers {
     /// The spans of the run's segments.
     spans: Vec<[u32; 2]>,
     /// The staircase's corners.
-    outline: Vec<Key>,
+    outline: Vec<LatticePoint>,
 }
 
 /// A wall segment between two cells: its `[lo, hi]` span of levels and
@@ -456,7 +456,7 @@ fn wall_between(behind: u32, front: u32) -> Option<Wall> {
 /// A wall with `corners` counter-clockwise seen from the positive side: as
 /// given when it faces that way (`normals[0]`), reversed when it faces the
 /// other (`normals[1]`).
-fn wall(corners: [Key; 4], faces_positive: bool, normals: [Normal; 2]) -> Rect {
+fn wall(corners: [LatticePoint; 4], faces_positive: bool, normals: [Normal; 2]) -> Rect {
     let [a, b, c, d] = corners;
     if faces_positive {
         Rect {

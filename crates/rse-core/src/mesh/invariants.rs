@@ -26,7 +26,7 @@ pub enum MeshFault {
     },
     /// A vertex lies inside an edge without being one of its ends.
     TJunction {
-        /// The vertex.
+        /// The index of the vertex inside the edge.
         vertex: u32,
         /// The edge's ends.
         edge: [u32; 2],
@@ -34,7 +34,7 @@ pub enum MeshFault {
     /// Two or more sheets of surface meet at one vertex (it should be one
     /// vertex per sheet, as at a saddle).
     PinchedVertex {
-        /// The vertex.
+        /// The index of the vertex where the sheets meet.
         vertex: u32,
         /// How many separate fans of triangles meet there.
         fans: usize,
@@ -46,7 +46,7 @@ pub enum MeshFault {
     },
     /// A vertex with a coordinate that is infinite or not a number.
     NonFinite {
-        /// The vertex.
+        /// The index of the vertex with the bad coordinate.
         vertex: u32,
     },
     /// A mesh so irregular (vertices crowded where long edges pass) that

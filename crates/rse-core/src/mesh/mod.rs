@@ -12,7 +12,7 @@ mod weld;
 pub use boxes::{Block, boxes};
 pub use faces::Normal;
 
-use faces::Key;
+use faces::LatticePoint;
 
 use crate::heightmap::Heightmap;
 use crate::terrain::Terrain;
@@ -53,9 +53,9 @@ impl TriMesh {
 /// Lengths that place the lattice in space, metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeshUnits {
-    /// Cell side.
+    /// Cell side, metres: the lattice's x and y unit.
     pub block_size: f64,
-    /// Step height.
+    /// Step height, metres: the lattice's level unit.
     pub step_height: f64,
     /// Slab under the grid (0: none).
     pub base: f64,
@@ -99,7 +99,7 @@ pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
     let levels = faces::Levels::new(heights, units.base > 0.0);
     let triangles = stitch::triangulate(&levels, |emit| faces::faces(&levels, emit));
     let (keys, ids, normals) = weld::split_saddles(triangles, &levels);
-    let position = |[x, y, level]: Key| {
+    let position = |[x, y, level]: LatticePoint| {
         [
             (f64::from(x) * units.block_size) as f32,
             (f64::from(y) * units.block_size) as f32,

@@ -7,7 +7,7 @@
 //! zero-area triangle and adds no point; each staircase wall by the sweep of
 //! [`super::staircase`].
 
-use super::faces::{Face, Key, Levels, Normal};
+use super::faces::{Face, LatticePoint, Levels, Normal};
 use super::staircase::{self, Point};
 use rayon::prelude::*;
 
@@ -22,7 +22,7 @@ pub(crate) struct Corners {
     /// so that a lookup reads one cache line.
     slots: Vec<[(u32, u32); 5]>,
     /// Per id: the point.
-    pub keys: Vec<Key>,
+    pub keys: Vec<LatticePoint>,
 }
 
 const NONE: u32 = u32::MAX;
@@ -53,14 +53,14 @@ impl Corners {
     }
 
     /// The grid corner and slot of `key`, if its level is one of the corner's.
-    fn find(&self, key: Key) -> Option<(usize, usize)> {
+    fn find(&self, key: LatticePoint) -> Option<(usize, usize)> {
         let corner = key[1] as usize * self.width + key[0] as usize;
         let slot = self.slots[corner].iter().position(|&(l, _)| l == key[2])?;
         Some((corner, slot))
     }
 
     /// The id of `key`, numbering it if it is new.
-    fn insert(&mut self, key: Key) -> u32 {
+    fn insert(&mut self, key: LatticePoint) -> u32 {
         let (corner, slot) = self
             .find(key)
             .expect("a corner's level is the ground or a neighbouring top");
@@ -72,7 +72,7 @@ impl Corners {
         *id
     }
 
-    fn get(&self, key: Key) -> Option<u32> {
+    fn get(&self, key: LatticePoint) -> Option<u32> {
         let (corner, slot) = self.find(key)?;
         let id = self.slots[corner][slot].1;
         (id != NONE).then_some(id)
@@ -81,9 +81,13 @@ impl Corners {
     /// Clears `out`, then pushes the chain through `corners` (each edge
     /// between two in a row axis-aligned): each corner, and between two the
     /// corners that lie on the edge joining them.
-    fn chain(&self, corners: impl IntoIterator<Item = (u32, Key)>, out: &mut Vec<(u32, Key)>) {
+    fn chain(
+        &self,
+        corners: impl IntoIterator<Item = (u32, LatticePoint)>,
+        out: &mut Vec<(u32, LatticePoint)>,
+    ) {
         out.clear();
-        let mut previous: Option<Key> = None;
+        let mut previous: Option<LatticePoint> = None;
         for (id, key) in corners {
             if let Some(p) = previous {
                 self.between(p, key, out);
@@ -95,7 +99,7 @@ impl Corners {
 
     /// Pushes the corners strictly between `p` and `q` (which differ in one
     /// coordinate), in order from `p` to `q`.
-    fn between(&self, p: Key, q: Key, out: &mut Vec<(u32, Key)>) {
+    fn between(&self, p: LatticePoint, q: LatticePoint, out: &mut Vec<(u32, LatticePoint)>) {
         let axis = (0..3).find(|&a| p[a] != q[a]).expect("an edge has length");
         let (lo, hi) = (p[axis].min(q[axis]), p[axis].max(q[axis]));
         let start = out.len();
@@ -253,7 +257,7 @@ fn triangulate_faces(
 /// Buffers for triangulating staircase walls, reused from one to the next.
 #[derive(Default)]
 struct StaircaseBuffers {
-    keyed: Vec<(u32, Key)>,
+    keyed: Vec<(u32, LatticePoint)>,
     low: Vec<Point>,
     high: Vec<Point>,
     scratch: staircase::Scratch,
@@ -321,11 +325,11 @@ fn chain_points(
     levels: &Levels,
     [u, w]: [usize; 2],
     ids: impl Iterator<Item = u32>,
-    keyed: &mut Vec<(u32, Key)>,
+    keyed: &mut Vec<(u32, LatticePoint)>,
     points: &mut Vec<Point>,
 ) {
     corners.chain(ids.map(|id| (id, corners.keys[id as usize])), keyed);
-    let coordinate = |k: Key, axis: usize| {
+    let coordinate = |k: LatticePoint, axis: usize| {
         if axis == 2 {
             levels.steps(k[2]).expect("staircases have whole steps")
         } else {
@@ -347,10 +351,10 @@ fn chain_points(
 /// none of them `a` or `c`, always has area. The first triangle is
 /// `(a, ab[1], ad[1])`, the last `(ab[n−2], c, ad[m−2])`; between, the chain
 /// whose next point is nearer to `a` advances.
-fn zip(ab: &[(u32, Key)], ad: &[(u32, Key)], out: &mut Vec<[u32; 3]>) {
+fn zip(ab: &[(u32, LatticePoint)], ad: &[(u32, LatticePoint)], out: &mut Vec<[u32; 3]>) {
     let (n, m) = (ab.len(), ad.len());
     let a = ab[0].1;
-    let progress = |p: Key| (0..3).map(|k| p[k].abs_diff(a[k])).sum::<u32>();
+    let progress = |p: LatticePoint| (0..3).map(|k| p[k].abs_diff(a[k])).sum::<u32>();
     out.push([ab[0].0, ab[1].0, ad[1].0]);
     let (mut i, mut j) = (1, 1);
     while i < n - 2 || j < m - 2 {
@@ -373,7 +377,7 @@ mod tests {
     use crate::heightmap::Heightmap;
     use crate::mesh::faces::Rect;
 
-    fn area2(keys: &[Key], t: [u32; 3]) -> i64 {
+    fn area2(keys: &[LatticePoint], t: [u32; 3]) -> i64 {
         let [p, q, r] = t.map(|id| keys[id as usize].map(i64::from));
         let u = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
         let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];

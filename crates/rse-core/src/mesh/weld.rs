@@ -9,7 +9,7 @@
 //! its own copy of the point, and each triangle corner takes the copy of the
 //! group on its inner side. Groups are found from the four cells' tops alone.
 
-use super::faces::{Key, Levels, Normal};
+use super::faces::{LatticePoint, Levels, Normal};
 use super::stitch::Triangles;
 
 /// Gives saddle points one copy per piece of solid; returns the point of
@@ -17,7 +17,7 @@ use super::stitch::Triangles;
 pub(crate) fn split_saddles(
     triangles: Triangles,
     levels: &Levels,
-) -> (Vec<Key>, Vec<[u32; 3]>, Vec<Normal>) {
+) -> (Vec<LatticePoint>, Vec<[u32; 3]>, Vec<Normal>) {
     let Triangles {
         corners,
         mut ids,
@@ -98,7 +98,7 @@ fn saddle(tops: [u32; 4], level: u32) -> Saddle {
 /// corner `c`. Where the triangle spans both sides of an axis at the point,
 /// both quadrants lie behind the same face and are joined, so either is
 /// right.
-fn inner_quadrant(corners: [Key; 3], c: usize, normal: Normal) -> u8 {
+fn inner_quadrant(corners: [LatticePoint; 3], c: usize, normal: Normal) -> u8 {
     let p = corners[c];
     let side = |axis: usize| {
         let sum: u32 = corners.iter().map(|k| k[axis]).sum();

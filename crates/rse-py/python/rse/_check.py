@@ -64,7 +64,7 @@ class CheckReport:
     batch_faults: list[Fault]
     checked: int
     failed: int
-    hash_only: int = 0
+    worlds_hashed_only: int = 0
     """Good worlds some of whose files could be compared only with their
     hashes in ``rse.json`` (rendered from templates this check did not have)."""
 
@@ -119,5 +119,5 @@ def check(
         batch_faults=[Fault._from_json(f) for f in raw["batch_faults"]],
         checked=raw["checked"],
         failed=raw["failed"],
-        hash_only=raw["hash_only"],
+        worlds_hashed_only=raw["worlds_hashed_only"],
     )

@@ -4,7 +4,9 @@ ground) on an rse height field that ``reset()`` rewrites in place.
 
 Episode ``e`` (counted from the last ``reset(seed=...)``, or set with
 ``reset(options={"episode": e})``) walks on world ``e`` of the scheme and
-``terrain_seed`` at ``difficulty``, so every episode's terrain is
+``rse_seed`` (rse's base seed, named as in ``rse.mjlab`` and
+``rse.isaaclab``: ``seed`` is Gymnasium's; default the scheme's ``# seed:``)
+at ``difficulty``, so every episode's terrain is
 reproducible in any process; the robot spawns at the terrain's centre,
 ``spawn_height`` above the highest top within ``footprint`` metres.
 ``new_terrain_each_reset=False`` keeps the first episode's terrain (the
@@ -83,7 +85,7 @@ if _AntEnv is not None:
         def __init__(
             self,
             scheme: Union[rse.Scheme, str, "os.PathLike[str]"] = "schemes/six_obstacles.csv",
-            terrain_seed: Optional[int] = None,
+            rse_seed: Optional[int] = None,
             difficulty: Optional[float] = None,
             oversample: int = DEFAULT_OVERSAMPLE,
             footprint: float = 0.6,
@@ -95,9 +97,9 @@ if _AntEnv is not None:
             # None for either is the library's default (the scheme's
             # `# seed:`, full difficulty); a bad difficulty is refused here,
             # by the library, not at the first reset.
-            self.terrain_seed = terrain_seed
+            self.rse_seed = rse_seed
             self.difficulty = difficulty
-            self.scheme.generate(seed=terrain_seed, index=0, difficulty=difficulty)
+            self.scheme.generate(seed=rse_seed, index=0, difficulty=difficulty)
             self.oversample = int(oversample)
             self.footprint = float(footprint)
             self.spawn_height = float(spawn_height)
@@ -130,7 +132,7 @@ if _AntEnv is not None:
                 # back-to-back resets the hand-over through the GIL cost more
                 # than the ~25 us it hides (bench/hfield.py).
                 self.terrain = self.scheme.generate(
-                    seed=self.terrain_seed, index=self.episode, difficulty=self.difficulty
+                    seed=self.rse_seed, index=self.episode, difficulty=self.difficulty
                 )
                 self._slot.write(self.terrain)
             ground = float(self.terrain.spawn_origin(self.footprint)[2])
