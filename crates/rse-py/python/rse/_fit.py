@@ -1,6 +1,7 @@
-"""What the framework adapters share: a scheme fitted to a sub-terrain's
-size, the world index a tile draws, and flat patches in a framework's
-terms. Pure Python over ``rse._rse``; no framework is imported here."""
+"""What the framework adapters share: the fields of their sub-terrain
+configs, a scheme fitted to a sub-terrain's size, the world index a tile
+draws, and flat patches in a framework's terms. Pure Python over
+``rse._rse``; no framework is imported here."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import math
 import os
 import struct
 import warnings
+from dataclasses import dataclass
 from typing import Any, Optional, Union
 
 import numpy as np
@@ -18,6 +20,28 @@ import numpy as np
 from rse._rse import Scheme
 
 SchemeLike = Union[Scheme, str, "os.PathLike[str]"]
+
+
+@dataclass
+class TileFields:
+    """The fields rse adds to a framework's sub-terrain config, declared
+    once for ``rse.isaaclab.RseTerrainCfg`` and ``rse.mjlab.RseTerrainCfg``
+    (each the framework's class with these mixed in, or without the
+    framework a plain dataclass with them and the framework's own)."""
+
+    scheme: Optional[SchemeLike] = None
+    """The scheme: a path to its file, or an ``rse.Scheme`` (give a path in
+    Isaac Lab, which hashes the configuration)."""
+    rse_seed: Optional[int] = None
+    """rse's base seed (``seed`` is the framework's); default the scheme's
+    ``# seed:``."""
+    index: Optional[int] = None
+    """A fixed world index for every tile; default one per tile."""
+    spawn_radius: Optional[float] = None
+    """Metres around the centre whose highest top is the origin's z;
+    default ``rse.DEFAULT_SPAWN_RADIUS``."""
+    ground_thickness: float = 1.0
+    """Thickness of the ground slab under the tile, metres."""
 
 
 def load(scheme: SchemeLike) -> Scheme:

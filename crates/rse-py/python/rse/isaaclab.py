@@ -23,7 +23,8 @@ their size). Isaac Lab passes the generator-wide seed (``cfg.seed``) and a
 difficulty, not a tile number, so the tile's world index is derived from the
 seed, the difficulty and the scheme (``rse._fit.tile_index``): the same
 configuration gives the same terrains. A difficulty outside ``[0, 1]`` is
-refused, as the library refuses it (keep ``difficulty_range`` inside it). Give the scheme as a path: Isaac Lab hashes the configuration.
+refused, as the library refuses it (keep ``difficulty_range`` inside it).
+Give the scheme as a path: Isaac Lab hashes the configuration.
 """
 
 from __future__ import annotations
@@ -33,7 +34,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from rse._fit import SchemeLike, fit, framework_class, load, tile_index
+from rse._fit import TileFields, fit, framework_class, load, tile_index
 
 
 def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
@@ -69,20 +70,15 @@ if _SubTerrainBaseCfg is not None:  # pragma: no cover - needs Isaac Lab
     from isaaclab.utils import configclass as _configclass
 
     @_configclass
-    class RseTerrainCfg(_SubTerrainBaseCfg):  # type: ignore[misc,valid-type]
+    class RseTerrainCfg(_SubTerrainBaseCfg, TileFields):  # type: ignore[misc,valid-type]
         """An rse stepfield tile (see the module's documentation)."""
 
         function = rse_terrain
-        scheme: Optional[str] = None
-        rse_seed: Optional[int] = None
-        index: Optional[int] = None
-        spawn_radius: Optional[float] = None
-        ground_thickness: float = 1.0
 
 else:
 
     @dataclass
-    class RseTerrainCfg:  # type: ignore[no-redef]
+    class RseTerrainCfg(TileFields):  # type: ignore[no-redef]
         """An rse stepfield tile with the fields of Isaac Lab's
         ``SubTerrainBaseCfg`` (see the module's documentation)."""
 
@@ -90,19 +86,8 @@ else:
         proportion: float = 1.0
         size: tuple[float, float] = (10.0, 10.0)
         flat_patch_sampling: Optional[dict[str, Any]] = None
-        scheme: Optional[SchemeLike] = None
-        """The scheme: a path to its file (or an ``rse.Scheme``)."""
         seed: Optional[int] = None
         """Set by Isaac Lab's generator to its own seed."""
-        rse_seed: Optional[int] = None
-        """The base seed of the rse worlds; default the scheme's ``# seed:``."""
-        index: Optional[int] = None
-        """A fixed world index for every tile; default derived per tile."""
-        spawn_radius: Optional[float] = None
-        """Metres around the centre whose highest top is the origin's z;
-        default ``rse.DEFAULT_SPAWN_RADIUS``."""
-        ground_thickness: float = 1.0
-        """Thickness of the ground slab under the tile, metres."""
 
 
 __all__ = ["RseTerrainCfg", "rse_terrain"]
