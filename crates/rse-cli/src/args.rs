@@ -127,7 +127,7 @@ pub struct CheckArgs {
 
     /// Allow each world's rebuild F times the default budget (2·10⁹ cell visits, and the memory
     /// available per world checked at once) [default: 1].
-    #[arg(long, value_name = "F")]
+    #[arg(long, value_name = "F", allow_negative_numbers = true)]
     pub budget: Option<rse_verify::Budget>,
 }
 

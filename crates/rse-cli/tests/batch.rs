@@ -83,10 +83,15 @@ fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let (clean, killed) = (dir.path().join("clean"), dir.path().join("killed"));
     let common = ["--amount", "24", "--target", ALL_TARGETS, "--jobs", "2"];
+    let started = std::time::Instant::now();
     stdout(&batch(&clean, &common));
-    // Kill at spread-out moments: before anything, among the first worlds,
-    // midway; each run resumes what the last one left.
-    for millis in [0, 3, 10, 25, 60, 120, 200] {
+    let whole = started.elapsed();
+    // Kill at spread-out moments, as fractions of an uninterrupted run (a
+    // fixed schedule in milliseconds finished the batch before the last
+    // kill on a fast machine): before anything, among the first worlds,
+    // midway; each run resumes what the last one left, and together they
+    // run about half a batch's time.
+    for fraction in [0.0, 0.01, 0.03, 0.06, 0.1, 0.15, 0.2] {
         let mut child = Command::new(env!("CARGO_BIN_EXE_rse-gen"))
             .args(["batch", "schemes/six_obstacles.csv", "-o"])
             .arg(&killed)
@@ -96,7 +101,7 @@ fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
             .stderr(Stdio::null())
             .spawn()
             .unwrap();
-        std::thread::sleep(Duration::from_millis(millis));
+        std::thread::sleep(whole.mul_f64(fraction));
         child.kill().unwrap(); // SIGKILL
         child.wait().unwrap();
     }
