@@ -22,7 +22,7 @@ test-quick:
 test-frameworks:
 	scripts/test-frameworks.sh
 
-## Every fuzz target for FUZZ_SECONDS each (default 12; make test runs this too).
+## Every fuzz target for FUZZ_SECONDS each (default 12), libFuzzer's random seed, a growing corpus (make test runs a seeded, fixed-length pass instead).
 fuzz:
 	scripts/fuzz.sh
 

@@ -81,8 +81,8 @@ fi
 ) >"$pip_log" 2>&1 &
 pip_pid=$!
 
-say "fuzzing: every target for a bounded time (scripts/fuzz.sh; kept inputs replay in the Rust tests above)"
-scripts/fuzz.sh
+say "fuzzing: every target, seeded and reproducible (scripts/fuzz.sh; kept inputs replay in the Rust tests above; make fuzz explores)"
+FUZZ_MODE=seeded scripts/fuzz.sh
 
 say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, MuJoCo Warp, MJX, usd-core; libsdformat; gz-physics)"
 wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r tests/requirements.txt failed" >&2; exit 1; }
