@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 import rse
-from conftest import REPO, rse_gen_path
+from conftest import REPO, SCHEMES, rse_gen_path
 
 SCHEME = REPO / "schemes" / "nist_hill.csv"
 
@@ -77,3 +77,29 @@ def test_the_stubs_literals_are_the_librarys_values() -> None:
         "_MujocoCollider": rse.MUJOCO_COLLIDERS,
     }
     assert rse.TARGETS == ("obj", "gazebo", "webots", "mujoco", "urdf", "usd")
+
+
+def test_the_library_defaults_reach_python_from_one_place() -> None:
+    """Python's ``rse.DEFAULT_*`` are rse-core's constants, and a keyword
+    left ``None`` gets exactly that value (ARCHITECTURE.md, "Settings")."""
+    import subprocess
+
+    import numpy as np
+
+    scheme = rse.Scheme.load(SCHEMES / "six_obstacles.csv")
+    terrain = scheme.generate(index=3)
+    assert np.array_equal(terrain.spawn_origin(), terrain.spawn_origin(rse.DEFAULT_SPAWN_RADIUS))
+    assert not np.array_equal(terrain.spawn_origin(), terrain.spawn_origin(rse.DEFAULT_SPAWN_RADIUS + 2.0))
+    assert np.array_equal(
+        terrain.flat_patches(4), terrain.flat_patches(4, rse.DEFAULT_PATCH_RADIUS), equal_nan=True
+    )
+    envs = rse.EnvTerrains(scheme, 2)
+    nx, ny = scheme.grid
+    k = rse.DEFAULT_ENV_OVERSAMPLE
+    assert envs.field_shape == (ny * k, nx * k)
+    assert envs.layout == "slots" and list(envs.difficulty) == [1.0, 1.0]
+    assert envs.terrain(1).seed == scheme.seed, "the scheme's seed rules"
+    assert terrain.hfield_shape(rse.DEFAULT_OVERSAMPLE) == terrain.hfield()[0].shape
+    # The command line's help shows the same constants as its defaults.
+    shown = subprocess.run([str(rse_gen_path()), "atlas", "--help"], capture_output=True, text=True).stdout
+    assert f"[default: {rse.DEFAULT_SPAWN_RADIUS}]" in " ".join(shown.split())
