@@ -311,6 +311,24 @@ fn raise_cell(world: &Path, x: usize, y: usize) {
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
 }
 
+/// Another seed in `rse.json` (forged hashes and all) asks for another
+/// world: the rebuild differs from the files, cell by cell.
+#[test]
+fn height_differs_after_a_changed_seed_in_the_manifest() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    edit_manifest(&world, |m| m.seed += 1);
+    let report = check(&world);
+    assert_fault(&report, Some("heightmap.csv"), |k| {
+        matches!(k, FaultKind::HeightDiffers { .. })
+    });
+    assert_eq!(
+        report.seed,
+        Some(4),
+        "the manifest's seed is the one rebuilt"
+    );
+}
+
 #[test]
 fn height_differs_names_the_cell() {
     let dir = tempfile::tempdir().unwrap();
