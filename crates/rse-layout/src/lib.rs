@@ -77,24 +77,58 @@ fn code_of(text: &str) -> String {
 
 /// The path segments that follow each occurrence of `prefix` (`crate::`,
 /// `super::`) in `code`: `crate::mesh::faces::Face` gives
-/// `["mesh", "faces", "Face"]`.
+/// `["mesh", "faces", "Face"]`, and a group gives one path per item:
+/// `crate::{a, b::{c, d}}` gives `["a"]`, `["b", "c"]`, `["b", "d"]`.
 fn paths_after<'a>(code: &'a str, prefix: &str) -> Vec<Vec<&'a str>> {
-    code.match_indices(prefix)
-        .filter(|(at, _)| {
-            // `foo_crate::` or `rse_core::crate` are not this crate's paths.
-            !code[..*at]
-                .chars()
-                .next_back()
-                .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_')
-        })
-        .map(|(at, _)| {
-            let rest = &code[at + prefix.len()..];
-            let end = rest
-                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == ':'))
-                .unwrap_or(rest.len());
-            rest[..end].split("::").filter(|s| !s.is_empty()).collect()
-        })
-        .collect()
+    let mut paths = Vec::new();
+    for (at, _) in code.match_indices(prefix) {
+        // `foo_crate::` or `rse_core::crate` are not this crate's paths.
+        let joined = code[..at]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !joined {
+            tree_paths(&code[at + prefix.len()..], Vec::new(), &mut paths);
+        }
+    }
+    paths
+}
+
+/// The paths of the use tree at the start of `rest`, each after `base`.
+/// Returns how many bytes of `rest` the tree spans.
+fn tree_paths<'a>(rest: &'a str, mut base: Vec<&'a str>, out: &mut Vec<Vec<&'a str>>) -> usize {
+    let mut at = 0;
+    loop {
+        let name_len = rest[at..]
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(rest.len() - at);
+        if name_len > 0 {
+            base.push(&rest[at..at + name_len]);
+            at += name_len;
+        }
+        if rest[at..].starts_with("::") {
+            at += 2;
+            continue;
+        }
+        if rest[at..].starts_with('{') {
+            at += 1;
+            loop {
+                at += rest[at..].len() - rest[at..].trim_start().len();
+                if rest[at..].starts_with('}') || at >= rest.len() {
+                    return (at + 1).min(rest.len());
+                }
+                at += tree_paths(&rest[at..], base.clone(), out);
+                at += rest[at..].len() - rest[at..].trim_start().len();
+                if rest[at..].starts_with(',') {
+                    at += 1;
+                }
+            }
+        }
+        if !base.is_empty() {
+            out.push(base);
+        }
+        return at;
+    }
 }
 
 /// The deepest module of `modules` that `base` + `segments` names.
@@ -197,4 +231,24 @@ pub fn workspace_dependencies(crate_dir: &Path) -> BTreeSet<String> {
         }
     }
     deps
+}
+
+#[cfg(test)]
+mod tests {
+    use super::paths_after;
+
+    #[test]
+    fn paths_are_read_plain_grouped_and_nested() {
+        let code = "use crate::a::B;\nuse crate::{c, d::{e, f::G}, h};\nlet x = my_crate::z;";
+        assert_eq!(
+            paths_after(code, "crate::"),
+            [
+                vec!["a", "B"],
+                vec!["c"],
+                vec!["d", "e"],
+                vec!["d", "f", "G"],
+                vec!["h"],
+            ]
+        );
+    }
 }

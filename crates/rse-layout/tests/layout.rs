@@ -40,6 +40,18 @@ fn the_graph_sees_uses_and_cycles() {
         .insert("place".to_owned());
     let cycle = find_cycle(&graph).expect("a back edge is a cycle");
     assert!(cycle.contains(&"place".to_owned()) && cycle.contains(&"nofollow".to_owned()));
+    // A grouped import counts each of its items: rse-verify's `world`
+    // names `crate::{references, terrain}`.
+    let verify = crate_dirs()
+        .into_iter()
+        .find(|dir| dir.ends_with("rse-verify"))
+        .unwrap();
+    let verify = module_graph(&verify);
+    assert!(
+        verify["world"].contains("references") && verify["world"].contains("terrain"),
+        "{:?}",
+        verify["world"]
+    );
     // Nested modules: rse-core's mesh folder is read module by module.
     let core = crate_dirs()
         .into_iter()
