@@ -23,15 +23,20 @@ fn every_crates_modules_form_a_dag() {
     );
 }
 
+/// The module graph of the crate `name`.
+fn graph_of(name: &str) -> rse_layout::ModuleGraph {
+    let dir = crate_dirs()
+        .into_iter()
+        .find(|dir| dir.ends_with(name))
+        .unwrap_or_else(|| panic!("no crate {name}"));
+    module_graph(&dir)
+}
+
 #[test]
 fn the_graph_sees_uses_and_cycles() {
     // The reader itself, on a crate known to have edges: rse-world's
     // `place` uses `nofollow`, and a made-up back edge is a circle.
-    let dir = crate_dirs()
-        .into_iter()
-        .find(|dir| dir.ends_with("rse-world"))
-        .unwrap();
-    let mut graph = module_graph(&dir);
+    let mut graph = graph_of("rse-world");
     assert!(graph["place"].contains("nofollow"), "{:?}", graph["place"]);
     assert!(find_cycle(&graph).is_none());
     graph
