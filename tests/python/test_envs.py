@@ -66,6 +66,9 @@ def test_bad_arguments_name_themselves() -> None:
     cases = [
         (lambda: envs.reset([4]), "env_ids"),
         (lambda: envs.reset([-1]), "env_ids"),
+        (lambda: envs.reset(b"\x01\x02"), "env_ids"),
+        (lambda: envs.reset(bytearray(b"\x01")), "env_ids"),
+        (lambda: envs.reset("12"), "env_ids"),
         (lambda: envs.reset([0, 1], difficulty=[0.5]), "difficulty"),
         (lambda: envs.reset([0], difficulty=1.5), "difficulty"),
         (lambda: setattr(envs, "difficulty", [0.5] * 3), "difficulty"),

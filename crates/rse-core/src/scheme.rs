@@ -95,6 +95,10 @@ impl Scheme {
         notes: Vec<String>,
         origin: Origin,
     ) -> Result<Self, SchemeError> {
+        let mut globals = globals;
+        // `-0` is 0: one terrain, one canonical scheme (`base: -0` was
+        // accepted and written back as `-0`).
+        globals.base += 0.0;
         globals.validate().map_err(|e| origin.locate_global(e))?;
         let grid = globals.grid();
         for (i, obstacle) in obstacles.iter().enumerate() {

@@ -418,3 +418,21 @@ fn negative_zero_and_huge_fields_are_told_plainly() {
         "{text}"
     );
 }
+
+/// `base: -0` is the scheme of `base: 0`: read, written back and compared
+/// as 0, from a file and from code alike.
+#[test]
+fn a_negative_zero_base_is_zero() {
+    let text = "# base: -0\ntype,height\nrandom,1\n";
+    let scheme = Scheme::from_csv(text, None).unwrap();
+    assert!(scheme.globals().base.is_sign_positive());
+    assert!(!scheme.to_csv().contains("-0"), "{}", scheme.to_csv());
+    let zero = Scheme::from_csv("type,height\nrandom,1\n", None).unwrap();
+    assert_eq!(scheme.to_csv(), zero.to_csv());
+    let globals = Globals {
+        base: -0.0,
+        ..Globals::default()
+    };
+    let built = Scheme::new(globals, zero.obstacles().to_vec()).unwrap();
+    assert!(built.globals().base.is_sign_positive());
+}

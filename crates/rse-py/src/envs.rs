@@ -30,6 +30,16 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 
 /// `env_ids` as indices below `n`, or a `ValueError` naming it.
 fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
+    // Bytes are a sequence of small integers to Python: `b"\x01\x02"` would
+    // read as envs 1 and 2. Text and bytes are never environment numbers.
+    if ids.is_instance_of::<pyo3::types::PyBytes>()
+        || ids.is_instance_of::<pyo3::types::PyByteArray>()
+        || ids.is_instance_of::<pyo3::types::PyString>()
+    {
+        return Err(PyValueError::new_err(
+            "env_ids: expected a sequence of environment numbers, not bytes or text",
+        ));
+    }
     // An int64 numpy array is read in place; anything else (lists, other
     // dtypes, tensors) item by item.
     let ids: Vec<i64> = match ids.extract::<numpy::PyReadonlyArray1<'_, i64>>() {
