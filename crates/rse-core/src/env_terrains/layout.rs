@@ -34,14 +34,11 @@ pub(super) struct Shapes {
 }
 
 /// The shape of one environment's field, `(nrow, ncol)`, and of the whole
-/// buffer, `(slots, rows, columns)`, for `n` environments of `grid` laid
+/// buffer, `(slots, rows, columns)`, for `options.num_envs` environments of `grid` laid
 /// out as `options` say; refused, naming the argument, past MuJoCo's or
 /// memory's limits.
-pub(super) fn buffer_shape_of(
-    grid: Grid,
-    n: usize,
-    options: EnvOptions,
-) -> Result<Shapes, EnvError> {
+pub(super) fn buffer_shape_of(grid: Grid, options: EnvOptions) -> Result<Shapes, EnvError> {
+    let n = options.num_envs;
     let k = options.oversample;
     let (nrow, ncol) = hfield_shape_of(grid, k)?;
     let env_shape = (nrow as usize, ncol as usize);

@@ -138,8 +138,7 @@ impl EnvTerrains {
         if !(options.spawn_radius.is_finite() && options.spawn_radius >= 0.0) {
             return Err(bad("spawn_radius", "expected a length of 0 m or more"));
         }
-        let layout::Shapes { env_shape, shape } =
-            layout::buffer_shape_of(scheme.grid(), n, options)?;
+        let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(scheme.grid(), options)?;
         let mut envs = EnvTerrains {
             elevation: scheme.max_top(),
             scheme,

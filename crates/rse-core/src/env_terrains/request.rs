@@ -95,7 +95,9 @@ impl EnvRequest {
     /// The rest (counts, sizes, the radius) is checked by `EnvTerrains::new`.
     pub fn resolve(&self, scheme: &Scheme) -> Result<EnvOptions, EnvError> {
         let layout = match self.layout.unwrap_or_default() {
-            LayoutKind::Slots if self.cols.is_some() || self.border.is_some() => {
+            // A border of 0 is the slots' own (no border): as before,
+            // only a real tile setting is refused.
+            LayoutKind::Slots if self.cols.is_some() || self.border.is_some_and(|b| b > 0) => {
                 return Err(bad("cols, border", "only with layout=\"tiles\""));
             }
             LayoutKind::Slots => EnvLayout::Slots,
@@ -194,6 +196,14 @@ mod tests {
                 ..base
             })
             .starts_with("cols, border: ")
+        );
+        let no_border = EnvRequest {
+            border: Some(0),
+            ..base
+        };
+        assert_eq!(
+            no_border.resolve(&scheme(0)).unwrap().layout,
+            EnvLayout::Slots
         );
         let layout: Result<LayoutKind, _> = "grid".parse();
         assert_eq!(

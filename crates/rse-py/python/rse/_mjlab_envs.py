@@ -11,7 +11,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._env_pool import POOL, add_env_geom, sync_env_hfields
+from rse._env_pool import GEOM, POOL, add_env_geom, sync_env_hfields
 from rse._fit import SchemeLike, load
 from rse._rse import EnvTerrains
 
@@ -29,12 +29,10 @@ def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
 def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = POOL) -> None:
     """Adds to an mjlab scene's ``spec`` the pool of ``num_envs`` height
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
-    fills them), the terrain geom that shows one (``rse.mujoco_warp.GEOM``)
-    and a ground plane at the terrain's foot, so that a robot walking off
-    its slot keeps a floor."""
+    fills them), the terrain geom that shows one (``GEOM``, which
+    ``rse.mujoco_warp`` routes per world) and a ground plane at the
+    terrain's foot, so that a robot walking off its slot keeps a floor."""
     import mujoco
-
-    from rse.mujoco_warp import GEOM
 
     probe = _probe(scheme, oversample)
     nrow, ncol = probe.field_shape
