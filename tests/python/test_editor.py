@@ -225,37 +225,84 @@ def test_a_huge_preview_is_refused_quickly(editor) -> None:
     assert post(url, "api/preview", {"scheme": scheme})["ok"], "the largest previewed grid"
 
 
-def test_a_stalled_client_does_not_stop_the_others(editor) -> None:
-    """Issue 22, item 10: a connection that announces a body of a million
-    bytes and sends none held the only worker; others must be served, and
-    the stalled one dropped after the read timeout."""
+def test_trickling_and_idle_clients_neither_hold_the_editor_nor_stop_it(editor) -> None:
+    """Six clients (more than the editor's four work threads) trickle a
+    large body one byte every two seconds, and one connects and sends
+    nothing: the page and the API are served meanwhile; each trickler gets a
+    408 at the body deadline (10 s after its headers), however steadily it
+    sends; the silent one is closed at the head timeout (5 s). Then, idle
+    past every timeout, the editor still accepts and serves the page (it
+    stopped listening after 5 idle seconds once)."""
     import socket
+    import threading
     from urllib.parse import urlparse
 
     url, _ = editor
     where = urlparse(url)
-    stalled = [socket.create_connection((where.hostname, where.port)) for _ in range(2)]
-    for s in stalled:
-        s.sendall(b"POST /api/preview HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 1000000\r\n\r\n{")
+    head = (
+        f"POST /api/preview HTTP/1.1\r\nHost: 127.0.0.1:{where.port}\r\n"
+        "Content-Type: application/json\r\nContent-Length: 100000\r\n\r\n{"
+    ).encode()
+    tricklers = [socket.create_connection((where.hostname, where.port)) for _ in range(6)]
+    silent = socket.create_connection((where.hostname, where.port))
+    started = time.monotonic()
+    for s in tricklers:
+        s.sendall(head)
+    stop = threading.Event()
+
+    def trickle() -> None:
+        while not stop.wait(2.0):
+            for s in tricklers:
+                try:
+                    s.sendall(b" ")
+                except OSError:
+                    pass
+
+    thread = threading.Thread(target=trickle, daemon=True)
+    thread.start()
     try:
-        started = time.monotonic()
+        time.sleep(1.0)
+        asked = time.monotonic()
         with urllib.request.urlopen(url + "api/state", timeout=4) as answer:
             assert answer.status == 200
-        assert time.monotonic() - started < 3.0
+        assert post(url, "api/preview", {"scheme": {"globals": {"size": "10x10"}, "obstacles": []}})["ok"]
+        assert time.monotonic() - asked < 3.0
         # Gentle peaks reaching the whole of a 500x500 grid: refused by the
         # work cap at once (it took 25 s), so it cannot hold a worker either.
         rows = [{"type": "peak", "height": "60", "angle": "0.5", "x1": str(i % 500), "y1": "250"} for i in range(400)]
         refused = post(url, "api/preview", {"scheme": {"globals": {"size": "500x500"}, "obstacles": rows}})
         assert not refused["ok"] and "more than the editor previews" in refused["error"]["message"], refused
-        # The stalled connections are answered and closed after the read
-        # timeout (a recv that waits longer raises socket.timeout).
-        for s in stalled:
+
+        silent.settimeout(15)
+        assert silent.recv(4096) == b"", "closed, without an answer"
+        assert 4.0 < time.monotonic() - started < 8.0, "at the head timeout"
+        for s in tricklers:
             s.settimeout(15)
-            while s.recv(4096):
-                pass
+            answer = b""
+            while chunk := s.recv(4096):
+                answer += chunk
+            assert answer.startswith(b"HTTP/1.1 408 "), answer
+        assert 9.5 < time.monotonic() - started < 14.0, "at the body deadline, not after a silent gap"
     finally:
-        for s in stalled:
+        stop.set()
+        thread.join()
+        for s in [*tricklers, silent]:
             s.close()
+    # Idle past every timeout (head 5 s, body 10 s), then the page loads.
+    time.sleep(max(0.0, 16.0 - (time.monotonic() - started)))
+    with urllib.request.urlopen(url, timeout=4) as page:
+        assert page.status == 200 and b"<html" in page.read().lower()
+
+
+def test_request_headers_above_the_cap_get_431(editor) -> None:
+    url, _ = editor
+    request = urllib.request.Request(url + "api/state", headers={"X-Padding": "a" * (20 << 10)})
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request, timeout=10)
+    assert refused.value.code == 431
+    refused.value.close()
+    with urllib.request.urlopen(url + "api/state", timeout=4) as ok:
+        assert ok.status == 200
 
 
 def test_open_without_a_browser_says_so_in_one_line(tmp_path: Path) -> None:

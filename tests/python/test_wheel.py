@@ -92,7 +92,7 @@ def test_the_extension_links_no_command_line() -> None:
     editor page: those are the binary's (ARCHITECTURE.md)."""
     names = {package.split()[0] for package in cargo_features("rse-py")}
     assert {"rse-core", "rse-world", "rse-verify", "rse-physics", "pyo3"} <= names, names
-    linked = names & {"rse-cli", "rse-edit", "clap", "tiny_http", "ctrlc", "signal-hook", "indicatif", "socket2"}
+    linked = names & {"rse-cli", "rse-edit", "clap", "hyper", "tokio", "ctrlc", "signal-hook", "indicatif"}
     assert not linked, linked
 
 

@@ -1,0 +1,185 @@
+//! The editor's HTTP/1.1 server: hyper on one tokio thread reads and writes
+//! every connection; the work behind a request (a preview, a save) runs on
+//! a few blocking threads.
+//!
+//! Why this split: a client that is slow to send (or never sends) a request
+//! costs a parked task, not a thread, so however many clients stall the
+//! work threads stay free for the page; and the listener is never given a
+//! timeout, so the editor accepts for as long as it runs.
+
+use std::convert::Infallible;
+use std::sync::Arc;
+
+use hyper::Request;
+use hyper::body::Incoming;
+use hyper::server::conn::http1;
+use hyper::service::service_fn;
+use hyper_util::rt::{TokioIo, TokioTimer};
+use tokio::net::{TcpListener, TcpSocket, TcpStream};
+use tokio::sync::Semaphore;
+
+use super::http::{self, Reply};
+
+/// Requests worked on at once: one long preview or save holds one of these
+/// while the others go on serving.
+pub const WORKERS: usize = 4;
+
+/// Connections open at once. A browser opens about six; above the cap a
+/// connection gets a 503 and is closed, so file descriptors cannot run out.
+pub const MAX_CONNECTIONS: usize = 64;
+
+/// What the server answers with: a request's head and its whole body in, a
+/// reply out. Runs on a work thread.
+pub type Handler = dyn Fn(&hyper::http::request::Parts, &[u8]) -> Reply + Send + Sync;
+
+/// A tokio runtime for the server: one thread for every connection's
+/// input and output, at most [`WORKERS`] for the work.
+pub fn runtime() -> std::io::Result<tokio::runtime::Runtime> {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_io()
+        .enable_time()
+        .max_blocking_threads(WORKERS)
+        .build()
+}
+
+/// The editor's listening socket on 127.0.0.1:`port` (0: a free port).
+/// Loopback only: the editor reads and writes files for whoever talks to it.
+/// Must be called inside [`runtime`].
+pub fn listen(port: u16) -> std::io::Result<TcpListener> {
+    let socket = TcpSocket::new_v4()?;
+    // As std's TcpListener::bind does: a restarted editor can take its port back.
+    socket.set_reuseaddr(true)?;
+    socket.bind(std::net::SocketAddr::from(([127, 0, 0, 1], port)))?;
+    socket.listen(128)
+}
+
+/// Serves `listener` for ever: every request passes [`http::refusal`], its
+/// body is read within [`http::BODY_DEADLINE`], then `handler` answers it.
+pub async fn serve(listener: TcpListener, port: u16, handler: Arc<Handler>) {
+    let open = Arc::new(Semaphore::new(MAX_CONNECTIONS));
+    loop {
+        // Out of descriptors, or a connection reset before it was accepted:
+        // the listener is fine; wait a moment and go on.
+        let Ok((stream, _)) = listener.accept().await else {
+            tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+            continue;
+        };
+        let Ok(permit) = Arc::clone(&open).try_acquire_owned() else {
+            turn_away(&stream);
+            continue;
+        };
+        let handler = Arc::clone(&handler);
+        tokio::spawn(async move {
+            connection(stream, port, handler).await;
+            drop(permit);
+        });
+    }
+}
+
+/// One connection, request after request, until either side closes it or
+/// its head does not arrive within [`http::HEAD_TIMEOUT`].
+async fn connection(stream: TcpStream, port: u16, handler: Arc<Handler>) {
+    // hyper writes a small response in one piece, but a body it streams
+    // would otherwise wait for the browser's delayed ACK (40 ms).
+    let _ = stream.set_nodelay(true);
+    let service = service_fn(move |request| answer(request, port, Arc::clone(&handler)));
+    let served = http1::Builder::new()
+        .timer(TokioTimer::new())
+        .header_read_timeout(http::HEAD_TIMEOUT)
+        .max_buf_size(http::MAX_HEAD)
+        .serve_connection(TokioIo::new(stream), service)
+        .await;
+    // A client that went away, or was too slow, is not the editor's problem.
+    drop(served);
+}
+
+async fn answer(
+    request: Request<Incoming>,
+    port: u16,
+    handler: Arc<Handler>,
+) -> Result<Reply, Infallible> {
+    if let Some(refused) = http::refusal(&request, port) {
+        return Ok(refused);
+    }
+    let (head, body) = request.into_parts();
+    let body = match http::body(body).await {
+        Ok(body) => body,
+        Err(refused) => return Ok(refused),
+    };
+    let worked = tokio::task::spawn_blocking(move || handler(&head, &body)).await;
+    Ok(worked.unwrap_or_else(|_| http::text(500, "the editor failed on this request")))
+}
+
+/// A connection above [`MAX_CONNECTIONS`]: told so, and closed (when the
+/// stream is dropped). A new socket's send buffer always has room for these
+/// few bytes, so the write never waits.
+fn turn_away(stream: &TcpStream) {
+    let busy = b"HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\nRetry-After: 1\r\n\r\n";
+    let _ = stream.try_write(busy);
+}
+
+/// An answer without a body: used by tests of the edge.
+#[cfg(test)]
+fn empty(status: u16) -> Reply {
+    let mut reply = hyper::Response::new(http_body_util::Full::default());
+    *reply.status_mut() = hyper::StatusCode::from_u16(status).unwrap();
+    reply
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::{Read as _, Write as _};
+    use std::net::TcpStream;
+    use std::sync::Arc;
+
+    /// A server answering 204 to every request that passes the edge, on a
+    /// thread of its own; its port.
+    fn server() -> u16 {
+        let (sender, port) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let runtime = super::runtime().unwrap();
+            runtime.block_on(async {
+                let listener = super::listen(0).unwrap();
+                let port = listener.local_addr().unwrap().port();
+                sender.send(port).unwrap();
+                super::serve(listener, port, Arc::new(|_, _| super::empty(204))).await;
+            });
+        });
+        port.recv().unwrap()
+    }
+
+    fn exchange(port: u16, request: &[u8]) -> String {
+        let mut stream = TcpStream::connect(("127.0.0.1", port)).unwrap();
+        stream
+            .set_read_timeout(Some(std::time::Duration::from_secs(20)))
+            .unwrap();
+        // The server may answer and close before all of an oversized
+        // request is written.
+        let _ = stream.write_all(request);
+        let mut answer = String::new();
+        let _ = stream.read_to_string(&mut answer);
+        answer
+    }
+
+    #[test]
+    fn headers_above_the_cap_get_431() {
+        let port = server();
+        let big = format!(
+            "GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nX-Padding: {}\r\nConnection: close\r\n\r\n",
+            "a".repeat(super::http::MAX_HEAD)
+        );
+        assert!(exchange(port, big.as_bytes()).starts_with("HTTP/1.1 431"));
+        let small =
+            format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nConnection: close\r\n\r\n");
+        assert!(exchange(port, small.as_bytes()).starts_with("HTTP/1.1 204"));
+    }
+
+    #[test]
+    fn a_second_host_header_is_refused() {
+        let port = server();
+        let two = format!(
+            "GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nHost: evil.example\r\nConnection: close\r\n\r\n"
+        );
+        assert!(exchange(port, two.as_bytes()).starts_with("HTTP/1.1 403"));
+    }
+}
