@@ -12,6 +12,7 @@ mod check;
 mod difficulty;
 mod help;
 mod hostile;
+mod hostile_iii;
 mod messages;
 
 fn repo() -> PathBuf {

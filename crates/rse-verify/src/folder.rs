@@ -47,6 +47,8 @@ impl Folder {
                     folder.sizes.insert(path, size);
                 }
                 Listed::NotAFile => faults.push(Fault::new(at, FaultKind::NotAFile)),
+                // rse writes no empty folder: an extra entry, as a file.
+                Listed::EmptyFolder => faults.push(Fault::new(at, FaultKind::Unexpected)),
                 Listed::Unreadable(reason) => {
                     faults.push(Fault::new(at, FaultKind::Unreadable { reason }));
                 }

@@ -9,6 +9,17 @@
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
+/// The deepest folder listed, counted from the folder opened: a world is
+/// three deep at most. Deeper folders are listed as unreadable, not
+/// entered, so a forged chain of thousands of folders can neither
+/// exhaust the stack nor hold a descriptor per level.
+pub const MAX_DEPTH: usize = 16;
+
+/// The reason given for a folder deeper than [`MAX_DEPTH`].
+fn too_deep() -> String {
+    format!("more than {MAX_DEPTH} folders deep: not listed")
+}
+
 /// What a listed entry is.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Listed {
@@ -21,6 +32,9 @@ pub enum Listed {
     },
     /// A symbolic link, FIFO, socket or device: never opened.
     NotAFile,
+    /// A folder with nothing in it: rse never writes one, so in a world it
+    /// is an extra entry, as a file would be.
+    EmptyFolder,
     /// An entry that could not be looked at, or a folder that could not be
     /// listed; with the system's reason.
     Unreadable(String),
@@ -102,16 +116,17 @@ impl OpenFolder {
         &self.path
     }
 
-    /// Every entry under the folder but the folders themselves, as
-    /// `/`-separated relative paths, sorted. A name that is not UTF-8 is
-    /// listed lossily as [`Listed::Unreadable`]; a folder that cannot be
-    /// listed appears as itself, unreadable.
+    /// Every entry under the folder but the folders themselves (save empty
+    /// ones), as `/`-separated relative paths, sorted. A name that is not
+    /// UTF-8 is listed lossily as [`Listed::Unreadable`]; a folder that
+    /// cannot be listed, or lies deeper than [`MAX_DEPTH`], appears as
+    /// itself, unreadable.
     pub fn list(&self) -> Vec<(String, Listed)> {
         let mut out = Vec::new();
         #[cfg(unix)]
-        unix::walk(&self.fd, "", &mut out);
+        unix::walk(&self.fd, "", 0, &mut out);
         #[cfg(not(unix))]
-        portable::walk(&self.path, "", &mut out);
+        portable::walk(&self.path, "", 0, &mut out);
         out.sort_by(|a, b| a.0.cmp(&b.0));
         out
     }
@@ -209,9 +224,11 @@ mod unix {
         Ok((std::fs::File::from(fd), stat.st_nlink as u64))
     }
 
-    /// Lists the folder `dir` (at `prefix`) into `out`, recursively.
-    pub(super) fn walk(dir: &OwnedFd, prefix: &str, out: &mut Vec<(String, Listed)>) {
+    /// Lists the folder `dir` (at `prefix`, `depth` folders down) into
+    /// `out`, recursively.
+    pub(super) fn walk(dir: &OwnedFd, prefix: &str, depth: usize, out: &mut Vec<(String, Listed)>) {
         let here = || prefix.trim_end_matches('/').to_owned();
+        let listed = out.len();
         let entries = match rustix::fs::Dir::read_from(dir) {
             Ok(entries) => entries,
             Err(e) => return out.push((here(), Listed::Unreadable(e.to_string()))),
@@ -245,8 +262,11 @@ mod unix {
                 }
             };
             match FileType::from_raw_mode(stat.st_mode) {
+                FileType::Directory if depth >= super::MAX_DEPTH => {
+                    out.push((relative, Listed::Unreadable(super::too_deep())));
+                }
                 FileType::Directory => match open_dir(dir, Path::new(name), false) {
-                    Ok(sub) => walk(&sub, &format!("{relative}/"), out),
+                    Ok(sub) => walk(&sub, &format!("{relative}/"), depth + 1, out),
                     Err(ReadError::NotAFile) => out.push((relative, Listed::NotAFile)),
                     Err(e) => out.push((relative, Listed::Unreadable(e.to_string()))),
                 },
@@ -259,6 +279,9 @@ mod unix {
                 )),
                 _ => out.push((relative, Listed::NotAFile)),
             }
+        }
+        if out.len() == listed && !prefix.is_empty() {
+            out.push((here(), Listed::EmptyFolder));
         }
     }
 }
@@ -285,8 +308,9 @@ mod portable {
         }
     }
 
-    pub(super) fn walk(dir: &Path, prefix: &str, out: &mut Vec<(String, Listed)>) {
+    pub(super) fn walk(dir: &Path, prefix: &str, depth: usize, out: &mut Vec<(String, Listed)>) {
         let here = || prefix.trim_end_matches('/').to_owned();
+        let listed = out.len();
         let entries = match std::fs::read_dir(dir) {
             Ok(entries) => entries,
             Err(e) => return out.push((here(), Listed::Unreadable(e.to_string()))),
@@ -304,7 +328,10 @@ mod portable {
             };
             let relative = format!("{prefix}{name}");
             match std::fs::symlink_metadata(entry.path()) {
-                Ok(m) if m.is_dir() => walk(&entry.path(), &format!("{relative}/"), out),
+                Ok(m) if m.is_dir() && depth >= super::MAX_DEPTH => {
+                    out.push((relative, Listed::Unreadable(super::too_deep())));
+                }
+                Ok(m) if m.is_dir() => walk(&entry.path(), &format!("{relative}/"), depth + 1, out),
                 Ok(m) if m.is_file() => out.push((
                     relative,
                     Listed::File {
@@ -315,6 +342,9 @@ mod portable {
                 Ok(_) => out.push((relative, Listed::NotAFile)),
                 Err(e) => out.push((relative, Listed::Unreadable(e.to_string()))),
             }
+        }
+        if out.len() == listed && !prefix.is_empty() {
+            out.push((here(), Listed::EmptyFolder));
         }
     }
 }

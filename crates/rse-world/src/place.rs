@@ -268,6 +268,7 @@ fn file_difference(folder: &OpenFolder, world: &WorldFiles) -> Result<Option<Str
         match listed {
             Listed::File { .. } if world.files.contains_key(&path) => {}
             Listed::File { .. } => return Ok(Some(format!("unexpected file {path}"))),
+            Listed::EmptyFolder => return Ok(Some(format!("unexpected folder {path}"))),
             Listed::NotAFile => {
                 return Err(Error::NotAFile {
                     path: dest.join(path),
@@ -283,6 +284,14 @@ fn file_difference(folder: &OpenFolder, world: &WorldFiles) -> Result<Option<Str
     for (path, bytes) in &world.files {
         // A longer file differs: read no more of it than ours holds.
         match folder.read(path, bytes.len() as u64) {
+            // Another name for the file may lie outside the world: `check`
+            // refuses such a world, and so does the rerun.
+            Ok(file) if file.links > 1 => {
+                return Ok(Some(format!(
+                    "{path} is hard-linked ({} links)",
+                    file.links
+                )));
+            }
             Ok(file) if file.bytes == *bytes => {}
             Ok(_) | Err(ReadError::TooLarge { .. }) => return Ok(Some(format!("{path} differs"))),
             Err(ReadError::Missing) => return Ok(Some(format!("{path} is missing"))),
