@@ -90,3 +90,96 @@ fn rerun_and_check_agree_on_empty_folders_and_hard_links() {
     stdout(&batch(&out, &["--force"]));
     stdout(&check(&out));
 }
+
+/// A world moved into another index's folder passed `check` (its files
+/// are its own) while the rerun refused it. A world's name is its folder's:
+/// both refuse it now, however the folder is named on the command line.
+#[test]
+fn a_world_renamed_into_another_index_folder_fails_check_and_the_rerun() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = two_worlds(dir.path());
+    std::fs::remove_dir_all(out.join("world_0000")).unwrap();
+    std::fs::rename(out.join("world_0001"), out.join("world_0000")).unwrap();
+    let link = dir.path().join("link");
+    std::os::unix::fs::symlink(out.join("world_0000"), &link).unwrap();
+    let said = "the folder is named world_0000, but its rse.json is another world's (index 1)";
+    for path in [out.clone(), out.join("world_0000/."), link] {
+        let checked = check(&path);
+        assert_eq!(checked.status.code(), Some(1), "{}", path.display());
+        let printed = String::from_utf8_lossy(&checked.stdout);
+        assert!(printed.contains(said), "{}: {printed}", path.display());
+    }
+    let rerun = batch(&out, &[]);
+    assert_eq!(rerun.status.code(), Some(2));
+    assert!(
+        stderr(&rerun).contains("holds a different world"),
+        "{}",
+        stderr(&rerun)
+    );
+}
+
+/// A world name reaches SDF, MJCF, URDF and `model.config` (attributes and
+/// XML comments): `a"--><b` from the command line is refused before
+/// anything is written, and from a forged `rse.json` it is a fault that
+/// does not repeat the name.
+#[test]
+fn a_world_name_that_is_markup_is_refused_from_the_command_line_and_rse_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let named = dir.path().join("a\"--><b");
+    let made = rse_gen(&[
+        "atlas",
+        "schemes/wall.csv",
+        "--rows",
+        "1",
+        "--cols",
+        "1",
+        "-o",
+        named.to_str().unwrap(),
+    ]);
+    assert_eq!(made.status.code(), Some(2), "{}", stderr(&made));
+    assert!(
+        stderr(&made).contains("cannot name a world"),
+        "{}",
+        stderr(&made)
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "nothing written"
+    );
+
+    let out = two_worlds(dir.path());
+    let manifest = out.join("world_0000/rse.json");
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&manifest).unwrap()).unwrap();
+    json["world"] = "a\"--><b".into();
+    std::fs::write(&manifest, serde_json::to_vec(&json).unwrap()).unwrap();
+    let checked = check(&out);
+    assert_eq!(checked.status.code(), Some(1));
+    let printed = String::from_utf8_lossy(&checked.stdout);
+    assert!(
+        printed.contains("its world name is not a world name rse writes"),
+        "{printed}"
+    );
+    assert!(
+        !printed.contains("--><b"),
+        "the forged name is not repeated: {printed}"
+    );
+}
+
+/// A file named with ESC and BEL reached the terminal raw in `check`'s
+/// output (colours, a bell, a rewritten line): printed escaped now.
+#[test]
+fn control_characters_in_file_names_are_printed_escaped() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = two_worlds(dir.path());
+    std::fs::write(out.join("world_0000/x\u{1b}[31mred\u{7}"), b"").unwrap();
+    let checked = check(&out);
+    assert_eq!(checked.status.code(), Some(1));
+    assert!(!checked.stdout.iter().any(|&b| b == 0x1b || b == 0x07));
+    let printed = String::from_utf8_lossy(&checked.stdout);
+    assert!(
+        printed.contains(r"x\u{1b}[31mred\u{7}: not a file of the world"),
+        "{printed}"
+    );
+}

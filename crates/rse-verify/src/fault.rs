@@ -38,9 +38,30 @@ impl Fault {
 impl std::fmt::Display for Fault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match &self.file {
-            Some(file) => write!(f, "{file}: {}", self.message),
+            Some(file) => write!(f, "{}: {}", printable(file), self.message),
             None => f.write_str(&self.message),
         }
+    }
+}
+
+/// `name` (a file or folder name found on disk) safe to print on a
+/// terminal: control characters (ESC, BEL, a carriage return…) written as
+/// escapes (`\u{1b}`), everything else as it is. JSON and Python get the
+/// name unchanged.
+pub fn printable(name: &str) -> std::borrow::Cow<'_, str> {
+    if name.chars().any(char::is_control) {
+        name.chars()
+            .map(|c| {
+                if c.is_control() {
+                    c.escape_unicode().to_string()
+                } else {
+                    c.to_string()
+                }
+            })
+            .collect::<String>()
+            .into()
+    } else {
+        name.into()
     }
 }
 
@@ -250,6 +271,14 @@ pub enum FaultKind {
         /// The other folder.
         of: String,
     },
+    /// The world folder's name is not the name of the world its
+    /// `rse.json` records: renamed, or moved into another world's folder.
+    Renamed {
+        /// The folder's name (of the folder itself, links resolved).
+        folder: String,
+        /// The index the manifest records.
+        index: u64,
+    },
 }
 
 impl std::fmt::Display for FaultKind {
@@ -334,7 +363,15 @@ impl std::fmt::Display for FaultKind {
             FaultKind::Leftover => f.write_str(
                 "a temporary folder of a run that was cut short: rerun it to finish (it removes the folder)",
             ),
-            FaultKind::Duplicate { of } => write!(f, "the same world (seed, index) as {of}"),
+            FaultKind::Duplicate { of } => {
+                write!(f, "the same world (seed, index) as {}", printable(of))
+            }
+            FaultKind::Renamed { folder, index } => write!(
+                f,
+                "the folder is named {}, but its rse.json is another world's (index {index}): \
+                 a world renamed, or moved into another's folder; a world's name is its folder's",
+                printable(folder)
+            ),
             FaultKind::OverBudget {
                 cells,
                 bytes,
@@ -361,7 +398,8 @@ impl std::fmt::Display for FaultKind {
             } => f.write_str("is a link in a batch folder, not a world folder (not followed)"),
             FaultKind::MixedRecipes { first, difference } => write!(
                 f,
-                "was made from another recipe than {first}, the batch's first world: {difference}"
+                "was made from another recipe than {}, the batch's first world: {difference}",
+                printable(first)
             ),
         }
     }

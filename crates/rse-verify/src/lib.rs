@@ -30,7 +30,7 @@ mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
 pub use budget::{Budget, BudgetError};
-pub use fault::{Fault, FaultKind, NotAWorld};
+pub use fault::{Fault, FaultKind, NotAWorld, printable};
 pub use physics::PHYSICS;
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
 pub use world::{CheckOptions, WorldReport, check_world};

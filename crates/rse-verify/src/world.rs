@@ -114,6 +114,17 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
         Ok(manifest) => {
             report.seed = Some(manifest.seed);
             report.index = Some(manifest.index);
+            if let Some(folder) = folder_name(path)
+                && folder != manifest.world
+            {
+                faults.push(Fault::new(
+                    None,
+                    FaultKind::Renamed {
+                        folder,
+                        index: manifest.index,
+                    },
+                ));
+            }
             check_against_manifest(&folder, &manifest, options, &mut report, &mut faults);
             if options.strict && !report.hashed_only.is_empty() {
                 faults.push(Fault::new(
@@ -132,6 +143,14 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
     report.ok = faults.is_empty();
     report.faults = faults;
     report
+}
+
+/// The name of the folder `path` itself, however it was named on the
+/// command line (`out/world_0003/.`, a link to it): links and `.`
+/// resolved, so the verdict is the same.
+fn folder_name(path: &Path) -> Option<String> {
+    let real = std::fs::canonicalize(path).ok()?;
+    Some(real.file_name()?.to_string_lossy().into_owned())
 }
 
 /// `rse.json`, read within its cap and parsed.
@@ -165,14 +184,9 @@ fn json_reason(e: &serde_json::Error) -> String {
     format!("{said} at line {}, column {}", e.line(), e.column())
 }
 
-/// Every check that needs the manifest.
-fn check_against_manifest(
-    folder: &Folder,
-    manifest: &Manifest,
-    options: &CheckOptions,
-    report: &mut WorldReport,
-    faults: &mut Vec<Fault>,
-) {
+/// The checks of a manifest's recipe before anything is built: the paths
+/// it names, the world's name, the rebuild's cost. `false`: do not rebuild.
+fn fit_to_rebuild(manifest: &Manifest, options: &CheckOptions, faults: &mut Vec<Fault>) -> bool {
     // Paths the manifest names are checked as names before anything is read.
     let outside: Vec<&String> = manifest.files.keys().filter(|p| !inside(p)).collect();
     for path in &outside {
@@ -183,19 +197,46 @@ fn check_against_manifest(
             },
         ));
     }
+    // A name that could not be written into a world's files: never
+    // rendered, and not quoted (the manifest may be anyone's).
+    if rse_world::world_name_problem(&manifest.world).is_some() {
+        faults.push(Fault::of(
+            MANIFEST,
+            FaultKind::BadManifest {
+                reason: "its world name is not a world name rse writes (letters, digits, '_', \
+                         '-' and '.', at most 128)"
+                    .to_owned(),
+            },
+        ));
+        return false;
+    }
     // `rse.json` is input: what it asks to rebuild is held to a budget
     // before anything is built.
     match manifest.rebuild_cost() {
         Ok(cost) => {
             if let Some(kind) = over_budget(cost, options.budget) {
                 faults.push(Fault::of(MANIFEST, kind));
-                return;
+                return false;
             }
         }
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
-            return;
+            return false;
         }
+    }
+    true
+}
+
+/// Every check that needs the manifest.
+fn check_against_manifest(
+    folder: &Folder,
+    manifest: &Manifest,
+    options: &CheckOptions,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) {
+    if !fit_to_rebuild(manifest, options, faults) {
+        return;
     }
     let templates = options
         .templates

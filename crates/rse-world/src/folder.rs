@@ -8,6 +8,7 @@ use rse_core::Scheme;
 
 use crate::error::Error;
 use crate::memory::check_memory_for;
+use crate::names::world_name_problem;
 use crate::options::WorldOptions;
 use crate::place::{Outcome, lock_in, place_world, remove_leftovers};
 use crate::templates::Templates;
@@ -25,15 +26,17 @@ pub fn place_folder<T>(
     let name = out
         .file_name()
         .and_then(|n| n.to_str())
-        .filter(|n| !n.starts_with('.'))
         .ok_or_else(|| Error::BadOption {
             option: "out",
-            message: format!(
-                "{}: a world folder needs a UTF-8 name that does not start with '.'",
-                out.display()
-            ),
+            message: format!("{}: a world folder needs a UTF-8 name", out.display()),
         })?
         .to_owned();
+    if let Some(problem) = world_name_problem(&name) {
+        return Err(Error::BadOption {
+            option: "out",
+            message: format!("{}: {problem}", out.display()),
+        });
+    }
     let (world, built) = build(name)?;
     let parent = match out.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_owned(),

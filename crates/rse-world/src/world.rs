@@ -11,6 +11,7 @@ use crate::context::{MODEL, WorldContext};
 use crate::digest::sha256_hex;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest};
+use crate::names::world_name_problem;
 use crate::options::{MeshMode, MujocoCollider, Target, WorldOptions};
 use crate::templates::Templates;
 
@@ -152,6 +153,12 @@ pub(crate) fn terrain_files(
     templates: &Templates,
     extra: BTreeMap<String, Vec<u8>>,
 ) -> Result<WorldFiles, Error> {
+    if let Some(problem) = world_name_problem(&name) {
+        return Err(Error::BadOption {
+            option: "name",
+            message: problem,
+        });
+    }
     let mut files = extra;
     files.insert(
         "heightmap.csv".to_owned(),

@@ -43,7 +43,12 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
         }
         for world in report.worlds.iter().filter(|r| !r.ok) {
             let faults: Vec<String> = world.faults.iter().map(ToString::to_string).collect();
-            writeln!(out, "FAIL {}: {}", world.world, faults.join("; "))?;
+            writeln!(
+                out,
+                "FAIL {}: {}",
+                rse_verify::printable(&world.world),
+                faults.join("; ")
+            )?;
         }
     }
     out.flush()?;
