@@ -183,3 +183,122 @@ fn control_characters_in_file_names_are_printed_escaped() {
         "{printed}"
     );
 }
+
+/// `batch` of a whole folder and `batch --shard 0/2` of the same folder at
+/// once: one failed with "Directory not empty", and each removed the
+/// other's temporary folders as leftovers. Overlapping runs now exclude
+/// each other (the second says which shard is being written); disjoint
+/// shards still run side by side, and the tree ends as one run's.
+#[test]
+fn overlapping_batches_exclude_each_other_and_disjoint_shards_do_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let one = dir.path().join("one");
+    let args = |out: &Path, shard: &str| {
+        let mut args: Vec<String> = [
+            "batch",
+            "schemes/six_obstacles.csv",
+            "-o",
+            out.to_str().unwrap(),
+            "--amount",
+            "24",
+            "--target",
+            "obj,gazebo,webots,mujoco,urdf,usd",
+        ]
+        .map(String::from)
+        .into();
+        if !shard.is_empty() {
+            args.extend(["--shard".to_owned(), shard.to_owned()]);
+        }
+        args
+    };
+    let spawn = |shard: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_rse-gen"))
+            .args(args(&out, shard))
+            .current_dir(super::repo())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    // Many tries at once, so some truly overlap in time.
+    let runs: Vec<_> = ["", "0/2", "", "1/2", "0/2"]
+        .into_iter()
+        .map(|shard| (shard, spawn(shard)))
+        .collect();
+    let mut busy = 0;
+    for (shard, run) in runs {
+        let done = run.wait_with_output().unwrap();
+        let said = String::from_utf8_lossy(&done.stderr);
+        match done.status.code() {
+            Some(0) => {}
+            Some(2) if said.contains("another rse-gen batch is writing shard") => busy += 1,
+            other => panic!("{shard}: {other:?} {said}"),
+        }
+        assert!(!said.contains("not empty"), "{shard}: {said}");
+    }
+    // Whatever ran or was refused, a rerun finishes the same tree as one run.
+    stdout(&rse_gen(
+        &args(&out, "")
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    ));
+    stdout(&rse_gen(
+        &args(&one, "")
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+    ));
+    let list = |d: &Path| rse_world::list_files(d).unwrap();
+    assert_eq!(list(&out), list(&one));
+    for path in list(&one) {
+        assert!(
+            std::fs::read(out.join(&path)).unwrap() == std::fs::read(one.join(&path)).unwrap(),
+            "{path}"
+        );
+    }
+    eprintln!("{busy} of 5 runs found an overlapping run writing");
+}
+
+/// A template folder handed to `batch` and `check --template`: a link in
+/// it copied a secret into every world (and `check --template` said
+/// good), a FIFO hung the batch. Both are refused, naming the entry, and
+/// the batch writes nothing.
+#[cfg(unix)]
+#[test]
+fn a_template_folder_with_a_link_or_fifo_is_refused_by_batch_and_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = two_worlds(dir.path());
+    let secret = dir.path().join("secret.txt");
+    std::fs::write(&secret, "secret").unwrap();
+    for (name, fifo) in [("key.txt", false), ("pipe", true)] {
+        let templates = dir.path().join(format!("templates-{name}"));
+        std::fs::create_dir_all(templates.join("urdf")).unwrap();
+        let planted = templates.join("urdf").join(name);
+        if fifo {
+            assert!(
+                std::process::Command::new("mkfifo")
+                    .arg(&planted)
+                    .status()
+                    .unwrap()
+                    .success()
+            );
+        } else {
+            std::os::unix::fs::symlink(&secret, &planted).unwrap();
+        }
+        let fresh = dir.path().join(format!("fresh-{name}"));
+        let run = batch(&fresh, &["--template", templates.to_str().unwrap()]);
+        assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+        assert!(stderr(&run).contains(name), "{}", stderr(&run));
+        assert!(!fresh.exists(), "the failed batch left {}", fresh.display());
+        let checked = rse_gen(&[
+            "check",
+            out.to_str().unwrap(),
+            "--template",
+            templates.to_str().unwrap(),
+        ]);
+        assert_eq!(checked.status.code(), Some(2), "{}", stderr(&checked));
+        assert!(stderr(&checked).contains(name), "{}", stderr(&checked));
+    }
+}

@@ -57,7 +57,7 @@ pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas
 pub use difficulty::{Difficulty, DifficultyError};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
-    LayoutKind, env_world,
+    LayoutKind, env_pool_bytes, env_world,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};

@@ -103,6 +103,22 @@ impl Atlas {
                 max_step: max_step.unwrap_or(defaults.patches.max_step),
             },
         };
+        if let Some(first) = schemes.first() {
+            // The map's heights, a terrain per tile, and its patches.
+            let grid = first.scheme.grid();
+            let [nx, ny] = options.map_cells([grid.nx, grid.ny]);
+            let tiles = u64::from(rows) * u64::from(cols);
+            let bytes = nx
+                .saturating_mul(ny)
+                .saturating_mul(2)
+                .saturating_add(tiles.saturating_mul(crate::memory::terrain_bytes(&first.scheme)))
+                .saturating_add(tiles.saturating_mul(u64::from(options.patches.count) * 48));
+            crate::memory::fits(
+                "rows",
+                bytes,
+                format_args!("an atlas of {rows}x{cols} tiles"),
+            )?;
+        }
         let inner = py
             .detach(|| rse_world::atlas_of(&schemes, &options))
             .map_err(|e| world_error(py, &e))?;

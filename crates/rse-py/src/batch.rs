@@ -32,6 +32,11 @@ pub fn generate_batch(
 ) -> PyResult<Vec<Terrain>> {
     let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
+    crate::memory::fits(
+        "amount",
+        amount.saturating_mul(crate::memory::terrain_bytes(scheme)),
+        format_args!("{amount} terrains"),
+    )?;
     let rse_core::WorldAt {
         seed, difficulty, ..
     } = rse_core::WorldRequest {

@@ -2,11 +2,19 @@
 //! episode (docs/envs.md). The state lives in rse-core; this class owns the
 //! numpy arrays Python sees (`samples`, `episode`, `difficulty`, `origins`)
 //! and fills them with the GIL released.
+//!
+//! Threads: the object may be shared. `heights_at`, `terrain` and `write`
+//! run side by side; `reset` runs alone, and a call that meets another
+//! thread's `reset` (or a `reset` that meets any other call) raises a
+//! `RuntimeError` saying so, instead of waiting (docs/envs.md, "Threads").
 
-use std::sync::Arc;
+use std::sync::{Arc, RwLock, RwLockReadGuard, RwLockWriteGuard};
 
-use numpy::{PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
+use numpy::{
+    Element, PyArray, PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn,
+    PyArrayMethods, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::options::PyLayout;
@@ -14,14 +22,59 @@ use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
 
 /// The terrains of `num_envs` environments, each new at every reset.
-#[pyclass(module = "rse")]
+#[pyclass(module = "rse", frozen)]
 pub struct EnvTerrains {
-    inner: rse_core::EnvTerrains,
+    /// The state; `reset` takes it whole (see the module's note on threads).
+    inner: RwLock<rse_core::EnvTerrains>,
+    /// What never changes after construction, read without the lock.
+    fixed: Fixed,
     scheme: Arc<rse_core::Scheme>,
     samples: Py<PyArray3<f32>>,
     episode: Py<PyArray1<i64>>,
     difficulty: Py<PyArray1<f64>>,
     origins: Py<PyArray2<f64>>,
+}
+
+/// The shape and placement of the pool: fixed when it is made.
+struct Fixed {
+    num_envs: usize,
+    layout: &'static str,
+    field_shape: (usize, usize),
+    buffer_shape: (usize, usize, usize),
+    hfield_size: [f64; 4],
+    hfield_pos: [f64; 3],
+}
+
+/// The error of a call that met another thread's `reset`, or of a `reset`
+/// that met another thread's call.
+fn busy() -> PyErr {
+    PyRuntimeError::new_err(
+        "EnvTerrains: another thread is using this object (reset runs alone; heights_at, \
+         terrain and write run side by side): call reset from the thread that steps, or guard \
+         the object with a lock",
+    )
+}
+
+/// `array` as this object made it: its dtype and length unchanged. A
+/// user can set `a.dtype` or `a.shape` of the very array in place; read
+/// then as its old type, it would be read past its end.
+fn intact<'py, T: Element, D: numpy::ndarray::Dimension>(
+    array: &Bound<'py, PyArray<T, D>>,
+    name: &str,
+    len: usize,
+) -> PyResult<()> {
+    let py = array.py();
+    let dtype = array.dtype();
+    if !dtype.is_equiv_to(&numpy::dtype::<T>(py)) || array.len() != len || !array.is_contiguous() {
+        return Err(PyValueError::new_err(format!(
+            "{name}: the array was changed in place (dtype {}, {} values; it must stay {} with \
+             {len}): assign new values with `envs.{name} = values` or `envs.{name}[:] = values`",
+            dtype.str()?,
+            array.len(),
+            numpy::dtype::<T>(py).str()?,
+        )));
+    }
+    Ok(())
 }
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -71,26 +124,60 @@ fn writable<'py>(
 }
 
 impl EnvTerrains {
+    /// The state for a call that reads it.
+    fn reading(&self) -> PyResult<RwLockReadGuard<'_, rse_core::EnvTerrains>> {
+        self.inner.try_read().map_err(|_| busy())
+    }
+
+    /// The state for `reset`.
+    fn writing(&self) -> PyResult<RwLockWriteGuard<'_, rse_core::EnvTerrains>> {
+        self.inner.try_write().map_err(|_| busy())
+    }
+
+    /// `samples`, checked unchanged, borrowed for writing.
+    fn samples_to_write<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<numpy::PyReadwriteArray3<'py, f32>> {
+        let samples = self.samples.bind(py);
+        let (n, rows, cols) = self.fixed.buffer_shape;
+        intact(samples, "samples", n * rows * cols)?;
+        writable(samples)
+    }
+
     /// Writes the samples of `envs` into `samples` (GIL released).
-    fn write_samples(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
-        let mut view = writable(self.samples.bind(py))?;
+    fn write_samples(
+        &self,
+        py: Python<'_>,
+        inner: &rse_core::EnvTerrains,
+        envs: &[usize],
+    ) -> PyResult<()> {
+        let mut view = self.samples_to_write(py)?;
         let slice = view.as_slice_mut().map_err(value_error)?;
-        let inner = &self.inner;
         py.detach(|| inner.write(envs, slice)).map_err(value_error)
     }
 
     /// Copies the origins and episodes of `envs` into the Python arrays.
-    fn publish(&self, py: Python<'_>, envs: &[usize]) -> PyResult<()> {
+    fn publish(
+        &self,
+        py: Python<'_>,
+        inner: &rse_core::EnvTerrains,
+        envs: &[usize],
+    ) -> PyResult<()> {
+        let n = self.fixed.num_envs;
         let origins = self.origins.bind(py);
+        let episode = self.episode.bind(py);
+        intact(origins, "origins", 3 * n)?;
+        intact(episode, "episode", n)?;
         let mut origins = origins.try_readwrite().map_err(value_error)?;
-        let mut episode = self.episode.bind(py).try_readwrite().map_err(value_error)?;
+        let mut episode = episode.try_readwrite().map_err(value_error)?;
         let (origins, episode) = (
             origins.as_slice_mut().map_err(value_error)?,
             episode.as_slice_mut().map_err(value_error)?,
         );
         for &e in envs {
-            origins[3 * e..3 * e + 3].copy_from_slice(&self.inner.origin(e));
-            episode[e] = self.inner.episode(e) as i64;
+            origins[3 * e..3 * e + 3].copy_from_slice(&inner.origin(e));
+            episode[e] = inner.episode(e) as i64;
         }
         Ok(())
     }
@@ -128,6 +215,16 @@ impl EnvTerrains {
             spawn_radius,
         };
         let options = request.resolve(&scheme).map_err(value_error)?;
+        // Python's episode, difficulty and origin arrays: 40 bytes an env.
+        let bytes = rse_core::env_pool_bytes(&scheme, options, 40).map_err(value_error)?;
+        crate::memory::fits(
+            "num_envs",
+            bytes,
+            format_args!(
+                "a pool of {num_envs} environments at oversample {}",
+                options.oversample
+            ),
+        )?;
         let owned = (*scheme).clone();
         let inner = py
             .detach(|| rse_core::EnvTerrains::new(owned, options))
@@ -145,24 +242,36 @@ impl EnvTerrains {
             let ground = inner.ground_sample();
             py.detach(|| slice.fill(ground));
         }
+        let fixed = Fixed {
+            num_envs,
+            layout: rse_core::LayoutKind::from(inner.options().layout).name(),
+            field_shape: inner.field_shape(),
+            buffer_shape: inner.buffer_shape(),
+            hfield_size: inner.hfield_size(),
+            hfield_pos: inner.hfield_pos(),
+        };
         let envs = EnvTerrains {
             samples: samples.unbind(),
             episode: PyArray1::zeros(py, num_envs, false).unbind(),
             difficulty: PyArray1::from_vec(py, vec![options.difficulty.get(); num_envs]).unbind(),
             origins: PyArray2::zeros(py, [num_envs, 3], false).unbind(),
-            inner,
+            inner: RwLock::new(inner),
+            fixed,
             scheme,
         };
         let all: Vec<usize> = (0..num_envs).collect();
-        envs.write_samples(py, &all)?;
-        envs.publish(py, &all)?;
+        {
+            let inner = envs.reading()?;
+            envs.write_samples(py, &inner, &all)?;
+            envs.publish(py, &inner, &all)?;
+        }
         Ok(envs)
     }
 
     /// How many environments (ids `0..num_envs` in this process).
     #[getter]
     fn num_envs(&self) -> usize {
-        self.inner.num_envs()
+        self.fixed.num_envs
     }
 
     /// The height-field samples, float32 in [0, 1]: `(num_envs, nrow, ncol)`
@@ -188,17 +297,18 @@ impl EnvTerrains {
 
     #[setter(difficulty)]
     fn set_difficulty(&self, py: Python<'_>, values: Vec<f64>) -> PyResult<()> {
-        if values.len() != self.inner.num_envs() {
+        if values.len() != self.fixed.num_envs {
             return Err(PyValueError::new_err(format!(
                 "difficulty: {} values for {} environments",
                 values.len(),
-                self.inner.num_envs()
+                self.fixed.num_envs
             )));
         }
         for &d in &values {
             difficulty_arg(d)?;
         }
         let array = self.difficulty.bind(py);
+        intact(array, "difficulty", self.fixed.num_envs)?;
         let mut view = array.try_readwrite().map_err(value_error)?;
         view.as_slice_mut()
             .map_err(value_error)?
@@ -217,13 +327,13 @@ impl EnvTerrains {
     /// `"slots"` or `"tiles"`.
     #[getter]
     fn layout(&self) -> &'static str {
-        rse_core::LayoutKind::from(self.inner.options().layout).name()
+        self.fixed.layout
     }
 
     /// One environment's field, `(nrow, ncol)`.
     #[getter]
     fn field_shape(&self) -> (usize, usize) {
-        self.inner.field_shape()
+        self.fixed.field_shape
     }
 
     /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
@@ -231,14 +341,14 @@ impl EnvTerrains {
     /// scheme's highest possible top above the geom, which goes at `hfield_pos`.
     #[getter]
     fn hfield_size(&self) -> (f64, f64, f64, f64) {
-        let [a, b, c, d] = self.inner.hfield_size();
+        let [a, b, c, d] = self.fixed.hfield_size;
         (a, b, c, d)
     }
 
     /// Where the field's geom goes in its slot's (or the map's) frame, metres.
     #[getter]
     fn hfield_pos(&self) -> (f64, f64, f64) {
-        let [x, y, z] = self.inner.hfield_pos();
+        let [x, y, z] = self.fixed.hfield_pos;
         (x, y, z)
     }
 
@@ -249,13 +359,15 @@ impl EnvTerrains {
     /// the scheme at the base seed, at its difficulty.
     #[pyo3(signature = (env_ids, difficulty=None))]
     fn reset(
-        &mut self,
+        &self,
         py: Python<'_>,
         env_ids: &Bound<'_, PyAny>,
         difficulty: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let envs = self::env_ids(env_ids, self.inner.num_envs())?;
+        let mut inner = self.writing()?;
+        let envs = self::env_ids(env_ids, self.fixed.num_envs)?;
         let array = self.difficulty.bind(py).clone();
+        intact(&array, "difficulty", self.fixed.num_envs)?;
         if let Some(given) = difficulty {
             let values: Vec<f64> = match given.extract::<f64>() {
                 Ok(one) => vec![one; envs.len()],
@@ -288,24 +400,24 @@ impl EnvTerrains {
         };
         // New terrains made and written into `samples` in one pass, each by
         // the thread that made it (rse-core's `reset_into`).
-        let mut view = writable(self.samples.bind(py))?;
+        let mut view = self.samples_to_write(py)?;
         let slice = view.as_slice_mut().map_err(value_error)?;
-        let inner = &mut self.inner;
-        py.detach(|| inner.reset_into(&envs, &levels, slice))
+        let state: &mut rse_core::EnvTerrains = &mut inner;
+        py.detach(|| state.reset_into(&envs, &levels, slice))
             .map_err(value_error)?;
-        self.publish(py, &envs)
+        self.publish(py, &inner, &envs)
     }
 
     /// Environment `env`'s current terrain.
     fn terrain(&self, env: usize) -> PyResult<Terrain> {
-        if env >= self.inner.num_envs() {
+        if env >= self.fixed.num_envs {
             return Err(PyValueError::new_err(format!(
                 "env: {env} is not an environment (0 to {})",
-                self.inner.num_envs() - 1
+                self.fixed.num_envs - 1
             )));
         }
         Ok(Terrain {
-            inner: self.inner.terrain(env).clone(),
+            inner: self.reading()?.terrain(env).clone(),
             scheme: Some(Arc::clone(&self.scheme)),
         })
     }
@@ -319,7 +431,7 @@ impl EnvTerrains {
         env_ids: &Bound<'py, PyAny>,
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let envs = self::env_ids(env_ids, self.inner.num_envs())?;
+        let envs = self::env_ids(env_ids, self.fixed.num_envs)?;
         let points = py
             .import("numpy")?
             .call_method1("ascontiguousarray", (points, "float64"))?;
@@ -336,7 +448,8 @@ impl EnvTerrains {
         let view = points.try_readonly().map_err(value_error)?;
         let xy = view.as_slice().map_err(value_error)?;
         let per = shape[1];
-        let inner = &self.inner;
+        let guard = self.reading()?;
+        let inner: &rse_core::EnvTerrains = &guard;
         let heights: Vec<f64> = py.detach(|| {
             envs.iter()
                 .enumerate()
@@ -363,8 +476,8 @@ impl EnvTerrains {
         env_ids: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let envs = match env_ids {
-            Some(ids) => self::env_ids(ids, self.inner.num_envs())?,
-            None => (0..self.inner.num_envs()).collect(),
+            Some(ids) => self::env_ids(ids, self.fixed.num_envs)?,
+            None => (0..self.fixed.num_envs).collect(),
         };
         let numpy = py.import("numpy")?;
         // An object offering DLPack alone (a torch tensor) through
@@ -382,7 +495,7 @@ impl EnvTerrains {
         let array = array
             .cast::<PyArrayDyn<f32>>()
             .map_err(|_| PyValueError::new_err("out: expected float32 samples"))?;
-        let (n, rows, cols) = self.inner.buffer_shape();
+        let (n, rows, cols) = self.fixed.buffer_shape;
         if array.shape() != [n, rows, cols] {
             return Err(PyValueError::new_err(format!(
                 "out: shape {:?}, expected ({n}, {rows}, {cols})",
@@ -391,7 +504,8 @@ impl EnvTerrains {
         }
         let mut view = writable_samples(array, "out")?;
         let slice = view.as_slice_mut().map_err(value_error)?;
-        let inner = &self.inner;
+        let guard = self.reading()?;
+        let inner: &rse_core::EnvTerrains = &guard;
         py.detach(|| inner.write(&envs, slice)).map_err(value_error)
     }
 }

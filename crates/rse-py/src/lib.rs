@@ -15,6 +15,7 @@ mod batch;
 mod check;
 mod envs;
 mod errors;
+mod memory;
 mod options;
 mod scheme;
 mod terrain;

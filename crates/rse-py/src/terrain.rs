@@ -254,6 +254,12 @@ impl Terrain {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let radius = radius.unwrap_or(rse_core::spawn::DEFAULT_PATCH_RADIUS);
         check_radius("radius", radius)?;
+        // The (n, 3) result and the points found, float64.
+        crate::memory::fits(
+            "n",
+            u64::from(n).saturating_mul(48),
+            format_args!("{n} flat patches"),
+        )?;
         let found = self
             .inner
             .flat_patches(self.inner.region(), n, radius, max_step);

@@ -6,15 +6,10 @@
 /// batch rerun reads it with the same cap).
 pub use rse_world::MAX_MANIFEST_BYTES;
 
-/// A file `check` cannot regenerate (a user template's output) may hold at
-/// most this many bytes per cell of the world's grid, plus
-/// [`FIXED_FILE_BYTES`]. Our largest per-cell file, a block-mode world's
-/// box list or a random field's OBJ, is well under 1 KiB per cell.
-pub const FILE_BYTES_PER_CELL: u64 = 4096;
-
-/// The fixed part of the per-file cap, bytes: room for a robot model or a
-/// texture a user's template adds to every world.
-pub const FIXED_FILE_BYTES: u64 = 64 << 20;
+/// A file `check` cannot regenerate (a user template's output) may hold
+/// what a batch lets a template render: at most this many bytes per cell
+/// of the world's grid, plus [`FIXED_FILE_BYTES`].
+pub use rse_world::{FILE_BYTES_PER_CELL, FIXED_FILE_BYTES};
 
 /// An XML element nested deeper than this is a fault: our world files
 /// nest a dozen levels, and a parser that recurses (as some simulators'
@@ -46,5 +41,5 @@ pub fn rebuild_bytes(at_once: usize) -> u64 {
 /// The byte cap of a file that cannot be regenerated, in a world of
 /// `cells` cells.
 pub fn file_cap(cells: u64) -> u64 {
-    FIXED_FILE_BYTES.saturating_add(cells.saturating_mul(FILE_BYTES_PER_CELL))
+    rse_world::rendered_file_cap(cells)
 }

@@ -9,9 +9,12 @@ use rayon::prelude::*;
 use rse_core::Scheme;
 
 use crate::error::Error;
+use crate::files::Created;
 use crate::memory::check_memory_for;
 use crate::options::{Targets, WorldOptions};
-use crate::place::{Lock, Outcome, lock_in, place_world, remove_leftovers};
+use crate::place::{
+    Lock, Outcome, held_locks, lock_in, lock_in_waiting, place_world, remove_leftovers,
+};
 use crate::templates::Templates;
 use crate::world::build_world;
 
@@ -42,6 +45,17 @@ impl Shard {
     /// The number of shards, at least 1.
     pub fn n(&self) -> u64 {
         self.n
+    }
+
+    /// `true` when some world index belongs to both shards: `k ≡ k'`
+    /// modulo the greatest common divisor of `n` and `n'` (the Chinese
+    /// remainder theorem).
+    pub fn overlaps(self, other: Shard) -> bool {
+        let (mut a, mut b) = (self.n, other.n);
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        self.k % a == other.k % a
     }
 
     /// How many of a batch of `amount` worlds are this shard's.
@@ -219,7 +233,29 @@ pub fn write_batch_until(
             ),
         });
     }
-    std::fs::create_dir_all(out).map_err(Error::io("create", out))?;
+    // Folders made for the batch are removed again if it fails with no
+    // world written (a folder holding finished worlds stays, for a rerun).
+    let mut made = Created::default();
+    made.folder_chain(out, None)?;
+    let result = write_shard(&pool, scheme, templates, options, on_world, stop);
+    match &result {
+        Ok(_) => made.keep(),
+        Err(_) => made.remove_all(),
+    }
+    result
+}
+
+/// [`write_batch_until`] into the existing folder `options.out`: this
+/// run's shard, under its lock.
+fn write_shard(
+    pool: &rayon::ThreadPool,
+    scheme: &Scheme,
+    templates: &Templates,
+    options: &BatchOptions,
+    on_world: &(dyn Fn(Outcome) + Sync),
+    stop: &AtomicBool,
+) -> Result<Summary, Error> {
+    let out = &options.out;
     // Held until this function returns; the system drops it if the process dies.
     let _lock = lock_shard(out, options.shard)?;
     // Leftovers of this shard's interrupted runs; other shards' are theirs:
@@ -283,20 +319,39 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
 }
 
 /// Locks shard `shard` of the output folder `out` for this run, or says
-/// another run holds it: two identical batches at once raced (one renamed
-/// a world onto the other's and failed with "Directory not empty"). The
-/// lock file lives in `out` itself and is removed at the end of the run,
-/// so a finished output folder holds worlds only (shards still merge into
-/// identical trees). An advisory `flock`: released by the system when the
-/// process ends, however it ends; it guards runs on one machine (not
-/// several machines writing to one network folder).
+/// another run holds a shard whose worlds overlap it: two runs writing the
+/// same worlds raced (one renamed a world onto the other's and failed with
+/// "Directory not empty"), and each removed the other's temporary folders
+/// as leftovers. Shards `K/N` and `K'/N'` share a world exactly when
+/// `K ≡ K' (mod gcd(N, N'))`, so the whole folder (`0/1`) overlaps every
+/// shard, `0/2` and `1/2` none of each other. Each run's lock file records
+/// its shard; a short-lived registry lock makes looking at the others and
+/// taking one's own a single step. The lock files live in `out` itself and
+/// are removed at the end of the run, so a finished output folder holds
+/// worlds only (shards still merge into identical trees). Advisory `flock`s:
+/// released by the system when the process ends, however it ends; they
+/// guard runs on one machine (not several machines writing to one network
+/// folder).
 fn lock_shard(out: &Path, shard: Shard) -> Result<Lock, Error> {
-    lock_in(out, &format!("shard-{}-of-{}", shard.k, shard.n), || {
-        Error::Busy {
-            path: out.to_path_buf(),
-            shard: format!("{}/{}", shard.k, shard.n),
+    let _registry = lock_in_waiting(out, "batch shards")?;
+    let busy = |other: Shard| Error::Busy {
+        path: out.to_path_buf(),
+        shard: format!("{}/{}", other.k, other.n),
+    };
+    let lock = lock_in(out, &format!("shard-{}-of-{}", shard.k, shard.n), || {
+        busy(shard)
+    })?;
+    for text in held_locks(out, &lock)? {
+        let other = text
+            .trim()
+            .strip_prefix("batch shard ")
+            .and_then(|s| s.parse::<Shard>().ok());
+        if let Some(other) = other.filter(|other| other.overlaps(shard)) {
+            return Err(busy(other));
         }
-    })
+    }
+    lock.record(&format!("batch shard {}/{}\n", shard.k, shard.n))?;
+    Ok(lock)
 }
 
 #[cfg(test)]
@@ -333,6 +388,25 @@ mod tests {
     }
 
     #[test]
+    fn shards_overlap_when_they_share_a_world() {
+        let s = |k, n| Shard::new(k, n).unwrap();
+        for (a, b, shared) in [
+            (s(0, 1), s(1, 2), true),
+            (s(0, 2), s(1, 2), false),
+            (s(1, 2), s(3, 4), true),
+            (s(0, 2), s(3, 4), false),
+            (s(1, 4), s(2, 6), false),
+            (s(1, 4), s(3, 6), true),
+        ] {
+            assert_eq!(a.overlaps(b), shared, "{a:?} {b:?}");
+            assert_eq!(b.overlaps(a), shared);
+            // By brute force over enough indices.
+            let brute = (0..a.n * b.n).any(|i| i % a.n == a.k && i % b.n == b.k);
+            assert_eq!(brute, shared, "{a:?} {b:?}");
+        }
+    }
+
+    #[test]
     fn shards_parse() {
         assert_eq!("1/4".parse::<Shard>().unwrap(), Shard::new(1, 4).unwrap());
         // Once a panic in div_ceil when built by hand with n = 0.
@@ -349,13 +423,23 @@ mod tests {
         let busy = lock_shard(dir.path(), whole).unwrap_err();
         assert!(matches!(busy, Error::Busy { .. }), "{busy}");
         assert!(busy.to_string().contains("another rse-gen batch"), "{busy}");
-        // Another shard, or another folder, is free.
-        let other = lock_shard(dir.path(), Shard::new(1, 2).unwrap()).unwrap();
+        // Every shard overlaps the whole folder.
+        let half = Shard::new(1, 2).unwrap();
+        let busy = lock_shard(dir.path(), half).unwrap_err();
+        assert!(busy.to_string().contains("shard 0/1"), "{busy}");
+        // Another folder is free.
         let elsewhere = tempfile::tempdir().unwrap();
         let _there = lock_shard(elsewhere.path(), whole).unwrap();
         drop(held);
-        let again = lock_shard(dir.path(), whole).unwrap();
-        drop((again, other));
+        // Disjoint shards run side by side; overlapping ones do not.
+        let other = lock_shard(dir.path(), half).unwrap();
+        let even = lock_shard(dir.path(), Shard::new(0, 2).unwrap()).unwrap();
+        let busy = lock_shard(dir.path(), Shard::new(3, 4).unwrap()).unwrap_err();
+        assert!(busy.to_string().contains("shard 1/2"), "{busy}");
+        let busy = lock_shard(dir.path(), whole).unwrap_err();
+        assert!(matches!(busy, Error::Busy { .. }), "{busy}");
+        assert!(lock_shard(dir.path(), Shard::new(1, 3).unwrap()).is_err());
+        drop((other, even));
         // Released locks leave nothing behind.
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         for bad in ["4/4", "1", "a/2", "1/0", "-1/2"] {

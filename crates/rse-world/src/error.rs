@@ -75,6 +75,12 @@ pub enum Error {
         /// Where it is.
         path: PathBuf,
     },
+    /// A file where rse must make or enter a folder.
+    #[error("{} is a file, not a folder: rse cannot write into it; remove it, or write to another folder", path.display())]
+    NotAFolder {
+        /// Where it is.
+        path: PathBuf,
+    },
     /// A world folder already holds something else.
     #[error("{} holds a different world: {reason}", path.display())]
     Conflict {

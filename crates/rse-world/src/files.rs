@@ -1,6 +1,7 @@
 //! Single output files, written whole or not at all: the one home of mesh
 //! files for `rse-gen mesh`, `rse-gen preview` and Python's
-//! `Terrain.save`.
+//! `Terrain.save`; and [`Created`], the note of what a command made, so a
+//! failure removes every file it wrote.
 
 use std::io::Write as _;
 use std::path::Path;
@@ -49,6 +50,75 @@ fn without_temp_path(e: &std::io::Error) -> std::io::Error {
     }
 }
 
+/// What one command has created so far, files and folders in order: on
+/// failure [`remove_all`](Created::remove_all) takes them away again (the
+/// newest first), so a failed command leaves nothing behind.
+#[derive(Debug, Default)]
+#[must_use = "call keep() or remove_all()"]
+pub struct Created {
+    paths: Vec<(std::path::PathBuf, bool)>,
+}
+
+impl Created {
+    /// Every folder of `path` that does not exist yet, made one by one
+    /// from the top. A part that exists must be a folder and, below
+    /// `below` (a folder the user named, which may be a link), not a link:
+    /// nothing is written through a link found in a folder given.
+    pub fn folder_chain(&mut self, path: &Path, below: Option<&Path>) -> Result<(), Error> {
+        let mut at = std::path::PathBuf::new();
+        for part in path.components() {
+            at.push(part);
+            let checked = below.is_some_and(|top| at.starts_with(top) && at != top);
+            let meta = if checked {
+                std::fs::symlink_metadata(&at)
+            } else {
+                std::fs::metadata(&at)
+            };
+            match meta {
+                Ok(m) if m.is_dir() => {}
+                Ok(m) if m.is_file() => return Err(Error::NotAFolder { path: at }),
+                Ok(_) => return Err(Error::NotAFile { path: at }),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    std::fs::create_dir(&at).map_err(Error::io("create", &at))?;
+                    self.paths.push((at.clone(), true));
+                }
+                Err(e) => return Err(Error::io("create", &at)(e)),
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `bytes` into a file that must not exist yet (`O_EXCL`: an
+    /// existing file or link, even a dangling one, is an error, never
+    /// written through).
+    pub fn new_file(&mut self, path: &Path, bytes: &[u8]) -> Result<(), Error> {
+        let mut file = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .map_err(Error::io("create", path))?;
+        self.paths.push((path.to_owned(), false));
+        file.write_all(bytes).map_err(Error::io("write", path))?;
+        file.sync_all().map_err(Error::io("write", path))
+    }
+
+    /// Removes every file and folder noted, the newest first; what cannot
+    /// be removed (a folder something was written into since, such as a
+    /// batch's finished worlds, kept for a rerun) is left.
+    pub fn remove_all(self) {
+        for (path, folder) in self.paths.into_iter().rev() {
+            let _ = if folder {
+                std::fs::remove_dir(&path)
+            } else {
+                std::fs::remove_file(&path)
+            };
+        }
+    }
+
+    /// The command succeeded: keep everything.
+    pub fn keep(self) {}
+}
+
 /// The mesh format `path`'s suffix names (`.obj`, `.stl`, `.glb`), or the
 /// error [`write_mesh`] gives: a caller can refuse a bad name before it
 /// builds the mesh.
@@ -75,8 +145,15 @@ pub fn write_mesh(mesh: &TriMesh, path: &Path) -> Result<(), Error> {
                     path: path.to_owned(),
                     reason: "the file name is not UTF-8, so the OBJ could not name its .mtl",
                 })?;
+            let obj = export::obj(mesh, Some(mtl_name));
+            let had_mtl = mtl_path.symlink_metadata().is_ok();
             write_atomically(&mtl_path, export::mtl().as_bytes())?;
-            write_atomically(path, export::obj(mesh, Some(mtl_name)).as_bytes())
+            // A failed OBJ takes its new `.mtl` with it.
+            write_atomically(path, obj.as_bytes()).inspect_err(|_| {
+                if !had_mtl {
+                    let _ = std::fs::remove_file(&mtl_path);
+                }
+            })
         }
         MeshFormat::Stl => write_atomically(path, &export::stl(mesh)),
         MeshFormat::Glb => write_atomically(path, &export::glb(mesh)),

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use rse_core::Scheme;
 
 use crate::error::Error;
+use crate::files::Created;
 use crate::memory::check_memory_for;
 use crate::names::world_name_problem;
 use crate::options::WorldOptions;
@@ -42,16 +43,29 @@ pub fn place_folder<T>(
         Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
         _ => PathBuf::from("."),
     };
-    std::fs::create_dir_all(&parent).map_err(Error::io("create", &parent))?;
-    // Held until the folder is in place: a second run on the same folder
-    // waits for nothing and cleans up nothing of ours.
-    let _lock = lock_in(&parent, &format!("world {}", world.name), || {
-        Error::BusyWorld {
-            path: out.to_path_buf(),
+    // Folders made for it are removed again if it fails.
+    let mut made = Created::default();
+    let placed = made.folder_chain(&parent, None).and_then(|()| {
+        // Held until the folder is in place: a second run on the same
+        // folder waits for nothing and cleans up nothing of ours.
+        let _lock = lock_in(&parent, &format!("world {}", world.name), || {
+            Error::BusyWorld {
+                path: out.to_path_buf(),
+            }
+        })?;
+        remove_leftovers(&parent, |leftover| leftover == world.name)?;
+        place_world(&parent, &world, force)
+    });
+    match placed {
+        Ok(outcome) => {
+            made.keep();
+            Ok((outcome, built))
         }
-    })?;
-    remove_leftovers(&parent, |leftover| leftover == world.name)?;
-    Ok((place_world(&parent, &world, force)?, built))
+        Err(e) => {
+            made.remove_all();
+            Err(e)
+        }
+    }
 }
 
 /// Writes world `index` of seed `seed` as the folder `out` (its name is

@@ -52,6 +52,9 @@ pub use nofollow::{FileBytes, Listed, OpenFolder, ReadError};
 pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
 pub use place::{Leftover, Outcome, place_world};
 pub use rebuild::{FILE_VISITS_PER_CELL, RebuildCost, RebuildError, Rebuilt};
-pub use templates::Templates;
+pub use templates::{
+    FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX, MAX_TEMPLATE_BYTES,
+    MAX_TEMPLATE_FILE_BYTES, Templates, rendered_file_cap,
+};
 pub use tree::{inside, list_files};
 pub use world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

@@ -9,6 +9,8 @@
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
+use crate::error::Error;
+
 /// The deepest folder listed, counted from the folder opened: a world is
 /// three deep at most. Deeper folders are listed as unreadable, not
 /// entered, so a forged chain of thousands of folders can neither
@@ -157,6 +159,21 @@ impl OpenFolder {
             });
         }
         Ok(FileBytes { bytes, links })
+    }
+}
+
+/// The error of reading `path` (relative, `""` for the folder itself) in
+/// the folder `dest`: what every reader of a folder it was given reports.
+pub(crate) fn refused(dest: &Path, path: &str, e: ReadError) -> Error {
+    let at = if path.is_empty() {
+        dest.to_path_buf()
+    } else {
+        dest.join(path)
+    };
+    match e {
+        ReadError::NotAFile => Error::NotAFile { path: at },
+        ReadError::Io(e) => Error::io("read", at)(e),
+        other => Error::io("read", at)(std::io::Error::other(other.to_string())),
     }
 }
 

@@ -10,7 +10,7 @@ use std::path::Path;
 use crate::digest::sha256_hex;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, what_differs};
-use crate::nofollow::{Listed, OpenFolder, ReadError};
+use crate::nofollow::{Listed, OpenFolder, ReadError, refused};
 use crate::world::WorldFiles;
 
 /// What happened to one world.
@@ -86,7 +86,18 @@ pub(crate) fn remove_leftovers(parent: &Path, mine: impl Fn(&str) -> bool) -> Re
 /// found it but for the worlds; the process dying releases it too (the
 /// file then stays, and the next run takes it over).
 pub(crate) fn lock_in(out: &Path, what: &str, busy: impl FnOnce() -> Error) -> Result<Lock, Error> {
+    take_lock(out, what, Some(busy))
+}
+
+/// [`lock_in`], waiting for the holder instead of failing: for a lock
+/// held only for a moment (the shard registry of an output folder).
+pub(crate) fn lock_in_waiting(out: &Path, what: &str) -> Result<Lock, Error> {
+    take_lock(out, what, None::<fn() -> Error>)
+}
+
+fn take_lock(out: &Path, what: &str, busy: Option<impl FnOnce() -> Error>) -> Result<Lock, Error> {
     let path = out.join(format!(".rse-{}.lock", &sha256_hex(what.as_bytes())[..16]));
+    let mut busy = busy;
     loop {
         let file = create_no_follow(&path).map_err(|e| match e.raw_os_error() {
             // ELOOP: the name is a link.
@@ -96,10 +107,13 @@ pub(crate) fn lock_in(out: &Path, what: &str, busy: impl FnOnce() -> Error) -> R
             }
             _ => Error::io("create", &path)(e),
         })?;
-        match file.try_lock() {
-            Ok(()) => {}
-            Err(std::fs::TryLockError::WouldBlock) => return Err(busy()),
-            Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("lock", &path)(e)),
+        match busy.take() {
+            Some(busy) => match file.try_lock() {
+                Ok(()) => {}
+                Err(std::fs::TryLockError::WouldBlock) => return Err(busy()),
+                Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("lock", &path)(e)),
+            },
+            None => file.lock().map_err(Error::io("lock", &path))?,
         }
         // The holder before us may have removed the file between our open
         // and our lock: then we hold a lock on a name no one else sees,
@@ -116,6 +130,70 @@ pub(crate) fn lock_in(out: &Path, what: &str, busy: impl FnOnce() -> Error) -> R
 pub(crate) struct Lock {
     file: std::fs::File,
     path: std::path::PathBuf,
+}
+
+impl Lock {
+    /// Writes `text` into the lock file, for [`held_locks`] to read.
+    pub(crate) fn record(&self, text: &str) -> Result<(), Error> {
+        use std::io::Write as _;
+        self.file
+            .set_len(0)
+            .map_err(Error::io("write", &self.path))?;
+        (&self.file)
+            .write_all(text.as_bytes())
+            .map_err(Error::io("write", &self.path))
+    }
+}
+
+/// What the lock files in `out` other than `mine` record ([`Lock::record`])
+/// whose lock a live process holds right now. A file it cannot read, a
+/// link, or one no one holds (its run died) is passed over.
+pub(crate) fn held_locks(out: &Path, mine: &Lock) -> Result<Vec<String>, Error> {
+    use std::io::Read as _;
+    let mut held = Vec::new();
+    for entry in std::fs::read_dir(out).map_err(Error::io("read", out))? {
+        let entry = entry.map_err(Error::io("read", out))?;
+        let path = entry.path();
+        let is_lock = entry
+            .file_name()
+            .to_str()
+            .is_some_and(|n| n.starts_with(".rse-") && n.ends_with(".lock"));
+        if !is_lock || path == mine.path {
+            continue;
+        }
+        let Ok(file) = open_lock_to_read(&path) else {
+            continue;
+        };
+        let mut text = String::new();
+        if (&file).take(256).read_to_string(&mut text).is_err() || text.is_empty() {
+            continue;
+        }
+        match file.try_lock_shared() {
+            Err(std::fs::TryLockError::WouldBlock) => held.push(text),
+            // Free: the run that wrote it is gone (our descriptor's lock
+            // ends when it is closed, here).
+            Ok(()) | Err(std::fs::TryLockError::Error(_)) => {}
+        }
+    }
+    Ok(held)
+}
+
+/// Opens a lock file to read, refusing a link or a special file.
+fn open_lock_to_read(path: &Path) -> std::io::Result<std::fs::File> {
+    #[cfg(unix)]
+    {
+        use rustix::fs::{Mode, OFlags};
+        let flags = OFlags::RDONLY | OFlags::NOFOLLOW | OFlags::NONBLOCK | OFlags::CLOEXEC;
+        let file = std::fs::File::from(rustix::fs::open(path, flags, Mode::empty())?);
+        if !file.metadata()?.is_file() {
+            return Err(std::io::Error::other("not a regular file"));
+        }
+        Ok(file)
+    }
+    #[cfg(not(unix))]
+    {
+        std::fs::File::open(path)
+    }
 }
 
 impl Drop for Lock {
@@ -299,20 +377,6 @@ fn file_difference(folder: &OpenFolder, world: &WorldFiles) -> Result<Option<Str
         }
     }
     Ok(None)
-}
-
-/// The error of reading `path` in the world folder `dest`.
-fn refused(dest: &Path, path: &str, e: ReadError) -> Error {
-    let at = if path.is_empty() {
-        dest.to_path_buf()
-    } else {
-        dest.join(path)
-    };
-    match e {
-        ReadError::NotAFile => Error::NotAFile { path: at },
-        ReadError::Io(e) => Error::io("read", at)(e),
-        other => Error::io("read", at)(std::io::Error::other(other.to_string())),
-    }
 }
 
 #[cfg(test)]

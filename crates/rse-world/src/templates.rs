@@ -11,8 +11,8 @@ use crate::context::WorldContext;
 use crate::digest::sha256_hex;
 use crate::error::Error;
 use crate::manifest::TemplateSet;
+use crate::nofollow::{Listed, OpenFolder, ReadError, refused};
 use crate::options::Target;
-use crate::tree::list_files;
 
 /// Suffix of the files that are rendered rather than copied.
 const TEMPLATE_SUFFIX: &str = ".j2";
@@ -118,25 +118,28 @@ impl Templates {
     /// added to every world; our files they do not name are kept. So a
     /// folder holding one edited template is a whole template set.
     pub fn with_overrides(dir: &Path) -> Result<Self, Error> {
-        if !dir.is_dir() {
-            return Err(Error::BadTemplateFolder {
+        // Opened once, by descriptor (the folder named may be a link; nothing
+        // below it is followed): every file is read as `check` reads a
+        // world, so a link, FIFO or device in it is refused, not followed.
+        let opened = OpenFolder::open(dir, true).map_err(|e| match e {
+            ReadError::Missing => Error::BadTemplateFolder {
                 path: dir.to_owned(),
-                reason: if dir.exists() {
-                    "it is not a folder".to_owned()
-                } else {
-                    "it does not exist".to_owned()
-                },
-            });
-        }
+                reason: "it does not exist".to_owned(),
+            },
+            ReadError::NotAFile => Error::BadTemplateFolder {
+                path: dir.to_owned(),
+                reason: "it is not a folder".to_owned(),
+            },
+            other => refused(dir, "", other),
+        })?;
+        let mut theirs = read_tree(&opened)?;
         let mut files = Self::builtin().files;
         let mut any = false;
         for target in Target::ALL {
-            let folder = dir.join(target.name());
-            if !folder.is_dir() {
+            let Some(theirs) = theirs.remove(&target) else {
                 continue;
-            }
+            };
             any = true;
-            let theirs = read_tree(&folder)?;
             let ours = files.entry(target).or_default();
             ours.retain(|file| {
                 !theirs
@@ -159,30 +162,20 @@ impl Templates {
     }
 
     /// Writes our templates into `dir/<target>/…`, to copy and edit
-    /// (`rse-gen templates export`); refuses to overwrite a file.
-    ///
-    /// # Panics
-    /// Never: every path it writes is `dir/<target>/<file>`, with a parent.
+    /// (`rse-gen templates export`). `dir` may be a link to a folder;
+    /// nothing below it is followed: a sub-folder that is a link or a file
+    /// is refused, and every file is created new (`O_EXCL`), so an existing
+    /// file or link is never written through. On any failure every file
+    /// and folder it made is removed again.
     pub fn export_builtin(dir: &Path) -> Result<Vec<std::path::PathBuf>, Error> {
-        let paths: Vec<_> = BUILTIN
-            .iter()
-            .map(|&(target, path, _)| dir.join(target.name()).join(path))
-            .collect();
-        if let Some(existing) = paths.iter().find(|p| p.exists()) {
-            return Err(Error::BadTemplateFolder {
-                path: dir.to_owned(),
-                reason: format!(
-                    "{} exists already: export into an empty folder",
-                    existing.display()
-                ),
-            });
+        let mut made = crate::files::Created::default();
+        let result = export_into(dir, &mut made);
+        if result.is_err() {
+            made.remove_all();
+        } else {
+            made.keep();
         }
-        for (path, &(_, _, source)) in paths.iter().zip(BUILTIN) {
-            let parent = path.parent().expect("a target folder");
-            std::fs::create_dir_all(parent).map_err(Error::io("create", parent))?;
-            std::fs::write(path, source).map_err(Error::io("write", path))?;
-        }
-        Ok(paths)
+        result
     }
 
     fn new(files: BTreeMap<Target, Vec<TemplateFile>>, custom: bool) -> Result<Self, Error> {
@@ -256,26 +249,149 @@ impl Templates {
         target: Target,
         context: &WorldContext,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
+        self.render_with_fuel(target, context, render_fuel(context.boxes.len()))
+    }
+
+    /// [`render`](Self::render) with `fuel` instructions per file.
+    fn render_with_fuel(
+        &self,
+        target: Target,
+        context: &WorldContext,
+        fuel: u64,
+    ) -> Result<Vec<(String, Vec<u8>)>, Error> {
         let Some(list) = self.files.get(&target) else {
             return Ok(Vec::new());
         };
         let value = minijinja::Value::from(minijinja::value::Serde(context));
+        // Fuel per file, for this world's box count: a template's loops
+        // cannot run on without bound (three nested `range(100000)`).
+        // Cloning an environment shares its compiled templates.
+        let mut env = self.env.clone();
+        env.set_fuel(Some(fuel));
         list.iter()
             .map(|file| {
                 let Some(path) = file.path.strip_suffix(TEMPLATE_SUFFIX) else {
                     return Ok((file.path.clone(), file.bytes.clone()));
                 };
-                let template = self
-                    .env
+                let template = env
                     .get_template(&file.origin)
                     .map_err(|e| template_error(&file.origin, &file.bytes, &e))?;
-                let text = template
-                    .render(&value)
-                    .map_err(|e| template_error(&file.origin, &file.bytes, &e))?;
-                Ok((path.to_owned(), text.into_bytes()))
+                let mut out = CappedOutput::new(output_cap(context));
+                template
+                    .render_captured_to(&value, &mut out)
+                    .map(drop)
+                    .map_err(|e| match out.over {
+                        true => Error::Template {
+                            file: file.origin.clone(),
+                            line: e.line().unwrap_or(1),
+                            message: format!(
+                                "renders more than {} bytes for a world of this size",
+                                out.cap
+                            ),
+                        },
+                        false => template_error(&file.origin, &file.bytes, &e),
+                    })?;
+                Ok((path.to_owned(), out.bytes))
             })
             .collect()
     }
+}
+
+/// The instructions one template may run for a world of `boxes` boxes:
+/// our templates take under 100 a box (`our_templates_need_a_hundredth_of_the_fuel`);
+/// a user's gets a hundred times that, and a fixed part for loops of
+/// their own (some seconds of work).
+pub const FUEL_PER_BOX: u64 = 10_000;
+/// See [`FUEL_PER_BOX`].
+pub const FIXED_FUEL: u64 = 10_000_000;
+
+fn render_fuel(boxes: usize) -> u64 {
+    FIXED_FUEL.saturating_add((boxes as u64).saturating_mul(FUEL_PER_BOX))
+}
+
+/// The most bytes one rendered file of a world may hold: what `check`
+/// accepts of a file it cannot regenerate ([`rendered_file_cap`]).
+fn output_cap(context: &WorldContext) -> u64 {
+    rendered_file_cap(u64::from(context.cells[0]) * u64::from(context.cells[1]))
+}
+
+/// A file rendered from a template may hold at most this many bytes per
+/// cell of the world's grid, plus [`FIXED_FILE_BYTES`]. Our largest per-cell
+/// file, a block-mode world's box list, is well under 1 KiB per cell.
+pub const FILE_BYTES_PER_CELL: u64 = 4096;
+
+/// The fixed part of the per-file cap, bytes: room for a robot model or a
+/// texture a user's template adds to every world.
+pub const FIXED_FILE_BYTES: u64 = 64 << 20;
+
+/// The byte cap of a rendered file (or one `check` cannot regenerate) in a
+/// world of `cells` cells.
+pub fn rendered_file_cap(cells: u64) -> u64 {
+    FIXED_FILE_BYTES.saturating_add(cells.saturating_mul(FILE_BYTES_PER_CELL))
+}
+
+/// A rendered file's bytes, refused past a cap: a template that prints
+/// without bound fails instead of filling memory.
+struct CappedOutput {
+    bytes: Vec<u8>,
+    cap: u64,
+    over: bool,
+}
+
+impl CappedOutput {
+    fn new(cap: u64) -> Self {
+        CappedOutput {
+            bytes: Vec::new(),
+            cap,
+            over: false,
+        }
+    }
+}
+
+impl std::io::Write for CappedOutput {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if (self.bytes.len() + buf.len()) as u64 > self.cap {
+            self.over = true;
+            return Err(std::io::Error::other("over the cap"));
+        }
+        self.bytes.extend_from_slice(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// [`Templates::export_builtin`]'s work, noting in `made` what it creates.
+fn export_into(
+    dir: &Path,
+    made: &mut crate::files::Created,
+) -> Result<Vec<std::path::PathBuf>, Error> {
+    let bad = |path: &Path, reason: String| Error::BadTemplateFolder {
+        path: path.to_owned(),
+        reason,
+    };
+    let paths: Vec<_> = BUILTIN
+        .iter()
+        .map(|&(target, path, _)| dir.join(target.name()).join(path))
+        .collect();
+    if let Some(existing) = paths.iter().find(|p| p.symlink_metadata().is_ok()) {
+        return Err(bad(
+            dir,
+            format!(
+                "{} exists already: export into an empty folder",
+                existing.display()
+            ),
+        ));
+    }
+    made.folder_chain(dir, None)?;
+    for (path, &(_, _, source)) in paths.iter().zip(BUILTIN) {
+        let parent = path.parent().expect("a target folder");
+        made.folder_chain(parent, Some(dir))?;
+        made.new_file(path, source.as_bytes())?;
+    }
+    Ok(paths)
 }
 
 /// The path a template file gets in a world: `.j2` files lose the suffix.
@@ -305,25 +421,85 @@ fn template_error(file: &str, source: &[u8], e: &minijinja::Error) -> Error {
     }
 }
 
-/// Every file under `dir`, with paths relative to the target folder.
-fn read_tree(dir: &Path) -> Result<Vec<TemplateFile>, Error> {
-    list_files(dir)
-        .map_err(Error::io("read", dir))?
-        .into_iter()
-        .map(|relative| {
-            let path = dir.join(&relative);
-            Ok(TemplateFile {
-                bytes: std::fs::read(&path).map_err(Error::io("read", &path))?,
-                origin: path.display().to_string(),
-                path: relative,
-            })
-        })
-        .collect()
+/// The most bytes of one file of a user's template folder (a robot's
+/// meshes fit), and of all its files together: every world gets a copy, and
+/// the set is held in memory for the whole batch.
+pub const MAX_TEMPLATE_FILE_BYTES: u64 = 256 << 20;
+/// See [`MAX_TEMPLATE_FILE_BYTES`].
+pub const MAX_TEMPLATE_BYTES: u64 = 1 << 30;
+
+/// The files of every target folder (`gazebo/`, …) of a user's template
+/// folder, with paths relative to the target folder: listed and read
+/// through the folder's one descriptor ([`OpenFolder`]: no link followed at
+/// any level, no FIFO or device opened, every file read from the
+/// descriptor that was checked, within a cap). A link or special file in a
+/// target folder, or a target folder that is a link or a file, is an error
+/// naming it: following one would copy whatever it points at (a secret,
+/// `/dev/zero`) into every world. Entries outside the target folders are
+/// not read.
+fn read_tree(folder: &OpenFolder) -> Result<BTreeMap<Target, Vec<TemplateFile>>, Error> {
+    let dir = folder.path();
+    let mut files: BTreeMap<Target, Vec<TemplateFile>> = BTreeMap::new();
+    let mut total = 0u64;
+    for (relative, listed) in folder.list() {
+        let (top, inner) = relative.split_once('/').unwrap_or((&relative, ""));
+        let Some(target) = Target::ALL.into_iter().find(|t| t.name() == top) else {
+            continue;
+        };
+        let path = dir.join(&relative);
+        let bad = |reason: &str| Error::BadTemplateFolder {
+            path: path.clone(),
+            reason: reason.to_owned(),
+        };
+        match listed {
+            // Nothing to write: a world has no empty folders.
+            Listed::EmptyFolder => {
+                files.entry(target).or_default();
+            }
+            Listed::NotAFile if inner.is_empty() => {
+                return Err(bad("a target folder must be a folder, not a link or file"));
+            }
+            Listed::File { .. } if inner.is_empty() => {
+                return Err(bad("a target folder must be a folder, not a file"));
+            }
+            Listed::NotAFile => {
+                return Err(bad(
+                    "a link or special file: template files are read, never followed",
+                ));
+            }
+            Listed::Unreadable(reason) => {
+                return Err(Error::io("read", path)(std::io::Error::other(reason)));
+            }
+            Listed::File { .. } => {
+                let cap = MAX_TEMPLATE_FILE_BYTES.min(MAX_TEMPLATE_BYTES.saturating_sub(total));
+                let file = match folder.read(&relative, cap) {
+                    Ok(file) => file,
+                    Err(ReadError::TooLarge { bytes, .. }) => {
+                        return Err(bad(&format!(
+                            "it holds {bytes} bytes: a template file may hold {} MiB, a \
+                             template folder {} MiB in all",
+                            MAX_TEMPLATE_FILE_BYTES >> 20,
+                            MAX_TEMPLATE_BYTES >> 20
+                        )));
+                    }
+                    Err(e) => return Err(refused(dir, &relative, e)),
+                };
+                total += file.bytes.len() as u64;
+                files.entry(target).or_default().push(TemplateFile {
+                    bytes: file.bytes,
+                    origin: path.display().to_string(),
+                    path: inner.to_owned(),
+                });
+            }
+        }
+    }
+    Ok(files)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::options::MeshMode;
 
     /// A plain file replaces our `.j2` of the same output path; the rest of
     /// ours stays.
@@ -357,14 +533,12 @@ mod tests {
     #[test]
     fn builtin_templates_match_the_folder() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../templates");
-        let mut on_disk = Vec::new();
-        for target in Target::ALL {
-            let folder = root.join(target.name());
-            if folder.is_dir() {
-                let found = read_tree(&folder).unwrap();
-                on_disk.extend(found.into_iter().map(|f| (target, f.path, f.bytes)));
-            }
-        }
+        let folder = OpenFolder::open(&root, true).unwrap();
+        let on_disk: Vec<_> = read_tree(&folder)
+            .unwrap()
+            .into_iter()
+            .flat_map(|(target, files)| files.into_iter().map(move |f| (target, f.path, f.bytes)))
+            .collect();
         let built_in: Vec<_> = BUILTIN
             .iter()
             .map(|&(t, p, s)| (t, p.to_owned(), s.as_bytes().to_vec()))
@@ -373,5 +547,137 @@ mod tests {
             on_disk, built_in,
             "list every file of templates/ in BUILTIN"
         );
+    }
+
+    /// Our templates render a world of many boxes on a hundredth of the
+    /// fuel a user's template gets: the per-box fuel is no tight fit.
+    #[test]
+    fn our_templates_need_a_hundredth_of_the_fuel() {
+        let scheme =
+            rse_core::Scheme::from_csv("# size: 40x40\ntype,height\nrandom,4\n", None).unwrap();
+        let terrain = rse_core::generate(&scheme, 1, 0);
+        let boxes = terrain.boxes();
+        assert!(boxes.len() > 500, "{}", boxes.len());
+        let context = WorldContext::new("w".to_owned(), &terrain, MeshMode::Blocks, &boxes);
+        let templates = Templates::builtin();
+        let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 100;
+        for target in Target::ALL {
+            templates
+                .render_with_fuel(target, &context, fuel)
+                .unwrap_or_else(|e| panic!("{target}: {e}"));
+        }
+        // ... and fail when starved: the fuel is counted.
+        let starved = templates.render_with_fuel(Target::Webots, &context, boxes.len() as u64);
+        assert!(starved.is_err());
+    }
+
+    /// Three nested `range(100000)` loops rendered forever; a template
+    /// that prints without bound filled memory. Both now fail, naming the
+    /// file.
+    #[test]
+    fn endless_loops_and_endless_output_fail() {
+        let scheme =
+            rse_core::Scheme::from_csv("# size: 3x3\ntype,height\nrandom,2\n", None).unwrap();
+        let terrain = rse_core::generate(&scheme, 1, 0);
+        let boxes = terrain.boxes();
+        let context = WorldContext::new("w".to_owned(), &terrain, MeshMode::Blocks, &boxes);
+        for (name, source, said) in [
+            (
+                "loops.txt.j2",
+                "{% for a in range(100000) %}{% for b in range(100000) %}{% for c in range(100000) %}.{% endfor %}{% endfor %}{% endfor %}",
+                "fuel",
+            ),
+            (
+                "big.txt.j2",
+                "{% for a in range(100) %}{{ 'x' * 99000000 }}{% endfor %}",
+                "renders more than",
+            ),
+        ] {
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::create_dir(dir.path().join("urdf")).unwrap();
+            std::fs::write(dir.path().join("urdf").join(name), source).unwrap();
+            let templates = Templates::with_overrides(dir.path()).unwrap();
+            let started = std::time::Instant::now();
+            let err = templates.render(Target::Urdf, &context).unwrap_err();
+            let text = err.to_string();
+            assert!(text.contains(name) && text.contains(said), "{text}");
+            // Not a speed test: only "it ends" (the loops were 10^15 steps).
+            assert!(started.elapsed().as_secs() < 120);
+        }
+    }
+
+    /// A template folder is read by descriptor: a link in it (to a secret,
+    /// to `/dev/zero`), a FIFO, or a target folder that is a link, is
+    /// refused naming it, never followed, read or waited on.
+    #[cfg(unix)]
+    #[test]
+    fn links_and_special_files_in_a_template_folder_are_refused() {
+        let secret = tempfile::NamedTempFile::new().unwrap();
+        std::fs::write(secret.path(), "secret").unwrap();
+        let cases: [(&str, &dyn Fn(&Path)); 4] = [
+            ("urdf/key.txt", &|at| {
+                std::os::unix::fs::symlink(secret.path(), at).unwrap();
+            }),
+            ("urdf/zero.bin", &|at| {
+                std::os::unix::fs::symlink("/dev/zero", at).unwrap();
+            }),
+            ("urdf/pipe", &|at| {
+                rustix::fs::mkfifoat(rustix::fs::CWD, at, rustix::fs::Mode::from_raw_mode(0o600))
+                    .unwrap();
+            }),
+            ("gazebo", &|at| {
+                std::os::unix::fs::symlink(secret.path().parent().unwrap(), at).unwrap();
+            }),
+        ];
+        for (name, plant) in cases {
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::create_dir(dir.path().join("urdf")).unwrap();
+            std::fs::write(dir.path().join("urdf/ok.txt"), "ok").unwrap();
+            plant(&dir.path().join(name));
+            let err = Templates::with_overrides(dir.path()).unwrap_err();
+            let text = err.to_string();
+            assert!(
+                matches!(err, Error::BadTemplateFolder { .. }) && text.contains(name),
+                "{name}: {text}"
+            );
+        }
+        // The folder named may itself be a link (a user's choice).
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("real/urdf")).unwrap();
+        std::fs::write(dir.path().join("real/urdf/ok.txt"), "ok").unwrap();
+        std::os::unix::fs::symlink(dir.path().join("real"), dir.path().join("link")).unwrap();
+        assert!(Templates::with_overrides(&dir.path().join("link")).is_ok());
+    }
+
+    /// Export never writes through a link planted in the folder, and a
+    /// failed export leaves nothing it made.
+    #[cfg(unix)]
+    #[test]
+    fn export_refuses_links_and_leaves_nothing_when_it_fails() {
+        let dir = tempfile::tempdir().unwrap();
+        let elsewhere = tempfile::tempdir().unwrap();
+        let out = dir.path().join("new/templates");
+        std::fs::create_dir_all(&out).unwrap();
+        // A link where a target folder goes: refused, not written through.
+        std::os::unix::fs::symlink(elsewhere.path(), out.join("webots")).unwrap();
+        let err = Templates::export_builtin(&out).unwrap_err();
+        assert!(err.to_string().contains("webots"), "{err}");
+        assert_eq!(std::fs::read_dir(elsewhere.path()).unwrap().count(), 0);
+        // Everything written before it was removed: only the link is left.
+        let left: Vec<_> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(left, ["webots"]);
+        // A file where the folder goes.
+        let file = dir.path().join("file");
+        std::fs::write(&file, "x").unwrap();
+        let err = Templates::export_builtin(&file.join("t")).unwrap_err();
+        assert!(matches!(err, Error::NotAFolder { .. }), "{err}");
+        // Fresh: every file, all of which read back as a template set.
+        std::fs::remove_file(out.join("webots")).unwrap();
+        let written = Templates::export_builtin(&out).unwrap();
+        assert_eq!(written.len(), BUILTIN.len());
+        Templates::with_overrides(&out).unwrap();
     }
 }

@@ -78,6 +78,37 @@ pub(super) fn buffer_shape_of(grid: Grid, options: EnvOptions) -> Result<Shapes,
     Ok(Shapes { env_shape, shape })
 }
 
+/// The memory `num_envs` environments of `scheme` take at their peak, bytes,
+/// as [`EnvTerrains::new`] builds them: the samples (float32, allocated by
+/// the caller), each environment's terrain twice (made, then stored) and
+/// its bookkeeping, and `extra_per_env` bytes a caller keeps per
+/// environment (Python's episode, difficulty and origin arrays). Refused
+/// as [`EnvTerrains::new`] refuses a shape; computed before anything is
+/// allocated, so a caller can refuse a pool that cannot fit.
+pub fn env_pool_bytes(
+    scheme: &crate::Scheme,
+    options: EnvOptions,
+    extra_per_env: u64,
+) -> Result<u64, EnvError> {
+    let Shapes { shape, .. } = buffer_shape_of(scheme.grid(), options)?;
+    let samples = (shape.0 as u64)
+        .saturating_mul(shape.1 as u64)
+        .saturating_mul(shape.2 as u64)
+        .saturating_mul(4);
+    let cells = scheme.grid().cells() as u64;
+    let terrain = (std::mem::size_of::<Terrain>() as u64)
+        .saturating_add(cells.saturating_mul(std::mem::size_of::<u16>() as u64))
+        .saturating_add(
+            (scheme.obstacles().len() as u64)
+                .saturating_mul(std::mem::size_of::<crate::obstacle::DrawnObstacle>() as u64),
+        );
+    let per_env = terrain
+        .saturating_mul(2)
+        .saturating_add(std::mem::size_of::<[f64; 3]>() as u64 + 8)
+        .saturating_add(extra_per_env);
+    Ok(samples.saturating_add((options.num_envs as u64).saturating_mul(per_env)))
+}
+
 impl EnvTerrains {
     /// The buffer's shape: `(num_envs, nrow, ncol)` for slots, `(1, rows,
     /// columns)` of the whole map for tiles.

@@ -24,7 +24,7 @@ mod request;
 
 use layout::chunks_at;
 
-pub use layout::EnvLayout;
+pub use layout::{EnvLayout, env_pool_bytes};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the

@@ -1,0 +1,114 @@
+"""Python never aborts the interpreter (third hostile round): every
+allocation sized by a caller's number is estimated and refused first,
+naming the argument; one `EnvTerrains` shared by threads raises a clear
+error instead of pyo3's borrow error; arrays changed in place (their dtype
+set anew) are refused, not read past their end."""
+
+from __future__ import annotations
+
+import threading
+import warnings
+
+import numpy as np
+import pytest
+import rse
+
+TINY = rse.Scheme.from_csv("# size: 2x2\ntype,height\nrandom,0..3\n")
+
+
+def available_bytes() -> int:
+    with open("/proc/meminfo") as f:
+        for line in f:
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) * 1024
+    raise AssertionError("no MemAvailable")
+
+
+def test_a_pool_larger_than_memory_is_a_memory_error_naming_num_envs() -> None:
+    # 10**8 envs of a 2x2 scheme: 3.6 GB of samples, and a terrain each
+    # (some 35 GB in all); this aborted the interpreter with a failed
+    # 15 GB allocation. On a machine with that much free it would be built.
+    if available_bytes() > 40 << 30:
+        pytest.skip("this machine has the memory the pool needs")
+    with pytest.raises(MemoryError, match=r"^num_envs: a pool of 100000000 environments"):
+        rse.EnvTerrains(TINY, 10**8, oversample=1)
+    # Past what any machine has: refused by its shape, as a ValueError.
+    with pytest.raises(ValueError, match="^num_envs"):
+        rse.EnvTerrains(TINY, 10**10, oversample=1)
+    # The interpreter goes on, and a small pool still works.
+    assert rse.EnvTerrains(TINY, 4).samples.shape[0] == 4
+
+
+def test_other_counts_are_estimated_before_they_are_allocated() -> None:
+    if available_bytes() > 100 << 30:
+        pytest.skip("this machine has the memory asked for")
+    with pytest.raises(MemoryError, match=r"^amount: 1000000000000 terrains"):
+        rse.generate_batch(TINY, 10**12)
+    terrain = TINY.generate()
+    with pytest.raises(MemoryError, match=r"^n: 4000000000 flat patches"):
+        terrain.flat_patches(4_000_000_000)
+    assert terrain.flat_patches(2).shape == (2, 3)
+
+
+def test_arrays_changed_in_place_are_refused_naming_them() -> None:
+    envs = rse.EnvTerrains(TINY, 4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        envs.difficulty.dtype = np.float32  # 8 bytes each read as two float32
+    with pytest.raises(ValueError, match=r"^difficulty: the array was changed in place"):
+        envs.reset([0])
+    with pytest.raises(ValueError, match="^difficulty"):
+        envs.difficulty = [0.5] * 4
+    envs = rse.EnvTerrains(TINY, 4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        envs.samples.dtype = np.float16
+    with pytest.raises(ValueError, match=r"^samples: the array was changed in place"):
+        envs.reset([1])
+    envs = rse.EnvTerrains(TINY, 4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        envs.origins.dtype = np.int8
+    with pytest.raises(ValueError, match=r"^origins"):
+        envs.reset([1])
+    # Untouched arrays still reset.
+    fresh = rse.EnvTerrains(TINY, 4)
+    fresh.reset([1, 2])
+    assert fresh.episode.tolist() == [0, 1, 1, 0]
+
+
+def test_threads_sharing_a_pool_get_a_clear_error_never_a_borrow_error() -> None:
+    scheme = rse.Scheme.load("schemes/six_obstacles.csv")
+    envs = rse.EnvTerrains(scheme, 256, oversample=2)
+    points = np.zeros((256, 64, 2))
+    errors: list[BaseException] = []
+    resets = 0
+    stop = threading.Event()
+
+    def resetting() -> None:
+        nonlocal resets
+        while not stop.is_set():
+            try:
+                envs.reset(np.arange(256))
+                resets += 1
+            except BaseException as e:  # noqa: BLE001 - every kind is checked below
+                errors.append(e)
+
+    worker = threading.Thread(target=resetting)
+    worker.start()
+    try:
+        for _ in range(400):
+            try:
+                envs.heights_at(np.arange(256), points)
+                envs.terrain(3)
+            except BaseException as e:  # noqa: BLE001
+                errors.append(e)
+    finally:
+        stop.set()
+        worker.join()
+    assert errors, "the calls never met: nothing tested"
+    for e in errors:
+        assert isinstance(e, RuntimeError), repr(e)
+        assert "another thread is using this object" in str(e), str(e)
+    # Every reset that returned counted its episode, whole.
+    assert envs.episode.tolist() == [resets] * 256
