@@ -41,6 +41,7 @@ bench:
 	cargo bench -p rse-physics --bench physics
 	bench/batch.sh
 	bench/check.sh
+	python3 bench/budget.py
 	.venv/bin/python -m pip install --quiet ./crates/rse-py && .venv/bin/python bench/python.py
 	.venv/bin/python bench/hfield.py
 	.venv/bin/python bench/envs.py

@@ -58,8 +58,8 @@ fn busy() -> PyErr {
 /// `array` as this object made it: its dtype and length unchanged. A
 /// user can set `a.dtype` or `a.shape` of the very array in place; read
 /// then as its old type, it would be read past its end.
-fn intact<'py, T: Element, D: numpy::ndarray::Dimension>(
-    array: &Bound<'py, PyArray<T, D>>,
+fn intact<T: Element, D: numpy::ndarray::Dimension>(
+    array: &Bound<'_, PyArray<T, D>>,
     name: &str,
     len: usize,
 ) -> PyResult<()> {

@@ -380,8 +380,9 @@ impl std::fmt::Display for FaultKind {
                 visits_budget,
             } => write!(
                 f,
-                "asks for a world of {cells} cells whose rebuild would take {} MiB and {visits} cell visits, over check's budget of {} MiB and {visits_budget} visits: not rebuilt (check --budget F allows F times as much)",
+                "asks for a world of {cells} cells whose rebuild would take {} MiB and {visits} cell visits (some {:.0} s on one core), over check's budget of {} MiB and {visits_budget} visits: not rebuilt (check --budget F allows F times as much)",
                 bytes >> 20,
+                *visits as f64 * rse_world::VISIT_NANOS * 1e-9,
                 bytes_budget >> 20
             ),
             FaultKind::HashOnly { files } => write!(

@@ -33,4 +33,4 @@ pub use budget::{Budget, BudgetError};
 pub use fault::{Fault, FaultKind, NotAWorld, printable};
 pub use physics::PHYSICS;
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
-pub use world::{CheckOptions, WorldReport, check_world};
+pub use world::{CheckOptions, Estimate, WorldReport, check_world};

@@ -69,6 +69,10 @@ pub struct WorldReport {
     /// The seed pair from `rse.json`, when it could be read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
+    /// What the rebuild was estimated to cost before it was done (held to
+    /// the budget), when it was estimated in full.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<Estimate>,
     /// The world's index in its batch, when `rse.json` could be read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub index: Option<u64>,
@@ -83,6 +87,17 @@ pub struct WorldReport {
     pub physics: Vec<PhysicsReport>,
 }
 
+/// A rebuild's estimated cost, as the JSON report gives it.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Estimate {
+    /// Memory at the peak, bytes.
+    pub bytes: u64,
+    /// Work, cell visits.
+    pub visits: u64,
+    /// The work as seconds on one core of the development machine.
+    pub seconds: f64,
+}
+
 /// Checks the world folder `path`. Never panics on what is in the folder,
 /// reads nothing outside it, and reads no file larger than a cap
 /// (`limits`).
@@ -94,6 +109,7 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
         faults: Vec::new(),
         hashed_only: Vec::new(),
         seed: None,
+        estimate: None,
         index: None,
         manifest: None,
         #[cfg(feature = "physics")]
@@ -186,7 +202,12 @@ fn json_reason(e: &serde_json::Error) -> String {
 
 /// The checks of a manifest's recipe before anything is built: the paths
 /// it names, the world's name, the rebuild's cost. `false`: do not rebuild.
-fn fit_to_rebuild(manifest: &Manifest, options: &CheckOptions, faults: &mut Vec<Fault>) -> bool {
+fn fit_to_rebuild(
+    manifest: &Manifest,
+    options: &CheckOptions,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) -> bool {
     // Paths the manifest names are checked as names before anything is read.
     let outside: Vec<&String> = manifest.files.keys().filter(|p| !inside(p)).collect();
     for path in &outside {
@@ -211,17 +232,26 @@ fn fit_to_rebuild(manifest: &Manifest, options: &CheckOptions, faults: &mut Vec<
         return false;
     }
     // `rse.json` is input: what it asks to rebuild is held to a budget
-    // before anything is built.
-    match manifest.rebuild_cost() {
-        Ok(cost) => {
-            if let Some(kind) = over_budget(cost, options.budget) {
-                faults.push(Fault::of(MANIFEST, kind));
+    // before anything is built: from the recipe, then, with the terrain
+    // that prices, from the files its mesh and boxes make.
+    let costs = [Manifest::rebuild_cost, Manifest::full_rebuild_cost];
+    for cost in costs {
+        match cost(manifest) {
+            Ok(cost) => {
+                if let Some(kind) = over_budget(cost, options.budget) {
+                    faults.push(Fault::of(MANIFEST, kind));
+                    return false;
+                }
+                report.estimate = Some(Estimate {
+                    bytes: cost.bytes,
+                    visits: cost.visits,
+                    seconds: cost.seconds(),
+                });
+            }
+            Err(e) => {
+                faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
                 return false;
             }
-        }
-        Err(e) => {
-            faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
-            return false;
         }
     }
     true
@@ -235,7 +265,7 @@ fn check_against_manifest(
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) {
-    if !fit_to_rebuild(manifest, options, faults) {
+    if !fit_to_rebuild(manifest, options, report, faults) {
         return;
     }
     let templates = options

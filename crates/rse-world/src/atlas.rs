@@ -176,7 +176,7 @@ pub fn write_atlas(
     if let Some(first) = schemes.first() {
         let grid = first.scheme.grid();
         let [nx, ny] = atlas_options.map_cells([grid.nx, grid.ny]);
-        check_memory_for(nx.saturating_mul(ny), 1)?;
+        check_memory_for(nx.saturating_mul(ny), options, 1)?;
     }
     place_folder(out, force, |name| {
         build_atlas_world(schemes, atlas_options, name, options, templates)

@@ -310,7 +310,7 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
         .unwrap_or_else(rayon::current_num_threads)
         .max(1) as u64;
     let at_once = threads.min(options.shard.worlds(options.amount)).max(1);
-    check_memory_for(scheme.grid().cells() as u64, at_once).map_err(|e| match e {
+    check_memory_for(scheme.grid().cells() as u64, &options.world, at_once).map_err(|e| match e {
         Error::TooBig { message } => Error::TooBig {
             message: format!("{message}; use fewer worker threads (jobs) or a smaller grid"),
         },

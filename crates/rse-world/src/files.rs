@@ -116,7 +116,9 @@ impl Created {
     }
 
     /// The command succeeded: keep everything.
-    pub fn keep(self) {}
+    pub fn keep(self) {
+        let Created { paths: _ } = self;
+    }
 }
 
 /// The mesh format `path`'s suffix names (`.obj`, `.stl`, `.glb`), or the

@@ -81,7 +81,7 @@ pub fn write_world_at(
     force: bool,
 ) -> Result<Outcome, Error> {
     let grid = scheme.grid();
-    check_memory_for(grid.cells() as u64, 1)?;
+    check_memory_for(grid.cells() as u64, options, 1)?;
     let (outcome, ()) = place_folder(out, force, |name| {
         Ok((
             build_world(scheme, seed, index, name, options, templates)?,

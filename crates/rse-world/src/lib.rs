@@ -20,6 +20,7 @@ mod atlas;
 mod atlas_record;
 mod batch;
 mod context;
+mod cost;
 mod digest;
 mod error;
 mod files;
@@ -41,6 +42,7 @@ pub use batch::{
     BatchOptions, Shard, Summary, thread_pool, world_index, world_name, write_batch,
     write_batch_until,
 };
+pub use cost::{RebuildCost, VISIT_NANOS};
 pub use digest::sha256_hex;
 pub use error::Error;
 pub use files::{mesh_format, write_atomically, write_mesh};
@@ -51,7 +53,7 @@ pub use names::{MAX_WORLD_NAME, world_name_problem};
 pub use nofollow::{FileBytes, Listed, OpenFolder, ReadError};
 pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
 pub use place::{Leftover, Outcome, place_world};
-pub use rebuild::{FILE_VISITS_PER_CELL, RebuildCost, RebuildError, Rebuilt};
+pub use rebuild::{RebuildError, Rebuilt};
 pub use templates::{
     FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX, MAX_TEMPLATE_BYTES,
     MAX_TEMPLATE_FILE_BYTES, Templates, rendered_file_cap,

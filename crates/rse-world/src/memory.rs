@@ -10,18 +10,24 @@ use crate::error::Error;
 /// random field of height 4 with every target, the worst case there is.
 pub const WORLD_BYTES_PER_CELL: u64 = 2048;
 
-/// Refuses to build `at_once` worlds of `cells` cells at the same time when
-/// they need more than the memory available (where that can be read).
-pub(crate) fn check_memory_for(cells: u64, at_once: u64) -> Result<(), Error> {
+/// Refuses to build `at_once` worlds of `cells` cells with `options` at
+/// the same time when they need more than the memory available (where
+/// that can be read): [`WORLD_BYTES_PER_CELL`] a cell, and a height
+/// field's samples (`cells·k²`) where the `MuJoCo` target has one.
+pub(crate) fn check_memory_for(
+    cells: u64,
+    options: &crate::options::WorldOptions,
+    at_once: u64,
+) -> Result<(), Error> {
     let Some(available) = available_bytes() else {
         return Ok(());
     };
-    let per_world = cells.saturating_mul(WORLD_BYTES_PER_CELL);
+    let per_world = crate::cost::batch_world_bytes(cells, options);
     let needed = per_world.saturating_mul(at_once);
     if needed > available {
         return Err(Error::TooBig {
             message: format!(
-                "a world of {cells} cells needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell), {at_once} at once: {} MiB, but {} MiB are available",
+                "a world of {cells} cells with these options needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell, and 8 per height-field sample), {at_once} at once: {} MiB, but {} MiB are available",
                 per_world >> 20,
                 needed >> 20,
                 available >> 20

@@ -121,7 +121,7 @@ impl OpenFolder {
     /// Every entry under the folder but the folders themselves (save empty
     /// ones), as `/`-separated relative paths, sorted. A name that is not
     /// UTF-8 is listed lossily as [`Listed::Unreadable`]; a folder that
-    /// cannot be listed, or lies deeper than [`MAX_DEPTH`], appears as
+    /// cannot be listed, or lies deeper than `MAX_DEPTH` (16) levels, appears as
     /// itself, unreadable.
     pub fn list(&self) -> Vec<(String, Listed)> {
         let mut out = Vec::new();

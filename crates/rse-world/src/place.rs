@@ -154,10 +154,9 @@ pub(crate) fn held_locks(out: &Path, mine: &Lock) -> Result<Vec<String>, Error> 
     for entry in std::fs::read_dir(out).map_err(Error::io("read", out))? {
         let entry = entry.map_err(Error::io("read", out))?;
         let path = entry.path();
-        let is_lock = entry
-            .file_name()
-            .to_str()
-            .is_some_and(|n| n.starts_with(".rse-") && n.ends_with(".lock"));
+        let is_lock = entry.file_name().to_str().is_some_and(|n| {
+            n.starts_with(".rse-") && Path::new(n).extension().is_some_and(|e| e == "lock")
+        });
         if !is_lock || path == mine.path {
             continue;
         }

@@ -11,7 +11,6 @@ use rse_core::{Scheme, SchemeError, Terrain, generate_at};
 use crate::atlas::build_atlas_world;
 use crate::error::Error;
 use crate::manifest::{MANIFEST, Manifest, TemplateSet};
-use crate::memory::WORLD_BYTES_PER_CELL;
 use crate::templates::Templates;
 use crate::tree::inside;
 use crate::world::build_world_of;
@@ -30,27 +29,6 @@ pub struct Rebuilt {
     pub hashed_only: BTreeSet<String>,
 }
 
-/// What rebuilding a world from its manifest would cost, estimated from
-/// the recipe alone before anything is built: what `check` holds to a
-/// budget, since `rse.json` is input it was handed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct RebuildCost {
-    /// Cells of the world's grid (an atlas's whole map).
-    pub cells: u64,
-    /// Memory the build takes at its peak, bytes: the estimate a batch
-    /// refuses to start over ([`WORLD_BYTES_PER_CELL`] per cell).
-    pub bytes: u64,
-    /// Cells visited, at most: generation ([`Scheme::generation_visits`],
-    /// an atlas's tiles and patches) and [`FILE_VISITS_PER_CELL`] per cell
-    /// for the meshes and files.
-    pub visits: u64,
-}
-
-/// Cell visits counted per cell for a world's meshes and files: measured at
-/// about 1 µs per cell for a world with every target, some 200 times one
-/// generation visit.
-pub const FILE_VISITS_PER_CELL: u64 = 200;
-
 /// Why a manifest names no world that can be rebuilt.
 #[derive(Debug, thiserror::Error)]
 pub enum RebuildError {
@@ -66,27 +44,6 @@ pub enum RebuildError {
 }
 
 impl Manifest {
-    /// What rebuilding this world would cost, from its recipe alone (the
-    /// recorded scheme or atlas is parsed; nothing is generated).
-    pub fn rebuild_cost(&self) -> Result<RebuildCost, RebuildError> {
-        let (cells, generation) = if let Some(record) = &self.atlas {
-            let schemes: Vec<Scheme> = record.schemes()?.into_iter().map(|s| s.scheme).collect();
-            let options = record.options(self.seed);
-            let [nx, ny] = schemes
-                .first()
-                .map_or([0, 0], |s| options.map_cells([s.grid().nx, s.grid().ny]));
-            (nx.saturating_mul(ny), options.visits(&schemes))
-        } else {
-            let scheme = Scheme::from_csv(&self.scheme, Some("rse.json scheme"))?;
-            (scheme.grid().cells() as u64, scheme.generation_visits())
-        };
-        Ok(RebuildCost {
-            cells,
-            bytes: cells.saturating_mul(WORLD_BYTES_PER_CELL),
-            visits: generation.saturating_add(cells.saturating_mul(FILE_VISITS_PER_CELL)),
-        })
-    }
-
     /// The world this manifest describes, built with `templates` (ours, in
     /// `check`). With the templates it records (same set, same digest, this
     /// version of rse) that is every file, `rse.json` included; otherwise

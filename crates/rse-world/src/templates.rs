@@ -280,16 +280,19 @@ impl Templates {
                 template
                     .render_captured_to(&value, &mut out)
                     .map(drop)
-                    .map_err(|e| match out.over {
-                        true => Error::Template {
-                            file: file.origin.clone(),
-                            line: e.line().unwrap_or(1),
-                            message: format!(
-                                "renders more than {} bytes for a world of this size",
-                                out.cap
-                            ),
-                        },
-                        false => template_error(&file.origin, &file.bytes, &e),
+                    .map_err(|e| {
+                        if out.over {
+                            Error::Template {
+                                file: file.origin.clone(),
+                                line: e.line().unwrap_or(1),
+                                message: format!(
+                                    "renders more than {} bytes for a world of this size",
+                                    out.cap
+                                ),
+                            }
+                        } else {
+                            template_error(&file.origin, &file.bytes, &e)
+                        }
                     })?;
                 Ok((path.to_owned(), out.bytes))
             })
@@ -501,6 +504,9 @@ mod tests {
     use super::*;
     use crate::options::MeshMode;
 
+    /// Plants a hostile entry at a path.
+    type Plant<'a> = &'a dyn Fn(&Path);
+
     /// A plain file replaces our `.j2` of the same output path; the rest of
     /// ours stays.
     #[test]
@@ -614,7 +620,7 @@ mod tests {
     fn links_and_special_files_in_a_template_folder_are_refused() {
         let secret = tempfile::NamedTempFile::new().unwrap();
         std::fs::write(secret.path(), "secret").unwrap();
-        let cases: [(&str, &dyn Fn(&Path)); 4] = [
+        let cases: [(&str, Plant); 4] = [
             ("urdf/key.txt", &|at| {
                 std::os::unix::fs::symlink(secret.path(), at).unwrap();
             }),

@@ -47,6 +47,9 @@ class WorldReport:
     hashed_only: list[str]
     seed: Optional[int] = None
     index: Optional[int] = None
+    estimate: Optional[dict[str, float]] = None
+    """What the rebuild was estimated to cost before it ran (``bytes``,
+    ``visits``, ``seconds`` on one core): what the budget was held to."""
     physics: list[dict[str, Any]] = field(default_factory=list)
     """The rapier smoke test of each exact collider the world's simulators
     load (``collider``: ``"mesh <file>"`` or ``"boxes"``), with
@@ -110,6 +113,7 @@ def check(
             hashed_only=w["hashed_only"],
             seed=w.get("seed"),
             index=w.get("index"),
+            estimate=w.get("estimate"),
             physics=w.get("physics", []),
         )
         for w in raw["worlds"]

@@ -1,0 +1,96 @@
+"""`check`'s rebuild estimate beside what the rebuild measures: peak memory
+(the process's maximum resident set) and time (CPU seconds, user + system,
+of `rse-gen check` on the one world) over a table of ordinary and hostile
+worlds, each built here. The estimate is what `check --json` reports it held
+to the budget before rebuilding; the aim is each within 2x of what it
+measures.
+
+Usage: python bench/budget.py [--quick] [--rse-gen PATH]   (run by `make bench`)
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+ALL = "obj,gazebo,webots,mujoco,urdf,usd"
+
+
+def scheme(folder: Path, name: str, text: str) -> str:
+    path = folder / f"{name}.csv"
+    path.write_text(text)
+    return str(path)
+
+
+def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
+    """(name, rse-gen arguments that write it, the world folder)."""
+    many = "# size: 10x10\ntype,height\n" + "random,1\n" * 200_000
+    table = [
+        ("six_obstacles 50x50", ["batch", str(REPO / "schemes/six_obstacles.csv"), "--amount", "1", "--target", ALL], "world_0000"),
+        ("nist_hill", ["batch", str(REPO / "schemes/nist_hill.csv"), "--amount", "1", "--target", ALL], "world_0000"),
+        ("random,4 300x300", ["batch", scheme(folder, "r4", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", ALL], "world_0000"),
+        ("random,1000 300x300", ["batch", scheme(folder, "r1000", "# size: 300x300\ntype,height\nrandom,1000\n"), "--amount", "1", "--target", ALL], "world_0000"),
+        ("random,4 300x300 blocks", ["batch", scheme(folder, "r4b", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", ALL, "--mesh", "blocks"], "world_0000"),
+        ("hfield k=1158 on 10x10", ["batch", scheme(folder, "hf", "# size: 10x10\ntype,height\nrandom,3\n"), "--amount", "1", "--target", "mujoco", "--mujoco-collider", "hfield", "--oversample", "1158"], "world_0000"),
+        ("200k obstacles on 10x10", ["batch", scheme(folder, "many", many), "--amount", "1", "--target", ALL], "world_0000"),
+        ("atlas flat 2x2 of 500x500, 10^6 patches", ["atlas", scheme(folder, "flat", "# size: 500x500\ntype,height\n"), "--rows", "2", "--cols", "2", "--flat-patches", "1000000", "--target", ALL], "atlas"),
+        ("atlas nist_hill 10x10, 10^6 patches", ["atlas", str(REPO / "schemes/nist_hill.csv"), "--rows", "10", "--cols", "10", "--flat-patches", "1000000", "--target", ALL], "atlas"),
+    ]
+    if not quick:
+        table.append(
+            ("random,4 1000x1000", ["batch", scheme(folder, "r4k", "# size: 1000x1000\ntype,height\nrandom,4\n"), "--amount", "1", "--target", ALL], "world_0000"),
+        )
+    return table
+
+
+def measure(rse_gen: str, world: Path) -> tuple[dict, int, float]:
+    """The estimate check reports, its peak resident bytes and CPU seconds."""
+    timing = world.parent / "time.txt"
+    done = subprocess.run(
+        ["/usr/bin/time", "-o", str(timing), "-f", "%M %U %S", rse_gen, "check", str(world), "--json", "--budget", "1000"],
+        capture_output=True,
+        text=True,
+    )
+    report = json.loads(done.stdout)["worlds"][0]
+    if not report["ok"]:
+        sys.exit(f"{world}: check failed: {report['faults']}")
+    kib, user, system = timing.read_text().split()[-3:]
+    return report["estimate"], int(kib) * 1024, float(user) + float(system)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="leave out the 1000x1000 world (a minute)")
+    parser.add_argument("--rse-gen", default=str(REPO / "target/release/rse-gen"))
+    args = parser.parse_args()
+    if not os.access("/usr/bin/time", os.X_OK):
+        sys.exit("bench/budget.py needs /usr/bin/time (Debian: apt-get install time)")
+    print("check's estimate (before the rebuild) beside what it measures; aim: each within 2x")
+    print(f"{'world':42} {'est MiB':>8} {'peak MiB':>9} {'ratio':>6}   {'est s':>7} {'cpu s':>7} {'ratio':>6}")
+    worst = 1.0
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, (name, command, inside) in enumerate(worlds(Path(tmp), args.quick)):
+            out = Path(tmp) / f"w{i}"
+            target = out / "atlas" if command[0] == "atlas" else out
+            subprocess.run([args.rse_gen, *command, "-o", str(target)], check=True, capture_output=True)
+            world = out / inside
+            estimate, peak, seconds = measure(args.rse_gen, world)
+            memory = estimate["bytes"] / peak
+            time = estimate["seconds"] / max(seconds, 0.01)
+            worst = max(worst, memory, 1 / memory, time, 1 / time)
+            print(
+                f"{name:42} {estimate['bytes'] / 2**20:8.1f} {peak / 2**20:9.1f} {memory:6.2f}   "
+                f"{estimate['seconds']:7.2f} {seconds:7.2f} {time:6.2f}"
+            )
+            subprocess.run(["rm", "-rf", str(out)], check=True)
+    print(f"worst ratio either way: {worst:.2f} (aim: at most 2)")
+
+
+if __name__ == "__main__":
+    main()

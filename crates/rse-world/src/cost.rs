@@ -1,0 +1,427 @@
+//! What rebuilding a world costs `check` — peak memory and work — modelled
+//! on measured figures (`bench/budget.sh` prints each estimate beside what
+//! it measures, over a table of ordinary and hostile worlds). Estimated in
+//! two steps, each before the work it prices: from the recipe alone
+//! ([`Manifest::rebuild_cost`]: generation, obstacles, height-field
+//! samples, flat patches), then from the generated terrain
+//! ([`Manifest::full_rebuild_cost`]: the files, whose size follows the
+//! mesh's triangles and the box count, not the grid).
+
+use rse_core::{AtlasOptions, Scheme, Terrain, generate_at};
+
+use crate::atlas::atlas_of;
+use crate::manifest::Manifest;
+use crate::options::{Collider, MujocoCollider, Target, WorldOptions};
+use crate::rebuild::RebuildError;
+
+/// What rebuilding and checking a world costs, estimated before it is done.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RebuildCost {
+    /// Cells of the world's grid (an atlas's whole map).
+    pub cells: u64,
+    /// Memory at the peak, bytes.
+    pub bytes: u64,
+    /// Work, in cell visits ([`VISIT_NANOS`] each on one core).
+    pub visits: u64,
+}
+
+impl RebuildCost {
+    /// The work as seconds on one core of the development machine.
+    pub fn seconds(&self) -> f64 {
+        self.visits as f64 * VISIT_NANOS * 1e-9
+    }
+}
+
+/// One cell visit of the generator, nanoseconds on one core of the
+/// development machine: the unit every other cost is counted in.
+pub const VISIT_NANOS: f64 = 5.0;
+
+/// The process and its fixed buffers, bytes.
+const BASE_BYTES: u64 = 8 << 20;
+/// Per cell: the heights, the height-map CSV and the preview (each built,
+/// then read back), the flat-patch and spawn fields.
+const BYTES_PER_CELL: u64 = 48;
+/// Per cell: the height-map CSV and preview written and compared, the
+/// wall count above.
+const VISITS_PER_CELL: u64 = 100;
+
+/// A file's bytes are held three times at the peak: rebuilt, read from
+/// the folder, and parsed (meshes, XML).
+const FILE_COPIES: u64 = 3;
+/// Bytes of a mesh file (OBJ, USD) per triangle: measured 32–41.
+const MESH_FILE_BYTES_PER_TRIANGLE: u64 = 40;
+/// Bytes of a box list (MJCF 118, URDF 310, SDF and USD between) per box.
+const BOX_FILE_BYTES_PER_BOX: u64 = 220;
+/// The mesh in memory per triangle: ours, and the OBJ reader's.
+const MESH_BYTES_PER_TRIANGLE: u64 = 96;
+/// Checking one mesh (read, closed, oriented, volume, no T-junction) per
+/// triangle, for walls one step high: measured 3.3 µs a triangle on a
+/// 300×300 field of random steps of height 1.
+const MESH_CHECK_VISITS_PER_TRIANGLE: u64 = 600;
+/// ... and per triangle for each doubling of the mean wall (in steps): the
+/// T-junction search walks more of its buckets along tall walls (measured
+/// 3.7, 4.4, 5.2, 6.6 and 9.0 µs a triangle for heights 4, 16, 64, 256
+/// and 1000, a mean wall of a third of that).
+const MESH_CHECK_VISITS_PER_WALL_DOUBLING: f64 = 120.0;
+/// Building and comparing one more mesh file, per triangle.
+const MESH_FILE_VISITS_PER_TRIANGLE: u64 = 24;
+/// Building, comparing and checking the references of one box list, per box.
+const BOX_FILE_VISITS_PER_BOX: u64 = 800;
+
+/// A height-field sample: the float samples and the encoded file.
+const BYTES_PER_SAMPLE: u64 = 8;
+/// Sampling, encoding and comparing one height-field sample.
+const VISITS_PER_SAMPLE: u64 = 4;
+
+/// An obstacle of the recipe: parsed from `rse.json` and drawn.
+const BYTES_PER_OBSTACLE: u64 = 640;
+/// Parsing, drawing and recording one obstacle (its stamp is counted
+/// apart, by [`Scheme::generation_visits`]).
+const VISITS_PER_OBSTACLE: u64 = 1000;
+
+/// A flat patch of an atlas, as found and as written in `atlas.json`.
+const BYTES_PER_PATCH: u64 = 150;
+/// Finding (counted apart by [`AtlasOptions::visits`]), writing and
+/// comparing one flat patch.
+const VISITS_PER_PATCH: u64 = 800;
+
+/// What the recipe alone says of a world: its grid, its generation, and
+/// what its options ask beside the files.
+struct Recipe {
+    cells: u64,
+    generation: u64,
+    obstacles: u64,
+    patches: u64,
+}
+
+impl Manifest {
+    /// What rebuilding this world would cost, from its recipe alone (the
+    /// recorded scheme or atlas is parsed; nothing is generated): the
+    /// generation, the obstacles, the height field's samples (cells·k²),
+    /// the flat patches. The files come after ([`Self::full_rebuild_cost`]).
+    pub fn rebuild_cost(&self) -> Result<RebuildCost, RebuildError> {
+        let recipe = self.recipe()?;
+        let samples = hfield_samples(&self.options, recipe.cells);
+        Ok(RebuildCost {
+            cells: recipe.cells,
+            bytes: BASE_BYTES
+                .saturating_add(recipe.cells.saturating_mul(BYTES_PER_CELL))
+                .saturating_add(samples.saturating_mul(BYTES_PER_SAMPLE))
+                .saturating_add(recipe.obstacles.saturating_mul(BYTES_PER_OBSTACLE))
+                .saturating_add(recipe.patches.saturating_mul(BYTES_PER_PATCH)),
+            visits: recipe
+                .generation
+                .saturating_add(recipe.cells.saturating_mul(VISITS_PER_CELL))
+                .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
+                .saturating_add(recipe.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
+                .saturating_add(recipe.patches.saturating_mul(VISITS_PER_PATCH)),
+        })
+    }
+
+    /// [`Self::rebuild_cost`] and the files: the terrain is generated (what
+    /// `rebuild_cost` priced, to be held to a budget first) and its mesh and
+    /// boxes counted, since a world's files grow with them (a field of tall
+    /// random steps has twice the triangles a cell of a low one has, a flat
+    /// atlas next to none).
+    pub fn full_rebuild_cost(&self) -> Result<RebuildCost, RebuildError> {
+        let recipe_cost = self.rebuild_cost()?;
+        let terrain = self.terrain_alone()?;
+        let colliders: Vec<Collider> = self
+            .options
+            .targets
+            .iter()
+            .map(|t| Collider::of(t, self.options.mesh, self.options.mujoco_collider))
+            .collect();
+        let triangles = if colliders.contains(&Collider::Mesh) {
+            terrain.mesh().triangles().len() as u64
+        } else {
+            0
+        };
+        let boxes = if colliders.contains(&Collider::Boxes) {
+            terrain.boxes().len() as u64
+        } else {
+            0
+        };
+        let (mut file_bytes, mut visits) = (0u64, 0u64);
+        for collider in &colliders {
+            let (bytes, work) = match collider {
+                Collider::Mesh => (
+                    triangles.saturating_mul(MESH_FILE_BYTES_PER_TRIANGLE),
+                    triangles.saturating_mul(MESH_FILE_VISITS_PER_TRIANGLE),
+                ),
+                Collider::Boxes => (
+                    boxes.saturating_mul(BOX_FILE_BYTES_PER_BOX),
+                    boxes.saturating_mul(BOX_FILE_VISITS_PER_BOX),
+                ),
+                // Priced from the recipe (its samples).
+                Collider::Hfield => (0, 0),
+            };
+            file_bytes = file_bytes.saturating_add(bytes);
+            visits = visits.saturating_add(work);
+        }
+        // Copies of one mesh are checked once.
+        let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
+            + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(&terrain)).log2();
+        let mesh_check = (triangles as f64 * per_triangle) as u64;
+        Ok(RebuildCost {
+            cells: recipe_cost.cells,
+            bytes: recipe_cost
+                .bytes
+                .saturating_add(file_bytes.saturating_mul(FILE_COPIES))
+                .saturating_add(triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE)),
+            visits: recipe_cost
+                .visits
+                .saturating_add(visits)
+                .saturating_add(mesh_check),
+        })
+    }
+
+    /// The grid, generation work, obstacles and patches the recipe asks.
+    fn recipe(&self) -> Result<Recipe, RebuildError> {
+        if let Some(record) = &self.atlas {
+            let schemes: Vec<Scheme> = record.schemes()?.into_iter().map(|s| s.scheme).collect();
+            let options = record.options(self.seed);
+            let Some(first) = schemes.first() else {
+                return Ok(Recipe {
+                    cells: 0,
+                    generation: 0,
+                    obstacles: 0,
+                    patches: 0,
+                });
+            };
+            let [nx, ny] = options.map_cells([first.grid().nx, first.grid().ny]);
+            let tiles = u64::from(options.rows).saturating_mul(u64::from(options.cols));
+            let obstacles = schemes.iter().map(|s| s.obstacles().len() as u64).max();
+            Ok(Recipe {
+                cells: nx.saturating_mul(ny),
+                generation: options.visits(&schemes),
+                obstacles: obstacles.unwrap_or(0).saturating_mul(tiles),
+                patches: patches(&options, first).saturating_mul(tiles),
+            })
+        } else {
+            let scheme = Scheme::from_csv(&self.scheme, Some("rse.json scheme"))?;
+            let grid = scheme.grid();
+            Ok(Recipe {
+                cells: grid.cells() as u64,
+                generation: scheme.generation_visits(),
+                obstacles: scheme.obstacles().len() as u64,
+                patches: 0,
+            })
+        }
+    }
+
+    /// The world's terrain (an atlas's whole map, without its flat
+    /// patches, which leave the heights as they are).
+    fn terrain_alone(&self) -> Result<Terrain, RebuildError> {
+        if let Some(record) = &self.atlas {
+            let schemes = record.schemes()?;
+            let mut options = record.options(self.seed);
+            options.patches.count = 0;
+            Ok(atlas_of(&schemes, &options)?.terrain().clone())
+        } else {
+            let scheme = Scheme::from_csv(&self.scheme, Some("rse.json scheme"))?;
+            Ok(generate_at(
+                &scheme,
+                self.seed,
+                self.index,
+                self.options.difficulty,
+            ))
+        }
+    }
+}
+
+/// The mean height of a wall between two neighbouring cells, in steps
+/// (over the pairs that differ; 0 for a flat terrain).
+fn mean_wall(terrain: &Terrain) -> f64 {
+    let map = terrain.heightmap();
+    let (mut sum, mut walls) = (0u64, 0u64);
+    for y in 0..map.ny() {
+        for x in 0..map.nx() {
+            let h = map.get(x, y);
+            let right = (x + 1 < map.nx()).then(|| map.get(x + 1, y));
+            let up = (y + 1 < map.ny()).then(|| map.get(x, y + 1));
+            for other in [right, up].into_iter().flatten() {
+                if other != h {
+                    sum += u64::from(h.abs_diff(other));
+                    walls += 1;
+                }
+            }
+        }
+    }
+    if walls == 0 {
+        0.0
+    } else {
+        sum as f64 / walls as f64
+    }
+}
+
+/// Flat patches one atlas tile lists at most: its count, and no more than
+/// one a cell.
+fn patches(options: &AtlasOptions, scheme: &Scheme) -> u64 {
+    u64::from(options.patches.count).min(scheme.grid().cells() as u64)
+}
+
+/// Height-field samples a world of `cells` cells holds (`cells·k²`, the
+/// extra row and column aside), when its `MuJoCo` target collides with one.
+fn hfield_samples(options: &WorldOptions, cells: u64) -> u64 {
+    match options.mujoco_collider {
+        MujocoCollider::Hfield { oversample } if options.targets.contains(Target::Mujoco) => {
+            let k = u64::from(oversample);
+            cells.saturating_mul(k.saturating_mul(k))
+        }
+        _ => 0,
+    }
+}
+
+/// The memory one world takes while a batch builds it, before it is
+/// generated: [`WORLD_BYTES_PER_CELL`](crate::WORLD_BYTES_PER_CELL) a cell
+/// and its height field's samples.
+pub(crate) fn batch_world_bytes(cells: u64, options: &WorldOptions) -> u64 {
+    cells
+        .saturating_mul(crate::memory::WORLD_BYTES_PER_CELL)
+        .saturating_add(hfield_samples(options, cells).saturating_mul(BYTES_PER_SAMPLE))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atlas_record::NamedScheme;
+    use crate::options::Targets;
+    use crate::templates::Templates;
+    use crate::world::build_world;
+
+    /// The manifest of world 0 of `csv` with every target.
+    fn manifest_of(csv: &str, options: &WorldOptions) -> Manifest {
+        let scheme = Scheme::from_csv(csv, None).unwrap();
+        let world = build_world(
+            &scheme,
+            0,
+            0,
+            "world_0000".to_owned(),
+            options,
+            &Templates::builtin(),
+        )
+        .unwrap();
+        Manifest::from_json(std::str::from_utf8(&world.files["rse.json"]).unwrap()).unwrap()
+    }
+
+    fn every_target() -> WorldOptions {
+        WorldOptions {
+            targets: "obj,gazebo,webots,mujoco,urdf,usd"
+                .parse::<Targets>()
+                .unwrap(),
+            ..WorldOptions::default()
+        }
+    }
+
+    /// A 10×10 world whose manifest asks a height field of oversample
+    /// 1158 was estimated at 200 KiB and peaked at 1 GB: its samples
+    /// (cells·k²) are priced from the recipe, before anything is built.
+    #[test]
+    fn height_field_samples_are_priced_from_the_recipe() {
+        let mut manifest = manifest_of("# size: 10x10\ntype,height\nrandom,3\n", &every_target());
+        let plain = manifest.rebuild_cost().unwrap();
+        manifest.options.mujoco_collider = MujocoCollider::Hfield { oversample: 1158 };
+        let forged = manifest.rebuild_cost().unwrap();
+        assert!(plain.bytes < 16 << 20, "{plain:?}");
+        assert!(forged.bytes > 1_000_000_000, "{forged:?}");
+        assert!(forged.seconds() > 1.0, "{forged:?}");
+    }
+
+    /// 900k obstacles on a 10×10 grid used 532 MB against an estimate of
+    /// none: each obstacle is priced.
+    #[test]
+    fn obstacles_are_priced() {
+        let csv = format!(
+            "# size: 10x10\ntype,height\n{}",
+            "random,1\n".repeat(20_000)
+        );
+        let cost = manifest_of(&csv, &every_target()).rebuild_cost().unwrap();
+        assert!(cost.bytes >= 20_000 * BYTES_PER_OBSTACLE, "{cost:?}");
+        assert!(cost.visits >= 20_000 * VISITS_PER_OBSTACLE, "{cost:?}");
+    }
+
+    /// A field of tall random steps costs more than a low one of the same
+    /// grid (a 300×300 `random,1000` world was estimated at half its
+    /// memory and a hundredth of its time): the files follow the mesh, and
+    /// the mesh check the walls.
+    #[test]
+    fn tall_walls_cost_more_than_low_ones_of_the_same_grid() {
+        let cost = |h: u32| {
+            let csv = format!("# size: 40x40\ntype,height\nrandom,{h}\n");
+            manifest_of(&csv, &every_target())
+                .full_rebuild_cost()
+                .unwrap()
+        };
+        let (low, tall, flat) = (cost(1), cost(1000), cost(0));
+        assert!(
+            tall.visits as f64 > 1.5 * low.visits as f64,
+            "{low:?} {tall:?}"
+        );
+        assert!(
+            tall.bytes > low.bytes && low.bytes > flat.bytes,
+            "{flat:?} {low:?}"
+        );
+        // The recipe alone cannot tell them apart; the terrain can.
+        assert_eq!(
+            manifest_of("# size: 40x40\ntype,height\nrandom,1\n", &every_target())
+                .rebuild_cost()
+                .unwrap()
+                .bytes,
+            manifest_of("# size: 40x40\ntype,height\nrandom,1000\n", &every_target())
+                .rebuild_cost()
+                .unwrap()
+                .bytes
+        );
+    }
+
+    /// An atlas with 10⁶ flat patches took 9.7 s against an estimate of a
+    /// second: its patches are priced, up to one a cell of each tile.
+    #[test]
+    fn an_atlas_prices_its_flat_patches() {
+        let scheme = Scheme::from_csv("# size: 30x30\ntype,height\n", None).unwrap();
+        let schemes = [NamedScheme {
+            name: "flat".to_owned(),
+            scheme,
+        }];
+        let cost = |count: u32| {
+            let options = AtlasOptions {
+                rows: 2,
+                cols: 2,
+                patches: rse_core::PatchOptions {
+                    count,
+                    ..AtlasOptions::default().patches
+                },
+                ..AtlasOptions::default()
+            };
+            let (world, _) = crate::atlas::build_atlas_world(
+                &schemes,
+                &options,
+                "atlas".to_owned(),
+                &every_target(),
+                &Templates::builtin(),
+            )
+            .unwrap();
+            Manifest::from_json(std::str::from_utf8(&world.files["rse.json"]).unwrap())
+                .unwrap()
+                .full_rebuild_cost()
+                .unwrap()
+        };
+        let (none, all) = (cost(0), cost(1_000_000));
+        assert!(
+            all.bytes >= none.bytes + 4 * 900 * BYTES_PER_PATCH,
+            "{none:?} {all:?}"
+        );
+        assert!(all.visits >= none.visits + 4 * 900 * VISITS_PER_PATCH);
+    }
+
+    /// `batch --oversample` had the same blind spot: a batch's memory
+    /// check prices the samples of its height fields too.
+    #[test]
+    fn a_batch_prices_height_field_samples() {
+        let mut options = every_target();
+        assert!(batch_world_bytes(100, &options) < 1 << 20);
+        options.mujoco_collider = MujocoCollider::Hfield { oversample: 1158 };
+        assert!(batch_world_bytes(100, &options) > 1_000_000_000);
+    }
+}
