@@ -125,7 +125,7 @@ pub struct CheckArgs {
     #[arg(long)]
     pub strict: bool,
 
-    /// Allow each world's rebuild F times the default budget (2·10⁹ cell visits, and the memory
+    /// Allow each world's rebuild F times the default budget (2·10¹⁰ cell visits, some 100 s, and the memory
     /// available per world checked at once) [default: 1].
     #[arg(long, value_name = "F", allow_negative_numbers = true)]
     pub budget: Option<rse_verify::Budget>,

@@ -302,3 +302,40 @@ fn a_template_folder_with_a_link_or_fifo_is_refused_by_batch_and_check() {
         assert!(stderr(&checked).contains(name), "{}", stderr(&checked));
     }
 }
+
+/// A failed command removes every file and folder it made: a batch whose
+/// template fails to render leaves no output folder (nor the folders made
+/// for it), and a mesh whose OBJ cannot be written leaves no `.mtl`.
+#[test]
+fn failed_commands_leave_nothing_they_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("templates");
+    std::fs::create_dir_all(templates.join("urdf")).unwrap();
+    std::fs::write(templates.join("urdf/broken.txt.j2"), "{{ no_such_value }}").unwrap();
+    let out = dir.path().join("new/deeper/out");
+    let run = batch(
+        &out,
+        &[
+            "--template",
+            templates.to_str().unwrap(),
+            "--target",
+            "urdf",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(stderr(&run).contains("no_such_value"), "{}", stderr(&run));
+    assert!(
+        !dir.path().join("new").exists(),
+        "the failed batch left its folders"
+    );
+    // The OBJ's name is taken by a folder: its .mtl, written first, goes.
+    std::fs::create_dir(dir.path().join("t.obj")).unwrap();
+    std::fs::write(dir.path().join("t.obj/inside"), "x").unwrap();
+    let obj = dir.path().join("t.obj");
+    let run = rse_gen(&["mesh", "schemes/wall.csv", obj.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(
+        !dir.path().join("t.mtl").exists(),
+        "the failed mesh left its .mtl"
+    );
+}

@@ -27,10 +27,11 @@ pub const MESH_RELATIVE_TOLERANCE: f64 = 1e-5;
 
 /// The cell visits one world's rebuild may cost under `check`'s default
 /// budget ([`rse_world::RebuildCost`], [`rse_world::VISIT_NANOS`] each):
-/// some ten minutes on one core of the development machine, ten times a
-/// 1000×1000 field of random steps with every target (some 50 s). `check
-/// --budget F` allows F times as much.
-pub const REBUILD_VISITS: u64 = 120_000_000_000;
+/// some 100 s on one core of the development machine, room for any
+/// 1000×1000 world with every target (a field of random steps of height 4
+/// takes some 45 s, of height 1000 some 80 s). `check --budget F` allows F
+/// times as much.
+pub const REBUILD_VISITS: u64 = 20_000_000_000;
 
 /// The memory one world's rebuild may take under the default budget: the
 /// memory available (`MemAvailable`) shared by the worlds checked at once,

@@ -11,7 +11,8 @@ use rse_core::{AtlasOptions, Scheme, Terrain, generate_at};
 
 use crate::atlas::atlas_of;
 use crate::manifest::Manifest;
-use crate::options::{Collider, MujocoCollider, Target, WorldOptions};
+use crate::memory::{BYTES_PER_SAMPLE, hfield_samples};
+use crate::options::Collider;
 use crate::rebuild::RebuildError;
 
 /// What rebuilding and checking a world costs, estimated before it is done.
@@ -68,8 +69,6 @@ const MESH_FILE_VISITS_PER_TRIANGLE: u64 = 24;
 /// Building, comparing and checking the references of one box list, per box.
 const BOX_FILE_VISITS_PER_BOX: u64 = 800;
 
-/// A height-field sample: the float samples and the encoded file.
-const BYTES_PER_SAMPLE: u64 = 8;
 /// Sampling, encoding and comparing one height-field sample.
 const VISITS_PER_SAMPLE: u64 = 4;
 
@@ -261,32 +260,13 @@ fn patches(options: &AtlasOptions, scheme: &Scheme) -> u64 {
     u64::from(options.patches.count).min(scheme.grid().cells() as u64)
 }
 
-/// Height-field samples a world of `cells` cells holds (`cells·k²`, the
-/// extra row and column aside), when its `MuJoCo` target collides with one.
-fn hfield_samples(options: &WorldOptions, cells: u64) -> u64 {
-    match options.mujoco_collider {
-        MujocoCollider::Hfield { oversample } if options.targets.contains(Target::Mujoco) => {
-            let k = u64::from(oversample);
-            cells.saturating_mul(k.saturating_mul(k))
-        }
-        _ => 0,
-    }
-}
-
-/// The memory one world takes while a batch builds it, before it is
-/// generated: [`WORLD_BYTES_PER_CELL`](crate::WORLD_BYTES_PER_CELL) a cell
-/// and its height field's samples.
-pub(crate) fn batch_world_bytes(cells: u64, options: &WorldOptions) -> u64 {
-    cells
-        .saturating_mul(crate::memory::WORLD_BYTES_PER_CELL)
-        .saturating_add(hfield_samples(options, cells).saturating_mul(BYTES_PER_SAMPLE))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::atlas_record::NamedScheme;
+    use crate::memory::batch_world_bytes;
     use crate::options::Targets;
+    use crate::options::{MujocoCollider, WorldOptions};
     use crate::templates::Templates;
     use crate::world::build_world;
 

@@ -3,6 +3,7 @@
 //! refused before it starts.
 
 use crate::error::Error;
+use crate::options::{MujocoCollider, Target, WorldOptions};
 
 /// Memory one world may take while it is built, per cell of its grid:
 /// heightmap, mesh, box set and every file in memory. Measured at about
@@ -16,13 +17,13 @@ pub const WORLD_BYTES_PER_CELL: u64 = 2048;
 /// field's samples (`cells·k²`) where the `MuJoCo` target has one.
 pub(crate) fn check_memory_for(
     cells: u64,
-    options: &crate::options::WorldOptions,
+    options: &WorldOptions,
     at_once: u64,
 ) -> Result<(), Error> {
     let Some(available) = available_bytes() else {
         return Ok(());
     };
-    let per_world = crate::cost::batch_world_bytes(cells, options);
+    let per_world = batch_world_bytes(cells, options);
     let needed = per_world.saturating_mul(at_once);
     if needed > available {
         return Err(Error::TooBig {
@@ -35,6 +36,31 @@ pub(crate) fn check_memory_for(
         });
     }
     Ok(())
+}
+
+/// A height-field sample while a world is built: the float samples and
+/// the encoded file.
+pub(crate) const BYTES_PER_SAMPLE: u64 = 8;
+
+/// Height-field samples a world of `cells` cells holds (`cells·k²`, the
+/// extra row and column aside), when its `MuJoCo` target collides with one.
+pub(crate) fn hfield_samples(options: &WorldOptions, cells: u64) -> u64 {
+    match options.mujoco_collider {
+        MujocoCollider::Hfield { oversample } if options.targets.contains(Target::Mujoco) => {
+            let k = u64::from(oversample);
+            cells.saturating_mul(k.saturating_mul(k))
+        }
+        _ => 0,
+    }
+}
+
+/// The memory one world takes while a batch builds it, before it is
+/// generated: [`WORLD_BYTES_PER_CELL`](crate::WORLD_BYTES_PER_CELL) a cell
+/// and its height field's samples.
+pub(crate) fn batch_world_bytes(cells: u64, options: &WorldOptions) -> u64 {
+    cells
+        .saturating_mul(WORLD_BYTES_PER_CELL)
+        .saturating_add(hfield_samples(options, cells).saturating_mul(BYTES_PER_SAMPLE))
 }
 
 /// `MemAvailable` of `/proc/meminfo`, bytes; `None` where it cannot be
