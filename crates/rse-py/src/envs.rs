@@ -134,6 +134,17 @@ impl EnvTerrains {
         self.inner.try_write().map_err(|_| busy())
     }
 
+    /// Every array of the pool as it was made (before a reset changes
+    /// anything, so a refused reset changes nothing).
+    fn arrays_intact(&self, py: Python<'_>) -> PyResult<()> {
+        let n = self.fixed.num_envs;
+        let (slots, rows, cols) = self.fixed.buffer_shape;
+        intact(self.samples.bind(py), "samples", slots * rows * cols)?;
+        intact(self.difficulty.bind(py), "difficulty", n)?;
+        intact(self.origins.bind(py), "origins", 3 * n)?;
+        intact(self.episode.bind(py), "episode", n)
+    }
+
     /// `samples`, checked unchanged, borrowed for writing.
     fn samples_to_write<'py>(
         &self,
@@ -366,8 +377,8 @@ impl EnvTerrains {
     ) -> PyResult<()> {
         let mut inner = self.writing()?;
         let envs = self::env_ids(env_ids, self.fixed.num_envs)?;
+        self.arrays_intact(py)?;
         let array = self.difficulty.bind(py).clone();
-        intact(&array, "difficulty", self.fixed.num_envs)?;
         if let Some(given) = difficulty {
             let values: Vec<f64> = match given.extract::<f64>() {
                 Ok(one) => vec![one; envs.len()],
