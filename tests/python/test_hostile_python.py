@@ -109,3 +109,23 @@ def test_threads_sharing_a_pool_get_a_clear_error_never_a_borrow_error() -> None
         assert "another thread is using this object" in str(e), str(e)
     # Every reset that returned counted its episode, whole.
     assert envs.episode.tolist() == [resets] * 256
+
+
+def test_check_of_a_folder_chain_thousands_deep_is_a_fault_not_a_segfault(tmp_path) -> None:
+    # A 6000-level chain inside a world overflowed the stack: the command
+    # line exited 134 and `rse.check` took the interpreter down with it.
+    rse.write_worlds(TINY, tmp_path / "out", amount=1, targets=["obj"])
+    deep = tmp_path / "out" / "world_0000"
+    made = 0
+    while made < 6000:
+        deep = deep / "d"
+        try:
+            deep.mkdir()
+        except OSError:
+            break  # PATH_MAX reached: deep enough
+        made += 1
+    assert made > 1000
+    report = rse.check(tmp_path / "out")
+    assert not report.ok
+    said = " ".join(f.message for w in report.worlds for f in w.faults)
+    assert "folders deep: not listed" in said, said
