@@ -118,14 +118,21 @@ def test_check_of_a_folder_chain_thousands_deep_is_a_fault_not_a_segfault(tmp_pa
     deep = tmp_path / "out" / "world_0000"
     made = 0
     while made < 6000:
-        deep = deep / "d"
         try:
-            deep.mkdir()
+            (deep / "d").mkdir()
         except OSError:
             break  # PATH_MAX reached: deep enough
+        deep = deep / "d"
         made += 1
-    assert made > 1000
-    report = rse.check(tmp_path / "out")
-    assert not report.ok
-    said = " ".join(f.message for w in report.worlds for f in w.faults)
-    assert "folders deep: not listed" in said, said
+    try:
+        assert made > 1000
+        report = rse.check(tmp_path / "out")
+        assert not report.ok
+        said = " ".join(f.message for w in report.worlds for f in w.faults)
+        assert "folders deep: not listed" in said, said
+    finally:
+        # Removed here, deepest first: pytest's own clean-up of old temporary
+        # folders (shutil.rmtree) recurses once a level, and would overflow.
+        for _ in range(made):
+            deep.rmdir()
+            deep = deep.parent
