@@ -126,10 +126,17 @@ def test_the_curriculum_moves_the_difficulty_of_the_envs_that_reset() -> None:
 def test_bad_configurations_are_named() -> None:
     from mjlab.terrains import TerrainEntityCfg
 
+    # mjlab's own terrain is replaced; anything else in its place is named.
     cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, terrain=TerrainEntityCfg()))
-    with pytest.raises(ValueError, match="^env_cfg.scene.terrain"):
+    use_env_terrains(cfg, SCHEME)
+    assert cfg.scene.terrain is None
+    cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, terrain="a mesh of my own"))
+    with pytest.raises(ValueError, match="^env_cfg.scene.terrain: a str is not"):
         use_env_terrains(cfg, SCHEME)
-    cfg.scene.terrain = None
+    cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, entities={"terrain": EntityCfg(spec_fn=ball)}))
+    with pytest.raises(ValueError, match=r"^env_cfg.scene.entities\['terrain'\]"):
+        use_env_terrains(cfg, SCHEME)
+    cfg.scene.entities = {}
     with pytest.raises(OSError, match="no/such/scheme.csv"):
         use_env_terrains(cfg, Path("no/such/scheme.csv"))
     assert isinstance(EnvTerrainsEvent, type)

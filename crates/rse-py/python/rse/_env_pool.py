@@ -72,15 +72,16 @@ def add_env_geom(
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
     name: Union[str, None] = None,
     group: int = 2,
+    body: Any = None,
 ) -> Any:
-    """Adds to the world body of ``spec`` a geom showing the height field
-    ``hfield`` (one of ``add_env_hfields``'s), placed at ``envs.hfield_pos``
-    plus ``offset``: its slot's (or the map's) frame moved by ``offset``.
-    Returns the geom's spec."""
+    """Adds to ``body`` (default: the world body) of ``spec`` a geom
+    showing the height field ``hfield`` (one of ``add_env_hfields``'s),
+    placed at ``envs.hfield_pos`` plus ``offset``: its slot's (or the
+    map's) frame moved by ``offset``. Returns the geom's spec."""
     import mujoco
 
     x, y, z = envs.hfield_pos
-    return spec.worldbody.add_geom(
+    return (body if body is not None else spec.worldbody).add_geom(
         name=name or hfield,
         type=mujoco.mjtGeom.mjGEOM_HFIELD,
         hfieldname=hfield,

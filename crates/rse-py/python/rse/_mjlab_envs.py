@@ -16,6 +16,15 @@ from rse._fit import SchemeLike, load
 from rse._rse import EnvTerrains
 
 
+BODY = "terrain"
+"""The body rse's terrain geoms go in: the name mjlab's terrain importer
+gives its terrain, which the velocity tasks' contact sensors
+(``ContactMatch(mode="body", pattern="terrain")``) and rewards look for."""
+
+GEOM_GROUP = 0
+"""The geom group of the terrain: mjlab's ray sensors (``terrain_scan``,
+the feet's ``TerrainHeightSensorCfg``) see group 0 only ("terrain only")."""
+
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
 difficulty curriculum term is ``TERM + "_difficulty"``)."""
@@ -39,8 +48,11 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     zeros = np.zeros(nrow * ncol, dtype=np.float32)
     for e in range(num_envs):
         spec.add_hfield(name=f"{name}{e}", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
-    add_env_geom(spec, probe, f"{name}0", name=GEOM)
-    spec.worldbody.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1])
+    # In a body named as mjlab's importer names its terrain, in the group
+    # its ray sensors see: the tasks' sensors, rewards and terms find it.
+    body = spec.worldbody.add_body(name=BODY)
+    add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
+    body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
 
 
 class EnvTerrainsEvent:
@@ -77,6 +89,7 @@ class EnvTerrainsEvent:
             spawn_radius=p.get("spawn_radius"),
         )
         self._env = env
+        self._rays_of: Any = None
         sim = env.sim
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
@@ -84,7 +97,8 @@ class EnvTerrainsEvent:
 
     def _copy_out(self, ids: list[int]) -> None:
         """Copies the terrains of ``ids`` into the simulation's model and
-        the host model, and their origins into ``env_origins``."""
+        the host model, their ray-cast meshes into the sensors' render
+        context, and their origins into ``env_origins``."""
         import torch
 
         from rse.mujoco_warp import sync
@@ -92,9 +106,42 @@ class EnvTerrainsEvent:
         sim = self._env.sim
         sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
         sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
+        self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
         origins[index] = torch.as_tensor(self.envs.origins[ids], dtype=origins.dtype, device=origins.device)
+
+    def _refresh_rays(self, ids: list[int]) -> None:
+        """Rebuilds the ray-cast meshes of the fields of ``ids`` in the
+        render context of mjlab's ray sensors (``terrain_scan``, the feet's
+        height sensors). MuJoCo Warp's context holds a BVH per height field,
+        built once from the host model and only for the fields the host
+        model's geoms show (``pool0``): without this, every other world's
+        rays would miss its terrain and all would see the first terrain as it
+        was built. A context made anew (mjlab recreates it when an event
+        expands a model field) gets every env's field again."""
+        ctx = getattr(self._env.sim, "_sensor_context", None)
+        if ctx is None or not ctx.has_raycasts:
+            return
+        import mujoco
+        from mujoco_warp._src import bvh
+
+        rc = ctx.render_context
+        if rc is not self._rays_of:
+            self._rays_of = rc
+            ids = list(range(self._env.num_envs))
+        model = self._env.sim.mj_model
+        bvh_ids = rc.hfield_bvh_id.numpy()
+        bounds = rc.hfield_bounds_size.numpy()
+        for e in ids:
+            hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, f"{self.name}{e}")
+            mesh, half = bvh.build_hfield_bvh(model, hid, constructor="cubql")
+            rc.hfield_registry.pop(int(bvh_ids[hid]), None)
+            rc.hfield_registry[mesh.id] = mesh
+            bvh_ids[hid] = mesh.id
+            bounds[hid] = half
+        rc.hfield_bvh_id.assign(bvh_ids)
+        rc.hfield_bounds_size.assign(bounds)
 
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
         ids = _ids(env, env_ids)
@@ -159,6 +206,25 @@ def terrain_difficulty(
     return {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
 
 
+def out_of_slot(env: Any, env_ids: Any = None, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
+    """mjlab termination term (time-out kind), as the velocity tasks'
+    ``out_of_terrain_bounds`` for rse's pool: true where the robot's base
+    is more than ``margin`` metres outside its env's terrain (its slot:
+    ``[0, nx·s] × [0, ny·s]`` in its own world)."""
+    import torch
+
+    envs = env_terrains(env, term)
+    t = envs.terrain(0)
+    ny, nx = t.heights.shape
+    xy = env.scene[asset_name].data.root_link_pos_w[:, :2]
+    size = torch.tensor([nx * t.block_size, ny * t.block_size], device=xy.device, dtype=xy.dtype)
+    return ((xy < -margin) | (xy > size + margin)).any(dim=1)
+
+
+def _func_name(term: Any) -> str:
+    return getattr(getattr(term, "func", None), "__name__", "")
+
+
 def use_env_terrains(
     env_cfg: Any,
     scheme: SchemeLike,
@@ -168,22 +234,45 @@ def use_env_terrains(
     difficulty: Optional[float] = None,
     spawn_radius: Optional[float] = None,
     env_offset: Optional[int] = None,
-    curriculum: bool = False,
+    curriculum: Optional[bool] = None,
     term: str = TERM,
 ) -> None:
     """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
-    terrain, new every episode: the pool in the scene (through its
-    ``spec_fn``, sized by ``env_cfg.scene.num_envs`` when the scene is
-    built), ``EnvTerrainsEvent`` as the first reset event ``term``, and
-    with ``curriculum`` the ``terrain_difficulty`` curriculum term. The
-    scene must have no terrain of its own (``scene.terrain = None``)."""
+    terrain, new every episode — a registered velocity task's config as it
+    is. It replaces:
+
+    - the scene's terrain (``scene.terrain``, mjlab's generator or plane) by
+      rse's pool, added through the scene's ``spec_fn`` (sized by
+      ``scene.num_envs`` when the scene is built) in a body named
+      ``terrain`` in geom group 0, as mjlab's importer makes it: the
+      tasks' contact sensors, ``terrain_scan`` and the feet's height
+      sensors, and the rewards that read them, find it;
+    - the terrain-level curriculum (``terrain_levels_vel``) by
+      ``terrain_difficulty``, the same rule, continuous, with the same
+      ``command_name`` (``curriculum=True`` adds it to a config without
+      one; ``False`` leaves it out);
+    - ``out_of_terrain_bounds`` by ``out_of_slot`` (the robot left its
+      env's terrain);
+
+    and adds ``EnvTerrainsEvent`` as the first reset event ``term``. Every
+    other term is kept. A config rse cannot serve is refused with a
+    ``ValueError`` naming the field."""
     from mjlab.managers.curriculum_manager import CurriculumTermCfg
     from mjlab.managers.event_manager import EventTermCfg
+    from mjlab.managers.termination_manager import TerminationTermCfg
+    from mjlab.terrains import TerrainEntityCfg
 
-    if env_cfg.scene.terrain is not None:
-        raise ValueError("env_cfg.scene.terrain: rse's pool is the terrain: set it to None")
-    load(scheme)  # a bad scheme fails here, not when the scene is built
     scene = env_cfg.scene
+    if scene.terrain is not None and not isinstance(scene.terrain, TerrainEntityCfg):
+        raise ValueError(
+            f"env_cfg.scene.terrain: a {type(scene.terrain).__name__} is not mjlab's TerrainEntityCfg: "
+            "rse replaces mjlab's terrain only; set it to None"
+        )
+    for name, entity in (getattr(scene, "entities", None) or {}).items():
+        if name == BODY:
+            raise ValueError(f"env_cfg.scene.entities[{name!r}]: rse's terrain body is named {BODY!r}; rename the entity")
+    load(scheme)  # a bad scheme fails here, not when the scene is built
+    scene.terrain = None
     earlier = scene.spec_fn
 
     def spec_fn(spec: Any) -> None:
@@ -195,8 +284,17 @@ def use_env_terrains(
     params = dict(scheme=scheme, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
     env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
+    levels = {k: c for k, c in env_cfg.curriculum.items() if _func_name(c) == "terrain_levels_vel"}
+    for k in levels:
+        del env_cfg.curriculum[k]
+    if curriculum is None:
+        curriculum = bool(levels)
     if curriculum:
-        env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(func=terrain_difficulty, params={"term": term})
-
-
-__all__ = ["TERM", "EnvTerrainsEvent", "add_pool", "env_terrains", "terrain_difficulty", "use_env_terrains"]
+        command = next((c.params.get("command_name") for c in levels.values()), None)
+        env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(
+            func=terrain_difficulty, params={"term": term, "command_name": command}
+        )
+    for k, t in list(env_cfg.terminations.items()):
+        if _func_name(t) == "out_of_terrain_bounds":
+            margin = t.params.get("margin", 0.3)
+            env_cfg.terminations[k] = TerminationTermCfg(func=out_of_slot, time_out=t.time_out, params={"term": term, "margin": margin})

@@ -1,0 +1,159 @@
+"""rse inside mjlab's own locomotion task: the registered
+`Mjlab-Velocity-Rough-Unitree-Go1` config taken as it is by
+`rse.mjlab.use_env_terrains` (its terrain, terrain-level curriculum and
+out-of-bounds term replaced, every other term kept), built and stepped with
+mjlab's Go1 on MuJoCo Warp's CPU device: its `terrain_scan` ray sensor sees
+each env's own terrain (equal to `heights_at` where a ray hits a top away
+from a step edge), the feet stand on their own env's tops, a reset renews
+only the named envs, and the curriculum moves the difficulty of the envs
+that reset."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+import rse
+import torch
+from mjlab.envs import ManagerBasedRlEnv
+from mjlab.tasks.registry import load_env_cfg
+from rse.mjlab import env_terrains, out_of_slot, terrain_difficulty, use_env_terrains
+
+import mjlab.tasks  # noqa: F401  (registers the tasks)
+
+TASK = "Mjlab-Velocity-Rough-Unitree-Go1"
+# Two stepped hills, placed and sized anew for every env and episode: their
+# terraces are tops wide enough for the ray sensor's grid to land on.
+SCHEME = rse.Scheme.from_csv(
+    "# size: 40x40\n# step_height: 0.04\ntype,height,angle,x1,y1\npeak,3..6,12,8..32,8..32\npeak,2..5,12,8..32,8..32\n"
+)
+NUM_ENVS = 4
+
+
+def task_cfg():
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = NUM_ENVS
+    return cfg
+
+
+@pytest.fixture(scope="module")
+def go1():
+    cfg = task_cfg()
+    use_env_terrains(cfg, SCHEME, seed=5, difficulty=0.5)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    env.reset()
+    yield env
+    env.close()
+
+
+def step(env: ManagerBasedRlEnv, n: int) -> None:
+    """Steps the default pose (zero actions: the joints held at their
+    default positions)."""
+    for _ in range(n):
+        env.step(torch.zeros(env.action_space.shape))
+
+
+def test_the_registered_config_is_taken_as_it_is() -> None:
+    cfg = task_cfg()
+    before = {k: set(getattr(cfg, k)) for k in ("events", "rewards", "terminations", "curriculum", "commands")}
+    sensors = [s.name for s in cfg.scene.sensors]
+    use_env_terrains(cfg, SCHEME)
+    assert cfg.scene.terrain is None
+    assert set(cfg.rewards) == before["rewards"] and set(cfg.commands) == before["commands"]
+    assert [s.name for s in cfg.scene.sensors] == sensors
+    assert set(cfg.events) == before["events"] | {"rse_terrain"} and next(iter(cfg.events)) == "rse_terrain"
+    assert set(cfg.curriculum) == before["curriculum"] - {"terrain_levels"} | {"rse_terrain_difficulty"}
+    term = cfg.curriculum["rse_terrain_difficulty"]
+    assert term.func is terrain_difficulty and term.params["command_name"] == "twist"
+    assert set(cfg.terminations) == before["terminations"]
+    assert cfg.terminations["out_of_terrain_bounds"].func is out_of_slot
+    assert cfg.terminations["out_of_terrain_bounds"].time_out
+
+
+def flat_under(envs: rse.EnvTerrains, e: int, xy: np.ndarray, reach: float) -> np.ndarray:
+    """Where the tops within ``reach`` of each point (x and y, probed at a
+    tenth of a cell) are one top."""
+    here = envs.heights_at([e], xy[None])[0]
+    same = np.isfinite(here)
+    for dx in np.linspace(-reach, reach, 9):
+        for dy in np.linspace(-reach, reach, 9):
+            there = envs.heights_at([e], (xy + [dx, dy])[None])[0]
+            same &= there == here
+    return same
+
+
+def test_terrain_scan_sees_each_envs_own_terrain(go1) -> None:
+    envs = env_terrains(go1)
+    step(go1, 2)
+    hits = go1.scene.sensors["terrain_scan"].data.hit_pos_w.cpu().numpy().astype(np.float64)
+    t = envs.terrain(0)
+    spacing = t.block_size / envs.field_shape[0] * t.heights.shape[0]  # one sample
+    compared = 0
+    for e in range(NUM_ENVS):
+        xy = hits[e, :, :2]
+        exact = envs.heights_at([e], xy[None])[0]
+        # Away from step edges the field's surface is the top itself; within
+        # a sample of one it is MuJoCo's slope between two samples.
+        flat = flat_under(envs, e, xy, 1.5 * spacing)
+        assert flat.sum() >= 10, f"env {e}: too few rays on flat tops"
+        assert np.abs(hits[e, flat, 2] - exact[flat]).max() <= 0.01, e
+        compared += int(flat.sum())
+        # Another env's tops are not what this env's rays see.
+        other = envs.heights_at([(e + 1) % NUM_ENVS], xy[None])[0]
+        assert np.abs(hits[e, flat, 2] - other[flat]).max() > 0.01, e
+    assert compared >= 60
+
+
+def test_the_feet_stand_on_their_own_envs_tops(go1) -> None:
+    envs = env_terrains(go1)
+    go1.reset()
+    step(go1, 25)
+    model = go1.sim.mj_model
+    robot = go1.scene["robot"]
+    feet = [n for n in robot.geom_names if n.endswith("_foot_collision")]
+    assert len(feet) == 4, robot.geom_names
+    ids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, f"robot/{n}") for n in feet]
+    assert min(ids) >= 0
+    radius = float(model.geom_size[ids[0], 0])
+    xpos = go1.sim.data.geom_xpos.cpu().numpy()[:, ids].astype(np.float64)  # (envs, feet, 3)
+    for e in range(NUM_ENVS):
+        tops = envs.heights_at([e], xpos[e : e + 1, :, :2])[0]
+        gap = xpos[e, :, 2] - radius - tops
+        # Each foot's sphere rests on its own env's top under it (or on a
+        # higher neighbour's edge within its radius).
+        assert np.all(gap > -0.01) and np.all(gap < radius + 0.01), (e, gap)
+
+
+def test_a_reset_renews_only_the_named_envs(go1) -> None:
+    envs = env_terrains(go1)
+    # Hills again (the curriculum may have flattened them as robots fell).
+    envs.difficulty = [1.0] * NUM_ENVS
+    go1.reset()
+    before_samples = envs.samples.copy()
+    before_episode = envs.episode.copy()
+    go1.reset(env_ids=torch.tensor([1, 2]))
+    assert (envs.episode - before_episode).tolist() == [0, 1, 1, 0]
+    for e in (0, 3):
+        assert np.array_equal(envs.samples[e], before_samples[e])
+    for e in (1, 2):
+        assert not np.array_equal(envs.samples[e], before_samples[e])
+    # The simulation's fields hold the new samples.
+    model = go1.sim.mj_model
+    data = go1.sim.wp_model.hfield_data.numpy()
+    for e in range(NUM_ENVS):
+        hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, f"rse_env{e}")
+        adr, n = model.hfield_adr[hid], model.hfield_nrow[hid] * model.hfield_ncol[hid]
+        assert np.array_equal(data[adr : adr + n], envs.samples[e].ravel()), e
+
+
+def test_the_curriculum_moves_the_difficulty_of_the_envs_that_reset(go1) -> None:
+    envs = env_terrains(go1)
+    envs.difficulty = [0.5] * NUM_ENVS
+    step(go1, 5)
+    # Every robot was asked to walk 1 m/s and stands near its spawn point:
+    # it walked less than half of that, so the envs that reset go down a
+    # step (mjlab's terrain-levels rule), the others keep theirs.
+    go1.command_manager.get_command("twist")[:, 0] = 1.0
+    go1.reset(env_ids=torch.tensor([0, 3]))
+    assert np.allclose(envs.difficulty, [0.4, 0.5, 0.5, 0.4]), envs.difficulty
+    assert envs.terrain(0).difficulty == pytest.approx(0.4)
