@@ -206,6 +206,43 @@ def terrain_difficulty(
     return {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
 
 
+class _PoolSpec:
+    """The scene's ``spec_fn``: the earlier one, then rse's pool, one field
+    per env of the scene being built. Its env count is read from the
+    ``Scene`` mjlab is building (the caller of ``spec_fn``), not from the
+    config this was made for: mjlab's ``train`` and ``play`` rebuild the
+    config from the registered one with the command line's overrides
+    (``--env.scene.num-envs 4096``), and a config deep-copied keeps this
+    object but gets a new scene."""
+
+    def __init__(self, scene: Any, earlier: Any, scheme: SchemeLike, oversample: Optional[int]) -> None:
+        self.scene, self.earlier, self.scheme, self.oversample = scene, earlier, scheme, oversample
+
+    def __call__(self, spec: Any) -> None:
+        if self.earlier is not None:
+            self.earlier(spec)
+        add_pool(spec, self.scheme, _num_envs_being_built(self.scene), oversample=self.oversample)
+
+
+def _num_envs_being_built(fallback: Any) -> int:
+    """``num_envs`` of the mjlab ``Scene`` whose construction called this
+    (through ``spec_fn``), else of ``fallback``, a ``SceneCfg``."""
+    import inspect
+
+    from mjlab.scene import Scene
+
+    frame = inspect.currentframe()
+    try:
+        while frame is not None:
+            owner = frame.f_locals.get("self")
+            if isinstance(owner, Scene):
+                return int(owner._cfg.num_envs)
+            frame = frame.f_back
+    finally:
+        del frame
+    return int(fallback.num_envs)
+
+
 def out_of_slot(env: Any, env_ids: Any = None, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
     """mjlab termination term (time-out kind), as the velocity tasks'
     ``out_of_terrain_bounds`` for rse's pool: true where the robot's base
@@ -274,13 +311,7 @@ def use_env_terrains(
     load(scheme)  # a bad scheme fails here, not when the scene is built
     scene.terrain = None
     earlier = scene.spec_fn
-
-    def spec_fn(spec: Any) -> None:
-        if earlier is not None:
-            earlier(spec)
-        add_pool(spec, scheme, scene.num_envs, oversample=oversample)
-
-    scene.spec_fn = spec_fn
+    scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
     params = dict(scheme=scheme, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
     env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}

@@ -1,0 +1,77 @@
+"""rse's variants of mjlab's rough-terrain velocity tasks, registered in
+mjlab's task registry (``Rse-Velocity-Rough-Unitree-Go1``,
+``Rse-Velocity-Rough-Unitree-G1``, one per ``Mjlab-Velocity-Rough-*`` task
+mjlab registers): the task's own config with ``use_env_terrains`` applied —
+every env its own stepfield, new every episode, rse's difficulty curriculum
+in place of mjlab's terrain levels. mjlab imports this module through its
+``mjlab.tasks`` entry point, so its ``train`` and ``play`` scripts run the
+tasks by name::
+
+    train Rse-Velocity-Rough-Unitree-Go1 --env.scene.num-envs 4096
+
+The stepfield is ``STEPFIELD`` (8 m × 8 m, the size of a sub-terrain of
+mjlab's rough terrain); ``register(scheme, prefix=...)`` registers others."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+from rse._fit import SchemeLike
+
+STEPFIELD = """# A stepfield for legged robots: random steps of 5 cm under two stepped
+# hills and a ridge, on an 8 m x 8 m slot of 10 cm cells.
+# size: 80x80
+# block_size: 0.1
+# step_height: 0.05
+type,height,angle,x1,y1,x2,y2
+random,0..2,,,,,
+peak,2..6,20,15..65,15..65,,
+peak,2..6,20,15..65,15..65,,
+wall,1..3,30,10,5..75,70,5..75
+"""
+
+PREFIX = "Mjlab-Velocity-Rough-"
+"""mjlab's rough tasks, each of which gets an rse variant."""
+
+
+def rse_task_id(task_id: str, prefix: str = "Rse-Velocity-Rough-") -> str:
+    """The rse variant's id of mjlab's rough task ``task_id``."""
+    return prefix + task_id[len(PREFIX) :]
+
+
+def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Rough-", oversample: Optional[int] = None) -> list[str]:
+    """Registers an rse variant of every mjlab rough velocity task on
+    ``scheme`` (play configs too); returns their ids. A task registered
+    already (this module imported twice) is kept."""
+    import mjlab.tasks  # noqa: F401  (mjlab's own tasks first)
+    from mjlab.tasks import registry
+
+    from rse._mjlab_envs import use_env_terrains
+    from rse._rse import Scheme
+
+    if isinstance(scheme, str) and "\n" in scheme:
+        scheme = Scheme.from_csv(scheme, "rse.mjlab_tasks.STEPFIELD")
+    made = []
+    for task_id in registry.list_tasks():
+        if not task_id.startswith(PREFIX):
+            continue
+        new_id = rse_task_id(task_id, prefix)
+        if new_id in registry.list_tasks():
+            continue
+        env_cfg = registry.load_env_cfg(task_id)
+        play_cfg = registry.load_env_cfg(task_id, play=True)
+        for cfg in (env_cfg, play_cfg):
+            use_env_terrains(cfg, scheme, oversample=oversample)
+        registry.register_mjlab_task(
+            task_id=new_id,
+            env_cfg=env_cfg,
+            play_env_cfg=play_cfg,
+            rl_cfg=registry.load_rl_cfg(task_id),
+            runner_cls=registry.load_runner_cls(task_id),
+        )
+        made.append(new_id)
+    return made
+
+
+TASKS = register()
+"""The ids registered when mjlab imported this module."""
