@@ -237,3 +237,34 @@ def test_mjlabs_own_train_script_runs_an_rse_task_with_its_terms_logged(tmp_path
     assert "Curriculum/rse_terrain_difficulty/mean" in done.stdout, done.stdout[-3000:]
     params = next(tmp_path.glob("logs/rsl_rl/*/*/params/env.yaml")).read_text()
     assert "rse_terrain_difficulty" in params and "num_envs: 3" in params
+
+
+def test_the_exact_height_scan_is_the_ray_scan_on_tops_and_exact_at_edges(go1) -> None:
+    """``exact_height_scan`` has ``height_scan``'s shape and frames and its
+    values where the rays land on a top; at step edges it is the exact
+    top, where the rays see MuJoCo's slope between two samples."""
+    from mjlab.envs import mdp as envs_mdp
+    from rse.mjlab import exact_height_scan
+
+    envs = env_terrains(go1)
+    envs.difficulty = [1.0] * NUM_ENVS
+    go1.reset()
+    step(go1, 1)
+    rays = envs_mdp.height_scan(go1, "terrain_scan").cpu().numpy()
+    exact = exact_height_scan(go1, "terrain_scan").cpu().numpy()
+    assert exact.shape == rays.shape
+    sensor = go1.scene.sensors["terrain_scan"]
+    hits = sensor.data.hit_pos_w.cpu().numpy().astype(np.float64)
+    frame_z = sensor.data.frame_pos_w.cpu().numpy()[:, 0, 2]
+    t = envs.terrain(0)
+    spacing = t.block_size * t.heights.shape[0] / envs.field_shape[0]
+    differ = 0
+    for e in range(NUM_ENVS):
+        xy = hits[e, :, :2]
+        flat = flat_under(envs, e, xy, 1.5 * spacing)
+        assert flat.sum() >= 5
+        assert np.abs(exact[e, flat] - rays[e, flat]).max() <= 0.01, e
+        tops = np.nan_to_num(envs.heights_at([e], xy[None])[0])
+        assert np.allclose(exact[e], frame_z[e] - tops, atol=1e-5), e
+        differ += int((np.abs(exact[e] - rays[e]) > 0.005).sum())
+    assert differ > 0, "no ray near an edge: nothing shows the scan is exact there"

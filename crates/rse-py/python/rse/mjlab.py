@@ -38,7 +38,17 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._fit import TileFields, fit, framework_class, load, max_step, patches_in_ranges
-from rse._mjlab_envs import BODY, TERM, EnvTerrainsEvent, add_pool, env_terrains, out_of_slot, terrain_difficulty, use_env_terrains
+from rse._mjlab_envs import (
+    BODY,
+    TERM,
+    EnvTerrainsEvent,
+    add_pool,
+    env_terrains,
+    exact_height_scan,
+    out_of_slot,
+    terrain_difficulty,
+    use_env_terrains,
+)
 
 
 def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:
@@ -101,4 +111,15 @@ else:
             return _function(self, difficulty, spec, rng)
 
 
-__all__ = ["TERM", "EnvTerrainsEvent", "RseTerrainCfg", "add_pool", "env_terrains", "terrain_difficulty", "use_env_terrains"]
+__all__ = [
+    "BODY",
+    "TERM",
+    "EnvTerrainsEvent",
+    "RseTerrainCfg",
+    "add_pool",
+    "env_terrains",
+    "exact_height_scan",
+    "out_of_slot",
+    "terrain_difficulty",
+    "use_env_terrains",
+]
