@@ -90,6 +90,7 @@ class EnvTerrainsEvent:
         )
         self._env = env
         self._rays_of: Any = None
+        self._ray_meshes: Optional[_RayMeshes] = None
         sim = env.sim
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
@@ -112,41 +113,80 @@ class EnvTerrainsEvent:
         origins[index] = torch.as_tensor(self.envs.origins[ids], dtype=origins.dtype, device=origins.device)
 
     def _refresh_rays(self, ids: list[int]) -> None:
-        """Rebuilds the ray-cast meshes of the fields of ``ids`` in the
-        render context of mjlab's ray sensors (``terrain_scan``, the feet's
-        height sensors). MuJoCo Warp's context holds a BVH per height field,
-        built once from the host model and only for the fields the host
-        model's geoms show (``pool0``): without this, every other world's
-        rays would miss its terrain and all would see the first terrain as it
-        was built. A context made anew (mjlab recreates it when an event
-        expands a model field) gets every env's field again."""
+        """Brings the ray-cast meshes of the fields of ``ids`` up to date in
+        the render context of mjlab's ray sensors (``terrain_scan``, the
+        feet's height sensors). MuJoCo Warp's context holds a BVH per height
+        field, built once from the host model and only for the fields the
+        host model's geoms show (``pool0``): without this every other
+        world's rays would miss its terrain, and all would see the first
+        terrain as it was built. Each env's field gets a mesh of its own,
+        the field's grid as MuJoCo triangulates it, made once; a reset moves
+        its points and refits its BVH in place (a rebuild by MuJoCo Warp's
+        own ``build_hfield_bvh`` took 72 ms a field). A context made anew
+        (mjlab recreates it when an event expands a model field) gets every
+        env's mesh again."""
         ctx = getattr(self._env.sim, "_sensor_context", None)
         if ctx is None or not ctx.has_raycasts:
             return
-        import mujoco
-        from mujoco_warp._src import bvh
-
         rc = ctx.render_context
         if rc is not self._rays_of:
             self._rays_of = rc
-            ids = list(range(self._env.num_envs))
-        model = self._env.sim.mj_model
-        bvh_ids = rc.hfield_bvh_id.numpy()
-        bounds = rc.hfield_bounds_size.numpy()
-        for e in ids:
-            hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, f"{self.name}{e}")
-            mesh, half = bvh.build_hfield_bvh(model, hid, constructor="cubql")
-            rc.hfield_registry.pop(int(bvh_ids[hid]), None)
-            rc.hfield_registry[mesh.id] = mesh
-            bvh_ids[hid] = mesh.id
-            bounds[hid] = half
-        rc.hfield_bvh_id.assign(bvh_ids)
-        rc.hfield_bounds_size.assign(bounds)
+            self._ray_meshes = _RayMeshes(self._env.sim.mj_model, rc, self.envs, self.name)
+            return
+        self._ray_meshes.update(self.envs, ids)
 
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
         ids = _ids(env, env_ids)
         self.envs.reset(ids)
         self._copy_out(ids)
+
+
+class _RayMeshes:
+    """One Warp mesh per env's height field in a render context, the
+    field's sample grid as MuJoCo triangulates it (two triangles a quad,
+    split from its first corner to its opposite one), registered where the
+    context keeps its height-field BVHs."""
+
+    def __init__(self, model: Any, rc: Any, envs: EnvTerrains, name: str) -> None:
+        import mujoco
+        import warp as wp
+
+        nrow, ncol = envs.field_shape
+        self.hids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}{e}") for e in range(envs.num_envs)]
+        sx, sy, self.sz, _ = model.hfield_size[self.hids[0]]
+        c, r = np.meshgrid(np.arange(ncol), np.arange(nrow))
+        self.xy = np.stack(
+            [sx * (c / (0.5 * max(ncol - 1, 1)) - 1.0), sy * (r / (0.5 * max(nrow - 1, 1)) - 1.0)], axis=-1
+        ).reshape(-1, 2)
+        quad = (r[:-1, :-1] * ncol + c[:-1, :-1]).ravel()
+        a, b, d, e = quad, quad + 1, quad + ncol, quad + ncol + 1
+        indices = np.stack([a, b, e, a, e, d], axis=1).ravel().astype(np.int32)
+        device = rc.hfield_bvh_id.device
+        bvh_ids = rc.hfield_bvh_id.numpy()
+        bounds = rc.hfield_bounds_size.numpy()
+        self.meshes = []
+        for env, hid in enumerate(self.hids):
+            points = wp.array(self._points(envs, env), dtype=wp.vec3, device=device)
+            mesh = wp.Mesh(points=points, indices=wp.array(indices, dtype=wp.int32, device=device), bvh_constructor="cubql")
+            rc.hfield_registry.pop(int(bvh_ids[hid]), None)
+            rc.hfield_registry[mesh.id] = mesh
+            bvh_ids[hid] = mesh.id
+            # The box that holds every possible top: [0, elevation] in z.
+            bounds[hid] = (sx, sy, 0.5 * self.sz)
+            self.meshes.append(mesh)
+        rc.hfield_bvh_id.assign(bvh_ids)
+        rc.hfield_bounds_size.assign(bounds)
+
+    def _points(self, envs: EnvTerrains, e: int) -> np.ndarray:
+        z = envs.samples[e].reshape(-1, 1).astype(np.float64) * self.sz
+        return np.concatenate([self.xy, z], axis=1).astype(np.float32)
+
+    def update(self, envs: EnvTerrains, ids: list[int]) -> None:
+        """The meshes of ``ids`` to their fields' new samples."""
+        for e in ids:
+            mesh = self.meshes[e]
+            mesh.points.assign(self._points(envs, e))
+            mesh.refit()
 
 
 def _ids(env: Any, env_ids: Any) -> list[int]:
