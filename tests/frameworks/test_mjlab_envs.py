@@ -149,3 +149,25 @@ def test_the_docs_example_runs_as_written(tmp_path) -> None:
     from envs_doc import run_example
 
     run_example("mjlab", tmp_path)
+
+
+def test_each_launched_process_draws_other_terrains(monkeypatch) -> None:
+    """A launcher's RANK sets the env offset (explicit env_offset wins): two
+    processes of 4 envs are the terrains of one of 8."""
+    whole = rse.EnvTerrains(SCHEME, 2 * NUM_ENVS, seed=11)
+    monkeypatch.setenv("RANK", "1")
+    env = make_env()
+    try:
+        envs = env_terrains(env)
+        for e in range(NUM_ENVS):
+            assert np.array_equal(envs.terrain(e).heights, whole.terrain(NUM_ENVS + e).heights), e
+    finally:
+        env.close()
+    env = make_env(env_offset=0)
+    try:
+        assert np.array_equal(env_terrains(env).terrain(0).heights, whole.terrain(0).heights)
+    finally:
+        env.close()
+    monkeypatch.setenv("RANK", "one")
+    with pytest.raises(ValueError, match="^RANK"):
+        make_env()

@@ -85,7 +85,7 @@ class EnvTerrainsEvent:
             oversample=p.get("oversample"),
             seed=p.get("seed"),
             difficulty=p.get("difficulty"),
-            env_offset=p.get("env_offset"),
+            env_offset=launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"],
             spawn_radius=p.get("spawn_radius"),
         )
         self._env = env
@@ -187,6 +187,21 @@ class _RayMeshes:
             mesh = self.meshes[e]
             mesh.points.assign(self._points(envs, e))
             mesh.refit()
+
+
+def launcher_env_offset(num_envs: int) -> int:
+    """The first global env id of this process when a launcher started one
+    process per GPU (mjlab's ``train`` through torchrunx, ``torchrun``):
+    ``RANK · num_envs``, so every process draws other terrains and the
+    whole run is the terrains of one process with all the envs. 0 outside
+    such a launch. An explicit ``env_offset`` wins."""
+    import os
+
+    rank = os.environ.get("RANK", "0")
+    try:
+        return int(rank) * num_envs
+    except ValueError:
+        raise ValueError(f"RANK: {rank!r} is not a process rank (an integer from 0)") from None
 
 
 def _ids(env: Any, env_ids: Any) -> list[int]:
