@@ -26,7 +26,11 @@ def test_the_wheel_installs_rse_and_the_rse_gen_command(tmp_path: Path) -> None:
     assert wheel.exists() and cli_wheel.exists(), built.stdout
     with zipfile.ZipFile(wheel) as z:
         metadata = z.read(f"rse_gen-{rse.__version__}.dist-info/METADATA").decode()
-        assert not any(name.endswith("entry_points.txt") for name in z.namelist()), "the command is rse-gen-cli's"
+        # No console script (the command is rse-gen-cli's); one plug-in:
+        # mjlab imports rse's task registrations through its group.
+        entry_points = z.read(f"rse_gen-{rse.__version__}.dist-info/entry_points.txt").decode()
+        assert "console_scripts" not in entry_points, entry_points
+        assert entry_points.replace(" ", "").splitlines()[:2] == ["[mjlab.tasks]", "rse=rse.mjlab_tasks"], entry_points
     assert "Name: rse-gen\n" in metadata
     assert f"Requires-Dist: rse-gen-cli=={rse.__version__}\n" in metadata, "the pin follows the version"
     with zipfile.ZipFile(cli_wheel) as z:
