@@ -42,14 +42,23 @@ if [ ! -x .venv-isaaclab3/bin/python ]; then
 fi
 say "Isaac Lab 3.0 (tests/isaaclab3/requirements.txt)"
 .venv-isaaclab3/bin/python -m pip install --quiet --disable-pip-version-check -r tests/isaaclab3/requirements.txt
+# Newton (rse.newton): per-world height fields natively; its own venv
+# (newton[sim] pins MuJoCo Warp 3.17; 26 s, 730 MB).
+if [ ! -x .venv-newton/bin/python ]; then
+    python3 -m venv .venv-newton
+fi
+say "Newton (tests/newton/requirements.txt)"
+.venv-newton/bin/python -m pip install --quiet --disable-pip-version-check -r tests/newton/requirements.txt
 say "the rse package (one wheel for every venv)"
 rm -rf target/py-wheel
 .venv-frameworks/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
-for venv in .venv-frameworks .venv-genesis .venv-isaaclab3; do
+for venv in .venv-frameworks .venv-genesis .venv-isaaclab3 .venv-newton; do
     $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
 done
-say "tests/frameworks (mjlab, Isaac Lab 2.3)"
+say "tests/frameworks (mjlab with its Go1 and G1 tasks, Isaac Lab 2.3)"
 .venv-frameworks/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/frameworks
+say "tests/newton (Newton 1.8 on the CPU: XPBD and its MuJoCo solver)"
+.venv-newton/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/newton
 say "tests/isaaclab3 (Isaac Lab 3.0, Newton on the CPU)"
 .venv-isaaclab3/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/isaaclab3
 say "tests/genesis (Genesis on the CPU; the first run builds the terrain's SDF, a few minutes)"
