@@ -134,8 +134,8 @@ impl EnvTerrains {
         self.inner.try_write().map_err(|_| busy())
     }
 
-    /// Every array of the pool as it was made (before a reset changes
-    /// anything, so a refused reset changes nothing).
+    /// Every array of the pool as it was made: checked once, before a
+    /// reset changes anything, so a refused reset changes nothing.
     fn arrays_intact(&self, py: Python<'_>) -> PyResult<()> {
         let n = self.fixed.num_envs;
         let (slots, rows, cols) = self.fixed.buffer_shape;
@@ -145,17 +145,6 @@ impl EnvTerrains {
         intact(self.episode.bind(py), "episode", n)
     }
 
-    /// `samples`, checked unchanged, borrowed for writing.
-    fn samples_to_write<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<numpy::PyReadwriteArray3<'py, f32>> {
-        let samples = self.samples.bind(py);
-        let (n, rows, cols) = self.fixed.buffer_shape;
-        intact(samples, "samples", n * rows * cols)?;
-        writable(samples)
-    }
-
     /// Writes the samples of `envs` into `samples` (GIL released).
     fn write_samples(
         &self,
@@ -163,25 +152,21 @@ impl EnvTerrains {
         inner: &rse_core::EnvTerrains,
         envs: &[usize],
     ) -> PyResult<()> {
-        let mut view = self.samples_to_write(py)?;
+        let mut view = writable(self.samples.bind(py))?;
         let slice = view.as_slice_mut().map_err(value_error)?;
         py.detach(|| inner.write(envs, slice)).map_err(value_error)
     }
 
-    /// Copies the origins and episodes of `envs` into the Python arrays.
+    /// Copies the origins and episodes of `envs` into the Python arrays
+    /// (as made, or checked by [`Self::arrays_intact`]).
     fn publish(
         &self,
         py: Python<'_>,
         inner: &rse_core::EnvTerrains,
         envs: &[usize],
     ) -> PyResult<()> {
-        let n = self.fixed.num_envs;
-        let origins = self.origins.bind(py);
-        let episode = self.episode.bind(py);
-        intact(origins, "origins", 3 * n)?;
-        intact(episode, "episode", n)?;
-        let mut origins = origins.try_readwrite().map_err(value_error)?;
-        let mut episode = episode.try_readwrite().map_err(value_error)?;
+        let mut origins = self.origins.bind(py).try_readwrite().map_err(value_error)?;
+        let mut episode = self.episode.bind(py).try_readwrite().map_err(value_error)?;
         let (origins, episode) = (
             origins.as_slice_mut().map_err(value_error)?,
             episode.as_slice_mut().map_err(value_error)?,
@@ -411,7 +396,7 @@ impl EnvTerrains {
         };
         // New terrains made and written into `samples` in one pass, each by
         // the thread that made it (rse-core's `reset_into`).
-        let mut view = self.samples_to_write(py)?;
+        let mut view = writable(self.samples.bind(py))?;
         let slice = view.as_slice_mut().map_err(value_error)?;
         let state: &mut rse_core::EnvTerrains = &mut inner;
         py.detach(|| state.reset_into(&envs, &levels, slice))

@@ -235,14 +235,10 @@ pub fn write_batch_until(
     }
     // Folders made for the batch are removed again if it fails with no
     // world written (a folder holding finished worlds stays, for a rerun).
-    let mut made = Created::default();
-    made.folder_chain(out, None)?;
-    let result = write_shard(&pool, scheme, templates, options, on_world, stop);
-    match &result {
-        Ok(_) => made.keep(),
-        Err(_) => made.remove_all(),
-    }
-    result
+    Created::undone_on_error(|made| {
+        made.folder_chain(out, None)?;
+        write_shard(&pool, scheme, templates, options, on_world, stop)
+    })
 }
 
 /// [`write_batch_until`] into the existing folder `options.out`: this

@@ -1,5 +1,5 @@
 //! What rebuilding a world costs `check` — peak memory and work — modelled
-//! on measured figures (`bench/budget.sh` prints each estimate beside what
+//! on measured figures (`bench/budget.py` prints each estimate beside what
 //! it measures, over a table of ordinary and hostile worlds). Estimated in
 //! two steps, each before the work it prices: from the recipe alone
 //! ([`Manifest::rebuild_cost`]: generation, obstacles, height-field

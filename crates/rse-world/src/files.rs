@@ -50,21 +50,33 @@ fn without_temp_path(e: &std::io::Error) -> std::io::Error {
     }
 }
 
-/// What one command has created so far, files and folders in order: on
-/// failure [`remove_all`](Created::remove_all) takes them away again (the
-/// newest first), so a failed command leaves nothing behind.
+/// What one command has created so far, files and folders in order, so
+/// that a failure takes them away again ([`Created::undone_on_error`]).
 #[derive(Debug, Default)]
-#[must_use = "call keep() or remove_all()"]
-pub struct Created {
+pub(crate) struct Created {
     paths: Vec<(std::path::PathBuf, bool)>,
 }
 
 impl Created {
+    /// Runs `work`, which notes in the given [`Created`] what it makes; if
+    /// it fails, everything noted is removed (the newest first), so a
+    /// failed command leaves nothing behind.
+    pub(crate) fn undone_on_error<T>(
+        work: impl FnOnce(&mut Created) -> Result<T, Error>,
+    ) -> Result<T, Error> {
+        let mut made = Created::default();
+        let result = work(&mut made);
+        if result.is_err() {
+            made.remove_all();
+        }
+        result
+    }
+
     /// Every folder of `path` that does not exist yet, made one by one
     /// from the top. A part that exists must be a folder and, below
     /// `below` (a folder the user named, which may be a link), not a link:
     /// nothing is written through a link found in a folder given.
-    pub fn folder_chain(&mut self, path: &Path, below: Option<&Path>) -> Result<(), Error> {
+    pub(crate) fn folder_chain(&mut self, path: &Path, below: Option<&Path>) -> Result<(), Error> {
         let mut at = std::path::PathBuf::new();
         for part in path.components() {
             at.push(part);
@@ -91,7 +103,7 @@ impl Created {
     /// Writes `bytes` into a file that must not exist yet (`O_EXCL`: an
     /// existing file or link, even a dangling one, is an error, never
     /// written through).
-    pub fn new_file(&mut self, path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    pub(crate) fn new_file(&mut self, path: &Path, bytes: &[u8]) -> Result<(), Error> {
         let mut file = std::fs::OpenOptions::new()
             .write(true)
             .create_new(true)
@@ -105,7 +117,7 @@ impl Created {
     /// Removes every file and folder noted, the newest first; what cannot
     /// be removed (a folder something was written into since, such as a
     /// batch's finished worlds, kept for a rerun) is left.
-    pub fn remove_all(self) {
+    fn remove_all(self) {
         for (path, folder) in self.paths.into_iter().rev() {
             let _ = if folder {
                 std::fs::remove_dir(&path)
@@ -113,11 +125,6 @@ impl Created {
                 std::fs::remove_file(&path)
             };
         }
-    }
-
-    /// The command succeeded: keep everything.
-    pub fn keep(self) {
-        let Created { paths: _ } = self;
     }
 }
 

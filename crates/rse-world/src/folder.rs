@@ -44,8 +44,8 @@ pub fn place_folder<T>(
         _ => PathBuf::from("."),
     };
     // Folders made for it are removed again if it fails.
-    let mut made = Created::default();
-    let placed = made.folder_chain(&parent, None).and_then(|()| {
+    let outcome = Created::undone_on_error(|made| {
+        made.folder_chain(&parent, None)?;
         // Held until the folder is in place: a second run on the same
         // folder waits for nothing and cleans up nothing of ours.
         let _lock = lock_in(&parent, &format!("world {}", world.name), || {
@@ -55,17 +55,8 @@ pub fn place_folder<T>(
         })?;
         remove_leftovers(&parent, |leftover| leftover == world.name)?;
         place_world(&parent, &world, force)
-    });
-    match placed {
-        Ok(outcome) => {
-            made.keep();
-            Ok((outcome, built))
-        }
-        Err(e) => {
-            made.remove_all();
-            Err(e)
-        }
-    }
+    })?;
+    Ok((outcome, built))
 }
 
 /// Writes world `index` of seed `seed` as the folder `out` (its name is

@@ -28,7 +28,7 @@ pub(crate) fn check_memory_for(
     if needed > available {
         return Err(Error::TooBig {
             message: format!(
-                "a world of {cells} cells with these options needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell, and 8 per height-field sample), {at_once} at once: {} MiB, but {} MiB are available",
+                "a world of {cells} cells with these options needs up to {} MiB while it is built ({WORLD_BYTES_PER_CELL} bytes per cell, and {BYTES_PER_SAMPLE} per height-field sample), {at_once} at once: {} MiB, but {} MiB are available",
                 per_world >> 20,
                 needed >> 20,
                 available >> 20

@@ -86,18 +86,19 @@ pub(crate) fn remove_leftovers(parent: &Path, mine: impl Fn(&str) -> bool) -> Re
 /// found it but for the worlds; the process dying releases it too (the
 /// file then stays, and the next run takes it over).
 pub(crate) fn lock_in(out: &Path, what: &str, busy: impl FnOnce() -> Error) -> Result<Lock, Error> {
-    take_lock(out, what, Some(busy))
+    take_lock(out, what, false)?.ok_or_else(busy)
 }
 
 /// [`lock_in`], waiting for the holder instead of failing: for a lock
 /// held only for a moment (the shard registry of an output folder).
 pub(crate) fn lock_in_waiting(out: &Path, what: &str) -> Result<Lock, Error> {
-    take_lock(out, what, None::<fn() -> Error>)
+    Ok(take_lock(out, what, true)?.expect("a lock waited for is never busy"))
 }
 
-fn take_lock(out: &Path, what: &str, busy: Option<impl FnOnce() -> Error>) -> Result<Lock, Error> {
+/// The lock on `what` in `out`: waited for (`wait`), or `None` when
+/// another run holds it.
+fn take_lock(out: &Path, what: &str, wait: bool) -> Result<Option<Lock>, Error> {
     let path = out.join(format!(".rse-{}.lock", &sha256_hex(what.as_bytes())[..16]));
-    let mut busy = busy;
     loop {
         let file = create_no_follow(&path).map_err(|e| match e.raw_os_error() {
             // ELOOP: the name is a link.
@@ -107,19 +108,20 @@ fn take_lock(out: &Path, what: &str, busy: Option<impl FnOnce() -> Error>) -> Re
             }
             _ => Error::io("create", &path)(e),
         })?;
-        match busy.take() {
-            Some(busy) => match file.try_lock() {
+        if wait {
+            file.lock().map_err(Error::io("lock", &path))?;
+        } else {
+            match file.try_lock() {
                 Ok(()) => {}
-                Err(std::fs::TryLockError::WouldBlock) => return Err(busy()),
+                Err(std::fs::TryLockError::WouldBlock) => return Ok(None),
                 Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("lock", &path)(e)),
-            },
-            None => file.lock().map_err(Error::io("lock", &path))?,
+            }
         }
         // The holder before us may have removed the file between our open
         // and our lock: then we hold a lock on a name no one else sees,
         // and must take the file that is there now.
         if still_named(&file, &path) {
-            return Ok(Lock { file, path });
+            return Ok(Some(Lock { file, path }));
         }
     }
 }

@@ -10,6 +10,7 @@ use minijinja::{AutoEscape, Environment, UndefinedBehavior};
 use crate::context::WorldContext;
 use crate::digest::sha256_hex;
 use crate::error::Error;
+use crate::files::Created;
 use crate::manifest::TemplateSet;
 use crate::nofollow::{Listed, OpenFolder, ReadError, refused};
 use crate::options::Target;
@@ -168,14 +169,7 @@ impl Templates {
     /// file or link is never written through. On any failure every file
     /// and folder it made is removed again.
     pub fn export_builtin(dir: &Path) -> Result<Vec<std::path::PathBuf>, Error> {
-        let mut made = crate::files::Created::default();
-        let result = export_into(dir, &mut made);
-        if result.is_err() {
-            made.remove_all();
-        } else {
-            made.keep();
-        }
-        result
+        Created::undone_on_error(|made| export_into(dir, made))
     }
 
     fn new(files: BTreeMap<Target, Vec<TemplateFile>>, custom: bool) -> Result<Self, Error> {
@@ -367,10 +361,7 @@ impl std::io::Write for CappedOutput {
 }
 
 /// [`Templates::export_builtin`]'s work, noting in `made` what it creates.
-fn export_into(
-    dir: &Path,
-    made: &mut crate::files::Created,
-) -> Result<Vec<std::path::PathBuf>, Error> {
+fn export_into(dir: &Path, made: &mut Created) -> Result<Vec<std::path::PathBuf>, Error> {
     let bad = |path: &Path, reason: String| Error::BadTemplateFolder {
         path: path.to_owned(),
         reason,
@@ -446,7 +437,7 @@ fn read_tree(folder: &OpenFolder) -> Result<BTreeMap<Target, Vec<TemplateFile>>,
     let mut total = 0u64;
     for (relative, listed) in folder.list() {
         let (top, inner) = relative.split_once('/').unwrap_or((&relative, ""));
-        let Some(target) = Target::ALL.into_iter().find(|t| t.name() == top) else {
+        let Ok(target) = top.parse::<Target>() else {
             continue;
         };
         let path = dir.join(&relative);

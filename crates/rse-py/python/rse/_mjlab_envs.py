@@ -337,18 +337,17 @@ def _num_envs_being_built(fallback: Any) -> int:
     return int(fallback.num_envs)
 
 
-def out_of_slot(env: Any, env_ids: Any = None, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
+def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
     """mjlab termination term (time-out kind), as the velocity tasks'
     ``out_of_terrain_bounds`` for rse's pool: true where the robot's base
     is more than ``margin`` metres outside its env's terrain (its slot:
-    ``[0, nx·s] × [0, ny·s]`` in its own world)."""
+    ``[0, nx·s] × [0, ny·s]`` in its own world, twice the field's centre,
+    ``hfield_pos``: no terrain is copied out in a step)."""
     import torch
 
-    envs = env_terrains(env, term)
-    t = envs.terrain(0)
-    ny, nx = t.heights.shape
+    x, y, _ = env_terrains(env, term).hfield_pos
     xy = env.scene[asset_name].data.root_link_pos_w[:, :2]
-    size = torch.tensor([nx * t.block_size, ny * t.block_size], device=xy.device, dtype=xy.dtype)
+    size = torch.tensor([2.0 * x, 2.0 * y], device=xy.device, dtype=xy.dtype)
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
 
 
