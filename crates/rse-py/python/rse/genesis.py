@@ -18,6 +18,11 @@ field after ``envs.reset``::
     scene.build(n_envs=n_envs)
     envs.reset(done_ids)
     rse.genesis.sync(scene, terrain, envs)   # the collider's field, no rebuild
+    # or both at once, from the boolean mask a Genesis task resets by:
+    rse.genesis.reset(scene, terrain, envs, reset_buf)
+
+Genesis's own Go2 locomotion example on rse tiles is examples/genesis_go2
+(docs/train.md).
 
 The rewrite goes through Genesis's internals (``collider_info.terrain_hf``,
 ``terrain_xyz_maxmin`` and the entity's height-query tensor), as no public
@@ -36,7 +41,7 @@ import numpy as np
 
 from rse._rse import EnvTerrains
 
-__all__ = ["heights", "sync", "terrain_morph"]
+__all__ = ["heights", "reset", "sync", "terrain_morph"]
 
 
 def _tiles(envs: EnvTerrains) -> None:
@@ -91,3 +96,26 @@ def sync(scene: Any, terrain: Any, envs: EnvTerrains) -> None:
     bounds[2], bounds[5] = new.max(), new.min() - 1.0  # as Genesis sets them at build
     info.terrain_xyz_maxmin.from_numpy(bounds)
     terrain._terrain_height_field = torch.as_tensor(new, dtype=gs.tc_float, device=gs.device)
+
+
+def reset(scene: Any, terrain: Any, envs: EnvTerrains, envs_idx: Any = None) -> np.ndarray:
+    """Renews the terrains of ``envs_idx`` and rewrites the scene's field
+    once (``envs.reset`` then ``sync``); returns the ids reset.
+    ``envs_idx`` is what Genesis's tasks reset by: a boolean mask over the
+    envs (a torch tensor or array), env ids, or None for every env. With
+    no env to reset nothing is rewritten, so a task may call it every
+    step."""
+    if envs_idx is None:
+        ids = np.arange(envs.num_envs, dtype=np.int64)
+    else:
+        given = envs_idx.detach().cpu().numpy() if hasattr(envs_idx, "detach") else np.asarray(envs_idx)
+        if given.dtype == np.bool_:
+            if given.shape != (envs.num_envs,):
+                raise ValueError(f"envs_idx: a mask of shape {given.shape} for {envs.num_envs} envs")
+            ids = np.flatnonzero(given)
+        else:
+            ids = given.astype(np.int64, copy=False).reshape(-1)
+    if len(ids):
+        envs.reset(ids)
+        sync(scene, terrain, envs)
+    return ids
