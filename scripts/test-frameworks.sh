@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The RL framework adapters (rse.mjlab, rse.isaaclab, rse.genesis) run inside
+# The RL framework adapters (rse.mjlab, rse.isaaclab, rse.genesis, rse.newton,
+# rse.playground) run inside
 # the real frameworks: their terrain generators, mjlab's own RL env, Genesis's
 # scene.
 # mjlab pins MuJoCo 3.11 and pulls torch (several GB), so it gets its own
@@ -49,16 +50,35 @@ if [ ! -x .venv-newton/bin/python ]; then
 fi
 say "Newton (tests/newton/requirements.txt)"
 .venv-newton/bin/python -m pip install --quiet --disable-pip-version-check -r tests/newton/requirements.txt
+# MuJoCo Playground (rse.playground): JAX, Brax and MJX pinned together; its
+# own venv (1.4 GB, 2 min).
+if [ ! -x .venv-playground/bin/python ]; then
+    python3 -m venv .venv-playground
+fi
+say "MuJoCo Playground (tests/playground/requirements.txt)"
+.venv-playground/bin/python -m pip install --quiet --disable-pip-version-check -r tests/playground/requirements.txt
+# Playground git-clones MuJoCo Menagerie from GitHub on first use, and the
+# mujoco-menagerie package downloads its robots from GitHub too: neither is
+# reachable from the package registries alone. The Go1's meshes (visual
+# only) are Menagerie's unitree_go1 assets, which mjlab's wheel ships.
+menagerie=$(.venv-playground/bin/python -c 'from mujoco_playground._src import mjx_env; print(mjx_env.MENAGERIE_PATH)')
+if [ ! -d "$menagerie/unitree_go1/assets" ]; then
+    go1=$(.venv-frameworks/bin/python -c 'import mjlab, pathlib; print(pathlib.Path(mjlab.__file__).parent / "asset_zoo/robots/unitree_go1/xmls/assets")')
+    mkdir -p "$menagerie/unitree_go1/assets"
+    cp "$go1"/*.stl "$menagerie/unitree_go1/assets/"
+fi
 say "the rse package (one wheel for every venv)"
 rm -rf target/py-wheel
 .venv-frameworks/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
-for venv in .venv-frameworks .venv-genesis .venv-isaaclab3 .venv-newton; do
+for venv in .venv-frameworks .venv-genesis .venv-isaaclab3 .venv-newton .venv-playground; do
     $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
 done
 say "tests/frameworks (mjlab with its Go1 and G1 tasks, Isaac Lab 2.3)"
 .venv-frameworks/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/frameworks
 say "tests/newton (Newton 1.8 on the CPU: XPBD and its MuJoCo solver)"
 .venv-newton/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/newton
+say "tests/playground (MuJoCo Playground's Go1 joystick on rse's fields, MJX on the CPU, Brax's PPO)"
+.venv-playground/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/playground
 say "tests/isaaclab3 (Isaac Lab 3.0, Newton on the CPU)"
 .venv-isaaclab3/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/isaaclab3
 say "tests/genesis (Genesis on the CPU; the first run builds the terrain's SDF, a few minutes)"

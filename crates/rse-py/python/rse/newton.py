@@ -27,6 +27,8 @@ from typing import Any, Optional
 
 from rse._rse import EnvTerrains
 
+__all__ = ["add_heightfield", "sync"]
+
 
 def _check_slots(envs: EnvTerrains) -> None:
     if envs.layout != "slots":
