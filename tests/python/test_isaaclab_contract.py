@@ -114,3 +114,40 @@ def test_a_framework_that_fails_to_import_is_not_hidden(tmp_path, monkeypatch) -
             del sys.modules[name]
         monkeypatch.undo()
         importlib.reload(rse.isaaclab)
+
+
+def test_each_rank_draws_other_tiles_and_rank_zero_draws_as_one_process(monkeypatch) -> None:
+    """Many processes (torchrun, Isaac Lab's --distributed): RANK picks the
+    tiles; rank 0 and no launcher draw the same; an explicit rank wins."""
+    monkeypatch.delenv("RANK", raising=False)
+    alone = [m for _, meshes, _ in curriculum(RseTerrainCfg(scheme=SIX, size=(8.0, 8.0)), 3, 5) for m in meshes]
+    monkeypatch.setenv("RANK", "0")
+    zero = [m for _, meshes, _ in curriculum(RseTerrainCfg(scheme=SIX, size=(8.0, 8.0)), 3, 5) for m in meshes]
+    monkeypatch.setenv("RANK", "1")
+    one = [m for _, meshes, _ in curriculum(RseTerrainCfg(scheme=SIX, size=(8.0, 8.0)), 3, 5) for m in meshes]
+    explicit = [m for _, meshes, _ in curriculum(RseTerrainCfg(scheme=SIX, size=(8.0, 8.0), rank=0), 3, 5) for m in meshes]
+    same = lambda a, b: all(np.array_equal(x.vertices, y.vertices) for x, y in zip(a, b))  # noqa: E731
+    assert same(alone, zero) and same(alone, explicit)
+    assert not same(alone, one), "rank 1 draws other tiles"
+    monkeypatch.setenv("RANK", "two")
+    with pytest.raises(ValueError, match="^RANK"):
+        curriculum(RseTerrainCfg(scheme=SIX, size=(8.0, 8.0)), 1, 5)
+
+
+def test_use_stepfield_replaces_the_generators_sub_terrains_and_refuses_a_task_without_one(monkeypatch) -> None:
+    from types import SimpleNamespace
+
+    from rse.isaaclab import use_stepfield
+
+    monkeypatch.setenv("RANK", "3")
+    generator = SimpleNamespace(sub_terrains={"boxes": object()}, num_rows=10, num_cols=20)
+    cfg = SimpleNamespace(scene=SimpleNamespace(terrain=SimpleNamespace(terrain_type="generator", terrain_generator=generator)))
+    assert use_stepfield(cfg, SIX, spawn_radius=0.4) is cfg
+    (tile,) = generator.sub_terrains.values()
+    assert (tile.scheme, tile.rank, tile.spawn_radius, tile.proportion) == (SIX, 3, 0.4, 1.0)
+    assert (generator.num_rows, generator.num_cols) == (10, 20), "the grid is the task's"
+    plane = SimpleNamespace(scene=SimpleNamespace(terrain=SimpleNamespace(terrain_type="plane", terrain_generator=None)))
+    with pytest.raises(ValueError, match=r"^env_cfg\.scene\.terrain\.terrain_type"):
+        use_stepfield(plane, SIX)
+    with pytest.raises(ValueError, match=r"^env_cfg\.scene\.terrain:"):
+        use_stepfield(SimpleNamespace(scene=SimpleNamespace(terrain=None)), SIX)

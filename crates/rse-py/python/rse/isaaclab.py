@@ -25,10 +25,18 @@ seed, the difficulty and the scheme (``rse._fit.tile_index``): the same
 configuration gives the same terrains. A difficulty outside ``[0, 1]`` is
 refused, as the library refuses it (keep ``difficulty_range`` inside it).
 Give the scheme as a path: Isaac Lab hashes the configuration.
+
+``use_stepfield(env_cfg, scheme)`` puts a registered Isaac Lab task (e.g.
+``Isaac-Velocity-Rough-UnitreeGo2``'s config) on rse tiles in one call: the
+task's terrain generator keeps its grid, curriculum and importer, and its
+sub-terrains become rse's. Many processes (``torchrun``, Isaac Lab's
+``--distributed``): each process's tiles differ by its rank, read from
+``RANK`` (explicit ``rank`` wins); rank 0 draws what one process draws.
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
@@ -48,7 +56,8 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
         raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
     scheme = fit(load(cfg.scheme), tuple(cfg.size))
     d = float(difficulty)
-    index = tile_index(getattr(cfg, "seed", None), d, scheme.to_csv()) if cfg.index is None else cfg.index
+    salt = scheme.to_csv() + _rank_salt(getattr(cfg, "rank", None))
+    index = tile_index(getattr(cfg, "seed", None), d, salt) if cfg.index is None else cfg.index
     # The library takes the seed's default and refuses a difficulty out of
     # 0..1 (Isaac Lab's difficulty_range must stay inside it).
     terrain = scheme.generate(seed=cfg.rse_seed, index=index, difficulty=d)
@@ -63,6 +72,54 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
     return meshes, np.asarray(terrain.spawn_origin(cfg.spawn_radius), dtype=np.float64)
 
 
+def launcher_rank() -> int:
+    """This process's rank as ``torchrun`` (and so Isaac Lab's
+    ``--distributed``) sets it in ``RANK``; 0 without one."""
+    rank = os.environ.get("RANK", "0")
+    try:
+        value = int(rank)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise ValueError(f"RANK: {rank!r} is not a process rank (an integer from 0)")
+    return value
+
+
+def _rank_salt(rank: Optional[int]) -> str:
+    """What a rank adds to a tile's world index: nothing for rank 0 (one
+    process draws as it always did), the rank otherwise. ``None``: the
+    launcher's."""
+    rank = launcher_rank() if rank is None else int(rank)
+    if rank < 0:
+        raise ValueError(f"RseTerrainCfg.rank: {rank} is not a process rank (an integer from 0)")
+    return "" if rank == 0 else f"#rank {rank}"
+
+
+def use_stepfield(env_cfg: Any, scheme: Any, *, rank: Optional[int] = None, **tile: Any) -> Any:
+    """Puts an Isaac Lab task on rse tiles: the terrain generator of
+    ``env_cfg.scene.terrain`` keeps its grid (``size``, ``num_rows``,
+    ``num_cols``), its seed, its curriculum and ``terrain_levels``, and its
+    sub-terrains become one ``RseTerrainCfg`` of ``scheme`` (a path;
+    ``tile`` sets its other fields, e.g. ``spawn_radius``). Every other
+    term of the task is kept. ``rank`` (default: ``RANK``, as ``torchrun``
+    and ``--distributed`` launch) makes each process draw other tiles.
+    Returns ``env_cfg``, changed in place; a task without a generated
+    terrain is a ``ValueError`` naming the field."""
+    terrain = getattr(getattr(env_cfg, "scene", None), "terrain", None)
+    if terrain is None:
+        raise ValueError("env_cfg.scene.terrain: the task has no terrain to replace (give it a TerrainImporterCfg)")
+    if getattr(terrain, "terrain_type", None) != "generator" or getattr(terrain, "terrain_generator", None) is None:
+        raise ValueError(
+            f"env_cfg.scene.terrain.terrain_type: {getattr(terrain, 'terrain_type', None)!r}; rse's tiles come "
+            'through a terrain generator: set terrain_type="generator" and a terrain_generator (TerrainGeneratorCfg)'
+        )
+    if not isinstance(scheme, (str, os.PathLike)):
+        raise ValueError("scheme: give a path to the scheme file (Isaac Lab hashes the configuration)")
+    rank = launcher_rank() if rank is None else rank
+    terrain.terrain_generator.sub_terrains = {"stepfield": RseTerrainCfg(proportion=1.0, scheme=os.fspath(scheme), rank=rank, **tile)}
+    return env_cfg
+
+
 _SubTerrainBaseCfg = framework_class("isaaclab.terrains", "SubTerrainBaseCfg", "rse.isaaclab")
 
 
@@ -74,6 +131,9 @@ if _SubTerrainBaseCfg is not None:  # pragma: no cover - needs Isaac Lab
         """An rse stepfield tile (see the module's documentation)."""
 
         function = rse_terrain
+        rank: Optional[int] = None
+        """The process's rank, mixed into the tiles' world indices (0 or
+        None without a launcher: as one process draws)."""
 
 else:
 
@@ -88,6 +148,9 @@ else:
         flat_patch_sampling: Optional[dict[str, Any]] = None
         seed: Optional[int] = None
         """Set by Isaac Lab's generator to its own seed."""
+        rank: Optional[int] = None
+        """The process's rank, mixed into the tiles' world indices (0 or
+        None without a launcher: as one process draws)."""
 
 
-__all__ = ["RseTerrainCfg", "rse_terrain"]
+__all__ = ["RseTerrainCfg", "launcher_rank", "rse_terrain", "use_stepfield"]
