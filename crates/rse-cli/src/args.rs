@@ -158,8 +158,9 @@ pub struct BatchArgs {
     #[arg(short, long, value_name = "J", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
 
-    /// Write only the worlds with index ≡ K (mod N), for N machines or processes (K from 0).
-    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    /// Write only the worlds with index ≡ K (mod N), for N machines or processes (K from 0);
+    /// `auto`: this task's shard of a Slurm array job (`SLURM_ARRAY_TASK_ID`, `_MIN`, `_COUNT`, `_STEP`).
+    #[arg(long, value_name = "K/N|auto", value_parser = parse_shard)]
     pub shard: Option<Shard>,
 
     /// Replace world folders that hold a different world.
@@ -490,7 +491,12 @@ fn parse_mesh_mode(text: &str) -> Result<MeshMode, String> {
 }
 
 fn parse_shard(text: &str) -> Result<Shard, String> {
-    text.parse().map_err(|e: rse_world::Error| e.to_string())
+    let shard = if text == "auto" {
+        Shard::from_slurm_array(|name| std::env::var(name).ok())
+    } else {
+        text.parse()
+    };
+    shard.map_err(|e: rse_world::Error| e.to_string())
 }
 
 /// `LO..HI`, or one difficulty `D` meaning `D..D`.

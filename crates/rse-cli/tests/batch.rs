@@ -66,6 +66,75 @@ fn jobs_and_shards_give_identical_trees() {
     assert_same_tree(&one, &shards);
 }
 
+/// `rse-gen batch ... --shard auto` with these Slurm array variables only.
+fn batch_in_slurm_array(out: &Path, vars: &[(&str, &str)]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_rse-gen"));
+    for name in [
+        "SLURM_ARRAY_TASK_ID",
+        "SLURM_ARRAY_TASK_MIN",
+        "SLURM_ARRAY_TASK_COUNT",
+        "SLURM_ARRAY_TASK_STEP",
+    ] {
+        command.env_remove(name);
+    }
+    command
+        .args([
+            "batch",
+            "schemes/six_obstacles.csv",
+            "-o",
+            out.to_str().unwrap(),
+            "--amount",
+            "10",
+        ])
+        .args(["--shard", "auto"])
+        .envs(vars.iter().copied())
+        .current_dir(repo())
+        .output()
+        .expect("rse-gen runs")
+}
+
+#[test]
+fn shard_auto_is_the_slurm_array_tasks_shard_and_a_usage_error_outside_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (auto, explicit) = (dir.path().join("auto"), dir.path().join("explicit"));
+    // Task 12 of an array 10-16:2 (ids 10, 12, 14, 16): shard 1 of 4.
+    let vars = [
+        ("SLURM_ARRAY_TASK_ID", "12"),
+        ("SLURM_ARRAY_TASK_MIN", "10"),
+        ("SLURM_ARRAY_TASK_COUNT", "4"),
+        ("SLURM_ARRAY_TASK_STEP", "2"),
+    ];
+    stdout(&batch_in_slurm_array(&auto, &vars));
+    stdout(&batch(&explicit, &["--amount", "10", "--shard", "1/4"]));
+    assert_same_tree(&auto, &explicit);
+
+    let outside = batch_in_slurm_array(&dir.path().join("outside"), &[]);
+    assert_eq!(outside.status.code(), Some(2), "{}", stderr(&outside));
+    assert!(
+        stderr(&outside).contains("SLURM_ARRAY_TASK_ID is not set"),
+        "{}",
+        stderr(&outside)
+    );
+    let bad = batch_in_slurm_array(
+        &dir.path().join("bad"),
+        &[
+            ("SLURM_ARRAY_TASK_ID", "x"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "4"),
+        ],
+    );
+    assert_eq!(bad.status.code(), Some(2), "{}", stderr(&bad));
+    assert!(
+        stderr(&bad).contains("SLURM_ARRAY_TASK_ID=\"x\""),
+        "{}",
+        stderr(&bad)
+    );
+    assert!(
+        !dir.path().join("outside").exists() && !dir.path().join("bad").exists(),
+        "nothing written"
+    );
+}
+
 #[test]
 fn a_shard_writes_exactly_its_worlds() {
     let dir = tempfile::tempdir().unwrap();

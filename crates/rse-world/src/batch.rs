@@ -64,6 +64,62 @@ impl Shard {
     }
 }
 
+impl Shard {
+    /// This task's shard of a Slurm array job (`--shard auto`): task ids
+    /// `MIN, MIN + STEP, …` (`SLURM_ARRAY_TASK_MIN`, `SLURM_ARRAY_TASK_STEP`,
+    /// default 1) are shards `0, 1, …` of `SLURM_ARRAY_TASK_COUNT`, this
+    /// task's `SLURM_ARRAY_TASK_ID` picks one. `var` reads a variable (the
+    /// process environment in the CLI). Outside an array job, or for an
+    /// array whose ids are not such a range (`--array=1,5,9`), the error
+    /// names the variable and says why.
+    pub fn from_slurm_array(var: impl Fn(&str) -> Option<String>) -> Result<Self, Error> {
+        let bad = |message: String| Error::BadOption {
+            option: "shard",
+            message,
+        };
+        let number = |name: &'static str, default: Option<u64>| -> Result<u64, Error> {
+            match var(name) {
+                None if default.is_some() => Ok(default.unwrap_or_default()),
+                None => Err(bad(format!(
+                    "{name} is not set: --shard auto takes this task's shard from a Slurm array job \
+                     (sbatch --array=0-N); elsewhere give --shard K/N"
+                ))),
+                Some(text) => text
+                    .trim()
+                    .parse()
+                    .map_err(|_| bad(format!("{name}={text:?}: expected a whole number"))),
+            }
+        };
+        let id = number("SLURM_ARRAY_TASK_ID", None)?;
+        let min = number("SLURM_ARRAY_TASK_MIN", None)?;
+        let count = number("SLURM_ARRAY_TASK_COUNT", None)?;
+        let step = number("SLURM_ARRAY_TASK_STEP", Some(1))?;
+        if count == 0 || step == 0 {
+            let (name, value) = if count == 0 {
+                ("SLURM_ARRAY_TASK_COUNT", count)
+            } else {
+                ("SLURM_ARRAY_TASK_STEP", step)
+            };
+            return Err(bad(format!("{name}={value}: expected at least 1")));
+        }
+        let offset = id.checked_sub(min).filter(|o| o % step == 0).ok_or_else(|| {
+            bad(format!(
+                "SLURM_ARRAY_TASK_ID={id} is not one of MIN + k*STEP (SLURM_ARRAY_TASK_MIN={min}, \
+                 SLURM_ARRAY_TASK_STEP={step}): --shard auto needs an array of evenly spaced ids \
+                 (--array=0-N or 0-N:S); give --shard K/N otherwise"
+            ))
+        })?;
+        let k = offset / step;
+        if k >= count {
+            return Err(bad(format!(
+                "SLURM_ARRAY_TASK_ID={id} is task {k} of SLURM_ARRAY_TASK_COUNT={count}: \
+                 the array's ids are not an evenly spaced range (--array=1,5,9?); give --shard K/N"
+            )));
+        }
+        Shard::new(k, count)
+    }
+}
+
 impl Default for Shard {
     /// The whole batch.
     fn default() -> Self {
@@ -381,6 +437,88 @@ mod tests {
         let options = BatchOptions::for_scheme(&scheme, "out");
         assert_eq!((options.amount, options.seed), (7, 9));
         assert_eq!(options.world.targets, Targets::default());
+    }
+
+    /// `Shard::from_slurm_array` over a fixed set of variables.
+    fn slurm(vars: &[(&str, &str)]) -> Result<Shard, Error> {
+        Shard::from_slurm_array(|name| {
+            vars.iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, v)| v.to_string())
+        })
+    }
+
+    #[test]
+    fn a_slurm_array_task_is_its_shard() {
+        let task = |id, min, count| {
+            slurm(&[
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", min),
+                ("SLURM_ARRAY_TASK_COUNT", count),
+            ])
+        };
+        assert_eq!(task("0", "0", "4").unwrap(), Shard::new(0, 4).unwrap());
+        assert_eq!(task("7", "5", "4").unwrap(), Shard::new(2, 4).unwrap());
+        let stepped = slurm(&[
+            ("SLURM_ARRAY_TASK_ID", "14"),
+            ("SLURM_ARRAY_TASK_MIN", "10"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_STEP", "2"),
+        ]);
+        assert_eq!(stepped.unwrap(), Shard::new(2, 3).unwrap());
+    }
+
+    #[test]
+    fn outside_an_even_slurm_array_auto_names_the_variable() {
+        let message = |vars: &[(&str, &str)]| slurm(vars).unwrap_err().to_string();
+        assert!(
+            message(&[]).starts_with("SLURM_ARRAY_TASK_ID is not set"),
+            "{}",
+            message(&[])
+        );
+        let no_count = [("SLURM_ARRAY_TASK_ID", "1"), ("SLURM_ARRAY_TASK_MIN", "0")];
+        assert!(message(&no_count).starts_with("SLURM_ARRAY_TASK_COUNT is not set"));
+        let word = [
+            ("SLURM_ARRAY_TASK_ID", "one"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "2"),
+        ];
+        assert!(
+            message(&word).starts_with("SLURM_ARRAY_TASK_ID=\"one\""),
+            "{}",
+            message(&word)
+        );
+        // --array=1,5,9: three tasks, ids not a range.
+        let list = [
+            ("SLURM_ARRAY_TASK_ID", "9"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ];
+        assert!(
+            message(&list).contains("evenly spaced"),
+            "{}",
+            message(&list)
+        );
+        let below = [
+            ("SLURM_ARRAY_TASK_ID", "0"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ];
+        assert!(
+            message(&below).starts_with("SLURM_ARRAY_TASK_ID=0 is not one of"),
+            "{}",
+            message(&below)
+        );
+        let zero = [
+            ("SLURM_ARRAY_TASK_ID", "0"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "0"),
+        ];
+        assert!(
+            message(&zero).starts_with("SLURM_ARRAY_TASK_COUNT=0"),
+            "{}",
+            message(&zero)
+        );
     }
 
     #[test]
