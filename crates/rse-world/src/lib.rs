@@ -25,6 +25,7 @@ mod digest;
 mod error;
 mod files;
 mod folder;
+mod join_filter;
 mod manifest;
 mod memory;
 mod names;

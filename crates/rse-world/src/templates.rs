@@ -179,6 +179,7 @@ impl Templates {
         // and plain names. Nothing needs escaping, and HTML escaping would
         // be wrong in the non-XML ones.
         env.set_auto_escape_callback(|_| AutoEscape::None);
+        env.add_filter("join", crate::join_filter::join);
         env.set_syntax(
             minijinja::syntax::SyntaxConfig::builder()
                 .trim_blocks(true)
@@ -243,7 +244,7 @@ impl Templates {
         target: Target,
         context: &WorldContext,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
-        self.render_with_fuel(target, context, render_fuel(context.boxes.len()))
+        self.render_with_fuel(target, context, render_fuel(context.box_count))
     }
 
     /// [`render`](Self::render) with `fuel` instructions per file.

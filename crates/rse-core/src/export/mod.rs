@@ -6,6 +6,7 @@
 mod glb;
 mod obj;
 mod stl;
+mod text;
 mod usda;
 
 pub use glb::glb;

@@ -3,6 +3,7 @@
 
 use std::fmt::Write as _;
 
+use super::text::{CoordinateText, push_int};
 use crate::mesh::{Normal, TriMesh};
 
 /// The material name used by [`obj`] and defined by [`mtl`].
@@ -29,8 +30,11 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
         writeln!(out, "mtllib {file}").expect(FMT);
     }
     out.push_str("o terrain\n");
-    for [x, y, z] in mesh.vertices() {
-        writeln!(out, "v {x} {y} {z}").expect(FMT);
+    let coordinates = CoordinateText::new(mesh.vertices());
+    for &point in mesh.vertices() {
+        out.push_str("v ");
+        coordinates.push_point(&mut out, point, " ");
+        out.push('\n');
     }
     for normal in Normal::ALL {
         let [x, y, z] = normal.vector();
@@ -45,8 +49,14 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
             .position(|m| m == normal)
             .expect("one of six")
             + 1;
-        let [a, b, c] = t.map(|v| v + 1);
-        writeln!(out, "f {a}//{n} {b}//{n} {c}//{n}").expect(FMT);
+        out.push('f');
+        for v in t {
+            out.push(' ');
+            push_int(&mut out, v + 1);
+            out.push_str("//");
+            push_int(&mut out, n);
+        }
+        out.push('\n');
     }
     out
 }

@@ -7,6 +7,7 @@
 
 use std::fmt::Write as _;
 
+use super::text::{CoordinateText, push_int};
 use crate::mesh::TriMesh;
 use crate::mesh::invariants::bounding_box;
 
@@ -44,12 +45,17 @@ pub fn usda(mesh: &TriMesh) -> String {
         out.push_str(if i == 0 { "3" } else { ", 3" });
     }
     out.push_str("]\n    int[] faceVertexIndices = [");
-    for (i, v) in mesh.triangles().iter().flatten().enumerate() {
-        write!(out, "{}{v}", separator(i)).expect(FMT);
+    for (i, &v) in mesh.triangles().iter().flatten().enumerate() {
+        out.push_str(separator(i));
+        push_int(&mut out, v);
     }
     out.push_str("]\n    uniform token orientation = \"rightHanded\"\n    point3f[] points = [");
-    for (i, [x, y, z]) in mesh.vertices().iter().enumerate() {
-        write!(out, "{}({x}, {y}, {z})", separator(i)).expect(FMT);
+    let coordinates = CoordinateText::new(mesh.vertices());
+    for (i, &point) in mesh.vertices().iter().enumerate() {
+        out.push_str(separator(i));
+        out.push('(');
+        coordinates.push_point(&mut out, point, ", ");
+        out.push(')');
     }
     out.push_str(
         "]\n    color3f[] primvars:displayColor = [(0.72, 0.58, 0.42)]\n    uniform token subdivisionScheme = \"none\"\n}\n",
