@@ -7,7 +7,7 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks wheel
+.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks test-cluster wheel
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
@@ -21,6 +21,10 @@ test-quick:
 ## Heavy (torch, MuJoCo 3.11): its own venv, .venv-frameworks, not part of `make test`.
 test-frameworks:
 	scripts/test-frameworks.sh
+
+## Mass generation on a cluster started and stopped by the tests: rse.ray on a two-node Ray cluster (its own venv, .venv-cluster; ~2 min). See docs/guide.md.
+test-cluster:
+	scripts/test-cluster.sh
 
 ## mjlab's Go1 rough task on mjlab's terrain and on rse's (steps/s, a PPO iteration, the height scans), in .venv-frameworks (make test-frameworks makes it). On a GPU: .venv-frameworks/bin/python bench/mjlab_tasks.py --device cuda --num-envs 4096
 bench-frameworks:

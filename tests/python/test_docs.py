@@ -17,8 +17,9 @@ README = REPO / "README.md"
 GUIDE = REPO / "docs" / "guide.md"
 PAGES = [README, REPO / "schemes" / "README.md", REPO / "templates" / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
 # Blocks that need a framework this venv does not have (tests/frameworks
-# runs them in its own: make test-frameworks).
-NEEDS_FRAMEWORK = ("from isaaclab", "from mjlab")
+# runs them in its own: make test-frameworks), or a cluster (make
+# test-cluster runs rse.ray on one).
+NEEDS_FRAMEWORK = ("from isaaclab", "from mjlab", "import ray")
 
 
 def python_blocks(text: str) -> list[str]:
