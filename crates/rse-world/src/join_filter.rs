@@ -6,11 +6,11 @@
 //! batch's time. Anything else goes to minijinja's filter as it is.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use minijinja::value::{Kwargs, StringInput, ValueKind};
 use minijinja::{Error, State, Value};
+use rustc_hash::FxHashMap;
 
 /// The fast path's bounds: its output stays small, so skipping the
 /// builtin's per-item fuel charge lets no template run away.
@@ -20,7 +20,7 @@ const MAX_JOINER: usize = 16;
 const MAX_REMEMBERED: usize = 1 << 16;
 
 thread_local! {
-    static TEXT: RefCell<HashMap<u64, String>> = RefCell::new(HashMap::new());
+    static TEXT: RefCell<FxHashMap<u64, String>> = RefCell::new(FxHashMap::default());
 }
 
 /// `value|join(joiner)`, as minijinja's builtin `join` renders it.
