@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Mass generation on clusters the tests start and stop themselves, on this
-# machine only: Ray (a head and a worker node from Ray's cluster_utils).
-# Its own venv, .venv-cluster (ray[default], 480 MB, 40 s). See docs/guide.md.
+# machine only: Slurm (Debian's slurmctld, slurmd and munge, installed here
+# when missing: 16 s) and Ray (a head and a worker node from Ray's
+# cluster_utils; its own venv, .venv-cluster: ray[default], 480 MB, 40 s).
+# See docs/guide.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 say() { printf '\n== %s\n' "$*"; }
@@ -9,11 +11,20 @@ say() { printf '\n== %s\n' "$*"; }
 if [ ! -x .venv-cluster/bin/python ]; then
     python3 -m venv .venv-cluster
 fi
+if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v munged >/dev/null; then
+    say "Slurm and munge (apt)"
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -q
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends slurmctld slurmd slurm-client munge
+fi
+say "rse-gen (the array jobs run it)"
+cargo build --release --locked --quiet -p rse-cli
 say "Ray (tests/cluster/requirements.txt)"
 .venv-cluster/bin/python -m pip install --quiet --disable-pip-version-check -r tests/cluster/requirements.txt
 say "the rse package"
 rm -rf target/py-wheel
 .venv-cluster/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
 .venv-cluster/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
-say "tests/cluster (a two-node Ray cluster on this machine)"
+say "tests/cluster (a one-node Slurm and a two-node Ray cluster on this machine)"
 .venv-cluster/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/cluster
