@@ -91,8 +91,19 @@ impl Created {
                 Ok(m) if m.is_file() => return Err(Error::NotAFolder { path: at }),
                 Ok(_) => return Err(Error::NotAFile { path: at }),
                 Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                    std::fs::create_dir(&at).map_err(Error::io("create", &at))?;
-                    self.paths.push((at.clone(), true));
+                    match std::fs::create_dir(&at) {
+                        Ok(()) => self.paths.push((at.clone(), true)),
+                        // Made meanwhile by another process (shards of one
+                        // batch starting together): theirs, not ours.
+                        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                            let meta =
+                                std::fs::symlink_metadata(&at).map_err(Error::io("create", &at))?;
+                            if !meta.is_dir() {
+                                return Err(Error::io("create", &at)(e));
+                            }
+                        }
+                        Err(e) => return Err(Error::io("create", &at)(e)),
+                    }
                 }
                 Err(e) => return Err(Error::io("create", &at)(e)),
             }
@@ -204,5 +215,26 @@ mod tests {
         let err = write_mesh(&mesh, &dir.path().join(name)).unwrap_err();
         assert!(err.to_string().contains("not UTF-8"), "{err}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn folders_made_by_another_process_meanwhile_are_fine() {
+        // Shards of one batch start together and each makes the output
+        // folder's chain: whoever comes second finds it made.
+        for round in 0..40 {
+            let dir = tempfile::tempdir().unwrap();
+            let out = dir.path().join(format!("a{round}/b/c"));
+            let start = std::sync::Barrier::new(8);
+            std::thread::scope(|scope| {
+                for _ in 0..8 {
+                    scope.spawn(|| {
+                        start.wait();
+                        let mut made = Created::default();
+                        made.folder_chain(&out, None).unwrap();
+                    });
+                }
+            });
+            assert!(out.is_dir());
+        }
     }
 }

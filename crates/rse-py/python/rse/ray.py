@@ -9,7 +9,9 @@ shards as Ray tasks, all writing into one folder every node sees
                                   amount=100_000, shards=256, targets="mujoco")
 
 Shard ``K/N`` is one task (``rse.write_worlds(..., shard="K/N")``), placed
-by Ray's own scheduler on a node with ``cpus_per_task`` free CPUs. A task
+by Ray's own scheduler on a node with ``cpus_per_task`` free CPUs, spread
+over the nodes by default (``scheduling_strategy="SPREAD"``: the writes,
+not only the CPU work, are shared out). A task
 whose worker or node dies is retried by Ray (``max_retries``), and the
 retried shard ends as if nothing happened: a batch resumes where it
 stopped (finished worlds are kept, unfinished ones were never in place).
@@ -32,11 +34,29 @@ __all__ = ["write_worlds"]
 COUNTS = ("written", "skipped", "replaced", "bytes")
 
 
+BUSY = "another rse-gen batch is writing shard"
+"""How rse refuses a shard another live run holds (its lock)."""
+BUSY_WAIT_S = 60.0
+"""How long a retried shard waits for its killed attempt's lock."""
+
+
 def _write_shard(scheme_csv: str, out: str, shard: str, options: dict[str, Any]) -> dict[str, int]:
-    """One shard, in a Ray worker: the scheme travels as its CSV text."""
+    """One shard, in a Ray worker: the scheme travels as its CSV text. A
+    retry can start while the killed attempt's process is still dying and
+    holds the shard's lock: it waits for the lock (up to ``BUSY_WAIT_S``)."""
+    import time
+
     import rse
 
-    return rse.write_worlds(rse.Scheme.from_csv(scheme_csv), out, shard=shard, **options)
+    scheme = rse.Scheme.from_csv(scheme_csv)
+    deadline = time.monotonic() + BUSY_WAIT_S
+    while True:
+        try:
+            return rse.write_worlds(scheme, out, shard=shard, **options)
+        except ValueError as e:
+            if not str(e).startswith(BUSY) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.2)
 
 
 def write_worlds(
@@ -47,12 +67,14 @@ def write_worlds(
     cpus_per_task: int = 1,
     max_retries: int = 3,
     progress: Optional[Callable[[int, int, dict[str, int]], None]] = None,
+    scheduling_strategy: Any = "SPREAD",
     **options: Any,
 ) -> dict[str, int]:
     """Writes ``scheme``'s worlds into ``out`` (a folder every node of the
     Ray cluster sees, the same path on each) as ``rse.write_worlds`` does,
     in ``shards`` Ray tasks (default: four per CPU of the cluster), each
-    given ``cpus_per_task`` CPUs and as many worker threads; ``options``
+    given ``cpus_per_task`` CPUs and as many worker threads, placed by
+    ``scheduling_strategy`` (Ray's; default ``"SPREAD"``); ``options``
     are ``rse.write_worlds``'s (``amount``, ``seed``, ``targets``, ``mesh``,
     ``template``, ...; a template folder must be on every node too).
     Returns the counts summed over the shards. Call ``ray.init`` first."""
@@ -69,7 +91,12 @@ def write_worlds(
         shards = max(1, 4 * int(ray.cluster_resources().get("CPU", 1)) // cpus_per_task)
     if shards < 1:
         raise ValueError(f"shards: {shards}; expected at least 1")
-    task = ray.remote(num_cpus=cpus_per_task, max_retries=max_retries, retry_exceptions=False)(_write_shard)
+    task = ray.remote(
+        num_cpus=cpus_per_task,
+        max_retries=max_retries,
+        retry_exceptions=False,
+        scheduling_strategy=scheduling_strategy,
+    )(_write_shard)
     text, folder = scheme.to_csv(), os.fspath(out)
     pending = [task.remote(text, folder, f"{k}/{shards}", {**options, "jobs": cpus_per_task}) for k in range(shards)]
     totals = dict.fromkeys(COUNTS, 0)
