@@ -470,55 +470,55 @@ mod tests {
 
     #[test]
     fn outside_an_even_slurm_array_auto_names_the_variable() {
-        let message = |vars: &[(&str, &str)]| slurm(vars).unwrap_err().to_string();
-        assert!(
-            message(&[]).starts_with("SLURM_ARRAY_TASK_ID is not set"),
-            "{}",
-            message(&[])
-        );
-        let no_count = [("SLURM_ARRAY_TASK_ID", "1"), ("SLURM_ARRAY_TASK_MIN", "0")];
-        assert!(message(&no_count).starts_with("SLURM_ARRAY_TASK_COUNT is not set"));
-        let word = [
-            ("SLURM_ARRAY_TASK_ID", "one"),
-            ("SLURM_ARRAY_TASK_MIN", "0"),
-            ("SLURM_ARRAY_TASK_COUNT", "2"),
+        // (ID, MIN, COUNT) as Slurm would set them (None: unset), and how
+        // the message starts or what it says.
+        let cases = [
+            (None, None, None, "SLURM_ARRAY_TASK_ID is not set"),
+            (
+                Some("1"),
+                Some("0"),
+                None,
+                "SLURM_ARRAY_TASK_COUNT is not set",
+            ),
+            (
+                Some("one"),
+                Some("0"),
+                Some("2"),
+                "SLURM_ARRAY_TASK_ID=\"one\"",
+            ),
+            // --array=1,5,9: three tasks, ids not a range.
+            (
+                Some("9"),
+                Some("1"),
+                Some("3"),
+                "SLURM_ARRAY_TASK_ID=9 is task 8",
+            ),
+            (
+                Some("0"),
+                Some("1"),
+                Some("3"),
+                "SLURM_ARRAY_TASK_ID=0 is not one of",
+            ),
+            (Some("0"), Some("0"), Some("0"), "SLURM_ARRAY_TASK_COUNT=0"),
         ];
-        assert!(
-            message(&word).starts_with("SLURM_ARRAY_TASK_ID=\"one\""),
-            "{}",
-            message(&word)
-        );
-        // --array=1,5,9: three tasks, ids not a range.
-        let list = [
+        for (id, min, count, starts) in cases {
+            let vars: Vec<(&str, &str)> = [
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", min),
+                ("SLURM_ARRAY_TASK_COUNT", count),
+            ]
+            .into_iter()
+            .filter_map(|(name, value)| Some((name, value?)))
+            .collect();
+            let message = slurm(&vars).unwrap_err().to_string();
+            assert!(message.starts_with(starts), "{message}");
+        }
+        let list = slurm(&[
             ("SLURM_ARRAY_TASK_ID", "9"),
             ("SLURM_ARRAY_TASK_MIN", "1"),
             ("SLURM_ARRAY_TASK_COUNT", "3"),
-        ];
-        assert!(
-            message(&list).contains("evenly spaced"),
-            "{}",
-            message(&list)
-        );
-        let below = [
-            ("SLURM_ARRAY_TASK_ID", "0"),
-            ("SLURM_ARRAY_TASK_MIN", "1"),
-            ("SLURM_ARRAY_TASK_COUNT", "3"),
-        ];
-        assert!(
-            message(&below).starts_with("SLURM_ARRAY_TASK_ID=0 is not one of"),
-            "{}",
-            message(&below)
-        );
-        let zero = [
-            ("SLURM_ARRAY_TASK_ID", "0"),
-            ("SLURM_ARRAY_TASK_MIN", "0"),
-            ("SLURM_ARRAY_TASK_COUNT", "0"),
-        ];
-        assert!(
-            message(&zero).starts_with("SLURM_ARRAY_TASK_COUNT=0"),
-            "{}",
-            message(&zero)
-        );
+        ]);
+        assert!(list.unwrap_err().to_string().contains("evenly spaced"));
     }
 
     #[test]

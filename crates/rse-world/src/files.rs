@@ -81,31 +81,36 @@ impl Created {
         for part in path.components() {
             at.push(part);
             let checked = below.is_some_and(|top| at.starts_with(top) && at != top);
-            let meta = if checked {
-                std::fs::symlink_metadata(&at)
-            } else {
-                std::fs::metadata(&at)
-            };
-            match meta {
-                Ok(m) if m.is_dir() => {}
-                Ok(m) if m.is_file() => return Err(Error::NotAFolder { path: at }),
-                Ok(_) => return Err(Error::NotAFile { path: at }),
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                    match std::fs::create_dir(&at) {
-                        Ok(()) => self.paths.push((at.clone(), true)),
-                        // Made meanwhile by another process (shards of one
-                        // batch starting together): theirs, not ours.
-                        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                            let meta =
-                                std::fs::symlink_metadata(&at).map_err(Error::io("create", &at))?;
-                            if !meta.is_dir() {
-                                return Err(Error::io("create", &at)(e));
+            // Looked at once more when another process made the folder
+            // between our look and our `create_dir` (shards of one batch
+            // starting together): then it is theirs, checked as any
+            // existing part. Only once: a dangling link is not found by the
+            // look and exists for `create_dir`, for ever.
+            let mut again = false;
+            loop {
+                let meta = if checked {
+                    std::fs::symlink_metadata(&at)
+                } else {
+                    std::fs::metadata(&at)
+                };
+                match meta {
+                    Ok(m) if m.is_dir() => break,
+                    Ok(m) if m.is_file() => return Err(Error::NotAFolder { path: at }),
+                    Ok(_) => return Err(Error::NotAFile { path: at }),
+                    Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                        match std::fs::create_dir(&at) {
+                            Ok(()) => {
+                                self.paths.push((at.clone(), true));
+                                break;
                             }
+                            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && !again => {
+                                again = true;
+                            }
+                            Err(e) => return Err(Error::io("create", &at)(e)),
                         }
-                        Err(e) => return Err(Error::io("create", &at)(e)),
                     }
+                    Err(e) => return Err(Error::io("create", &at)(e)),
                 }
-                Err(e) => return Err(Error::io("create", &at)(e)),
             }
         }
         Ok(())
@@ -236,5 +241,11 @@ mod tests {
             });
             assert!(out.is_dir());
         }
+        // A dangling link is not found, and exists for `create_dir`: an
+        // error, not a loop.
+        let dir = tempfile::tempdir().unwrap();
+        std::os::unix::fs::symlink(dir.path().join("nowhere"), dir.path().join("a")).unwrap();
+        let mut made = Created::default();
+        assert!(made.folder_chain(&dir.path().join("a/b"), None).is_err());
     }
 }
