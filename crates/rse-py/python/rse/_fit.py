@@ -81,6 +81,21 @@ def tile_index(seed: Optional[int], difficulty: float, salt: str = "") -> int:
     return int.from_bytes(hashlib.sha256(key).digest()[:8], "little") >> 1
 
 
+def launcher_rank() -> int:
+    """This process's rank as a launcher of one process per GPU sets it in
+    ``RANK`` (``torchrun``, mjlab's torchrunx, Isaac Lab's
+    ``--distributed``); 0 without one. A value that is not a rank is a
+    ``ValueError`` naming ``RANK``."""
+    rank = os.environ.get("RANK", "0")
+    try:
+        value = int(rank)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise ValueError(f"RANK: {rank!r} is not a process rank (an integer from 0)")
+    return value
+
+
 def max_step(scheme: Scheme, max_height_diff: float) -> int:
     """A height tolerance in metres as whole steps (rounded down)."""
     return max(0, math.floor(max_height_diff / scheme.step_height + 1e-9))

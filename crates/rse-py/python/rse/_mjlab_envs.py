@@ -12,7 +12,7 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._env_pool import GEOM, POOL, add_env_geom, sync_env_hfields
-from rse._fit import SchemeLike, load
+from rse._fit import SchemeLike, launcher_rank, load
 from rse._rse import EnvTerrains
 
 
@@ -195,13 +195,7 @@ def launcher_env_offset(num_envs: int) -> int:
     ``RANK · num_envs``, so every process draws other terrains and the
     whole run is the terrains of one process with all the envs. 0 outside
     such a launch. An explicit ``env_offset`` wins."""
-    import os
-
-    rank = os.environ.get("RANK", "0")
-    try:
-        return int(rank) * num_envs
-    except ValueError:
-        raise ValueError(f"RANK: {rank!r} is not a process rank (an integer from 0)") from None
+    return launcher_rank() * num_envs
 
 
 def _ids(env: Any, env_ids: Any) -> list[int]:

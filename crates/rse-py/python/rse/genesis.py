@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from rse._env_pool import id_list
 from rse._rse import EnvTerrains
 
 __all__ = ["heights", "reset", "sync", "terrain_morph"]
@@ -105,16 +106,14 @@ def reset(scene: Any, terrain: Any, envs: EnvTerrains, envs_idx: Any = None) -> 
     envs (a torch tensor or array), env ids, or None for every env. With
     no env to reset nothing is rewritten, so a task may call it every
     step."""
-    if envs_idx is None:
-        ids = np.arange(envs.num_envs, dtype=np.int64)
+    given = envs_idx.detach().cpu().numpy() if hasattr(envs_idx, "detach") else envs_idx
+    if given is not None and np.asarray(given).dtype == np.bool_:
+        mask = np.asarray(given)
+        if mask.shape != (envs.num_envs,):
+            raise ValueError(f"envs_idx: a mask of shape {mask.shape} for {envs.num_envs} envs")
+        ids = np.flatnonzero(mask)
     else:
-        given = envs_idx.detach().cpu().numpy() if hasattr(envs_idx, "detach") else np.asarray(envs_idx)
-        if given.dtype == np.bool_:
-            if given.shape != (envs.num_envs,):
-                raise ValueError(f"envs_idx: a mask of shape {given.shape} for {envs.num_envs} envs")
-            ids = np.flatnonzero(given)
-        else:
-            ids = given.astype(np.int64, copy=False).reshape(-1)
+        ids = np.asarray(id_list(envs, given), dtype=np.int64)
     if len(ids):
         envs.reset(ids)
         sync(scene, terrain, envs)

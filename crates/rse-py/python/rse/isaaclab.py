@@ -42,7 +42,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from rse._fit import TileFields, fit, framework_class, load, tile_index
+from rse._fit import TileFields, fit, framework_class, launcher_rank, load, tile_index
 
 
 def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
@@ -70,19 +70,6 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
     ground.apply_translation((sx / 2, sy / 2, -cfg.ground_thickness / 2))
     meshes.append(ground)
     return meshes, np.asarray(terrain.spawn_origin(cfg.spawn_radius), dtype=np.float64)
-
-
-def launcher_rank() -> int:
-    """This process's rank as ``torchrun`` (and so Isaac Lab's
-    ``--distributed``) sets it in ``RANK``; 0 without one."""
-    rank = os.environ.get("RANK", "0")
-    try:
-        value = int(rank)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise ValueError(f"RANK: {rank!r} is not a process rank (an integer from 0)")
-    return value
 
 
 def _rank_salt(rank: Optional[int]) -> str:
