@@ -40,9 +40,6 @@ pub(crate) struct WorldContext {
     /// per world, as every target's render shares it (serializing the boxes
     /// again for each target was a tenth of a batch's time).
     pub boxes: minijinja::Value,
-    /// How many `boxes`.
-    #[serde(skip)]
-    pub box_count: usize,
     /// What `MuJoCo` collides with: `boxes` or `hfield`.
     pub collider: &'static str,
     /// The height field, when `collider` is `hfield`.
@@ -106,7 +103,6 @@ impl WorldContext {
                     })
                     .collect::<Vec<_>>(),
             )),
-            box_count: boxes.len(),
             collider: "boxes",
             hfield: None,
         }

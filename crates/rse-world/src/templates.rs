@@ -244,7 +244,8 @@ impl Templates {
         target: Target,
         context: &WorldContext,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
-        self.render_with_fuel(target, context, render_fuel(context.box_count))
+        let boxes = context.boxes.len().unwrap_or_default();
+        self.render_with_fuel(target, context, render_fuel(boxes))
     }
 
     /// [`render`](Self::render) with `fuel` instructions per file.
