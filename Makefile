@@ -40,13 +40,14 @@ lint:
 	cargo clippy --workspace --all-targets --locked -- -D warnings
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
-## Benchmarks: generator (criterion), meshes (table), physics, batch throughput beside cp -r, Python, editor round trip.
+## Benchmarks: generator (criterion), meshes (table), physics, one world's stages, batch throughput beside cp -r, Python, editor round trip.
 bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
 	cargo bench -p rse-core --bench atlas
 	cargo bench -p rse-core --bench env_terrains
 	cargo bench -p rse-physics --bench physics
+	cargo bench -p rse-world --bench world
 	bench/batch.sh
 	bench/check.sh
 	python3 bench/budget.py

@@ -16,7 +16,7 @@ use crate::place::{
     Lock, Outcome, held_locks, lock_in, lock_in_waiting, place_world, remove_leftovers,
 };
 use crate::templates::Templates;
-use crate::world::build_world;
+use crate::world::SchemeRecord;
 
 /// Which worlds of a batch this run writes: those with `index % n == k`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -315,6 +315,7 @@ fn write_shard(
     let Shard { k, n } = options.shard;
     remove_leftovers(out, |world| world_index(world).is_some_and(|i| i % n == k))?;
     let count = options.shard.worlds(options.amount);
+    let record = SchemeRecord::new(scheme);
     let [written, skipped, replaced, bytes, not_started] = [(); 5].map(|()| AtomicU64::new(0));
     pool.install(|| {
         (0..count).into_par_iter().try_for_each(|j| {
@@ -324,7 +325,7 @@ fn write_shard(
             }
             let index = k + j * n;
             let name = world_name(index);
-            let world = build_world(scheme, options.seed, index, name, &options.world, templates)?;
+            let world = record.build_world(options.seed, index, name, &options.world, templates)?;
             let outcome = place_world(out, &world, options.force)?;
             match outcome {
                 Outcome::Written(size) => {

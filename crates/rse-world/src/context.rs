@@ -4,6 +4,7 @@ use rse_core::mesh::Block;
 use rse_core::{HField, Terrain};
 use serde::Serialize;
 
+use crate::box_value::BoxValue;
 use crate::options::MeshMode;
 
 /// The name of the terrain model in every target.
@@ -36,9 +37,9 @@ pub(crate) struct WorldContext {
     /// Centre of its footprint at the ground, metres.
     pub center: [f64; 3],
     /// The box set (`MuJoCo` collides with it in both modes unless
-    /// `collider` is `hfield`): [`BoxContext`]s, made a template value once
-    /// per world, as every target's render shares it (serializing the boxes
-    /// again for each target was a tenth of a batch's time).
+    /// `collider` is `hfield`): a list of [`BoxValue`]s, made once per world,
+    /// as every target's render shares it (serializing the boxes again for
+    /// each target was a tenth of a batch's time).
     pub boxes: minijinja::Value,
     /// What `MuJoCo` collides with: `boxes` or `hfield`.
     pub collider: &'static str,
@@ -57,16 +58,6 @@ pub(crate) struct HFieldContext {
     pub size: [f64; 4],
     /// The geom's position.
     pub pos: [f64; 3],
-}
-
-/// One box of the block model, metres.
-#[derive(Debug, Serialize)]
-pub(crate) struct BoxContext {
-    pub center: [f64; 3],
-    pub size: [f64; 3],
-    pub half_size: [f64; 3],
-    /// Cells covered: `[x0, y0, x1, y1]`, ends exclusive.
-    pub cells: [u32; 4],
 }
 
 impl WorldContext {
@@ -92,17 +83,12 @@ impl WorldContext {
             base: terrain.base(),
             center: [extent[0] / 2.0, extent[1] / 2.0, 0.0].map(tidy),
             extent,
-            boxes: minijinja::Value::from(minijinja::value::Serde(
+            boxes: minijinja::Value::from(
                 boxes
                     .iter()
-                    .map(|b| BoxContext {
-                        center: b.center.map(tidy),
-                        size: b.half_size.map(|h| tidy(2.0 * h)),
-                        half_size: b.half_size.map(tidy),
-                        cells: b.cells,
-                    })
+                    .map(|b| BoxValue::value(b, tidy))
                     .collect::<Vec<_>>(),
-            )),
+            ),
             collider: "boxes",
             hfield: None,
         }

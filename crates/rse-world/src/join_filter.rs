@@ -1,26 +1,29 @@
 //! The templates' `join` filter: minijinja's, with a fast path for what
 //! our templates join most, a box's three numbers (`b.center|join(" ")`).
-//! Each distinct number's text is made once per thread by minijinja's own
-//! `Display` and looked up after, so the bytes are minijinja's; formatting
+//! Each number's text is made by minijinja's own `Display` and remembered
+//! per thread in a small table, so the bytes are minijinja's; formatting
 //! those floats again for every box of every target was a tenth of a
 //! batch's time. Anything else goes to minijinja's filter as it is.
 
 use std::cell::RefCell;
 use std::fmt::Write as _;
 
-use minijinja::value::{Kwargs, StringInput, ValueKind};
+use minijinja::value::{Kwargs, StringInput, Tuple, ValueKind};
 use minijinja::{Error, State, Value};
-use rustc_hash::FxHashMap;
 
 /// The fast path's bounds: its output stays small, so skipping the
 /// builtin's per-item fuel charge lets no template run away.
 const MAX_ITEMS: usize = 16;
 const MAX_JOINER: usize = 16;
-/// Distinct numbers remembered per thread before the table starts over.
-const MAX_REMEMBERED: usize = 1 << 16;
+
+/// Texts remembered per thread: a table of this many slots, each number
+/// in the slot its bits hash to (a number meeting another in its slot is
+/// formatted again: slower, never wrong).
+const SLOT_BITS: u32 = 12;
 
 thread_local! {
-    static TEXT: RefCell<FxHashMap<u64, String>> = RefCell::new(FxHashMap::default());
+    static TEXT: RefCell<Vec<Option<(u64, String)>>> =
+        RefCell::new(vec![None; 1 << SLOT_BITS]);
 }
 
 /// `value|join(joiner)`, as minijinja's builtin `join` renders it.
@@ -34,39 +37,51 @@ pub(crate) fn join(
     let plain = joiner
         .as_ref()
         .is_none_or(|j| !j.is_safe() && j.as_str().len() <= MAX_JOINER);
-    if plain
-        && attribute.is_none()
-        && kwargs.args().next().is_none()
-        && value.kind() == ValueKind::Seq
-        && let Some(text) = numbers(value, joiner.as_ref().map_or("", StringInput::as_str))
-    {
-        return Ok(Value::from(text));
+    if plain && attribute.is_none() && kwargs.args().next().is_none() {
+        let joiner = joiner.as_ref().map_or("", StringInput::as_str);
+        // A box's vectors are tuples (`BoxValue`): their items as a slice.
+        let text = if let Some(tuple) = value.downcast_object_ref::<Tuple>() {
+            (tuple.len() <= MAX_ITEMS)
+                .then(|| numbers(tuple.iter().cloned(), joiner))
+                .flatten()
+        } else if value.kind() == ValueKind::Seq
+            && let Some(len @ ..=MAX_ITEMS) = value.len()
+        {
+            let items = (0..len).map(|i| value.get_item_by_index(i).unwrap_or_default());
+            numbers(items, joiner)
+        } else {
+            None
+        };
+        if let Some(text) = text {
+            return Ok(Value::from(text));
+        }
     }
     minijinja::filters::join(state, value, joiner, attribute, kwargs)
 }
 
-/// The items of `seq` joined by `joiner`, if it holds at most
-/// [`MAX_ITEMS`] items and every one is a float or an integer.
-fn numbers(seq: &Value, joiner: &str) -> Option<String> {
-    let len = seq.len()?;
-    if len > MAX_ITEMS {
-        return None;
-    }
-    let mut out = String::with_capacity(len * 8);
-    TEXT.with_borrow_mut(|known| {
-        for i in 0..len {
-            let item = seq.get_item_by_index(i).ok()?;
+/// `items` joined by `joiner`, if every one is a float or an integer.
+fn numbers(items: impl Iterator<Item = Value>, joiner: &str) -> Option<String> {
+    TEXT.with_borrow_mut(|slots| {
+        let mut out = String::with_capacity(32);
+        for (i, item) in items.enumerate() {
             if i > 0 {
                 out.push_str(joiner);
             }
-            if item.is_number() && !item.is_integer() {
-                let bits = f64::try_from(item.clone()).ok()?.to_bits();
-                if known.len() >= MAX_REMEMBERED {
-                    known.clear();
-                }
-                out.push_str(known.entry(bits).or_insert_with(|| item.to_string()));
-            } else if item.is_integer() {
+            if item.is_integer() {
                 write!(out, "{item}").ok()?;
+            } else if item.is_number() {
+                let bits = f64::try_from(item.clone()).ok()?.to_bits();
+                // Fibonacci hashing: the top bits of the product.
+                let slot = &mut slots
+                    [(bits.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - SLOT_BITS)) as usize];
+                match slot {
+                    Some((known, text)) if *known == bits => out.push_str(text),
+                    _ => {
+                        let text = item.to_string();
+                        out.push_str(&text);
+                        *slot = Some((bits, text));
+                    }
+                }
             } else {
                 return None;
             }
@@ -112,6 +127,12 @@ mod tests {
         ] {
             let (theirs, ours) = both(template, &minijinja::Value::from(floats.to_vec()));
             assert_eq!(ours, theirs, "{template}");
+            // A box's vectors are tuples.
+            let tuple = minijinja::Value::from_object(minijinja::value::Tuple::from(
+                floats.map(minijinja::Value::from),
+            ));
+            let (theirs, ours) = both(template, &tuple);
+            assert_eq!(ours, theirs, "{template} of a tuple");
             // Twice: the second time from the remembered texts.
             assert_eq!(
                 both(template, &minijinja::Value::from(floats.to_vec())).1,

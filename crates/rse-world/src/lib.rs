@@ -4,7 +4,7 @@
 //!
 //! Modules, each using only those above it (a test keeps it so):
 //! `digest`, `error`, `tree`, `nofollow`, `memory`, `options` → `atlas_record` →
-//! `manifest` → `context` → `templates` → `world` → `files`, `place` →
+//! `manifest`, `box_value` → `context`, `join_filter` → `templates` → `world` → `files`, `place` →
 //! `folder`, `batch` → `atlas` → `rebuild`.
 //!
 //! ```no_run
@@ -19,6 +19,7 @@
 mod atlas;
 mod atlas_record;
 mod batch;
+mod box_value;
 mod context;
 mod cost;
 mod digest;

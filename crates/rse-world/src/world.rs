@@ -48,8 +48,7 @@ pub fn build_world(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
-    let terrain = generate_at(scheme, seed, index, options.difficulty);
-    build_world_of(&terrain, scheme, name, options, templates)
+    SchemeRecord::new(scheme).build_world(seed, index, name, options, templates)
 }
 
 /// The world folder of `terrain`, generated from `scheme` at its seed pair
@@ -62,19 +61,65 @@ pub fn build_world_of(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
-    debug_assert_eq!(
-        terrain.difficulty(),
-        options.difficulty,
-        "the terrain's own"
-    );
-    let world = terrain_files(terrain, name, options, templates, BTreeMap::new())?;
-    let recipe = Recipe::Scheme {
-        csv: scheme.to_csv(),
-        seed: terrain.seed(),
-        index: terrain.index(),
-        terrain,
-    };
-    Ok(seal(world, recipe, scheme.globals(), options, templates))
+    SchemeRecord::new(scheme).world_of(terrain, name, options, templates)
+}
+
+/// A scheme with the canonical CSV every world's `rse.json` records of it:
+/// written once for a batch rather than once per world.
+pub(crate) struct SchemeRecord<'a> {
+    scheme: &'a Scheme,
+    csv: String,
+}
+
+impl<'a> SchemeRecord<'a> {
+    pub(crate) fn new(scheme: &'a Scheme) -> Self {
+        SchemeRecord {
+            scheme,
+            csv: scheme.to_csv(),
+        }
+    }
+
+    /// [`build_world`] of this scheme.
+    pub(crate) fn build_world(
+        &self,
+        seed: u64,
+        index: u64,
+        name: String,
+        options: &WorldOptions,
+        templates: &Templates,
+    ) -> Result<WorldFiles, Error> {
+        let terrain = generate_at(self.scheme, seed, index, options.difficulty);
+        self.world_of(&terrain, name, options, templates)
+    }
+
+    /// [`build_world_of`] of this scheme.
+    fn world_of(
+        &self,
+        terrain: &Terrain,
+        name: String,
+        options: &WorldOptions,
+        templates: &Templates,
+    ) -> Result<WorldFiles, Error> {
+        debug_assert_eq!(
+            terrain.difficulty(),
+            options.difficulty,
+            "the terrain's own"
+        );
+        let world = terrain_files(terrain, name, options, templates, BTreeMap::new())?;
+        let recipe = Recipe::Scheme {
+            csv: self.csv.clone(),
+            seed: terrain.seed(),
+            index: terrain.index(),
+            terrain,
+        };
+        Ok(seal(
+            world,
+            recipe,
+            self.scheme.globals(),
+            options,
+            templates,
+        ))
+    }
 }
 
 /// What a world is made from, as `rse.json` records it.
@@ -132,16 +177,34 @@ pub(crate) fn seal(
         scheme,
         drawn,
         atlas,
-        files: world
-            .files
-            .iter()
-            .map(|(path, bytes)| (path.clone(), sha256_hex(bytes)))
-            .collect(),
+        files: digests(&world.files),
     };
     world
         .files
         .insert(MANIFEST.to_owned(), manifest.to_json().into_bytes());
     world
+}
+
+/// The SHA-256 of every file, by path. A file holding the same bytes as
+/// one before it (the OBJ in `meshes/` and in Gazebo's model) takes that
+/// one's digest: comparing is cheaper than hashing again.
+fn digests(files: &BTreeMap<String, Vec<u8>>) -> BTreeMap<String, String> {
+    let mut hashed: Vec<(&[u8], String)> = Vec::new();
+    files
+        .iter()
+        .map(|(path, bytes)| {
+            let digest = if let Some((_, digest)) =
+                hashed.iter().find(|(seen, _)| *seen == bytes.as_slice())
+            {
+                digest.clone()
+            } else {
+                let digest = sha256_hex(bytes);
+                hashed.push((bytes, digest.clone()));
+                digest
+            };
+            (path.clone(), digest)
+        })
+        .collect()
 }
 
 /// Every file of a world folder of `terrain` but `rse.json`: `extra`

@@ -14,9 +14,12 @@ pub(crate) struct CoordinateText {
 impl CoordinateText {
     /// The texts of every coordinate of `points`.
     pub(crate) fn new(points: &[[f32; 3]]) -> Self {
-        let mut bits: Vec<u32> = points.iter().flatten().map(|c| c.to_bits()).collect();
+        // A set first: sorting every coordinate (thousands) cost more than
+        // formatting the few distinct ones.
+        let distinct: rustc_hash::FxHashSet<u32> =
+            points.iter().flatten().map(|c| c.to_bits()).collect();
+        let mut bits: Vec<u32> = distinct.into_iter().collect();
         bits.sort_unstable();
-        bits.dedup();
         let text = bits
             .iter()
             .map(|&b| f32::from_bits(b).to_string())
