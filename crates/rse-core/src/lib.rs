@@ -43,6 +43,7 @@ mod limits;
 pub mod mesh;
 mod obstacle;
 mod param;
+mod png_rows;
 pub mod preview;
 mod probe;
 mod request;

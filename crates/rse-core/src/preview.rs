@@ -1,6 +1,7 @@
 //! The top-down preview of paper §3.1: blue (lowest) → green → red (highest).
 
 use crate::error::Error;
+use crate::png_rows;
 use crate::terrain::Terrain;
 
 /// Colour of pallet frame cells: wood, outside the blue–green–red palette so
@@ -64,7 +65,28 @@ pub fn palette(h: u16, lo: u16, hi: u16) -> [u8; 3] {
 /// `cell_pixels` pixels per cell. From 4 pixels per cell on, each cell's
 /// right and bottom pixel lines are darker so every block reads on its own.
 /// Colours span the lowest to the highest cell that is not frame.
+///
+/// # Panics
+/// Never: drawing into memory cannot fail.
 pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
+    let grid = terrain.grid();
+    let cp = cell_pixels.max(1);
+    let (width, height) = (grid.nx * cp, grid.ny * cp);
+    let mut rgb = Vec::with_capacity(width as usize * height as usize * 3);
+    for_each_row(terrain, cp, &mut |row| {
+        rgb.extend_from_slice(row);
+        Ok(())
+    })
+    .expect("drawing into memory cannot fail");
+    Preview { width, height, rgb }
+}
+
+/// Gives `emit` every pixel row of [`render`]'s image, from the top.
+fn for_each_row(
+    terrain: &Terrain,
+    cell_pixels: u32,
+    emit: &mut dyn FnMut(&[u8]) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let grid = terrain.grid();
     let map = terrain.heightmap();
     let cp = cell_pixels.max(1);
@@ -77,9 +99,7 @@ pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
             }
         }
     }
-    let (width, height) = (grid.nx * cp, grid.ny * cp);
     let darker = |c: u8| c - c / 4;
-    let mut rgb = Vec::with_capacity(width as usize * height as usize * 3);
     // Every pixel row of a cell row is the same line, but for the darker
     // edge row at the bottom: build the two lines once per cell row.
     let (mut line, mut edge_line) = (Vec::new(), Vec::new());
@@ -100,41 +120,71 @@ pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
         }
         for row in 0..cp {
             let edge_row = cp >= 4 && row == cp - 1;
-            rgb.extend_from_slice(if edge_row { &edge_line } else { &line });
+            emit(if edge_row { &edge_line } else { &line })?;
         }
     }
-    Preview { width, height, rgb }
+    Ok(())
 }
 
 /// The PNG of `terrain` with `cell_pixels` pixels per cell (default:
 /// [`auto_cell_pixels`]), refused past [`MAX_PIXELS`] before anything is
 /// drawn: what a world's `preview.png`, `rse-gen preview`, the editor and
-/// Python's `Terrain.preview()` hold.
+/// Python's `Terrain.preview()` hold. The bytes of [`encode_png`] of
+/// [`render`], written row by row without the image in memory.
 pub fn png(terrain: &Terrain, cell_pixels: Option<u32>) -> Result<Vec<u8>, Error> {
     let grid = terrain.grid();
     let cell_pixels = cell_pixels.unwrap_or_else(|| auto_cell_pixels(grid.nx, grid.ny));
     validate_size(grid.nx, grid.ny, cell_pixels)?;
-    encode_png(&render(terrain, cell_pixels))
+    let cp = cell_pixels.max(1);
+    let (width, height) = (grid.nx * cp, grid.ny * cp);
+    Ok(png_rows::encode(width, height, |emit| {
+        for_each_row(terrain, cp, emit)
+    })?)
 }
 
-/// Encodes a preview as PNG bytes.
+/// Encodes a preview as PNG bytes: `png`'s encoder at `Compression::Fast`
+/// (previews are flat colour blocks: the fast deflate packs them nearly as
+/// well as the default, several times faster).
 pub fn encode_png(preview: &Preview) -> Result<Vec<u8>, Error> {
-    let mut bytes = Vec::new();
-    let mut encoder = png::Encoder::new(&mut bytes, preview.width, preview.height);
-    // Previews are flat colour blocks: the fast deflate packs them nearly as
-    // well as the default, several times faster (a batch writes thousands).
-    encoder.set_compression(png::Compression::Fast);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(&preview.rgb)?;
-    writer.finish()?;
-    Ok(bytes)
+    let row_bytes = preview.width as usize * 3;
+    Ok(png_rows::encode(preview.width, preview.height, |emit| {
+        preview
+            .rgb
+            .chunks(row_bytes.max(1))
+            .try_for_each(&mut *emit)
+    })?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn previews_are_the_png_crates_bytes() {
+        let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
+        for name in ["nist_hill", "six_obstacles", "paper_pallets", "random"] {
+            let scheme = crate::Scheme::load(format!("{samples}{name}.csv")).unwrap();
+            let terrain = crate::generate(&scheme, 3, 1);
+            for cell_pixels in [None, Some(1), Some(3), Some(4), Some(9)] {
+                let image = render(
+                    &terrain,
+                    cell_pixels
+                        .unwrap_or_else(|| auto_cell_pixels(terrain.grid().nx, terrain.grid().ny)),
+                );
+                let reference = crate::png_rows::png_crate(image.width, image.height, &image.rgb);
+                assert_eq!(
+                    png(&terrain, cell_pixels).unwrap(),
+                    reference,
+                    "{name} {cell_pixels:?}"
+                );
+                assert_eq!(
+                    encode_png(&image).unwrap(),
+                    reference,
+                    "{name} {cell_pixels:?}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn palette_runs_blue_green_red() {

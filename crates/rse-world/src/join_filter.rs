@@ -21,9 +21,19 @@ const MAX_JOINER: usize = 16;
 /// formatted again: slower, never wrong).
 const SLOT_BITS: u32 = 12;
 
+/// A thread's remembered number texts, and the buffer a join is written
+/// into (kept: a join's text is copied into its value, so a new buffer
+/// per join would be an allocation and a free for nothing).
+struct Texts {
+    slots: Vec<Option<(u64, String)>>,
+    joined: String,
+}
+
 thread_local! {
-    static TEXT: RefCell<Vec<Option<(u64, String)>>> =
-        RefCell::new(vec![None; 1 << SLOT_BITS]);
+    static TEXTS: RefCell<Texts> = RefCell::new(Texts {
+        slots: vec![None; 1 << SLOT_BITS],
+        joined: String::new(),
+    });
 }
 
 /// `value|join(joiner)`, as minijinja's builtin `join` renders it.
@@ -53,32 +63,33 @@ pub(crate) fn join(
             None
         };
         if let Some(text) = text {
-            return Ok(Value::from(text));
+            return Ok(text);
         }
     }
     minijinja::filters::join(state, value, joiner, attribute, kwargs)
 }
 
-/// `items` joined by `joiner`, if every one is a float or an integer.
-fn numbers(items: impl Iterator<Item = Value>, joiner: &str) -> Option<String> {
-    TEXT.with_borrow_mut(|slots| {
-        let mut out = String::with_capacity(32);
+/// `items` joined by `joiner` as a string value, if every one is a float
+/// or an integer.
+fn numbers(items: impl Iterator<Item = Value>, joiner: &str) -> Option<Value> {
+    TEXTS.with_borrow_mut(|Texts { slots, joined }| {
+        joined.clear();
         for (i, item) in items.enumerate() {
             if i > 0 {
-                out.push_str(joiner);
+                joined.push_str(joiner);
             }
             if item.is_integer() {
-                write!(out, "{item}").ok()?;
+                write!(joined, "{item}").ok()?;
             } else if item.is_number() {
                 let bits = f64::try_from(item.clone()).ok()?.to_bits();
                 // Fibonacci hashing: the top bits of the product.
                 let slot = &mut slots
                     [(bits.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - SLOT_BITS)) as usize];
                 match slot {
-                    Some((known, text)) if *known == bits => out.push_str(text),
+                    Some((known, text)) if *known == bits => joined.push_str(text),
                     _ => {
                         let text = item.to_string();
-                        out.push_str(&text);
+                        joined.push_str(&text);
                         *slot = Some((bits, text));
                     }
                 }
@@ -86,7 +97,7 @@ fn numbers(items: impl Iterator<Item = Value>, joiner: &str) -> Option<String> {
                 return None;
             }
         }
-        Some(out)
+        Some(Value::from(joined.as_str()))
     })
 }
 

@@ -288,19 +288,24 @@ pub fn place_world(out: &Path, world: &WorldFiles, force: bool) -> Result<Outcom
     Ok(Outcome::Replaced(size))
 }
 
-/// Writes every file of `world` under `root`.
+/// Writes every file of `world` under `root`, making each folder once,
+/// parents first (`create_dir_all` would try a nested folder before its
+/// parents, and look again at folders it has made).
 fn write_tree(root: &Path, world: &WorldFiles) -> Result<(), Error> {
     std::fs::create_dir(root).map_err(Error::io("create", root))?;
     let mut made = BTreeSet::new();
     for (relative, bytes) in &world.files {
-        let path = root.join(relative);
-        if let Some(parent) = Path::new(relative).parent()
-            && !parent.as_os_str().is_empty()
-            && made.insert(parent.to_owned())
-        {
-            let dir = root.join(parent);
-            std::fs::create_dir_all(&dir).map_err(Error::io("create", &dir))?;
+        let mut folders: Vec<&Path> = Path::new(relative)
+            .ancestors()
+            .skip(1)
+            .take_while(|folder| !folder.as_os_str().is_empty() && !made.contains(*folder))
+            .collect();
+        while let Some(folder) = folders.pop() {
+            let dir = root.join(folder);
+            std::fs::create_dir(&dir).map_err(Error::io("create", &dir))?;
+            made.insert(folder);
         }
+        let path = root.join(relative);
         std::fs::write(&path, bytes).map_err(Error::io("write", &path))?;
     }
     Ok(())

@@ -17,6 +17,8 @@ const FMT: &str = "writing to a String cannot fail";
 /// # Panics
 /// Never: formatting into a `String` cannot fail.
 pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
+    // A corner's normal reference, `//1` to `//6`, written as one piece.
+    const NORMAL_REFS: [&str; 6] = ["//1", "//2", "//3", "//4", "//5", "//6"];
     let mut out = String::with_capacity(mesh.vertices().len() * 24 + mesh.triangles().len() * 24);
     writeln!(
         out,
@@ -47,14 +49,12 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
         let n = Normal::ALL
             .iter()
             .position(|m| m == normal)
-            .expect("one of six")
-            + 1;
+            .expect("one of six");
         out.push('f');
         for v in t {
             out.push(' ');
             push_int(&mut out, v + 1);
-            out.push_str("//");
-            push_int(&mut out, n);
+            out.push_str(NORMAL_REFS[n]);
         }
         out.push('\n');
     }
