@@ -252,8 +252,14 @@ pub(crate) fn terrain_files(
         if gazebo_mesh {
             mesh_folders.push(format!("gazebo/{MODEL}/meshes"));
         }
-        for folder in mesh_folders {
-            files.insert(format!("{folder}/terrain.obj"), obj_bytes.clone());
+        // The last folder takes the OBJ's bytes themselves, the others a copy.
+        if let Some((last, others)) = mesh_folders.split_last() {
+            for folder in others {
+                files.insert(format!("{folder}/terrain.obj"), obj_bytes.clone());
+            }
+            files.insert(format!("{last}/terrain.obj"), obj_bytes);
+        }
+        for folder in &mesh_folders {
             files.insert(format!("{folder}/terrain.mtl"), mtl_bytes.clone());
         }
         if usd_mesh {

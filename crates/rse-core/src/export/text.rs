@@ -3,28 +3,28 @@
 //! step levels), so each is formatted once and looked up after; integers
 //! go through `itoa`. Formatting was a fifth of a batch's time.
 
+use rustc_hash::FxHashMap;
+
 /// The `Display` text of every distinct coordinate of some points,
 /// formatted once.
 pub(crate) struct CoordinateText {
-    /// Distinct values' bits, sorted; `text[i]` is `bits[i]`'s text.
-    bits: Vec<u32>,
+    /// A distinct value's bits → its text's place in `text`.
+    index: FxHashMap<u32, usize>,
     text: Vec<String>,
 }
 
 impl CoordinateText {
     /// The texts of every coordinate of `points`.
     pub(crate) fn new(points: &[[f32; 3]]) -> Self {
-        // A set first: sorting every coordinate (thousands) cost more than
-        // formatting the few distinct ones.
-        let distinct: rustc_hash::FxHashSet<u32> =
-            points.iter().flatten().map(|c| c.to_bits()).collect();
-        let mut bits: Vec<u32> = distinct.into_iter().collect();
-        bits.sort_unstable();
-        let text = bits
-            .iter()
-            .map(|&b| f32::from_bits(b).to_string())
-            .collect();
-        CoordinateText { bits, text }
+        let mut index = FxHashMap::default();
+        let mut text = Vec::new();
+        for &c in points.iter().flatten() {
+            index.entry(c.to_bits()).or_insert_with(|| {
+                text.push(c.to_string());
+                text.len() - 1
+            });
+        }
+        CoordinateText { index, text }
     }
 
     /// `value`'s text, as `format!("{value}")` writes it.
@@ -32,11 +32,7 @@ impl CoordinateText {
     /// # Panics
     /// If `value` is not a coordinate of the points given to [`new`](Self::new).
     pub(crate) fn get(&self, value: f32) -> &str {
-        let i = self
-            .bits
-            .binary_search(&value.to_bits())
-            .expect("a coordinate of the mesh");
-        &self.text[i]
+        &self.text[self.index[&value.to_bits()]]
     }
 
     /// Appends `x y z` (the three texts, `between` each) to `out`.
