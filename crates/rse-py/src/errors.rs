@@ -1,5 +1,6 @@
 //! Rust errors as Python exceptions: `rse.SchemeError` (a `ValueError`
-//! carrying file, line, column and field) and `OSError`.
+//! carrying file, line, column and field), `rse.ShardBusyError` and
+//! `OSError`.
 
 use pyo3::exceptions::{PyFileExistsError, PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -9,6 +10,13 @@ pyo3::create_exception!(
     SchemeError,
     PyValueError,
     "A scheme that cannot be used: `file`, `line`, `column` and `field` say where (each may be None)."
+);
+
+pyo3::create_exception!(
+    rse,
+    ShardBusyError,
+    PyValueError,
+    "Another live run holds this shard of this output folder (its lock): retry once it has ended, and the rerun skips every world it wrote."
 );
 
 /// `rse.SchemeError` with `message` and its place as attributes.
@@ -86,6 +94,7 @@ pub fn world_error(py: Python<'_>, e: &rse_world::Error) -> PyErr {
             PyFileExistsError::new_err(format!("{e}; pass force=True to replace it"))
         }
         rse_world::Error::Io { source, .. } => PyOSError::new_err(format!("{e}: {source}")),
+        rse_world::Error::Busy { .. } => ShardBusyError::new_err(e.to_string()),
         rse_world::Error::Core(e) => core_error(py, e),
         rse_world::Error::Atlas(e) => atlas_error(py, e),
         rse_world::Error::AtlasMismatch { field, .. } => {

@@ -53,6 +53,10 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
         rse_core::spawn::DEFAULT_PATCH_RADIUS,
     )?;
     m.add("SchemeError", m.py().get_type::<errors::SchemeError>())?;
+    m.add(
+        "ShardBusyError",
+        m.py().get_type::<errors::ShardBusyError>(),
+    )?;
     m.add_class::<scheme::Obstacle>()?;
     m.add_class::<scheme::Scheme>()?;
     m.add_class::<terrain::Terrain>()?;

@@ -17,6 +17,7 @@ __all__ = [
     "DEFAULT_SPAWN_RADIUS",
     "DEFAULT_PATCH_RADIUS",
     "SchemeError",
+    "ShardBusyError",
     "Obstacle",
     "Scheme",
     "Terrain",
@@ -62,6 +63,9 @@ class SchemeError(ValueError):
     line: Optional[int]
     column: Optional[int]
     field: Optional[str]
+
+class ShardBusyError(ValueError):
+    """Another live run holds this shard of this output folder (its lock): retry once it has ended, and the rerun skips every world it wrote."""
 
 @final
 class Obstacle:

@@ -34,8 +34,6 @@ __all__ = ["write_worlds"]
 COUNTS = ("written", "skipped", "replaced", "bytes")
 
 
-BUSY = "another rse-gen batch is writing shard"
-"""How rse refuses a shard another live run holds (its lock)."""
 BUSY_WAIT_S = 60.0
 """How long a retried shard waits for its killed attempt's lock."""
 
@@ -53,8 +51,8 @@ def _write_shard(scheme_csv: str, out: str, shard: str, options: dict[str, Any])
     while True:
         try:
             return rse.write_worlds(scheme, out, shard=shard, **options)
-        except ValueError as e:
-            if not str(e).startswith(BUSY) or time.monotonic() > deadline:
+        except rse.ShardBusyError:
+            if time.monotonic() > deadline:
                 raise
             time.sleep(0.2)
 
