@@ -68,6 +68,8 @@ struct TemplateFile {
     bytes: Vec<u8>,
     /// The name errors give: where the file came from.
     origin: String,
+    /// One of our templates (`BUILTIN`), not a user's.
+    ours: bool,
 }
 
 /// The template folders of every target, parsed once for a whole batch.
@@ -100,6 +102,7 @@ impl Templates {
                 path: path.to_owned(),
                 bytes: source.as_bytes().to_vec(),
                 origin: format!("templates/{target}/{path}"),
+                ours: true,
             });
         }
         Self::new(files, false).expect("the built-in templates parse")
@@ -245,29 +248,42 @@ impl Templates {
         context: &WorldContext,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
         let boxes = context.boxes.len().unwrap_or_default();
-        self.render_with_fuel(target, context, render_fuel(boxes))
+        self.render_with_fuel(target, context, render_fuel(boxes), Fueled::Users)
     }
 
-    /// [`render`](Self::render) with `fuel` instructions per file.
+    /// [`render`](Self::render) with `fuel` instructions per file of
+    /// those `fueled` names.
     fn render_with_fuel(
         &self,
         target: Target,
         context: &WorldContext,
         fuel: u64,
+        fueled: Fueled,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
         let Some(list) = self.files.get(&target) else {
             return Ok(Vec::new());
         };
         let value = minijinja::Value::from(minijinja::value::Serde(context));
-        // Fuel per file, for this world's box count: a template's loops
-        // cannot run on without bound (three nested `range(100000)`).
-        // Cloning an environment shares its compiled templates.
-        let mut env = self.env.clone();
-        env.set_fuel(Some(fuel));
+        // Fuel per file, for this world's box count: a user's template's
+        // loops cannot run on without bound (three nested `range(100000)`).
+        // Ours loop over the boxes only and need a hundredth of it
+        // (`our_templates_need_a_hundredth_of_the_fuel`): they run without
+        // the count, which cost a fifth of their time. Cloning an
+        // environment shares its compiled templates.
+        let counted = |file: &TemplateFile| fueled == Fueled::All || !file.ours;
+        let fueled_env = list.iter().any(counted).then(|| {
+            let mut env = self.env.clone();
+            env.set_fuel(Some(fuel));
+            env
+        });
         list.iter()
             .map(|file| {
                 let Some(path) = file.path.strip_suffix(TEMPLATE_SUFFIX) else {
                     return Ok((file.path.clone(), file.bytes.clone()));
+                };
+                let env = match &fueled_env {
+                    Some(env) if counted(file) => env,
+                    _ => &self.env,
                 };
                 let template = env
                     .get_template(&file.origin)
@@ -294,6 +310,15 @@ impl Templates {
             })
             .collect()
     }
+}
+
+/// Whose templates a render counts the instructions of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Fueled {
+    /// A user's only: ours are known to end.
+    Users,
+    /// Ours too (the tests that measure what ours need).
+    All,
 }
 
 /// The instructions one template may run for a world of `boxes` boxes:
@@ -485,6 +510,7 @@ fn read_tree(folder: &OpenFolder) -> Result<BTreeMap<Target, Vec<TemplateFile>>,
                     bytes: file.bytes,
                     origin: path.display().to_string(),
                     path: inner.to_owned(),
+                    ours: false,
                 });
             }
         }
@@ -562,11 +588,12 @@ mod tests {
         let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 100;
         for target in Target::ALL {
             templates
-                .render_with_fuel(target, &context, fuel)
+                .render_with_fuel(target, &context, fuel, Fueled::All)
                 .unwrap_or_else(|e| panic!("{target}: {e}"));
         }
         // ... and fail when starved: the fuel is counted.
-        let starved = templates.render_with_fuel(Target::Webots, &context, boxes.len() as u64);
+        let starved =
+            templates.render_with_fuel(Target::Webots, &context, boxes.len() as u64, Fueled::All);
         assert!(starved.is_err());
     }
 
