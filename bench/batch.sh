@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Batch throughput beside `cp -r` of the very same tree, in the same run:
 # 300 worlds of schemes/nist_hill.csv, every target, 2 jobs, in alternating
-# rounds (this 2-core machine's single timings vary), medians printed. The
-# aim: the batch under 2x the copy.
+# rounds (this 2-core machine's single timings vary by a third: 15 rounds
+# by default), medians printed. The aim: the batch under 2x the copy.
 #
 # Usage: bench/batch.sh [AMOUNT] [JOBS] [ROUNDS] [SCHEME]   (run by `make bench`)
 #        RSE_GEN=/path/to/an/older/rse-gen bench/batch.sh    (to compare builds)
@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 amount=${1:-300}
 jobs=${2:-2}
-rounds=${3:-5}
+rounds=${3:-15}
 scheme=${4:-schemes/nist_hill.csv}
 targets=obj,gazebo,webots,mujoco,urdf,usd
 
