@@ -47,7 +47,15 @@ pub(crate) fn encode(
     // A row that repeats the one above: filter Up, all zeros.
     let mut repeated = vec![0; row_bytes + 1];
     repeated[0] = RowFilter::Up as u8;
+    let mut count = 0u64;
     rows(&mut |row: &[u8]| {
+        if row.len() != row_bytes {
+            return Err(bad_size(format!(
+                "a row of {} bytes in an image {width} pixels wide ({row_bytes} bytes)",
+                row.len()
+            )));
+        }
+        count += 1;
         if row == previous.as_slice() {
             return compressor.write_data(&repeated);
         }
@@ -55,6 +63,9 @@ pub(crate) fn encode(
         previous.copy_from_slice(row);
         compressor.write_data(&filtered)
     })?;
+    if count != u64::from(height) {
+        return Err(bad_size(format!("{count} rows in an image {height} pixels high")).into());
+    }
     let mut zlib = compressor.finish()?.into_inner();
     let raw = (row_bytes + 1) * height as usize;
     if zlib.len() > fdeflate::StoredOnlyCompressor::<()>::compressed_size(raw) {
@@ -77,6 +88,12 @@ pub(crate) fn encode(
     }
     writer.finish()?;
     Ok(bytes)
+}
+
+/// An image whose rows do not match its size: refused, as `png` refuses
+/// a buffer of the wrong size.
+fn bad_size(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, message)
 }
 
 /// Filters `current` (the row under `previous`) into `out` with the filter
@@ -223,6 +240,18 @@ mod tests {
                 "case {case}: {width}x{height}, {levels} levels"
             );
         }
+    }
+
+    #[test]
+    fn rows_that_do_not_match_the_size_are_refused() {
+        let rgb = [7u8; 4 * 3 * 5];
+        for (width, height) in [(4, 4), (4, 6), (3, 5)] {
+            let result = encode(width, height, |emit| {
+                rgb.chunks(12).try_for_each(&mut *emit)
+            });
+            assert!(result.is_err(), "{width}x{height}");
+        }
+        assert!(encode(4, 5, |emit| rgb.chunks(12).try_for_each(&mut *emit)).is_ok());
     }
 
     #[test]
