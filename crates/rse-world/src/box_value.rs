@@ -65,10 +65,6 @@ impl Object for BoxValue {
     fn enumerate(self: &Arc<Self>) -> Enumerator {
         Enumerator::Str(FIELDS)
     }
-
-    fn enumerator_len(self: &Arc<Self>) -> Option<usize> {
-        Some(FIELDS.len())
-    }
 }
 
 #[cfg(test)]
