@@ -8,9 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 say() { printf '\n== %s\n' "$*"; }
 
-if [ ! -x .venv-cluster/bin/python ]; then
-    python3 -m venv .venv-cluster
-fi
+# shellcheck source=scripts/cached_venv.sh
+. scripts/cached_venv.sh
+
 if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v munged >/dev/null; then
     say "Slurm and munge (apt)"
     sudo=""
@@ -20,11 +20,12 @@ if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! comm
 fi
 say "rse-gen (the array jobs run it)"
 cargo build --release --locked --quiet -p rse-cli
-say "Ray (tests/cluster/requirements.txt)"
-.venv-cluster/bin/python -m pip install --quiet --disable-pip-version-check -r tests/cluster/requirements.txt
+say "Ray (.venv-cluster, kept outside the clone: scripts/cached_venv.sh)"
+cluster_install() { pip_install "$1" -r tests/cluster/requirements.txt; }
+cached_venv .venv-cluster python3 cluster_install tests/cluster/requirements.txt
 say "the rse package"
-rm -rf target/py-wheel
-.venv-cluster/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
-.venv-cluster/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
+rm -rf target/py-wheel-cluster
+.venv-cluster/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel-cluster ./crates/rse-py
+.venv-cluster/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel-cluster/rse_gen-*.whl
 say "tests/cluster (a one-node Slurm and a two-node Ray cluster on this machine)"
-.venv-cluster/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/cluster
+.venv-cluster/bin/python -m pytest tests/cluster

@@ -17,10 +17,11 @@ cargo fmt --all --check
 say "Rust tests (all crates but rse-cli)"
 cargo test --workspace --exclude rse-cli --locked --quiet
 say "the Python package (maturin, release)"
-if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
-fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
+# shellcheck source=scripts/cached_venv.sh
+. scripts/cached_venv.sh
+cached_venv .venv python3 test_install tests/requirements.txt
+say "the Python package's lint and types (ruff, mypy)"
+scripts/lint-python.sh
 rm -rf target/py-wheel
 .venv/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel ./crates/rse-py
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl

@@ -67,17 +67,16 @@ cargo test --workspace --exclude rse-cli --locked -- --include-ignored 2>&1 | te
 say "Rust tests: the command line (release build)"
 cargo test --release -p rse-cli --locked -- --include-ignored 2>&1 | tee -a "$log"
 
-# The Python test dependencies download while the fuzz targets build.
-if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
-fi
+# The Python test dependencies download while the fuzz targets build, into
+# venvs kept outside the clone and keyed by their pins
+# (scripts/cached_venv.sh): a fresh clone on this machine reuses them.
 # MJX pins its own MuJoCo (3.17; .venv has 4.0): rse.mjx's tests get their own venv.
-if [ ! -x .venv-mjx/bin/python ]; then
-    python3 -m venv .venv-mjx
-fi
+# shellcheck source=scripts/cached_venv.sh
+. scripts/cached_venv.sh
+mjx_install() { pip_install "$1" -r tests/mjx/requirements.txt; }
 (
-    .venv/bin/python -m pip install --quiet --disable-pip-version-check -r tests/requirements.txt
-    .venv-mjx/bin/python -m pip install --quiet --disable-pip-version-check -r tests/mjx/requirements.txt
+    cached_venv .venv python3 test_install tests/requirements.txt
+    cached_venv .venv-mjx python3 mjx_install tests/mjx/requirements.txt
 ) >"$pip_log" 2>&1 &
 pip_pid=$!
 
@@ -89,6 +88,8 @@ wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r t
 if [ -n "$apt_pid" ]; then
     wait "$apt_pid" || { cat "$apt_log" >&2; echo "scripts/test.sh: apt-get install failed" >&2; exit 1; }
 fi
+say "the Python package's lint and types (ruff, mypy; crates/rse-py/pyproject.toml)"
+scripts/lint-python.sh
 say "the Python package (pip install ./crates/rse-py: maturin, release build)"
 # The distribution was named `rse` before it became `rse-gen`: an old venv's
 # copy would share the `rse/` folder with the new one.
@@ -106,7 +107,7 @@ RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-g
     .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" --durations=15 2>&1 | tee -a "$log"
 
 say "pytest (tests/mjx: rse.mjx inside MJX, in .venv-mjx)"
-JAX_PLATFORMS=cpu .venv-mjx/bin/python -m pytest -p no:cacheprovider -c /dev/null -ra tests/mjx 2>&1 | tee -a "$log"
+JAX_PLATFORMS=cpu .venv-mjx/bin/python -m pytest tests/mjx 2>&1 | tee -a "$log"
 
 say "the README's main command"
 rm -rf target/readme-demo
@@ -117,14 +118,4 @@ for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_00
 done
 
 # One closing line for the whole run: cargo's test binaries and pytest.
-awk '
-    /^test result:/ { p += $4; f += $6; s += $8; next }
-    / in [0-9.]+s/ && /passed|failed/ {
-        for (i = 1; i < NF; i++) {
-            if ($(i + 1) ~ /^passed/) p += $i
-            if ($(i + 1) ~ /^failed/) f += $i
-            if ($(i + 1) ~ /^skipped/) s += $i
-        }
-    }
-    END { printf "all tests: %d passed, %d failed, %d skipped\n", p, f, s }
-' "$log"
+scripts/count_tests.sh "$log"

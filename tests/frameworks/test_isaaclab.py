@@ -33,7 +33,7 @@ TerrainGenerator = importlib.import_module("isaaclab.terrains.terrain_generator"
 TerrainGeneratorCfg = importlib.import_module("isaaclab.terrains.terrain_generator_cfg").TerrainGeneratorCfg
 
 import rse  # noqa: E402
-from rse._fit import fit, tile_index  # noqa: E402
+from rse._adapters.tiles import fit, tile_index  # noqa: E402
 from rse.isaaclab import RseTerrainCfg  # noqa: E402
 
 SIX = str(Path(__file__).resolve().parents[2] / "schemes" / "six_obstacles.csv")
@@ -60,7 +60,7 @@ def test_our_cfg_is_isaac_labs_sub_terrain_class() -> None:
 def tiles():
     """Isaac Lab's curriculum: column by column, row by row, difficulty
     (row + U)/rows from its generator's seeded rng; the tile's rse world
-    follows from that difficulty and the seed (`rse._fit.tile_index`)."""
+    follows from that difficulty and the seed (`rse._adapters.tiles.tile_index`)."""
     rng = np.random.default_rng(SEED)
     scheme = fit(rse.Scheme.load(SIX), SIZE)
     for col in range(COLS):

@@ -13,7 +13,7 @@ import pytest
 import rse
 from mjlab.terrains import TerrainGenerator, TerrainGeneratorCfg
 from mjlab.terrains.terrain_generator import FlatPatchSamplingCfg
-from rse._fit import fit
+from rse._adapters.tiles import fit
 from rse.mjlab import RseTerrainCfg
 
 SIX = Path(__file__).resolve().parents[2] / "schemes" / "six_obstacles.csv"

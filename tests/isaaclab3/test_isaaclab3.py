@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 import rse
 import torch
-from rse._fit import fit, tile_index
+from rse._adapters.tiles import fit, tile_index
 from rse.isaaclab import RseTerrainCfg
 
 import isaaclab.sim as sim_utils

@@ -123,7 +123,7 @@ def test_bad_input_is_named(task) -> None:
     with pytest.raises(ValueError, match="^num_envs"):
         rse.playground.terrains_fn(env, envs)(env.mjx_model, rng=jax.random.split(jax.random.PRNGKey(0), N_ENVS + 1))
     other = rse.EnvTerrains(rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,0..2\n"), N_ENVS)
-    with pytest.raises(ValueError, match="^env: its field"):
+    with pytest.raises(ValueError, match="^env: height field .hfield. holds"):
         rse.playground.terrains_fn(env, other)
 
 

@@ -13,7 +13,7 @@ import pytest
 import rse
 import trimesh
 from conftest import SCHEMES
-from rse._fit import fit, tile_index
+from rse._adapters.tiles import fit, tile_index
 from rse.isaaclab import RseTerrainCfg, rse_terrain
 
 SIX = str(SCHEMES / "six_obstacles.csv")

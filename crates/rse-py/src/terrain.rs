@@ -420,7 +420,7 @@ impl Terrain {
             crate::args::reals::<3>("offset", &o, "(1.0, -2.0, 0.0)")
         })?;
         let xml = rse_world::mjcf(&self.inner).map_err(|e| world_error(py, &e))?;
-        py.import("rse._mjcf")?.getattr("adapt")?.call1((
+        py.import("rse._adapters.mjcf")?.getattr("adapt")?.call1((
             xml,
             fragment,
             prefix,

@@ -9,6 +9,7 @@ The generator lives in Rust (``rse._rse``); this package re-exports it::
     vertices, faces = terrain.mesh()
 """
 
+from rse._check import CheckReport, Fault, WorldReport, check
 from rse._rse import (
     DEFAULT_ENV_OVERSAMPLE,
     DEFAULT_OVERSAMPLE,
@@ -29,7 +30,6 @@ from rse._rse import (
     write_world,
     write_worlds,
 )
-from rse._check import CheckReport, Fault, WorldReport, check
 
 __all__ = [
     "DEFAULT_ENV_OVERSAMPLE",

@@ -11,10 +11,11 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._env_pool import GEOM, POOL, add_env_geom, sync_env_hfields
-from rse._fit import SchemeLike, launcher_rank, load
+from rse._adapters import private
+from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.pool import GEOM, POOL, add_env_geom, sync_env_hfields
+from rse._adapters.tiles import SchemeLike, launcher_rank, load
 from rse._rse import EnvTerrains
-
 
 BODY = "terrain"
 """The body rse's terrain geoms go in: the name mjlab's terrain importer
@@ -125,7 +126,7 @@ class EnvTerrainsEvent:
         own ``build_hfield_bvh`` took 72 ms a field). A context made anew
         (mjlab recreates it when an event expands a model field) gets every
         env's mesh again."""
-        ctx = getattr(self._env.sim, "_sensor_context", None)
+        ctx = private.getattr_checked(self._env.sim, "_sensor_context", "mjlab")
         if ctx is None or not ctx.has_raycasts:
             return
         rc = ctx.render_context
@@ -133,6 +134,7 @@ class EnvTerrainsEvent:
             self._rays_of = rc
             self._ray_meshes = _RayMeshes(self._env.sim.mj_model, rc, self.envs, self.name)
             return
+        assert self._ray_meshes is not None, "made with the context it was made for"
         self._ray_meshes.update(self.envs, ids)
 
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
@@ -200,11 +202,7 @@ def launcher_env_offset(num_envs: int) -> int:
 
 def _ids(env: Any, env_ids: Any) -> list[int]:
     """mjlab's env ids (a tensor, a slice or None: all) as a list."""
-    if env_ids is None:
-        return list(range(env.num_envs))
-    if isinstance(env_ids, slice):
-        return list(range(env.num_envs)[env_ids])
-    return [int(e) for e in env_ids.tolist()]
+    return _env_ids(env.num_envs, env_ids)
 
 
 def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
@@ -278,7 +276,7 @@ def exact_height_scan(
 
     sensor = env.scene[sensor_name]
     envs = env_terrains(env, term)
-    origins = getattr(sensor, "_cached_world_origins", None)
+    origins = private.getattr_checked(sensor, "_cached_world_origins", "mjlab")
     if origins is None:
         raise ValueError(f"sensor_name: {sensor_name!r} has cast no rays yet (step or reset the env first)")
     B = origins.shape[0]
@@ -324,7 +322,7 @@ def _num_envs_being_built(fallback: Any) -> int:
         while frame is not None:
             owner = frame.f_locals.get("self")
             if isinstance(owner, Scene):
-                return int(owner._cfg.num_envs)
+                return int(private.getattr_checked(owner, "_cfg", "mjlab").num_envs)
             frame = frame.f_back
     finally:
         del frame
@@ -392,9 +390,8 @@ def use_env_terrains(
             f"env_cfg.scene.terrain: a {type(scene.terrain).__name__} is not mjlab's TerrainEntityCfg: "
             "rse replaces mjlab's terrain only; set it to None"
         )
-    for name, entity in (getattr(scene, "entities", None) or {}).items():
-        if name == BODY:
-            raise ValueError(f"env_cfg.scene.entities[{name!r}]: rse's terrain body is named {BODY!r}; rename the entity")
+    if BODY in (getattr(scene, "entities", None) or {}):
+        raise ValueError(f"env_cfg.scene.entities[{BODY!r}]: rse's terrain body is named {BODY!r}; rename the entity")
     load(scheme)  # a bad scheme fails here, not when the scene is built
     scene.terrain = None
     earlier = scene.spec_fn

@@ -39,15 +39,16 @@ from typing import Any
 
 import numpy as np
 
-from rse._env_pool import id_list
+from rse._adapters import private
+from rse._adapters.fields import require_layout
+from rse._adapters.ids import env_ids as _env_ids
 from rse._rse import EnvTerrains
 
 __all__ = ["heights", "reset", "sync", "terrain_morph"]
 
 
 def _tiles(envs: EnvTerrains) -> None:
-    if envs.layout != "tiles":
-        raise ValueError('envs: Genesis has one terrain shared by every env: make them with layout="tiles"')
+    require_layout(envs, "tiles", "Genesis has one terrain shared by every env")
 
 
 def heights(envs: EnvTerrains) -> np.ndarray:
@@ -89,14 +90,16 @@ def sync(scene: Any, terrain: Any, envs: EnvTerrains) -> None:
     import torch
 
     new = heights(envs)
-    info = scene.sim.rigid_solver.collider.collider_info
+    # Genesis has no public call for this: its internals, as listed (with
+    # the version they were checked against) in rse._adapters.private.
+    info = private.getattr_checked(scene.sim.rigid_solver.collider, "collider_info", "genesis")
     if tuple(info.terrain_hf.shape) != new.shape:
         raise ValueError(f"terrain: the scene's field is {tuple(info.terrain_hf.shape)}, the envs' map {new.shape} (build it from terrain_morph(envs))")
     info.terrain_hf.from_numpy(new)
     bounds = info.terrain_xyz_maxmin.to_numpy()
     bounds[2], bounds[5] = new.max(), new.min() - 1.0  # as Genesis sets them at build
     info.terrain_xyz_maxmin.from_numpy(bounds)
-    terrain._terrain_height_field = torch.as_tensor(new, dtype=gs.tc_float, device=gs.device)
+    private.setattr_checked(terrain, "_terrain_height_field", torch.as_tensor(new, dtype=gs.tc_float, device=gs.device), "genesis")
 
 
 def reset(scene: Any, terrain: Any, envs: EnvTerrains, envs_idx: Any = None) -> np.ndarray:
@@ -106,14 +109,7 @@ def reset(scene: Any, terrain: Any, envs: EnvTerrains, envs_idx: Any = None) -> 
     envs (a torch tensor or array), env ids, or None for every env. With
     no env to reset nothing is rewritten, so a task may call it every
     step."""
-    given = envs_idx.detach().cpu().numpy() if hasattr(envs_idx, "detach") else envs_idx
-    if given is not None and np.asarray(given).dtype == np.bool_:
-        mask = np.asarray(given)
-        if mask.shape != (envs.num_envs,):
-            raise ValueError(f"envs_idx: a mask of shape {mask.shape} for {envs.num_envs} envs")
-        ids = np.flatnonzero(mask)
-    else:
-        ids = np.asarray(id_list(envs, given), dtype=np.int64)
+    ids = np.asarray(_env_ids(envs.num_envs, envs_idx, "envs_idx"), dtype=np.int64)
     if len(ids):
         envs.reset(ids)
         sync(scene, terrain, envs)

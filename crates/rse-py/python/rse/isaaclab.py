@@ -18,10 +18,10 @@ anywhere::
 
 The contract (Isaac Lab's ``SubTerrainBaseCfg``): the meshes span
 ``(0, 0)``–``cfg.size`` in metres, Z up, and the origin has shape ``(3,)``.
-The scheme's grid is fitted to ``cfg.size`` (``rse._fit.fit``: blocks keep
+The scheme's grid is fitted to ``cfg.size`` (``rse._adapters.tiles.fit``: blocks keep
 their size). Isaac Lab passes the generator-wide seed (``cfg.seed``) and a
 difficulty, not a tile number, so the tile's world index is derived from the
-seed, the difficulty and the scheme (``rse._fit.tile_index``): the same
+seed, the difficulty and the scheme (``rse._adapters.tiles.tile_index``): the same
 configuration gives the same terrains. A difficulty outside ``[0, 1]`` is
 refused, as the library refuses it (keep ``difficulty_range`` inside it).
 Give the scheme as a path: Isaac Lab hashes the configuration.
@@ -42,7 +42,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from rse._fit import TileFields, fit, framework_class, launcher_rank, load, tile_index
+from rse._adapters.tiles import TileFields, framework_class, launcher_rank, tile_index, tile_terrain
 
 
 def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
@@ -52,15 +52,9 @@ def rse_terrain(difficulty: float, cfg: Any) -> tuple[list[Any], np.ndarray]:
     ``cfg.spawn_radius``."""
     import trimesh
 
-    if cfg.scheme is None:
-        raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
-    scheme = fit(load(cfg.scheme), tuple(cfg.size))
     d = float(difficulty)
-    salt = scheme.to_csv() + _rank_salt(getattr(cfg, "rank", None))
-    index = tile_index(getattr(cfg, "seed", None), d, salt) if cfg.index is None else cfg.index
-    # The library takes the seed's default and refuses a difficulty out of
-    # 0..1 (Isaac Lab's difficulty_range must stay inside it).
-    terrain = scheme.generate(seed=cfg.rse_seed, index=index, difficulty=d)
+    rank_salt = _rank_salt(getattr(cfg, "rank", None))
+    _, terrain = tile_terrain(cfg, d, lambda scheme: tile_index(getattr(cfg, "seed", None), d, scheme.to_csv() + rank_salt))
     meshes = []
     vertices, faces = terrain.mesh()
     if len(faces):
@@ -103,7 +97,9 @@ def use_stepfield(env_cfg: Any, scheme: Any, *, rank: Optional[int] = None, **ti
     if not isinstance(scheme, (str, os.PathLike)):
         raise ValueError("scheme: give a path to the scheme file (Isaac Lab hashes the configuration)")
     rank = launcher_rank() if rank is None else rank
-    terrain.terrain_generator.sub_terrains = {"stepfield": RseTerrainCfg(proportion=1.0, scheme=os.fspath(scheme), rank=rank, **tile)}
+    # Either class of the two below (mypy sees the first only).
+    tile_cfg: Any = RseTerrainCfg
+    terrain.terrain_generator.sub_terrains = {"stepfield": tile_cfg(proportion=1.0, scheme=os.fspath(scheme), rank=rank, **tile)}
     return env_cfg
 
 

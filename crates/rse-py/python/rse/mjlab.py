@@ -20,7 +20,7 @@ the same fields (``function`` then needs mjlab)::
     )
 
 The scheme's grid is fitted to the tile's ``size`` (blocks keep their size;
-``rse._fit.fit``). mjlab hands each tile its generator's seeded ``rng``: the
+``rse._adapters.tiles.fit``). mjlab hands each tile its generator's seeded ``rng``: the
 tile's world index is drawn from it, so the same configuration and seed
 give the same terrains. Flat patches are rse's (deterministic, spread out,
 flat within ``max_height_diff`` rounded down to whole steps), filtered by
@@ -37,7 +37,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._fit import TileFields, fit, framework_class, load, max_step, patches_in_ranges
+from rse._adapters.tiles import TileFields, framework_class, max_step, patches_in_ranges, tile_terrain
 from rse._mjlab_envs import (
     BODY,
     TERM,
@@ -55,13 +55,7 @@ def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) 
     import mujoco
     from mjlab.terrains.terrain_generator import TerrainGeometry, TerrainOutput
 
-    if cfg.scheme is None:
-        raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
-    scheme = fit(load(cfg.scheme), tuple(cfg.size))
-    index = int(rng.integers(0, 2**62)) if cfg.index is None else cfg.index
-    # The library takes the seed's default and refuses a difficulty out of
-    # 0..1 (mjlab's difficulty_range must stay inside it).
-    terrain = scheme.generate(seed=cfg.rse_seed, index=index, difficulty=float(difficulty))
+    scheme, terrain = tile_terrain(cfg, difficulty, lambda _: rng.integers(0, 2**62))
     body = spec.body("terrain")
     geometries = []
     sx, sy = cfg.size

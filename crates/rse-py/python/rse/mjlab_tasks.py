@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from rse._fit import SchemeLike
+from rse._adapters.tiles import SchemeLike
 
 STEPFIELD = """# A stepfield for legged robots: random steps of 5 cm under two stepped
 # hills and a ridge, on an 8 m x 8 m slot of 10 cm cells.

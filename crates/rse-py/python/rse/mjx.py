@@ -35,8 +35,11 @@ from typing import Any
 
 import numpy as np
 
+from rse._adapters.fields import env_field, require_layout
+from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.pool import GEOM, POOL, add_env_geom
+from rse._adapters.rows import world_rows
 from rse._rse import EnvTerrains
-from rse._env_pool import GEOM, POOL, add_env_geom, id_list
 
 __all__ = ["GEOM", "add_terrain", "hfield_rows", "in_axes", "put_model", "sync"]
 
@@ -49,40 +52,20 @@ def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = G
     ``geom`` showing it, its slot's frame at the world origin (each env's
     ``origins`` are then world coordinates). ``put_model`` gives each world
     its own samples."""
-    if envs.layout != "slots":
-        raise ValueError('envs: MJX batches a field per world: make them with layout="slots"')
+    require_layout(envs, "slots", "MJX batches a field per world")
     nrow, ncol = envs.samples.shape[1:]
     spec.add_hfield(name=name, nrow=nrow, ncol=ncol, size=list(envs.hfield_size), userdata=envs.samples[0].ravel())
     add_env_geom(spec, envs, name, name=geom)
-
-
-def _field(mjm: Any, envs: EnvTerrains, name: str) -> tuple[int, int]:
-    """The address and sample count of the rse field ``name`` in ``mjm``,
-    or ``ValueError`` naming ``mjm``."""
-    import mujoco
-
-    if envs.layout != "slots":
-        raise ValueError("envs: expected the slots layout, one field per world")
-    hid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, name)
-    if hid < 0:
-        raise ValueError(f"mjm: no height field named {name!r} (add it with rse.mjx.add_terrain)")
-    size = int(mjm.hfield_nrow[hid]) * int(mjm.hfield_ncol[hid])
-    if size != envs.samples[0].size:
-        raise ValueError(f"mjm: height field {name!r} holds {size} samples, but the envs' field has {envs.samples[0].size}")
-    return int(mjm.hfield_adr[hid]), size
 
 
 def hfield_rows(mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> np.ndarray:
     """World rows of ``hfield_data`` for ``env_ids`` (all when None):
     float32 ``(len(env_ids), mjm.nhfielddata)``, each ``mjm``'s own
     ``hfield_data`` with that env's samples in the field ``name``."""
-    adr, size = _field(mjm, envs, name)
-    ids = id_list(envs, env_ids)
-    if size == mjm.nhfielddata:  # the rse field is the model's only one
-        return envs.samples.reshape(envs.num_envs, size)[ids]
-    rows = np.repeat(np.asarray(mjm.hfield_data, dtype=np.float32)[None], len(ids), axis=0)
-    rows[:, adr : adr + size] = envs.samples.reshape(envs.num_envs, size)[ids]
-    return rows
+    require_layout(envs, "slots", "MJX batches a field per world")
+    adr, _ = env_field(mjm, envs, name, "mjm", "add it with rse.mjx.add_terrain")
+    ids = _env_ids(envs.num_envs, env_ids)
+    return world_rows(mjm.hfield_data, adr, envs.samples[ids])
 
 
 def put_model(mjm: Any, envs: EnvTerrains, *, name: str = POOL, device: Any = None) -> Any:
@@ -125,7 +108,7 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     jitted step is not traced again."""
     import jax
 
-    ids = id_list(envs, env_ids)
+    ids = _env_ids(envs.num_envs, env_ids)
     if m.hfield_data.shape != (envs.num_envs, mjm.nhfielddata):
         raise ValueError(f"m: hfield_data is {m.hfield_data.shape}, expected ({envs.num_envs}, {mjm.nhfielddata}) (make it with rse.mjx.put_model)")
     if not ids:

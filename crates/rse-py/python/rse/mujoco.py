@@ -1,7 +1,7 @@
 """A new rse terrain in a live MuJoCo model, without recompiling it.
 
 (The per-environment pool, ``add_env_hfields`` and the rest, lives in
-``rse._env_pool`` and is re-exported here.)
+``rse._adapters.pool`` and is re-exported here.)
 
 A MuJoCo height field keeps its samples in ``model.hfield_data``; MuJoCo
 reads them at every collision check, so overwriting them changes the ground
@@ -40,7 +40,8 @@ from typing import Any, Union
 
 import numpy as np
 
-from rse._env_pool import (
+from rse._adapters.mjcf import field_model, floats
+from rse._adapters.pool import (
     FIELD_RGBA,
     FIELD_RGBA_TEXT,
     add_env_geom,
@@ -227,14 +228,5 @@ def hfield_mjcf(
     terrain into it (MuJoCo rescales samples given in MJCF to span [0, 1],
     so they cannot carry a terrain's true heights). Add a robot with
     ``mujoco.MjSpec.from_string(...)`` or by editing the text."""
-    (nrow, ncol), (rx, ry, top, s), (cx, cy) = _field(scheme, oversample, elevation)
-    return f"""<mujoco model="rse_hfield">
-  <asset>
-    <hfield name="{name}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {s!r}"/>
-  </asset>
-  <worldbody>
-    <light pos="{cx!r} {cy!r} 5" dir="0 0 -1"/>
-    <geom name="{name}" type="hfield" hfield="{name}" pos="{cx!r} {cy!r} 0" rgba="{FIELD_RGBA_TEXT}"/>
-  </worldbody>
-</mujoco>
-"""
+    (nrow, ncol), size, (cx, cy) = _field(scheme, oversample, elevation)
+    return field_model("rse_hfield", [name], (nrow, ncol), size, f"{floats((cx, cy))} 0", FIELD_RGBA_TEXT, light=(cx, cy))

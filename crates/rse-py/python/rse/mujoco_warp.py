@@ -30,8 +30,10 @@ from typing import Any
 
 import numpy as np
 
+from rse._adapters.fields import geom_id, require_layout
+from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.pool import GEOM, POOL, add_env_geom, add_env_hfields, copy_env_samples, env_pool, sync_env_hfields
 from rse._rse import EnvTerrains
-from rse._env_pool import GEOM, POOL, add_env_geom, add_env_hfields, copy_env_samples, env_pool, id_list, sync_env_hfields
 
 __all__ = ["GEOM", "add_terrain", "put_model", "route", "sync"]
 
@@ -44,19 +46,13 @@ def add_terrain(spec: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = G
     ``geom`` showing the first, its slot's frame at the world origin (each
     env's ``origins`` are then world coordinates). ``put_model`` routes each
     world to its own field."""
-    if envs.layout != "slots":
-        raise ValueError('envs: MuJoCo Warp routes a field per world: make them with layout="slots"')
+    require_layout(envs, "slots", "MuJoCo Warp routes a field per world")
     names = add_env_hfields(spec, envs, name=name)
     add_env_geom(spec, envs, names[0], name=geom)
 
 
 def _terrain_geom(mjm: Any, geom: str) -> int:
-    import mujoco
-
-    gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, geom)
-    if gid < 0:
-        raise ValueError(f"mjm: no geom named {geom!r} (add it with rse.mujoco_warp.add_terrain)")
-    return gid
+    return geom_id(mjm, geom, "mjm", "add it with rse.mujoco_warp.add_terrain")
 
 
 def put_model(mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM, **kwargs: Any) -> Any:
@@ -68,8 +64,7 @@ def put_model(mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = GEOM
     import mujoco_warp as mjw
 
     _terrain_geom(mjm, geom)
-    if envs.layout != "slots":
-        raise ValueError("envs: expected the slots layout, one field per world")
+    require_layout(envs, "slots", "MuJoCo Warp routes a field per world")
     env_pool(mjm, envs, name, "mjm")
     sync_env_hfields(mjm, envs, name=name)
     batch = dict(kwargs.pop("batch_sizes", {}) or {})
@@ -105,7 +100,7 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     Call it after ``envs.reset(env_ids)``."""
     import warp as wp
 
-    ids = id_list(envs, env_ids)
+    ids = _env_ids(envs.num_envs, env_ids)
     _, adr, size = env_pool(mjm, envs, name, "mjm")
     if m.hfield_data.device.is_cpu:
         # On the CPU device the warp array is host memory: a numpy view

@@ -25,14 +25,16 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
+from rse._adapters import private
+from rse._adapters.fields import require_layout
+from rse._adapters.ids import env_ids as _env_ids
 from rse._rse import EnvTerrains
 
 __all__ = ["add_heightfield", "sync"]
 
 
 def _check_slots(envs: EnvTerrains) -> None:
-    if envs.layout != "slots":
-        raise ValueError("envs: rse.newton gives each world its own field: make the EnvTerrains with layout='slots'")
+    require_layout(envs, "slots", "rse.newton gives each world its own field")
 
 
 def add_heightfield(builder: Any, envs: EnvTerrains, env: int, **shape_options: Any) -> int:
@@ -48,8 +50,7 @@ def add_heightfield(builder: Any, envs: EnvTerrains, env: int, **shape_options: 
     import warp as wp
 
     _check_slots(envs)
-    if not 0 <= env < envs.num_envs:
-        raise ValueError(f"env: {env} is not an environment (0 to {envs.num_envs - 1})")
+    (env,) = _env_ids(envs.num_envs, [env], "env")
     nrow, ncol = envs.field_shape
     rx, ry, elevation, _ = envs.hfield_size
     x, y, z = envs.hfield_pos
@@ -59,8 +60,8 @@ def add_heightfield(builder: Any, envs: EnvTerrains, env: int, **shape_options: 
     # highest value; rse's samples are already [0, 1] of [min_z, max_z]
     # (0 and the scheme's highest top), the range a reset's samples share.
     # Kept as they are, so the field is right before any `sync`.
-    field._data = samples
-    field._cached_hash = None
+    private.setattr_checked(field, "_data", samples, "newton")
+    private.setattr_checked(field, "_cached_hash", None, "newton")
     return builder.add_shape_heightfield(
         xform=wp.transform(p=wp.vec3(x, y, z), q=wp.quat_identity()), heightfield=field, **shape_options
     )
@@ -92,11 +93,10 @@ def sync(model: Any, envs: EnvTerrains, env_ids: Any = None, *, solver: Optional
     fields in place: ``model.heightfield_elevations`` and, given a
     ``SolverMuJoCo``, its MuJoCo Warp model's ``hfield_data``. No rebuild,
     no recompilation."""
-    import numpy as np
     import warp as wp
 
     _check_slots(envs)
-    ids = list(range(envs.num_envs)) if env_ids is None else [int(e) for e in np.asarray(env_ids).ravel()]
+    ids = _env_ids(envs.num_envs, env_ids)
     offsets = _world_offsets(model, envs)
     n = envs.field_shape[0] * envs.field_shape[1]
     targets = [(model.heightfield_elevations, offsets)]

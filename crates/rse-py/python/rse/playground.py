@@ -30,13 +30,16 @@ provide them offline).
 
 from __future__ import annotations
 
-import re
 import tempfile
 from pathlib import Path
 from typing import Any, Callable, Optional
 
 import numpy as np
 
+from rse._adapters import private
+from rse._adapters.fields import env_field, geom_id, require_layout
+from rse._adapters.mjcf import replace_field
+from rse._adapters.rows import world_rows
 from rse._rse import EnvTerrains
 
 __all__ = ["FIELD", "FLOOR", "SPAWN_RADIUS", "go1_joystick", "terrains_fn"]
@@ -56,15 +59,10 @@ def _stepfield_scene(xml: str, envs: EnvTerrains) -> str:
     ``envs``' slot shape (its samples written after compiling) and the floor
     geom at ``envs.hfield_pos``. Raises ``ValueError`` if the scene has no
     such field or floor (another Playground version)."""
-    nrow, ncol = envs.field_shape
-    size = " ".join(f"{v:.9g}" for v in envs.hfield_size)
-    field = re.compile(rf'<hfield\s+name="{FIELD}"[^>]*/>')
-    floor = re.compile(rf'(<geom\s+name="{FLOOR}"\s+type="hfield")')
-    if len(field.findall(xml)) != 1 or len(floor.findall(xml)) != 1:
-        raise ValueError(f'the scene: expected one <hfield name="{FIELD}"> and one <geom name="{FLOOR}" type="hfield"> (mujoco_playground 0.2)')
-    xml = field.sub(f'<hfield name="{FIELD}" nrow="{nrow}" ncol="{ncol}" size="{size}"/>', xml)
-    pos = " ".join(f"{v:.9g}" for v in envs.hfield_pos)
-    return floor.sub(rf'\1 pos="{pos}"', xml)
+    try:
+        return replace_field(xml, FIELD, FLOOR, envs.field_shape, envs.hfield_size, envs.hfield_pos)
+    except ValueError as e:
+        raise ValueError(f"{e} (mujoco_playground 0.2)") from None
 
 
 def go1_joystick(envs: EnvTerrains, config: Any = None, config_overrides: Optional[dict[str, Any]] = None) -> Any:
@@ -75,11 +73,14 @@ def go1_joystick(envs: EnvTerrains, config: Any = None, config_overrides: Option
     (``impl="jax"``, the one that batches a field per world). ``config``
     and ``config_overrides`` as Playground takes them."""
     from mujoco import mjx
+
+    require_layout(envs, "slots", "MJX batches a field per world")
+    # Playground's Go1 classes are not exported: its private package, as
+    # listed in rse._adapters.private.
+    private.verify("playground")
     from mujoco_playground._src.locomotion.go1 import base, joystick
     from mujoco_playground._src.locomotion.go1 import go1_constants as consts
 
-    if envs.layout != "slots":
-        raise ValueError('envs: MJX batches a field per world: make them with layout="slots"')
     config = config if config is not None else joystick.default_config()
     # What Joystick.__init__ sets for its rough task.
     config.naconmax = 8 * 8192
@@ -118,17 +119,10 @@ def terrains_fn(env: Any, envs: EnvTerrains, *, field: str = FIELD, floor: str =
     get the first envs' terrains; more worlds than envs is a
     ``ValueError``."""
 
-    import mujoco
-
     mjm = env.mj_model
-    hid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, field)
-    gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, floor)
-    if hid < 0 or gid < 0:
-        raise ValueError(f"env: no height field {field!r} shown by a geom {floor!r} (build it with rse.playground.go1_joystick)")
-    size = envs.samples[0].size
-    if int(mjm.hfield_nrow[hid]) * int(mjm.hfield_ncol[hid]) != size:
-        raise ValueError(f"env: its field {field!r} is not of envs' slot shape (build it with rse.playground.go1_joystick(envs))")
-    adr = int(mjm.hfield_adr[hid])
+    hint = "build it with rse.playground.go1_joystick(envs)"
+    adr, _ = env_field(mjm, envs, field, "env", hint)
+    gid = geom_id(mjm, floor, "env", hint)
 
     def fn(model: Any, rng: Any = None) -> tuple[Any, Any]:
         import jax
@@ -137,8 +131,7 @@ def terrains_fn(env: Any, envs: EnvTerrains, *, field: str = FIELD, floor: str =
         worlds = envs.num_envs if rng is None else len(rng)
         if worlds > envs.num_envs:
             raise ValueError(f"num_envs: Brax asks for {worlds} worlds per device, rse has {envs.num_envs} envs' terrains")
-        rows = np.repeat(np.asarray(model.hfield_data, dtype=np.float32)[None], worlds, axis=0)
-        rows[:, adr : adr + size] = envs.samples[:worlds].reshape(worlds, size)
+        rows = world_rows(model.hfield_data, adr, envs.samples[:worlds])
         pos = np.repeat(np.asarray(model.geom_pos, dtype=np.float32)[None], worlds, axis=0)
         pos[:, gid] -= envs.origins[:worlds].astype(np.float32)
         batched = model.replace(hfield_data=jnp.asarray(rows), geom_pos=jnp.asarray(pos))

@@ -1,7 +1,9 @@
-"""What the framework adapters share: the fields of their sub-terrain
-configs, a scheme fitted to a sub-terrain's size, the world index a tile
-draws, and flat patches in a framework's terms. Pure Python over
-``rse._rse``; no framework is imported here."""
+"""What the sub-terrain adapters (rse.isaaclab, rse.mjlab) share: the
+fields of their sub-terrain configs, the tile prologue (a scheme fitted to
+a sub-terrain's size, the tile's terrain), the world index a tile draws,
+flat patches in a framework's terms, the launcher's rank, and a
+framework's class when it is installed. Pure Python over ``rse._rse``; no
+framework is imported here."""
 
 from __future__ import annotations
 
@@ -17,7 +19,7 @@ from typing import Any, Optional, Union
 
 import numpy as np
 
-from rse._rse import Scheme
+from rse._rse import Scheme, Terrain
 
 SchemeLike = Union[Scheme, str, "os.PathLike[str]"]
 
@@ -69,6 +71,24 @@ def fit(scheme: Scheme, size: tuple[float, float]) -> Scheme:
         amount=scheme.amount,
         seed=scheme.seed,
     )
+
+
+def tile_terrain(cfg: Any, difficulty: float, index: Any) -> tuple[Scheme, Terrain]:
+    """The prologue of every sub-terrain function: ``cfg``'s scheme (a
+    ``TileFields``; ``ValueError`` naming ``RseTerrainCfg.scheme`` when
+    there is none) fitted to ``cfg.size``, and its terrain at ``difficulty``
+    for world ``index`` (``cfg.index`` when set; a callable is given the
+    fitted scheme) of ``cfg.rse_seed`` (default the scheme's). The library
+    refuses a difficulty out of 0..1 (the framework's difficulty_range must
+    stay inside it)."""
+    if cfg.scheme is None:
+        raise ValueError("RseTerrainCfg.scheme: give a scheme file (or rse.Scheme)")
+    scheme = fit(load(cfg.scheme), tuple(cfg.size))
+    if cfg.index is not None:
+        index = cfg.index
+    elif callable(index):
+        index = index(scheme)
+    return scheme, scheme.generate(seed=cfg.rse_seed, index=int(index), difficulty=float(difficulty))
 
 
 def tile_index(seed: Optional[int], difficulty: float, salt: str = "") -> int:

@@ -1,16 +1,19 @@
 """Every environment its own height field in MuJoCo: an ``EnvTerrains``
 pool (one field per env) or tile map in an ``MjSpec`` or as MJCF, the
 terrain geom that shows it, and the reset envs' samples copied into a live
-model. ``rse.mujoco`` re-exports the public functions; ``rse.mujoco_warp``
-and ``rse.mjx`` build on the helpers here (docs/envs.md).
+model. ``rse.mujoco`` re-exports the public functions; ``rse.mujoco_warp``,
+``rse.mjx`` and ``rse.mjlab`` build on the helpers here (docs/envs.md).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Union
 
 import numpy as np
 
+from rse._adapters.fields import field_size, hfield_id
+from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.mjcf import field_model, floats
 from rse._rse import EnvTerrains
 
 POOL = "rse_env"
@@ -36,7 +39,6 @@ __all__ = [
     "env_hfield_names",
     "env_hfields_mjcf",
     "env_pool",
-    "id_list",
     "sync_env_hfields",
 ]
 
@@ -99,30 +101,8 @@ def env_hfields_mjcf(envs: EnvTerrains, *, name: str = POOL) -> str:
     compile, then ``sync_env_hfields(model, envs)``. Merge it into a robot
     model with ``MjSpec.attach`` or by editing the text."""
     nrow, ncol = envs.samples.shape[1:]
-    rx, ry, top, base = envs.hfield_size
-    x, y, z = envs.hfield_pos
     names = env_hfield_names(envs, name)
-    fields = "\n".join(
-        f'    <hfield name="{n}" nrow="{nrow}" ncol="{ncol}" size="{rx!r} {ry!r} {top!r} {base!r}"/>' for n in names
-    )
-    return f"""<mujoco model="rse_env_hfields">
-  <asset>
-{fields}
-  </asset>
-  <worldbody>
-    <geom name="{names[0]}" type="hfield" hfield="{names[0]}" pos="{x!r} {y!r} {z!r}" rgba="{FIELD_RGBA_TEXT}" group="2"/>
-  </worldbody>
-</mujoco>
-"""
-
-
-def id_list(envs: EnvTerrains, env_ids: Any) -> list[int]:
-    """``env_ids`` (all when None) as ints, or ``ValueError`` naming it."""
-    ids = np.arange(envs.num_envs) if env_ids is None else np.asarray(env_ids, dtype=np.int64).ravel()
-    bad = ids[(ids < 0) | (ids >= envs.num_envs)]
-    if bad.size:
-        raise ValueError(f"env_ids: {int(bad[0])} is not an environment (0 to {envs.num_envs - 1})")
-    return ids.tolist()
+    return field_model("rse_env_hfields", names, (nrow, ncol), envs.hfield_size, floats(envs.hfield_pos), FIELD_RGBA_TEXT, group=2)
 
 
 def env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") -> tuple[int, np.ndarray, int]:
@@ -131,20 +111,12 @@ def env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") 
     ``hfield_data`` and the samples of each. They were added one after the
     other, so the first and last names bound them; ``ValueError`` naming
     ``argument`` when they are not there, not one run, or of another size."""
-    import mujoco
-
     names = env_hfield_names(envs, name)
-
-    def hfield(n: str) -> int:
-        hid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_HFIELD, n)
-        if hid < 0:
-            raise ValueError(f"{argument}: no height field named {n!r} (add them with add_env_hfields)")
-        return hid
-
-    first, last = hfield(names[0]), hfield(names[-1])
+    hint = "add them with add_env_hfields"
+    first, last = (hfield_id(model, n, argument, hint) for n in (names[0], names[-1]))
     if last - first != len(names) - 1:
-        raise ValueError(f"{argument}: the height fields {names[0]} … {names[-1]} are not one pool (add them with add_env_hfields)")
-    size = int(model.hfield_nrow[first]) * int(model.hfield_ncol[first])
+        raise ValueError(f"{argument}: the height fields {names[0]} … {names[-1]} are not one pool ({hint})")
+    size = field_size(model, first)
     if size != envs.samples[0].size:
         raise ValueError(f"{argument}: height field {names[0]} holds {size} samples, but the envs' field has {envs.samples[0].size}")
     return first, np.asarray(model.hfield_adr[first : last + 1], dtype=np.int64), size
@@ -163,6 +135,6 @@ def sync_env_hfields(model: Any, envs: EnvTerrains, env_ids: Any = None, *, name
     the compiled ``model``'s height fields made by ``add_env_hfields``
     (slots: each env's own; tiles: the map, whole). Call it after
     ``envs.reset(env_ids)``; the model is not recompiled."""
-    ids = [0] if envs.layout == "tiles" else id_list(envs, env_ids)
+    ids = [0] if envs.layout == "tiles" else _env_ids(envs.num_envs, env_ids)
     _, adr, size = env_pool(model, envs, name)
     copy_env_samples(model.hfield_data, envs, ids, adr, size)
