@@ -52,6 +52,13 @@ say "lint (clippy, warnings are errors; also the build without physics)"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo clippy -p rse-cli -p rse-py --no-default-features --locked -- -D warnings
 
+say "unused dependencies (cargo-machete; built once per machine into the cache)"
+machete_root=${XDG_CACHE_HOME:-$HOME/.cache}/rse/cargo-machete-0.9.2
+if [ ! -x "$machete_root/bin/cargo-machete" ]; then
+    cargo install --quiet --locked cargo-machete --version 0.9.2 --root "$machete_root"
+fi
+"$machete_root/bin/cargo-machete"
+
 say "docs (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
