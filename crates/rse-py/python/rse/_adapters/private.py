@@ -40,7 +40,8 @@ class Use:
     """One private name: ``attribute`` of ``owner`` (a module, or a class
     in it as ``module:Class``), used by ``adapter`` for ``why``.
     ``instance``: set on instances (in a method of the class or a base
-    class), so ``verify`` looks for ``self.<attribute>`` in their source."""
+    class), so ``verify`` looks for a declared field or ``self.<attribute> =``
+    in their source."""
 
     framework: str
     owner: str
@@ -57,7 +58,7 @@ class Use:
 FRAMEWORKS = {
     "genesis": Framework("genesis-world", ("1.4.5",)),
     "mjlab": Framework("mjlab", ("1.6.0",)),
-    "mujoco_warp": Framework("mujoco-warp", ("3.17.0", "4.0.0")),
+    "mujoco_warp": Framework("mujoco-warp", ("3.11.0",)),
     "newton": Framework("newton", ("1.8.0",)),
     "playground": Framework("playground", ("0.2.0",)),
     "gymnasium": Framework("gymnasium", ("1.4.0",)),
@@ -78,12 +79,13 @@ USES = (
         "where the scan's rays start this step", instance=True),
     Use("mjlab", "mjlab.scene.scene:Scene", "_cfg", "rse.mjlab.use_env_terrains",
         "the env count of the scene being built (read from the stack in spec_fn)", instance=True),
-    # MuJoCo Warp's render context (mjlab's ray sensors): per-field BVHs.
-    Use("mujoco_warp", "mujoco_warp._src.io:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",
+    # MuJoCo Warp's render context (mjlab's ray sensors): per-field BVHs,
+    # fields of a public class that MuJoCo Warp fills and reads itself.
+    Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",
         "the meshes the rays hit, one per env's field", instance=True),
-    Use("mujoco_warp", "mujoco_warp._src.io:RenderContext", "hfield_bvh_id", "rse.mjlab.EnvTerrainsEvent",
+    Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_bvh_id", "rse.mjlab.EnvTerrainsEvent",
         "which mesh each height field's rays hit", instance=True),
-    Use("mujoco_warp", "mujoco_warp._src.io:RenderContext", "hfield_bounds_size", "rse.mjlab.EnvTerrainsEvent",
+    Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_bounds_size", "rse.mjlab.EnvTerrainsEvent",
         "the box each field's rays are tested against", instance=True),
     # Newton: a height field's samples as given (Newton rescales them).
     Use("newton", "newton:Heightfield", "_data", "rse.newton.add_heightfield",
@@ -137,10 +139,14 @@ def _owner(owner: str) -> Any:
     return found
 
 
-def _self_assigns(cls: type, attribute: str) -> bool:
-    """Whether a method of ``cls`` or of a base class sets ``self.attribute``."""
+def _instance_attribute(cls: type, attribute: str) -> bool:
+    """Whether instances of ``cls`` have ``attribute``: a field it or a
+    base class declares (a dataclass's), or one a method sets
+    (``self.attribute = ...``)."""
     needle = f"self.{attribute}"
     for klass in inspect.getmro(cls):
+        if attribute in vars(klass).get("__annotations__", {}):
+            return True
         try:
             source = inspect.getsource(klass)
         except (OSError, TypeError):
@@ -158,7 +164,7 @@ def missing(use: Use) -> str:
         return f"{use.owner.replace(':', '.')} does not import ({e})"
     if hasattr(owner, use.attribute):
         return ""
-    if use.instance and inspect.isclass(owner) and _self_assigns(owner, use.attribute):
+    if use.instance and inspect.isclass(owner) and _instance_attribute(owner, use.attribute):
         return ""
     return f"{use.name} is gone"
 
@@ -166,8 +172,8 @@ def missing(use: Use) -> str:
 def _message(framework: str, problems: list[tuple[Use, str]]) -> str:
     fw = FRAMEWORKS[framework]
     lines = [
-        f"{fw.distribution} {installed_version(framework)} lacks private names rse's adapters use "
-        f"(checked against {', '.join(fw.checked)}; see rse._adapters.private):"
+        f"{fw.distribution} (installed: {installed_version(framework)}; rse checked {', '.join(fw.checked)}) "
+        "lacks private names rse's adapters use (rse._adapters.private):"
     ]
     lines += [f"  - {why}: {u.adapter} uses it for {u.why}" for u, why in problems]
     return "\n".join(lines)
