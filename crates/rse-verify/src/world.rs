@@ -11,7 +11,10 @@ use std::sync::Arc;
 use rse_core::Terrain;
 #[cfg(feature = "physics")]
 use rse_physics::PhysicsReport;
-use rse_world::{MANIFEST, Manifest, RebuildCost, RebuildError, Rebuilt, Templates, sha256_hex};
+use rse_world::{
+    Generated, MANIFEST, Manifest, RebuildCost, RebuildError, Rebuilt, Recipe, Templates,
+    sha256_hex,
+};
 use serde::Serialize;
 
 use crate::budget::Budget;
@@ -200,14 +203,9 @@ fn json_reason(e: &serde_json::Error) -> String {
     format!("{said} at line {}, column {}", e.line(), e.column())
 }
 
-/// The checks of a manifest's recipe before anything is built: the paths
-/// it names, the world's name, the rebuild's cost. `false`: do not rebuild.
-fn fit_to_rebuild(
-    manifest: &Manifest,
-    options: &CheckOptions,
-    report: &mut WorldReport,
-    faults: &mut Vec<Fault>,
-) -> bool {
+/// The checks of a manifest before its recipe is read: the paths it
+/// names, the world's name. `false`: do not rebuild.
+fn fit_to_rebuild(manifest: &Manifest, faults: &mut Vec<Fault>) -> bool {
     // Paths the manifest names are checked as names before anything is read.
     let outside: Vec<&String> = manifest.files.keys().filter(|p| !inside(p)).collect();
     for path in &outside {
@@ -231,30 +229,47 @@ fn fit_to_rebuild(
         ));
         return false;
     }
-    // `rse.json` is input: what it asks to rebuild is held to a budget
-    // before anything is built: from the recipe, then, with the terrain
-    // that prices, from the files its mesh and boxes make.
-    let costs = [Manifest::rebuild_cost, Manifest::full_rebuild_cost];
-    for cost in costs {
-        match cost(manifest) {
-            Ok(cost) => {
-                if let Some(kind) = over_budget(cost, options.budget) {
-                    faults.push(Fault::of(MANIFEST, kind));
-                    return false;
-                }
-                report.estimate = Some(Estimate {
-                    bytes: cost.bytes,
-                    visits: cost.visits,
-                    seconds: cost.seconds(),
-                });
-            }
-            Err(e) => {
-                faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
-                return false;
-            }
+    true
+}
+
+/// A manifest's recipe, parsed once, priced from itself and then, with the
+/// terrain that price allowed generating, from the files its mesh and boxes
+/// make: `rse.json` is input, and what it asks to rebuild is held to a
+/// budget before anything is built. `None`: do not rebuild (the fault is
+/// pushed).
+fn generate_within_budget<'m>(
+    manifest: &'m Manifest,
+    options: &CheckOptions,
+    report: &mut WorldReport,
+    faults: &mut Vec<Fault>,
+) -> Option<Generated<'m>> {
+    let mut within = |cost: RebuildCost, report: &mut WorldReport| {
+        if let Some(kind) = over_budget(cost, options.budget) {
+            faults.push(Fault::of(MANIFEST, kind));
+            return false;
+        }
+        report.estimate = Some(Estimate {
+            bytes: cost.bytes,
+            visits: cost.visits,
+            seconds: cost.seconds(),
+        });
+        true
+    };
+    let generated = Recipe::of(manifest).and_then(|recipe| {
+        if within(recipe.cost(), report) {
+            recipe.generate().map(Some)
+        } else {
+            Ok(None)
+        }
+    });
+    match generated {
+        Ok(Some(generated)) => within(generated.cost(), report).then_some(generated),
+        Ok(None) => None,
+        Err(e) => {
+            faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
+            None
         }
     }
-    true
 }
 
 /// Every check that needs the manifest.
@@ -265,9 +280,12 @@ fn check_against_manifest(
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) {
-    if !fit_to_rebuild(manifest, options, report, faults) {
+    if !fit_to_rebuild(manifest, faults) {
         return;
     }
+    let Some(generated) = generate_within_budget(manifest, options, report, faults) else {
+        return;
+    };
     let templates = options
         .templates
         .as_deref()
@@ -276,7 +294,7 @@ fn check_against_manifest(
         terrain,
         files: expected,
         hashed_only,
-    } = match manifest.rebuild(templates) {
+    } = match generated.rebuild(templates) {
         Ok(rebuilt) => rebuilt,
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));

@@ -8,15 +8,15 @@ use std::path::Path;
 use rse_core::{Atlas, AtlasError, AtlasOptions, Difficulty, Scheme, build_atlas};
 use serde::Serialize;
 
-use crate::atlas_record::{AtlasRecord, NamedScheme, PatchRecord};
-use crate::context::tidy;
 use crate::error::Error;
-use crate::folder::place_folder;
+use crate::files::folder::place_folder;
+use crate::files::place::Outcome;
 use crate::memory::check_memory_for;
-use crate::options::WorldOptions;
-use crate::place::Outcome;
-use crate::templates::Templates;
-use crate::world::{Recipe, WorldFiles, seal, terrain_files};
+use crate::record::atlas_record::{AtlasRecord, NamedScheme, PatchRecord};
+use crate::record::options::WorldOptions;
+use crate::render::context::tidy;
+use crate::render::templates::Templates;
+use crate::render::world::{Recorded, WorldFiles, seal, terrain_files};
 
 /// The tile list's file name in an atlas folder.
 pub const ATLAS_JSON: &str = "atlas.json";
@@ -136,10 +136,24 @@ pub fn build_atlas_world(
     templates: &Templates,
 ) -> Result<(WorldFiles, Atlas), Error> {
     let atlas = atlas_of(schemes, atlas_options)?;
+    let world = atlas_world(&atlas, schemes, atlas_options, name, options, templates)?;
+    Ok((world, atlas))
+}
+
+/// The world folder of `atlas`, built already from `schemes` with
+/// `atlas_options` (what `check` rebuilds once it has generated it).
+pub(crate) fn atlas_world(
+    atlas: &Atlas,
+    schemes: &[NamedScheme],
+    atlas_options: &AtlasOptions,
+    name: String,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> Result<WorldFiles, Error> {
     let record = AtlasRecord::new(schemes, atlas_options);
     let extra = BTreeMap::from([(
         ATLAS_JSON.to_owned(),
-        atlas_json(&atlas, &record).into_bytes(),
+        atlas_json(atlas, &record).into_bytes(),
     )]);
     let options = WorldOptions {
         difficulty: Difficulty::FULL,
@@ -152,13 +166,12 @@ pub fn build_atlas_world(
     globals.pallets = None;
     globals.amount = 1;
     globals.seed = atlas_options.seed;
-    let recipe = Recipe::Atlas {
+    let recorded = Recorded::Atlas {
         seed: atlas_options.seed,
         record,
         terrain: atlas.terrain(),
     };
-    let world = seal(world, recipe, &globals, &options, templates);
-    Ok((world, atlas))
+    Ok(seal(world, recorded, &globals, &options, templates))
 }
 
 /// Builds the atlas and writes its world folder at `out` (a folder whose

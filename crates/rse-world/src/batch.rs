@@ -9,14 +9,14 @@ use rayon::prelude::*;
 use rse_core::Scheme;
 
 use crate::error::Error;
-use crate::files::Created;
-use crate::memory::check_memory_for;
-use crate::options::{Targets, WorldOptions};
-use crate::place::{
+use crate::files::place::{
     Lock, Outcome, held_locks, lock_in, lock_in_waiting, place_world, remove_leftovers,
 };
-use crate::templates::Templates;
-use crate::world::SchemeRecord;
+use crate::files::write::Created;
+use crate::memory::check_memory_for;
+use crate::record::options::{Targets, WorldOptions};
+use crate::render::templates::Templates;
+use crate::render::world::SchemeCsv;
 
 /// Which worlds of a batch this run writes: those with `index % n == k`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -315,7 +315,7 @@ fn write_shard(
     let Shard { k, n } = options.shard;
     remove_leftovers(out, |world| world_index(world).is_some_and(|i| i % n == k))?;
     let count = options.shard.worlds(options.amount);
-    let record = SchemeRecord::new(scheme);
+    let record = SchemeCsv::new(scheme);
     let [written, skipped, replaced, bytes, not_started] = [(); 5].map(|()| AtomicU64::new(0));
     pool.install(|| {
         (0..count).into_par_iter().try_for_each(|j| {

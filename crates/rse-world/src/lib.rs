@@ -2,10 +2,10 @@
 //! world folder built in memory from templates, the `rse.json` manifest, and
 //! batches written in parallel, atomically and resumably.
 //!
-//! Modules, each using only those above it (a test keeps it so):
-//! `digest`, `error`, `tree`, `nofollow`, `memory`, `options` → `atlas_record` →
-//! `manifest`, `box_value` → `context`, `join_filter` → `templates` → `world` → `files`, `place` →
-//! `folder`, `batch` → `atlas` → `rebuild`.
+//! Modules by concern (a test keeps every crate's module graph free of
+//! circles): `files` (the folders on disk), `render` (a world's files in
+//! memory), `record` (`rse.json`, its options and its rebuild), then
+//! `batch` and `atlas`, which write worlds, and `memory` and `error`.
 //!
 //! ```no_run
 //! use rse_world::{BatchOptions, Targets, Templates, write_batch};
@@ -17,48 +17,34 @@
 //! ```
 
 mod atlas;
-mod atlas_record;
 mod batch;
-mod box_value;
-mod context;
-mod cost;
-mod digest;
 mod error;
 mod files;
-mod folder;
-mod join_filter;
-mod manifest;
 mod memory;
-mod names;
-mod nofollow;
-mod options;
-mod place;
-mod rebuild;
-mod templates;
-mod tree;
-mod world;
+mod record;
+mod render;
 
 pub use atlas::{ATLAS_JSON, atlas_json, atlas_of, build_atlas_world, write_atlas};
-pub use atlas_record::{AtlasRecord, NamedScheme, PatchRecord, SchemeRecord};
 pub use batch::{
     BatchOptions, Shard, Summary, thread_pool, world_index, world_name, write_batch,
     write_batch_until,
 };
-pub use cost::{RebuildCost, VISIT_NANOS};
-pub use digest::sha256_hex;
 pub use error::Error;
-pub use files::{mesh_format, write_atomically, write_mesh};
-pub use folder::{place_folder, write_world_at};
-pub use manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, TemplateSet, what_differs};
+pub use files::digest::sha256_hex;
+pub use files::folder::{place_folder, write_world_at};
+pub use files::names::{MAX_WORLD_NAME, world_name_problem};
+pub use files::nofollow::{FileBytes, Listed, OpenFolder, ReadError};
+pub use files::place::{Leftover, Outcome, place_world};
+pub use files::tree::{inside, list_files};
+pub use files::write::{mesh_format, write_atomically, write_mesh};
 pub use memory::{WORLD_BYTES_PER_CELL, available_bytes};
-pub use names::{MAX_WORLD_NAME, world_name_problem};
-pub use nofollow::{FileBytes, Listed, OpenFolder, ReadError};
-pub use options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
-pub use place::{Leftover, Outcome, place_world};
-pub use rebuild::{RebuildError, Rebuilt};
-pub use templates::{
+pub use record::atlas_record::{AtlasRecord, NamedScheme, PatchRecord, SchemeRecord};
+pub use record::cost::{RebuildCost, VISIT_NANOS};
+pub use record::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, TemplateSet, what_differs};
+pub use record::options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
+pub use record::rebuild::{Generated, RebuildError, Rebuilt, Recipe};
+pub use render::templates::{
     FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX, MAX_TEMPLATE_BYTES,
     MAX_TEMPLATE_FILE_BYTES, Templates, rendered_file_cap,
 };
-pub use tree::{inside, list_files};
-pub use world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};
+pub use render::world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

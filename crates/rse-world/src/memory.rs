@@ -3,7 +3,7 @@
 //! refused before it starts.
 
 use crate::error::Error;
-use crate::options::{MujocoCollider, Target, WorldOptions};
+use crate::record::options::{MujocoCollider, Target, WorldOptions};
 
 /// Memory one world may take while it is built, per cell of its grid:
 /// heightmap, mesh, box set and every file in memory. Measured at about

@@ -134,12 +134,12 @@ impl OpenFolder {
     }
 
     /// The regular file at the relative path `relative` (`/`-separated,
-    /// [`inside`](crate::tree::inside)), if it holds at most `cap` bytes: opened
+    /// [`inside`](crate::files::tree::inside)), if it holds at most `cap` bytes: opened
     /// without following a link at any level, checked to be a regular
     /// file, and read from that descriptor, never more than `cap + 1`
     /// bytes.
     pub fn read(&self, relative: &str, cap: u64) -> Result<FileBytes, ReadError> {
-        if !crate::tree::inside(relative) {
+        if !crate::files::tree::inside(relative) {
             return Err(ReadError::Missing);
         }
         #[cfg(unix)]

@@ -7,13 +7,13 @@ use std::path::Path;
 
 use minijinja::{AutoEscape, Environment, UndefinedBehavior};
 
-use crate::context::WorldContext;
-use crate::digest::sha256_hex;
 use crate::error::Error;
-use crate::files::Created;
-use crate::manifest::TemplateSet;
-use crate::nofollow::{Listed, OpenFolder, ReadError, refused};
-use crate::options::Target;
+use crate::files::digest::sha256_hex;
+use crate::files::nofollow::{Listed, OpenFolder, ReadError, refused};
+use crate::files::write::Created;
+use crate::record::manifest::TemplateSet;
+use crate::record::options::Target;
+use crate::render::context::WorldContext;
 
 /// Suffix of the files that are rendered rather than copied.
 const TEMPLATE_SUFFIX: &str = ".j2";
@@ -25,37 +25,37 @@ const BUILTIN: &[(Target, &str, &str)] = &[
     (
         Target::Gazebo,
         "rse.world.j2",
-        include_str!("../../../templates/gazebo/rse.world.j2"),
+        include_str!("../../../../templates/gazebo/rse.world.j2"),
     ),
     (
         Target::Gazebo,
         "rse_terrain/model.config.j2",
-        include_str!("../../../templates/gazebo/rse_terrain/model.config.j2"),
+        include_str!("../../../../templates/gazebo/rse_terrain/model.config.j2"),
     ),
     (
         Target::Gazebo,
         "rse_terrain/model.sdf.j2",
-        include_str!("../../../templates/gazebo/rse_terrain/model.sdf.j2"),
+        include_str!("../../../../templates/gazebo/rse_terrain/model.sdf.j2"),
     ),
     (
         Target::Webots,
         "rse.wbt.j2",
-        include_str!("../../../templates/webots/rse.wbt.j2"),
+        include_str!("../../../../templates/webots/rse.wbt.j2"),
     ),
     (
         Target::Mujoco,
         "rse.xml.j2",
-        include_str!("../../../templates/mujoco/rse.xml.j2"),
+        include_str!("../../../../templates/mujoco/rse.xml.j2"),
     ),
     (
         Target::Urdf,
         "rse.urdf.j2",
-        include_str!("../../../templates/urdf/rse.urdf.j2"),
+        include_str!("../../../../templates/urdf/rse.urdf.j2"),
     ),
     (
         Target::Usd,
         "rse.usda.j2",
-        include_str!("../../../templates/usd/rse.usda.j2"),
+        include_str!("../../../../templates/usd/rse.usda.j2"),
     ),
 ];
 
@@ -182,7 +182,7 @@ impl Templates {
         // and plain names. Nothing needs escaping, and HTML escaping would
         // be wrong in the non-XML ones.
         env.set_auto_escape_callback(|_| AutoEscape::None);
-        env.add_filter("join", crate::join_filter::join);
+        env.add_filter("join", crate::render::join_filter::join);
         env.set_syntax(
             minijinja::syntax::SyntaxConfig::builder()
                 .trim_blocks(true)
@@ -521,7 +521,7 @@ fn read_tree(folder: &OpenFolder) -> Result<BTreeMap<Target, Vec<TemplateFile>>,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::options::MeshMode;
+    use crate::record::options::MeshMode;
 
     /// Plants a hostile entry at a path.
     type Plant<'a> = &'a dyn Fn(&Path);

@@ -7,13 +7,13 @@ use std::path::{Path, PathBuf};
 use rse_core::Scheme;
 
 use crate::error::Error;
-use crate::files::Created;
+use crate::files::names::world_name_problem;
+use crate::files::place::{Outcome, lock_in, place_world, remove_leftovers};
+use crate::files::write::Created;
 use crate::memory::check_memory_for;
-use crate::names::world_name_problem;
-use crate::options::WorldOptions;
-use crate::place::{Outcome, lock_in, place_world, remove_leftovers};
-use crate::templates::Templates;
-use crate::world::{WorldFiles, build_world};
+use crate::record::options::WorldOptions;
+use crate::render::templates::Templates;
+use crate::render::world::{WorldFiles, build_world};
 
 /// Writes the world `build` makes (given the folder's name) at `out`: the
 /// same world already there is left alone, a different one is replaced

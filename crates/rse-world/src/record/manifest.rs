@@ -7,8 +7,8 @@ use std::collections::BTreeMap;
 use rse_core::{DrawnObstacle, Globals, Grid};
 use serde::{Deserialize, Serialize};
 
-use crate::atlas_record::AtlasRecord;
-use crate::options::{Target, WorldOptions};
+use crate::record::atlas_record::AtlasRecord;
+use crate::record::options::{Target, WorldOptions};
 
 /// The manifest's file name in a world folder.
 pub const MANIFEST: &str = "rse.json";

@@ -7,11 +7,11 @@ use std::collections::BTreeSet;
 use std::io::ErrorKind;
 use std::path::Path;
 
-use crate::digest::sha256_hex;
 use crate::error::Error;
-use crate::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, what_differs};
-use crate::nofollow::{Listed, OpenFolder, ReadError, refused};
-use crate::world::WorldFiles;
+use crate::files::digest::sha256_hex;
+use crate::files::nofollow::{Listed, OpenFolder, ReadError, refused};
+use crate::record::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, what_differs};
+use crate::render::world::WorldFiles;
 
 /// What happened to one world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,7 +5,7 @@
 use rse_core::{AtlasOptions, Difficulty, PatchOptions, Scheme};
 use serde::{Deserialize, Serialize};
 
-use crate::digest::sha256_hex;
+use crate::files::digest::sha256_hex;
 
 /// A scheme with the file name the atlas records for it (no folder: a
 /// world holds no path of the machine that made it).

@@ -6,14 +6,14 @@ use std::collections::{BTreeMap, BTreeSet};
 use rse_core::export::{mtl, obj, usda};
 use rse_core::{Globals, Scheme, Terrain, generate_at, preview};
 
-use crate::atlas_record::AtlasRecord;
-use crate::context::{MODEL, WorldContext};
-use crate::digest::sha256_hex;
 use crate::error::Error;
-use crate::manifest::{MANIFEST, Manifest};
-use crate::names::world_name_problem;
-use crate::options::{MeshMode, MujocoCollider, Target, WorldOptions};
-use crate::templates::Templates;
+use crate::files::digest::sha256_hex;
+use crate::files::names::world_name_problem;
+use crate::record::atlas_record::AtlasRecord;
+use crate::record::manifest::{MANIFEST, Manifest};
+use crate::record::options::{MeshMode, MujocoCollider, Target, WorldOptions};
+use crate::render::context::{MODEL, WorldContext};
+use crate::render::templates::Templates;
 
 /// Where a world's `MuJoCo` height field file goes.
 pub const HFIELD_FILE: &str = "mujoco/terrain.bin";
@@ -48,7 +48,7 @@ pub fn build_world(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
-    SchemeRecord::new(scheme).build_world(seed, index, name, options, templates)
+    SchemeCsv::new(scheme).build_world(seed, index, name, options, templates)
 }
 
 /// The world folder of `terrain`, generated from `scheme` at its seed pair
@@ -61,19 +61,19 @@ pub fn build_world_of(
     options: &WorldOptions,
     templates: &Templates,
 ) -> Result<WorldFiles, Error> {
-    SchemeRecord::new(scheme).world_of(terrain, name, options, templates)
+    SchemeCsv::new(scheme).world_of(terrain, name, options, templates)
 }
 
 /// A scheme with the canonical CSV every world's `rse.json` records of it:
 /// written once for a batch rather than once per world.
-pub(crate) struct SchemeRecord<'a> {
+pub(crate) struct SchemeCsv<'a> {
     scheme: &'a Scheme,
     csv: String,
 }
 
-impl<'a> SchemeRecord<'a> {
+impl<'a> SchemeCsv<'a> {
     pub(crate) fn new(scheme: &'a Scheme) -> Self {
-        SchemeRecord {
+        SchemeCsv {
             scheme,
             csv: scheme.to_csv(),
         }
@@ -106,7 +106,7 @@ impl<'a> SchemeRecord<'a> {
             "the terrain's own"
         );
         let world = terrain_files(terrain, name, options, templates, BTreeMap::new())?;
-        let recipe = Recipe::Scheme {
+        let recorded = Recorded::Scheme {
             csv: self.csv.clone(),
             seed: terrain.seed(),
             index: terrain.index(),
@@ -114,7 +114,7 @@ impl<'a> SchemeRecord<'a> {
         };
         Ok(seal(
             world,
-            recipe,
+            recorded,
             self.scheme.globals(),
             options,
             templates,
@@ -123,7 +123,7 @@ impl<'a> SchemeRecord<'a> {
 }
 
 /// What a world is made from, as `rse.json` records it.
-pub(crate) enum Recipe<'a> {
+pub(crate) enum Recorded<'a> {
     /// A scheme (its canonical CSV) at a seed pair: `terrain` is the world
     /// it gives, whose drawn obstacles are recorded.
     Scheme {
@@ -140,24 +140,24 @@ pub(crate) enum Recipe<'a> {
     },
 }
 
-/// `world` with its `rse.json`: the manifest of `recipe`, `globals` and
+/// `world` with its `rse.json`: the manifest of `recorded`, `globals` and
 /// `options`, hashing every file `world` holds. The one place a manifest is
 /// made.
 pub(crate) fn seal(
     mut world: WorldFiles,
-    recipe: Recipe,
+    recorded: Recorded,
     globals: &Globals,
     options: &WorldOptions,
     templates: &Templates,
 ) -> WorldFiles {
-    let (seed, index, scheme, drawn, atlas, terrain) = match recipe {
-        Recipe::Scheme {
+    let (seed, index, scheme, drawn, atlas, terrain) = match recorded {
+        Recorded::Scheme {
             csv,
             seed,
             index,
             terrain,
         } => (seed, index, csv, terrain.drawn().to_vec(), None, terrain),
-        Recipe::Atlas {
+        Recorded::Atlas {
             seed,
             record,
             terrain,
@@ -319,7 +319,7 @@ pub fn mjcf(terrain: &Terrain) -> Result<String, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::options::Targets;
+    use crate::record::options::Targets;
     use rse_core::{Difficulty, generate};
 
     fn files(scheme: &str, mesh: MeshMode, targets: &str) -> Vec<String> {

@@ -4,8 +4,8 @@ use rse_core::mesh::Block;
 use rse_core::{HField, Terrain};
 use serde::Serialize;
 
-use crate::box_value::BoxValue;
-use crate::options::MeshMode;
+use crate::record::options::MeshMode;
+use crate::render::box_value::BoxValue;
 
 /// The name of the terrain model in every target.
 pub(crate) const MODEL: &str = "rse_terrain";

@@ -88,7 +88,7 @@ mod tests {
     /// serialized fields of the same box.
     fn both(template: &str, block: &Block) -> (String, String) {
         let mut env = Environment::new();
-        env.add_filter("join", crate::join_filter::join);
+        env.add_filter("join", crate::render::join_filter::join);
         let render = |b: minijinja::Value| {
             let w = minijinja::Value::from(vec![1.5, 2.0, 3.0]);
             env.render_str(

@@ -2,18 +2,15 @@
 //! on measured figures (`bench/budget.py` prints each estimate beside what
 //! it measures, over a table of ordinary and hostile worlds). Estimated in
 //! two steps, each before the work it prices: from the recipe alone
-//! ([`Manifest::rebuild_cost`]: generation, obstacles, height-field
-//! samples, flat patches), then from the generated terrain
-//! ([`Manifest::full_rebuild_cost`]: the files, whose size follows the
-//! mesh's triangles and the box count, not the grid).
+//! ([`before_generating`]: generation, obstacles, height-field samples,
+//! flat patches), then from the generated terrain ([`after_generating`]:
+//! the files, whose size follows the mesh's triangles and the box count,
+//! not the grid). `rebuild::Recipe` calls them with what it parsed once.
 
-use rse_core::{AtlasOptions, Scheme, Terrain, generate_at};
+use rse_core::{AtlasOptions, Scheme, Terrain};
 
-use crate::atlas::atlas_of;
-use crate::manifest::Manifest;
 use crate::memory::{BYTES_PER_SAMPLE, hfield_samples};
-use crate::options::Collider;
-use crate::rebuild::RebuildError;
+use crate::record::options::{Collider, WorldOptions};
 
 /// What rebuilding and checking a world costs, estimated before it is done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,174 +90,154 @@ const VISITS_PER_PATCH: u64 = 800;
 
 /// What the recipe alone says of a world: its grid, its generation, and
 /// what its options ask beside the files.
-struct Recipe {
+#[derive(Debug)]
+pub(crate) struct RecipeSize {
     cells: u64,
     generation: u64,
     obstacles: u64,
     patches: u64,
 }
 
-impl Manifest {
-    /// What rebuilding this world would cost, from its recipe alone (the
-    /// recorded scheme or atlas is parsed; nothing is generated): the
-    /// generation, the obstacles, the height field's samples (cells·k²),
-    /// the flat patches, and the mesh and boxes at their most per cell,
-    /// which [`Self::full_rebuild_cost`] builds to count. The files come
-    /// after, from that count.
-    pub fn rebuild_cost(&self) -> Result<RebuildCost, RebuildError> {
-        let recipe = self.recipe_cost()?;
-        // Counting the mesh and boxes (`full_rebuild_cost`) builds them:
-        // priced here at their most per cell, so that step is bounded too.
-        let colliders = self.colliders();
-        let (mut bytes, mut visits) = (0u64, 0u64);
-        if colliders.contains(&Collider::Mesh) {
-            let triangles = recipe.cells.saturating_mul(MAX_TRIANGLES_PER_CELL);
-            bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
-            visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
+impl RecipeSize {
+    /// A world of `scheme`.
+    pub(crate) fn of_scheme(scheme: &Scheme) -> Self {
+        RecipeSize {
+            cells: scheme.grid().cells() as u64,
+            generation: scheme.generation_visits(),
+            obstacles: scheme.obstacles().len() as u64,
+            patches: 0,
         }
-        if colliders.contains(&Collider::Boxes) {
-            bytes = bytes.saturating_add(recipe.cells.saturating_mul(BOX_BYTES));
-        }
-        Ok(RebuildCost {
-            cells: recipe.cells,
-            bytes: recipe.bytes.saturating_add(bytes),
-            visits: recipe.visits.saturating_add(visits),
-        })
     }
 
-    /// What each target collides with.
-    fn colliders(&self) -> Vec<Collider> {
-        self.options
-            .targets
-            .iter()
-            .map(|t| Collider::of(t, self.options.mesh, self.options.mujoco_collider))
-            .collect()
-    }
-
-    /// The recipe's part of the cost, nothing of the files.
-    fn recipe_cost(&self) -> Result<RebuildCost, RebuildError> {
-        let recipe = self.recipe()?;
-        let samples = hfield_samples(&self.options, recipe.cells);
-        Ok(RebuildCost {
-            cells: recipe.cells,
-            bytes: BASE_BYTES
-                .saturating_add(recipe.cells.saturating_mul(BYTES_PER_CELL))
-                .saturating_add(samples.saturating_mul(BYTES_PER_SAMPLE))
-                .saturating_add(recipe.obstacles.saturating_mul(BYTES_PER_OBSTACLE))
-                .saturating_add(recipe.patches.saturating_mul(BYTES_PER_PATCH)),
-            visits: recipe
-                .generation
-                .saturating_add(recipe.cells.saturating_mul(VISITS_PER_CELL))
-                .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
-                .saturating_add(recipe.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
-                .saturating_add(recipe.patches.saturating_mul(VISITS_PER_PATCH)),
-        })
-    }
-
-    /// [`Self::rebuild_cost`] and the files: the terrain is generated (what
-    /// `rebuild_cost` priced, to be held to a budget first) and its mesh and
-    /// boxes counted, since a world's files grow with them (a field of tall
-    /// random steps has twice the triangles a cell of a low one has, a flat
-    /// atlas next to none).
-    pub fn full_rebuild_cost(&self) -> Result<RebuildCost, RebuildError> {
-        let recipe_cost = self.recipe_cost()?;
-        let terrain = self.terrain_alone()?;
-        let colliders = self.colliders();
-        let triangles = if colliders.contains(&Collider::Mesh) {
-            terrain.mesh().triangles().len() as u64
-        } else {
-            0
-        };
-        let boxes = if colliders.contains(&Collider::Boxes) {
-            terrain.boxes().len() as u64
-        } else {
-            0
-        };
-        let (mut file_bytes, mut visits) = (0u64, 0u64);
-        for collider in &colliders {
-            let (bytes, work) = match collider {
-                Collider::Mesh => (
-                    triangles.saturating_mul(MESH_FILE_BYTES_PER_TRIANGLE),
-                    triangles.saturating_mul(MESH_FILE_VISITS_PER_TRIANGLE),
-                ),
-                Collider::Boxes => (
-                    boxes.saturating_mul(BOX_FILE_BYTES_PER_BOX),
-                    boxes.saturating_mul(BOX_FILE_VISITS_PER_BOX),
-                ),
-                // Priced from the recipe (its samples).
-                Collider::Hfield => (0, 0),
-            };
-            file_bytes = file_bytes.saturating_add(bytes);
-            visits = visits.saturating_add(work);
-        }
-        // Copies of one mesh are checked once.
-        let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
-            + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(&terrain)).log2();
-        let mesh_check = (triangles as f64 * per_triangle) as u64;
-        Ok(RebuildCost {
-            cells: recipe_cost.cells,
-            bytes: recipe_cost
-                .bytes
-                .saturating_add(file_bytes.saturating_mul(FILE_COPIES))
-                .saturating_add(triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE)),
-            visits: recipe_cost
-                .visits
-                .saturating_add(visits)
-                .saturating_add(mesh_check),
-        })
-    }
-
-    /// The grid, generation work, obstacles and patches the recipe asks.
-    fn recipe(&self) -> Result<Recipe, RebuildError> {
-        if let Some(record) = &self.atlas {
-            let schemes: Vec<Scheme> = record.schemes()?.into_iter().map(|s| s.scheme).collect();
-            let options = record.options(self.seed);
-            let Some(first) = schemes.first() else {
-                return Ok(Recipe {
-                    cells: 0,
-                    generation: 0,
-                    obstacles: 0,
-                    patches: 0,
-                });
-            };
-            let [nx, ny] = options.map_cells([first.grid().nx, first.grid().ny]);
-            let tiles = u64::from(options.rows).saturating_mul(u64::from(options.cols));
-            let obstacles = schemes.iter().map(|s| s.obstacles().len() as u64).max();
-            Ok(Recipe {
-                cells: nx.saturating_mul(ny),
-                generation: options.visits(&schemes),
-                obstacles: obstacles.unwrap_or(0).saturating_mul(tiles),
-                patches: patches(&options, first).saturating_mul(tiles),
-            })
-        } else {
-            let scheme = Scheme::from_csv(&self.scheme, Some("rse.json scheme"))?;
-            let grid = scheme.grid();
-            Ok(Recipe {
-                cells: grid.cells() as u64,
-                generation: scheme.generation_visits(),
-                obstacles: scheme.obstacles().len() as u64,
+    /// An atlas of `schemes` with `options`.
+    pub(crate) fn of_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Self {
+        let Some(first) = schemes.first() else {
+            return RecipeSize {
+                cells: 0,
+                generation: 0,
+                obstacles: 0,
                 patches: 0,
-            })
+            };
+        };
+        let [nx, ny] = options.map_cells([first.grid().nx, first.grid().ny]);
+        let tiles = u64::from(options.rows).saturating_mul(u64::from(options.cols));
+        let obstacles = schemes.iter().map(|s| s.obstacles().len() as u64).max();
+        RecipeSize {
+            cells: nx.saturating_mul(ny),
+            generation: options.visits(schemes),
+            obstacles: obstacles.unwrap_or(0).saturating_mul(tiles),
+            patches: patches(options, first).saturating_mul(tiles),
         }
     }
+}
 
-    /// The world's terrain (an atlas's whole map, without its flat
-    /// patches, which leave the heights as they are).
-    fn terrain_alone(&self) -> Result<Terrain, RebuildError> {
-        if let Some(record) = &self.atlas {
-            let schemes = record.schemes()?;
-            let mut options = record.options(self.seed);
-            options.patches.count = 0;
-            Ok(atlas_of(&schemes, &options)?.terrain().clone())
-        } else {
-            let scheme = Scheme::from_csv(&self.scheme, Some("rse.json scheme"))?;
-            Ok(generate_at(
-                &scheme,
-                self.seed,
-                self.index,
-                self.options.difficulty,
-            ))
-        }
+/// What rebuilding a world of `size` with `options` would cost, from its
+/// recipe alone (nothing is generated): the generation, the obstacles, the
+/// height field's samples (cells·k²), the flat patches, and the mesh and
+/// boxes at their most per cell, which [`after_generating`] builds to
+/// count. The files come after, from that count.
+pub(crate) fn before_generating(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
+    let recipe = recipe_part(size, options);
+    // Counting the mesh and boxes (`after_generating`) builds them: priced
+    // here at their most per cell, so that step is bounded too.
+    let colliders = colliders(options);
+    let (mut bytes, mut visits) = (0u64, 0u64);
+    if colliders.contains(&Collider::Mesh) {
+        let triangles = size.cells.saturating_mul(MAX_TRIANGLES_PER_CELL);
+        bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
+        visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
+    }
+    if colliders.contains(&Collider::Boxes) {
+        bytes = bytes.saturating_add(size.cells.saturating_mul(BOX_BYTES));
+    }
+    RebuildCost {
+        cells: size.cells,
+        bytes: recipe.bytes.saturating_add(bytes),
+        visits: recipe.visits.saturating_add(visits),
+    }
+}
+
+/// What each target collides with.
+fn colliders(options: &WorldOptions) -> Vec<Collider> {
+    options
+        .targets
+        .iter()
+        .map(|t| Collider::of(t, options.mesh, options.mujoco_collider))
+        .collect()
+}
+
+/// The recipe's part of the cost, nothing of the files.
+fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
+    let samples = hfield_samples(options, size.cells);
+    RebuildCost {
+        cells: size.cells,
+        bytes: BASE_BYTES
+            .saturating_add(size.cells.saturating_mul(BYTES_PER_CELL))
+            .saturating_add(samples.saturating_mul(BYTES_PER_SAMPLE))
+            .saturating_add(size.obstacles.saturating_mul(BYTES_PER_OBSTACLE))
+            .saturating_add(size.patches.saturating_mul(BYTES_PER_PATCH)),
+        visits: size
+            .generation
+            .saturating_add(size.cells.saturating_mul(VISITS_PER_CELL))
+            .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
+            .saturating_add(size.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
+            .saturating_add(size.patches.saturating_mul(VISITS_PER_PATCH)),
+    }
+}
+
+/// [`before_generating`] and the files, once the terrain is generated
+/// (what `before_generating` priced, held to a budget first): its mesh and
+/// boxes counted, since a world's files grow with them (a field of tall
+/// random steps has twice the triangles a cell of a low one has, a flat
+/// atlas next to none).
+pub(crate) fn after_generating(
+    size: &RecipeSize,
+    options: &WorldOptions,
+    terrain: &Terrain,
+) -> RebuildCost {
+    let recipe_cost = recipe_part(size, options);
+    let colliders = colliders(options);
+    let triangles = if colliders.contains(&Collider::Mesh) {
+        terrain.mesh().triangles().len() as u64
+    } else {
+        0
+    };
+    let boxes = if colliders.contains(&Collider::Boxes) {
+        terrain.boxes().len() as u64
+    } else {
+        0
+    };
+    let (mut file_bytes, mut visits) = (0u64, 0u64);
+    for collider in &colliders {
+        let (bytes, work) = match collider {
+            Collider::Mesh => (
+                triangles.saturating_mul(MESH_FILE_BYTES_PER_TRIANGLE),
+                triangles.saturating_mul(MESH_FILE_VISITS_PER_TRIANGLE),
+            ),
+            Collider::Boxes => (
+                boxes.saturating_mul(BOX_FILE_BYTES_PER_BOX),
+                boxes.saturating_mul(BOX_FILE_VISITS_PER_BOX),
+            ),
+            // Priced from the recipe (its samples).
+            Collider::Hfield => (0, 0),
+        };
+        file_bytes = file_bytes.saturating_add(bytes);
+        visits = visits.saturating_add(work);
+    }
+    // Copies of one mesh are checked once.
+    let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
+        + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(terrain)).log2();
+    let mesh_check = (triangles as f64 * per_triangle) as u64;
+    RebuildCost {
+        cells: recipe_cost.cells,
+        bytes: recipe_cost
+            .bytes
+            .saturating_add(file_bytes.saturating_mul(FILE_COPIES))
+            .saturating_add(triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE)),
+        visits: recipe_cost
+            .visits
+            .saturating_add(visits)
+            .saturating_add(mesh_check),
     }
 }
 
@@ -298,12 +275,24 @@ fn patches(options: &AtlasOptions, scheme: &Scheme) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atlas_record::NamedScheme;
     use crate::memory::batch_world_bytes;
-    use crate::options::Targets;
-    use crate::options::{MujocoCollider, WorldOptions};
-    use crate::templates::Templates;
-    use crate::world::build_world;
+    use crate::record::atlas_record::NamedScheme;
+    use crate::record::manifest::Manifest;
+    use crate::record::options::Targets;
+    use crate::record::options::{MujocoCollider, WorldOptions};
+    use crate::record::rebuild::Recipe;
+    use crate::render::templates::Templates;
+    use crate::render::world::build_world;
+
+    /// The cost from the recipe alone.
+    fn before(manifest: &Manifest) -> RebuildCost {
+        Recipe::of(manifest).unwrap().cost()
+    }
+
+    /// The cost once the terrain is generated.
+    fn after(manifest: &Manifest) -> RebuildCost {
+        Recipe::of(manifest).unwrap().generate().unwrap().cost()
+    }
 
     /// The manifest of world 0 of `csv` with every target.
     fn manifest_of(csv: &str, options: &WorldOptions) -> Manifest {
@@ -335,9 +324,9 @@ mod tests {
     #[test]
     fn height_field_samples_are_priced_from_the_recipe() {
         let mut manifest = manifest_of("# size: 10x10\ntype,height\nrandom,3\n", &every_target());
-        let plain = manifest.rebuild_cost().unwrap();
+        let plain = before(&manifest);
         manifest.options.mujoco_collider = MujocoCollider::Hfield { oversample: 1158 };
-        let forged = manifest.rebuild_cost().unwrap();
+        let forged = before(&manifest);
         assert!(plain.bytes < 16 << 20, "{plain:?}");
         assert!(forged.bytes > 1_000_000_000, "{forged:?}");
         assert!(forged.seconds() > 1.0, "{forged:?}");
@@ -351,7 +340,7 @@ mod tests {
             "# size: 10x10\ntype,height\n{}",
             "random,1\n".repeat(20_000)
         );
-        let cost = manifest_of(&csv, &every_target()).rebuild_cost().unwrap();
+        let cost = before(&manifest_of(&csv, &every_target()));
         assert!(cost.bytes >= 20_000 * BYTES_PER_OBSTACLE, "{cost:?}");
         assert!(cost.visits >= 20_000 * VISITS_PER_OBSTACLE, "{cost:?}");
     }
@@ -364,9 +353,7 @@ mod tests {
     fn tall_walls_cost_more_than_low_ones_of_the_same_grid() {
         let cost = |h: u32| {
             let csv = format!("# size: 40x40\ntype,height\nrandom,{h}\n");
-            manifest_of(&csv, &every_target())
-                .full_rebuild_cost()
-                .unwrap()
+            after(&manifest_of(&csv, &every_target()))
         };
         let (low, tall, flat) = (cost(1), cost(1000), cost(0));
         assert!(
@@ -379,14 +366,16 @@ mod tests {
         );
         // The recipe alone cannot tell them apart; the terrain can.
         assert_eq!(
-            manifest_of("# size: 40x40\ntype,height\nrandom,1\n", &every_target())
-                .rebuild_cost()
-                .unwrap()
-                .bytes,
-            manifest_of("# size: 40x40\ntype,height\nrandom,1000\n", &every_target())
-                .rebuild_cost()
-                .unwrap()
-                .bytes
+            before(&manifest_of(
+                "# size: 40x40\ntype,height\nrandom,1\n",
+                &every_target()
+            ))
+            .bytes,
+            before(&manifest_of(
+                "# size: 40x40\ntype,height\nrandom,1000\n",
+                &every_target()
+            ))
+            .bytes
         );
     }
 
@@ -417,10 +406,10 @@ mod tests {
                 &Templates::builtin(),
             )
             .unwrap();
-            Manifest::from_json(std::str::from_utf8(&world.files["rse.json"]).unwrap())
-                .unwrap()
-                .full_rebuild_cost()
-                .unwrap()
+            after(
+                &Manifest::from_json(std::str::from_utf8(&world.files["rse.json"]).unwrap())
+                    .unwrap(),
+            )
         };
         let (none, all) = (cost(0), cost(1_000_000));
         assert!(
