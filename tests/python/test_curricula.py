@@ -69,7 +69,7 @@ def cli_atlas(out: Path, *extra: str) -> None:
 
 
 def test_atlas_from_python_is_the_cli_atlas_byte_for_byte(tmp_path: Path) -> None:
-    targets = "obj,gazebo,webots,mujoco,urdf,usd"
+    targets = ",".join(rse.TARGETS)
     cli_atlas(tmp_path / "cli" / "atlas", "--target", targets)
     atlas = rse.Atlas([str(p) for p in ATLAS_SCHEMES], **ATLAS_ARGS)
     assert atlas.write(tmp_path / "py" / "atlas", targets=targets) == "written"

@@ -14,10 +14,11 @@ import mujoco
 import numpy as np
 import pybullet as p
 import pytest
+import rse
 from conftest import REPO, SCHEMES, heights, run, units
 from pxr import Usd, UsdGeom, UsdPhysics
 
-ALL_TARGETS = "obj,gazebo,webots,mujoco,urdf,usd"
+ALL_TARGETS = ",".join(rse.TARGETS)
 MODES = ["single", "blocks"]
 WORLD_SCHEMES = ["six_obstacles", "wall", "paper_pallets", "gaussian", "nist_diagonal_hill"]
 AMOUNT = 2

@@ -89,7 +89,7 @@ fn the_atlas_checks_good_and_is_the_same_on_any_jobs() {
     let dir = tempfile::tempdir().unwrap();
     let one = dir.path().join("a1").join("atlas");
     let two = dir.path().join("a2").join("atlas");
-    let all = "obj,gazebo,webots,mujoco,urdf,usd";
+    let all = &rse_world::Targets::all().to_string();
     stdout(&atlas(&one, &["--target", all, "--jobs", "1"]));
     stdout(&atlas(&two, &["--target", all, "--jobs", "2"]));
     for file in [

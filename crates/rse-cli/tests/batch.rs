@@ -8,8 +8,6 @@ use std::time::Duration;
 
 use super::{repo, rse_gen, stderr, stdout};
 
-const ALL_TARGETS: &str = "obj,gazebo,webots,mujoco,urdf,usd";
-
 /// Every file under `dir` by relative path, hidden leftovers included.
 fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     rse_world::list_files(dir)
@@ -45,7 +43,7 @@ fn assert_same_tree(a: &Path, b: &Path) {
 fn jobs_and_shards_give_identical_trees() {
     let dir = tempfile::tempdir().unwrap();
     let [one, two, shards] = ["one", "two", "shards"].map(|n| dir.path().join(n));
-    let common = ["--amount", "9", "--target", ALL_TARGETS];
+    let common = ["--amount", "9", "--target", &all_targets()];
     stdout(&batch(&one, &[&common[..], &["--jobs", "1"]].concat()));
     stdout(&batch(&two, &[&common[..], &["--jobs", "2"]].concat()));
     for k in 0..4 {
@@ -151,7 +149,7 @@ fn a_shard_writes_exactly_its_worlds() {
 fn a_batch_killed_at_any_moment_resumes_to_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let (clean, killed) = (dir.path().join("clean"), dir.path().join("killed"));
-    let common = ["--amount", "24", "--target", ALL_TARGETS, "--jobs", "2"];
+    let common = ["--amount", "24", "--target", &all_targets(), "--jobs", "2"];
     let started = std::time::Instant::now();
     stdout(&batch(&clean, &common));
     let whole = started.elapsed();
@@ -407,7 +405,7 @@ fn exported_templates_are_ours() {
     );
 
     let [builtin, custom] = ["builtin", "custom"].map(|n| dir.path().join(n));
-    let targets = ["--target", ALL_TARGETS];
+    let targets = ["--target", &all_targets()];
     stdout(&batch(&builtin, &targets));
     stdout(&batch(
         &custom,

@@ -7,8 +7,6 @@ use std::path::{Path, PathBuf};
 
 use super::{rse_gen, stderr};
 
-const ALL_TARGETS: &str = "obj,gazebo,webots,mujoco,urdf,usd";
-
 /// Writes a batch of `scheme` into `out` with the `extra` flags; it must succeed.
 fn write_batch(scheme: &str, out: &Path, extra: &[&str]) {
     let mut args = vec!["batch", scheme, "-o", out.to_str().unwrap()];
@@ -23,7 +21,7 @@ fn good_batch(dir: &Path) -> PathBuf {
     write_batch(
         "schemes/six_obstacles.csv",
         &out,
-        &["--amount", "3", "--target", ALL_TARGETS],
+        &["--amount", "3", "--target", &all_targets()],
     );
     out
 }

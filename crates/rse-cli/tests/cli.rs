@@ -11,9 +11,13 @@ mod batch;
 mod check;
 mod difficulty;
 mod help;
-mod hostile;
-mod hostile_iii;
 mod messages;
+mod regression;
+
+/// Every target, as `--target` takes them.
+fn all_targets() -> String {
+    rse_world::Targets::all().to_string()
+}
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")

@@ -101,7 +101,7 @@ fn fuzz_world() -> &'static rse_world::WorldFiles {
         )
         .expect("the scheme loads");
         let options = WorldOptions {
-            targets: Targets::parse("obj,gazebo,webots,mujoco,urdf,usd").expect("targets"),
+            targets: Targets::all(),
             mesh: MeshMode::Auto,
             ..WorldOptions::default()
         };

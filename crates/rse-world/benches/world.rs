@@ -178,7 +178,7 @@ fn main() {
     let scheme_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/nist_hill.csv");
     let scheme = Scheme::load(scheme_path).expect("sample loads");
     let templates = Templates::builtin();
-    let all = "obj,gazebo,webots,mujoco,urdf,usd";
+    let all = &Targets::all().to_string();
     let budget = Duration::from_secs(2);
 
     let mut rows = parts(&scheme, budget);

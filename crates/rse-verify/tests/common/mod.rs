@@ -10,8 +10,6 @@ use rse_world::{
     Manifest, MeshMode, Targets, Templates, WorldFiles, WorldOptions, build_world, sha256_hex,
 };
 
-pub const ALL: &str = "obj,gazebo,webots,mujoco,urdf,usd";
-
 /// A small scheme with something of every height.
 pub const SCHEME: &str = "# size: 12x10\n# base: 0.05\ntype,height,angle,x1,y1,x2,y2\n\
     random,2,,,,,\nwall,4,45,2,2,9,6\n";
@@ -33,7 +31,7 @@ pub fn write_files(root: &Path, world: &WorldFiles) {
 pub fn write_world(dir: &Path, name: &str, scheme: &str, templates: &Templates) -> PathBuf {
     let scheme = Scheme::from_csv(scheme, None).unwrap();
     let options = WorldOptions {
-        targets: Targets::parse(ALL).unwrap(),
+        targets: Targets::all(),
         mesh: MeshMode::Single,
         ..WorldOptions::default()
     };

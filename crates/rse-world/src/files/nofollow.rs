@@ -450,4 +450,34 @@ mod tests {
                 .contains(&("hard".to_owned(), Listed::File { size: 7, links: 2 }))
         );
     }
+
+    /// The depth limit where it lives (the CLI and Python test it from
+    /// outside): a chain of folders `MAX_DEPTH` deep is listed to its file;
+    /// one level more is listed as its deepest folder, unreadable, and
+    /// nothing below it is opened.
+    #[test]
+    fn folders_deeper_than_the_limit_are_listed_unreadable() {
+        let dir = tempfile::tempdir().unwrap();
+        let chain = |levels: usize| -> String { vec!["d"; levels].join("/") };
+        std::fs::create_dir_all(dir.path().join(chain(MAX_DEPTH))).unwrap();
+        std::fs::write(dir.path().join(chain(MAX_DEPTH)).join("f"), b"x").unwrap();
+        let folder = OpenFolder::open(dir.path(), false).unwrap();
+        assert_eq!(
+            folder.list(),
+            [(
+                format!("{}/f", chain(MAX_DEPTH)),
+                Listed::File { size: 1, links: 1 }
+            )]
+        );
+        std::fs::create_dir(dir.path().join(chain(MAX_DEPTH + 1))).unwrap();
+        std::fs::rename(
+            dir.path().join(chain(MAX_DEPTH)).join("f"),
+            dir.path().join(chain(MAX_DEPTH + 1)).join("f"),
+        )
+        .unwrap();
+        assert_eq!(
+            folder.list(),
+            [(chain(MAX_DEPTH + 1), Listed::Unreadable(too_deep()))]
+        );
+    }
 }

@@ -311,9 +311,7 @@ mod tests {
 
     fn every_target() -> WorldOptions {
         WorldOptions {
-            targets: "obj,gazebo,webots,mujoco,urdf,usd"
-                .parse::<Targets>()
-                .unwrap(),
+            targets: Targets::all(),
             ..WorldOptions::default()
         }
     }

@@ -118,6 +118,11 @@ impl Targets {
         Ok(Targets(targets))
     }
 
+    /// Every target ([`Target::ALL`]).
+    pub fn all() -> Self {
+        Targets(Target::ALL.to_vec())
+    }
+
     /// The targets, in order.
     pub fn iter(&self) -> impl Iterator<Item = Target> + '_ {
         self.0.iter().copied()

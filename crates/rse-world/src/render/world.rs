@@ -342,12 +342,11 @@ mod tests {
     }
 
     const WALL: &str = "# size: 12x8\ntype,height,angle,x1,y1,x2,y2\nwall,3,45,2,2,9,5\n";
-    const ALL: &str = "obj,gazebo,webots,mujoco,urdf,usd";
 
     #[test]
     fn a_single_mesh_world_has_the_layout_of_the_spec() {
         assert_eq!(
-            files(WALL, MeshMode::Single, ALL),
+            files(WALL, MeshMode::Single, &Targets::all().to_string()),
             [
                 "gazebo/rse.world",
                 "gazebo/rse_terrain/meshes/terrain.mtl",
@@ -398,27 +397,27 @@ mod tests {
                 .get(path)
                 .map(|b| String::from_utf8(b.clone()).unwrap())
         };
-        let urdf = text(ALL, "urdf/rse.urdf").unwrap();
+        let urdf = text(&Targets::all().to_string(), "urdf/rse.urdf").unwrap();
         assert!(
             urdf.contains("<box ") && !urdf.contains("terrain.obj"),
             "{urdf}"
         );
-        let sdf = text(ALL, "gazebo/rse_terrain/model.sdf").unwrap();
+        let sdf = text(&Targets::all().to_string(), "gazebo/rse_terrain/model.sdf").unwrap();
         assert!(
             sdf.contains("terrain.obj") && !sdf.contains("<box>"),
             "{sdf}"
         );
         assert!(text("urdf", "meshes/terrain.obj").is_none());
         assert_eq!(
-            files(WALL, MeshMode::Auto, ALL),
-            files(WALL, MeshMode::Single, ALL)
+            files(WALL, MeshMode::Auto, &Targets::all().to_string()),
+            files(WALL, MeshMode::Single, &Targets::all().to_string())
         );
     }
 
     #[test]
     fn an_empty_terrain_has_no_meshes_but_for_the_obj_target() {
         let empty = "# size: 4x4\ntype,height\n";
-        let listed = files(empty, MeshMode::Single, ALL);
+        let listed = files(empty, MeshMode::Single, &Targets::all().to_string());
         assert!(listed.contains(&"meshes/terrain.obj".to_owned()));
         assert!(
             !listed
@@ -431,7 +430,7 @@ mod tests {
     fn the_manifest_hashes_every_other_file() {
         let scheme = Scheme::from_csv(WALL, None).unwrap();
         let options = WorldOptions {
-            targets: Targets::parse(ALL).unwrap(),
+            targets: Targets::all(),
             mesh: MeshMode::Blocks,
             ..WorldOptions::default()
         };

@@ -1,5 +1,5 @@
-"""Python never aborts the interpreter (third hostile round): every
-allocation sized by a caller's number is estimated and refused first,
+"""Regressions of the Python package, found by the hardening rounds: Python
+never aborts the interpreter. Every allocation sized by a caller's number is estimated and refused first,
 naming the argument; one `EnvTerrains` shared by threads raises a clear
 error instead of pyo3's borrow error; arrays changed in place (their dtype
 set anew) are refused, not read past their end."""
