@@ -6,7 +6,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::examples;
 use rse_core::{Difficulty, GlobalsPatch};
-use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldOptions};
+use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldConfig, WorldOptions};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
@@ -337,14 +337,21 @@ pub struct WorldFilesArgs {
 }
 
 impl WorldFilesArgs {
+    /// What these flags give a world folder, at `difficulty` (every flag
+    /// has a value: clap fills in the defaults, which are the library's).
+    pub fn config(&self, difficulty: Difficulty) -> WorldConfig {
+        WorldConfig {
+            difficulty: Some(difficulty),
+            targets: Some(self.target.clone()),
+            mesh: Some(self.mesh),
+            mujoco_collider: Some(self.collider.name.clone()),
+            oversample: self.collider.oversample,
+        }
+    }
+
     /// The world options these flags give, at `difficulty`.
     pub fn options(&self, difficulty: Difficulty) -> anyhow::Result<WorldOptions> {
-        Ok(WorldOptions {
-            targets: self.target.clone(),
-            mesh: self.mesh,
-            difficulty,
-            mujoco_collider: self.collider.collider()?,
-        })
+        self.config(difficulty).resolve().map_err(in_flags)
     }
 
     /// The templates: ours, or ours overlaid by `--template DIR`.
@@ -353,6 +360,18 @@ impl WorldFilesArgs {
             Some(dir) => Templates::with_overrides(dir)?,
             None => Templates::builtin(),
         })
+    }
+}
+
+/// A world option's error in the command line's words: the only option
+/// clap cannot refuse alone is an oversample without a height field.
+pub fn in_flags(error: rse_world::Error) -> anyhow::Error {
+    match error {
+        rse_world::Error::BadOption {
+            option: "mujoco_collider",
+            ..
+        } => anyhow::anyhow!("--oversample: {error}; add --mujoco-collider hfield"),
+        error => error.into(),
     }
 }
 
@@ -367,14 +386,6 @@ pub struct ColliderArgs {
     /// Height field samples per cell along each axis [default: 4]; needs --mujoco-collider hfield.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
     pub oversample: Option<u32>,
-}
-
-impl ColliderArgs {
-    /// The collider these flags name.
-    pub fn collider(&self) -> anyhow::Result<MujocoCollider> {
-        MujocoCollider::parse(&self.name, self.oversample)
-            .map_err(|e| anyhow::anyhow!("--oversample: {e}; add --mujoco-collider hfield"))
-    }
 }
 
 /// A difficulty for curricula (docs/schemes.md, "Difficulty").

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::Duration;
 
-use super::{repo, rse_gen, stderr, stdout};
+use super::{all_targets, repo, rse_gen, stderr, stdout};
 
 /// Every file under `dir` by relative path, hidden leftovers included.
 fn tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {

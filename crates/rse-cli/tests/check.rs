@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{rse_gen, stderr};
+use super::{all_targets, rse_gen, stderr};
 
 /// Writes a batch of `scheme` into `out` with the `extra` flags; it must succeed.
 fn write_batch(scheme: &str, out: &Path, extra: &[&str]) {

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
+use crate::global_key::GlobalKey;
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::limits::{MAX_CELLS, MAX_EXTENT};
@@ -272,18 +273,22 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
             expected,
         };
         for (field, found, expected) in [
-            ("block_size", g.block_size, units.block_size),
-            ("step_height", g.step_height, units.step_height),
-            ("base", g.base, units.base),
+            (GlobalKey::BlockSize, g.block_size, units.block_size),
+            (GlobalKey::StepHeight, g.step_height, units.step_height),
+            (GlobalKey::Base, g.base, units.base),
         ] {
             if found.to_bits() != expected.to_bits() {
-                return Err(mismatch(field, format!("{found}"), format!("{expected}")));
+                return Err(mismatch(
+                    field.name(),
+                    format!("{found}"),
+                    format!("{expected}"),
+                ));
             }
         }
         let grid = scheme.grid();
         if (grid.nx, grid.ny) != (tile_grid.nx, tile_grid.ny) {
             return Err(mismatch(
-                "size",
+                GlobalKey::Size.name(),
                 format!("{}x{}", grid.nx, grid.ny),
                 format!("{}x{}", tile_grid.nx, tile_grid.ny),
             ));

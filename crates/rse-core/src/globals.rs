@@ -3,7 +3,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::limits::{GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
+use crate::global_key::{GLOBAL_KEYS, GlobalKey};
+use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
 
 /// The global whose name `word` most likely misspells (any case, `-` or a
 /// space for `_`, one edit away for a short name, two for a long one), if
@@ -29,12 +30,12 @@ pub(crate) fn nearest_global(word: &str) -> Option<&'static str> {
 }
 
 /// The fault of global `key` holding `value`, with why it cannot.
-fn bad(key: &str, value: String, reason: &str) -> Result<(), SchemeError> {
+fn bad(key: GlobalKey, value: String, reason: &str) -> Result<(), SchemeError> {
     Err(SchemeError::new(SchemeErrorKind::BadGlobal {
         value,
         reason: reason.to_owned(),
     })
-    .with_field(key))
+    .with_field(key.name()))
 }
 
 const MIN_LENGTH_REASON: &str =
@@ -114,8 +115,8 @@ impl Globals {
     /// at least that; finite numbers all.
     fn validate_lengths(&self) -> Result<(), SchemeError> {
         for (key, value) in [
-            ("block_size", self.block_size),
-            ("step_height", self.step_height),
+            (GlobalKey::BlockSize, self.block_size),
+            (GlobalKey::StepHeight, self.step_height),
         ] {
             if !(value.is_finite() && value > 0.0) {
                 return bad(key, value.to_string(), "must be a length in metres > 0");
@@ -126,14 +127,14 @@ impl Globals {
         }
         if !(self.base.is_finite() && self.base >= 0.0) {
             return bad(
-                "base",
+                GlobalKey::Base,
                 self.base.to_string(),
                 "must be a length in metres ≥ 0",
             );
         }
         if self.base > 0.0 && self.base < MIN_LENGTH {
             return bad(
-                "base",
+                GlobalKey::Base,
                 format!("{:?}", self.base),
                 "must be 0 (no slab) or at least 0.001 m: thinner is not exact in an f32 mesh, nor told apart by check",
             );
@@ -146,17 +147,17 @@ impl Globals {
     pub fn validate(&self) -> Result<(), SchemeError> {
         self.validate_lengths()?;
         if self.amount == 0 {
-            return bad("amount", "0".into(), "needs at least one world");
+            return bad(GlobalKey::Amount, "0".into(), "needs at least one world");
         }
         // Frames and any cell of one step reach `base + step_height`.
         let lowest_top = self.base + self.step_height;
         if lowest_top > MAX_TOP_IN_BLOCKS * self.block_size {
             let key = if self.base > self.step_height {
-                "base"
+                GlobalKey::Base
             } else {
-                "step_height"
+                GlobalKey::StepHeight
             };
-            let value = if key == "base" {
+            let value = if key == GlobalKey::Base {
                 self.base
             } else {
                 self.step_height
@@ -173,18 +174,18 @@ impl Globals {
         }
         if self.size.contains(&0) {
             return bad(
-                "size",
+                GlobalKey::Size,
                 format_dims(self.size),
                 "needs at least one cell each way",
             );
         }
         if let Some(p) = self.pallets {
             if p.size == 0 {
-                return bad("pallet_size", "0".into(), "needs at least one cell");
+                return bad(GlobalKey::PalletSize, "0".into(), "needs at least one cell");
             }
             if p.count.contains(&0) {
                 return bad(
-                    "pallets",
+                    GlobalKey::Pallets,
                     format_dims(p.count),
                     "needs at least one pallet each way",
                 );
@@ -196,20 +197,20 @@ impl Globals {
             || grid.ny == u32::MAX
         {
             let key = if self.pallets.is_some() {
-                "pallets"
+                GlobalKey::Pallets
             } else {
-                "size"
+                GlobalKey::Size
             };
             return Err(SchemeError::new(SchemeErrorKind::GridTooLarge {
                 nx: grid.nx,
                 ny: grid.ny,
             })
-            .with_field(key));
+            .with_field(key.name()));
         }
         let longest = f64::from(grid.nx.max(grid.ny)) * self.block_size;
         if longest > MAX_EXTENT {
             return bad(
-                "block_size",
+                GlobalKey::BlockSize,
                 format!("{:?}", self.block_size),
                 &format!(
                     "the grid would be {longest:?} m long; at most {MAX_EXTENT} m is supported"

@@ -4,8 +4,9 @@
 //! here and nowhere else).
 
 use crate::error::{SchemeError, SchemeErrorKind};
+use crate::global_key::GlobalKey;
 use crate::globals::{self, Globals, Pallets};
-use crate::limits::{DEFAULT_PALLET_SIZE, GLOBAL_KEYS};
+use crate::limits::DEFAULT_PALLET_SIZE;
 
 /// Global parameters, each `None` when not given. Every skin fills one in
 /// and [`apply`](GlobalsPatch::apply)s it onto the globals it starts from
@@ -35,11 +36,9 @@ pub struct GlobalsPatch {
 
 impl GlobalsPatch {
     /// Sets `key` (any case) from its text as a scheme file writes it. The
-    /// error's `field` names the key. Returns the key as [`GLOBAL_KEYS`]
-    /// spells it.
-    pub fn set(&mut self, key: &str, text: &str) -> Result<&'static str, SchemeError> {
-        let lower = key.to_ascii_lowercase();
-        let Some(&name) = GLOBAL_KEYS.iter().find(|k| **k == lower) else {
+    /// error's `field` names the key. Returns the key.
+    pub fn set(&mut self, key: &str, text: &str) -> Result<GlobalKey, SchemeError> {
+        let Some(found) = GlobalKey::find(key) else {
             let kind = match globals::nearest_global(key) {
                 Some(near) => SchemeErrorKind::NearGlobal {
                     found: key.to_owned(),
@@ -49,32 +48,34 @@ impl GlobalsPatch {
             };
             return Err(SchemeError::new(kind).with_field(key));
         };
-        let parsed = match name {
-            "size" => globals::parse_dims(text).map(|d| self.size = Some(d)),
-            "pallets" => parse_pallets(text).map(|p| self.pallets = Some(p)),
-            "pallet_size" => {
-                parse_number(text, "a whole number of cells").map(|n| self.pallet_size = Some(n))
+        self.set_key(found, text).map(|()| found)
+    }
+
+    /// Sets `key` from its text as a scheme file writes it; the error's
+    /// `field` names the key.
+    pub fn set_key(&mut self, key: GlobalKey, text: &str) -> Result<(), SchemeError> {
+        let expects = key.expects();
+        let parsed = match key {
+            GlobalKey::Size => globals::parse_dims(text).map(|d| self.size = Some(d)),
+            GlobalKey::Pallets => parse_pallets(text).map(|p| self.pallets = Some(p)),
+            GlobalKey::PalletSize => {
+                parse_number(text, expects).map(|n| self.pallet_size = Some(n))
             }
-            "pallet_boundary" => parse_bool(text).map(|b| self.pallet_boundary = Some(b)),
-            "block_size" => {
-                parse_number(text, "a length in metres").map(|v| self.block_size = Some(v))
+            GlobalKey::PalletBoundary => parse_bool(text).map(|b| self.pallet_boundary = Some(b)),
+            GlobalKey::BlockSize => parse_number(text, expects).map(|v| self.block_size = Some(v)),
+            GlobalKey::StepHeight => {
+                parse_number(text, expects).map(|v| self.step_height = Some(v))
             }
-            "step_height" => {
-                parse_number(text, "a length in metres").map(|v| self.step_height = Some(v))
-            }
-            "base" => parse_number(text, "a length in metres").map(|v| self.base = Some(v)),
-            "amount" => {
-                parse_number(text, "a whole number of worlds").map(|v| self.amount = Some(v))
-            }
-            "seed" => parse_number(text, "a whole number 0..=2^64-1").map(|v| self.seed = Some(v)),
-            _ => unreachable!("every key of GLOBAL_KEYS is handled"),
+            GlobalKey::Base => parse_number(text, expects).map(|v| self.base = Some(v)),
+            GlobalKey::Amount => parse_number(text, expects).map(|v| self.amount = Some(v)),
+            GlobalKey::Seed => parse_number(text, expects).map(|v| self.seed = Some(v)),
         };
-        parsed.map(|()| name).map_err(|reason| {
+        parsed.map_err(|reason| {
             SchemeError::new(SchemeErrorKind::BadGlobal {
                 value: text.to_owned(),
                 reason,
             })
-            .with_field(name)
+            .with_field(key.name())
         })
     }
 
@@ -107,12 +108,14 @@ impl GlobalsPatch {
             p.size = self.pallet_size.unwrap_or(p.size);
             p.boundary = self.pallet_boundary.unwrap_or(p.boundary);
         } else {
-            let off = |key| Err(SchemeError::new(SchemeErrorKind::PalletsOff).with_field(key));
+            let off = |key: GlobalKey| {
+                Err(SchemeError::new(SchemeErrorKind::PalletsOff).with_field(key.name()))
+            };
             if self.pallet_size.is_some() {
-                return off("pallet_size");
+                return off(GlobalKey::PalletSize);
             }
             if self.pallet_boundary == Some(true) {
-                return off("pallet_boundary");
+                return off(GlobalKey::PalletBoundary);
             }
         }
         g.block_size = self.block_size.unwrap_or(g.block_size);
@@ -125,32 +128,63 @@ impl GlobalsPatch {
 }
 
 impl Globals {
+    /// What `key` is when a user leaves it out, as its text: the default
+    /// globals' value, and for the pallet keys what turning pallets on
+    /// gives (the rule of [`GlobalsPatch::apply`]); `pallets` is `off`.
+    ///
+    /// # Panics
+    /// Never: one pallet is a layout the rules always accept.
+    pub fn default_text(key: GlobalKey) -> String {
+        let defaults = Globals::default();
+        let turned_on = || {
+            GlobalsPatch {
+                pallets: Some(Some([1, 1])),
+                ..GlobalsPatch::default()
+            }
+            .apply(&defaults)
+            .ok()
+            .and_then(|g| g.pallets)
+            .expect("one pallet is a valid layout")
+        };
+        match key {
+            GlobalKey::Size => globals::format_dims(defaults.size),
+            GlobalKey::Pallets => "off".to_owned(),
+            GlobalKey::PalletSize => turned_on().size.to_string(),
+            GlobalKey::PalletBoundary => turned_on().boundary.to_string(),
+            GlobalKey::BlockSize => defaults.block_size.to_string(),
+            GlobalKey::StepHeight => defaults.step_height.to_string(),
+            GlobalKey::Base => defaults.base.to_string(),
+            GlobalKey::Amount => defaults.amount.to_string(),
+            GlobalKey::Seed => defaults.seed.to_string(),
+        }
+    }
+
     /// The `(key, text)` of each global a canonical scheme file writes, in
-    /// [`GLOBAL_KEYS`] order; [`GlobalsPatch::set`] reads each text back to
+    /// [`GlobalKey::ALL`] order; [`GlobalsPatch::set`] reads each text back to
     /// the same value. Values equal to the defaults are left out where a
     /// reader would not miss them (`base`, `amount`, `seed`; `size` under
     /// pallets, which define the grid).
-    pub fn cells(&self) -> Vec<(&'static str, String)> {
+    pub fn cells(&self) -> Vec<(GlobalKey, String)> {
         let defaults = Globals::default();
         let mut cells = Vec::new();
         if self.pallets.is_none() || self.size != defaults.size {
-            cells.push(("size", globals::format_dims(self.size)));
+            cells.push((GlobalKey::Size, globals::format_dims(self.size)));
         }
         if let Some(p) = self.pallets {
-            cells.push(("pallets", globals::format_dims(p.count)));
-            cells.push(("pallet_size", p.size.to_string()));
-            cells.push(("pallet_boundary", p.boundary.to_string()));
+            cells.push((GlobalKey::Pallets, globals::format_dims(p.count)));
+            cells.push((GlobalKey::PalletSize, p.size.to_string()));
+            cells.push((GlobalKey::PalletBoundary, p.boundary.to_string()));
         }
-        cells.push(("block_size", self.block_size.to_string()));
-        cells.push(("step_height", self.step_height.to_string()));
+        cells.push((GlobalKey::BlockSize, self.block_size.to_string()));
+        cells.push((GlobalKey::StepHeight, self.step_height.to_string()));
         if self.base.to_bits() != defaults.base.to_bits() {
-            cells.push(("base", self.base.to_string()));
+            cells.push((GlobalKey::Base, self.base.to_string()));
         }
         if self.amount != defaults.amount {
-            cells.push(("amount", self.amount.to_string()));
+            cells.push((GlobalKey::Amount, self.amount.to_string()));
         }
         if self.seed != defaults.seed {
-            cells.push(("seed", self.seed.to_string()));
+            cells.push((GlobalKey::Seed, self.seed.to_string()));
         }
         cells
     }
@@ -307,7 +341,7 @@ mod tests {
         };
         let mut p = GlobalsPatch::default();
         for (key, text) in g.cells() {
-            p.set(key, &text).unwrap();
+            p.set_key(key, &text).unwrap();
         }
         assert_eq!(p.apply(&Globals::default()).unwrap(), g);
     }

@@ -35,6 +35,7 @@ mod env_terrains;
 mod error;
 pub mod export;
 mod generate;
+mod global_key;
 mod globals;
 mod globals_patch;
 mod heightmap;
@@ -62,6 +63,7 @@ pub use env_terrains::{
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at};
+pub use global_key::GlobalKey;
 pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};
 pub use globals_patch::{GlobalsPatch, parse_pallets};
 pub use heightmap::{Heightmap, HeightmapCsvError};

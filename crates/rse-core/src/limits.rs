@@ -1,19 +1,9 @@
-//! The limits and defaults of the scheme model, and the names of its
-//! global keys: a leaf that the model (`globals`, `obstacle`) and its
-//! errors (`error`) both read, so that neither has to import the other.
+//! The limits and defaults of the scheme model (and the names of its
+//! global keys, from `global_key`): read by the model (`globals`,
+//! `obstacle`) and its errors (`error`) alike, so that neither has to
+//! import the other.
 
-/// The `# key: value` names a scheme file may use, in the order they are written.
-pub const GLOBAL_KEYS: [&str; 9] = [
-    "size",
-    "pallets",
-    "pallet_size",
-    "pallet_boundary",
-    "block_size",
-    "step_height",
-    "base",
-    "amount",
-    "seed",
-];
+pub use crate::global_key::GLOBAL_KEYS;
 
 /// Pallet side in cells when a scheme turns pallets on without `pallet_size`:
 /// a NIST pallet holds 10×10 blocks inside its frame.

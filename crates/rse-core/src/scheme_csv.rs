@@ -7,9 +7,9 @@
 use std::fmt::Write as _;
 
 use crate::error::{SchemeError, SchemeErrorKind};
+use crate::global_key::GlobalKey;
 use crate::globals::Globals;
 use crate::globals_patch::GlobalsPatch;
-use crate::limits::GLOBAL_KEYS;
 use crate::obstacle::{Field, Obstacle, ObstacleFields, ObstacleKind};
 use crate::param::{Param, ParamTextError};
 use crate::scheme::{Origin, RowOrigin, Scheme};
@@ -173,14 +173,14 @@ struct GlobalLines {
 
 impl GlobalLines {
     fn set(&mut self, key: &str, value: &str, line: u64) -> Result<(), SchemeError> {
-        let known = GLOBAL_KEYS.iter().find(|k| k.eq_ignore_ascii_case(key));
-        if let Some(&key) = known.filter(|k| self.lines.iter().any(|(seen, _)| seen == *k)) {
+        let known = GlobalKey::find(key);
+        if let Some(key) = known.filter(|k| self.lines.iter().any(|(seen, _)| *seen == k.name())) {
             return Err(SchemeError::new(SchemeErrorKind::DuplicateGlobal)
-                .with_field(key)
+                .with_field(key.name())
                 .at_line(line));
         }
         let key = self.patch.set(key, value).map_err(|e| e.at_line(line))?;
-        self.lines.push((key, line));
+        self.lines.push((key.name(), line));
         Ok(())
     }
 

@@ -7,9 +7,9 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use base64::Engine as _;
-use rse_core::{Field, GLOBAL_KEYS, Globals, GlobalsPatch, ObstacleKind, Usage, preview};
+use rse_core::{Field, GlobalKey, Globals, ObstacleKind, Usage, preview};
 use rse_verify::{CheckOptions, check_paths};
-use rse_world::{BatchOptions, Target, Targets, Templates, WorldOptions, write_batch};
+use rse_world::{BatchConfig, Target, Targets, Templates, WorldConfig, write_batch};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -72,32 +72,15 @@ pub fn state(editor: &Editor) -> Value {
 /// each needs or takes, the targets and those written by default — so the
 /// script holds no copy of them.
 ///
-/// # Panics
-/// Never: one pallet is a layout core always accepts.
 pub fn schema() -> Value {
-    let defaults = Globals::default();
-    // What pallets get when turned on: core's rule, not a copy of it.
-    let turned_on = GlobalsPatch {
-        pallets: Some(Some([1, 1])),
-        ..GlobalsPatch::default()
-    }
-    .apply(&defaults)
-    .ok()
-    .and_then(|g| g.pallets)
-    .expect("one pallet is a valid layout");
-    let default = |key: &str| match key {
-        "size" => rse_core::format_dims(defaults.size),
-        "pallets" => "off".to_owned(),
-        "pallet_size" => turned_on.size.to_string(),
-        "pallet_boundary" => turned_on.boundary.to_string(),
-        "block_size" => defaults.block_size.to_string(),
-        "step_height" => defaults.step_height.to_string(),
-        "base" => defaults.base.to_string(),
-        "amount" => defaults.amount.to_string(),
-        "seed" => defaults.seed.to_string(),
-        _ => unreachable!("every key of GLOBAL_KEYS has a default"),
+    let global = |key: GlobalKey| {
+        json!({
+            "key": key.name(),
+            "default": Globals::default_text(key),
+            "unit": key.unit(),
+            "doc": key.doc(),
+        })
     };
-    let unit = |key: &str| matches!(key, "block_size" | "step_height" | "base").then_some("m");
     let columns: Vec<Field> = Field::ALL
         .into_iter()
         .filter(|&f| f != Field::Type)
@@ -117,7 +100,7 @@ pub fn schema() -> Value {
     };
     json!({
         "ok": true,
-        "globals": GLOBAL_KEYS.map(|key| json!({ "key": key, "default": default(key), "unit": unit(key) })),
+        "globals": GlobalKey::ALL.map(global),
         "columns": columns.iter().map(|f| f.name()).collect::<Vec<_>>(),
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
@@ -259,9 +242,9 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let request: GenerateRequest = request(body)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     let targets = if request.targets.is_empty() {
-        Targets::default()
+        None
     } else {
-        Targets::parse(&request.targets.join(",")).map_err(|e| bad(e.to_string()))?
+        Some(Targets::parse(&request.targets.join(",")).map_err(|e| bad(e.to_string()))?)
     };
     let job = Arc::clone(&editor.job);
     {
@@ -271,16 +254,17 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         }
         *running = true;
     }
-    let scheme_batch = BatchOptions::for_scheme(&scheme, request.out);
-    let options = BatchOptions {
-        amount: request.amount.unwrap_or(scheme_batch.amount),
-        seed: request.seed.unwrap_or(scheme_batch.seed),
-        world: WorldOptions {
+    let options = BatchConfig {
+        amount: request.amount,
+        seed: request.seed,
+        world: WorldConfig {
             targets,
-            ..WorldOptions::default()
+            ..WorldConfig::default()
         },
-        ..scheme_batch
-    };
+        ..BatchConfig::default()
+    }
+    .resolve(&scheme, request.out)
+    .map_err(|e| bad(e.to_string()))?;
     job.done.store(0, Ordering::SeqCst);
     job.total.store(options.amount, Ordering::SeqCst);
     *job.result.lock().expect("not poisoned") = None;
@@ -354,7 +338,7 @@ mod tests {
                 .map(|v| field.map_or(v, |f| &v[f]).as_str().unwrap().to_owned())
                 .collect()
         };
-        assert_eq!(names("globals", Some("key")), GLOBAL_KEYS);
+        assert_eq!(names("globals", Some("key")), rse_core::GLOBAL_KEYS);
         for t in names("types", Some("name")) {
             assert!(t.parse::<ObstacleKind>().is_ok(), "{t}");
         }
@@ -364,7 +348,7 @@ mod tests {
             Targets::default()
         );
         // Each default reads back through core's own parser.
-        let mut patch = GlobalsPatch::default();
+        let mut patch = rse_core::GlobalsPatch::default();
         for g in schema["globals"].as_array().unwrap() {
             let key = g["key"].as_str().unwrap();
             if !key.starts_with("pallet_") {

@@ -127,7 +127,7 @@ impl PageScheme {
                 .globals()
                 .cells()
                 .into_iter()
-                .map(|(key, text)| (key.to_owned(), text))
+                .map(|(key, text)| (key.name().to_owned(), text))
                 .collect(),
             obstacles: scheme
                 .obstacles()

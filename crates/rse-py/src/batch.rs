@@ -5,10 +5,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use rse_world::{BatchOptions, Outcome, Shard, Templates};
+use rse_world::{BatchConfig, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
-use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_options};
+use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_config, world_options};
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::Terrain;
 
@@ -76,30 +76,25 @@ pub fn write_worlds<'py>(
     mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let scheme_batch = BatchOptions::for_scheme(&scheme.inner, out);
-    let options = BatchOptions {
-        amount: amount.unwrap_or(scheme_batch.amount),
-        seed: seed.unwrap_or(scheme_batch.seed),
-        world: world_options(
-            py,
+    let options = BatchConfig {
+        amount,
+        seed,
+        world: world_config(
             targets,
             mesh,
-            difficulty
-                .map(difficulty_arg)
-                .transpose()?
-                .unwrap_or_default(),
+            difficulty.map(difficulty_arg).transpose()?,
             mujoco_collider,
             oversample,
-        )?,
+        ),
         jobs,
         shard: shard
             .map(str::parse::<Shard>)
             .transpose()
-            .map_err(|e| world_error(py, &e))?
-            .unwrap_or_default(),
-        force,
-        ..scheme_batch
-    };
+            .map_err(|e| world_error(py, &e))?,
+        force: Some(force),
+    }
+    .resolve(&scheme.inner, out)
+    .map_err(|e| world_error(py, &e))?;
     let templates = templates(py, template.as_deref())?;
     let scheme = &scheme.inner;
     let summary = py

@@ -7,7 +7,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyString;
 use rse_core::Difficulty;
-use rse_world::{MeshMode, MujocoCollider, Targets, WorldOptions};
+use rse_world::{MeshMode, Targets, WorldConfig, WorldOptions};
 
 use crate::args::describe;
 use crate::errors::world_error;
@@ -89,6 +89,24 @@ fn string(obj: Borrowed<'_, '_, PyAny>, keyword: &str) -> PyResult<String> {
     obj.extract::<String>()
 }
 
+/// What the keywords every writer takes give a world folder: what the user
+/// gave, `None` for the rest (rse-world's [`WorldConfig`] resolves them).
+pub fn world_config(
+    targets: Option<PyTargets>,
+    mesh: Option<PyMeshMode>,
+    difficulty: Option<Difficulty>,
+    mujoco_collider: Option<PyColliderName>,
+    oversample: Option<u32>,
+) -> WorldConfig {
+    WorldConfig {
+        difficulty,
+        targets: targets.map(|t| t.0),
+        mesh: mesh.map(|m| m.0),
+        mujoco_collider: mujoco_collider.map(|c| c.0),
+        oversample,
+    }
+}
+
 /// The world options of the keywords every writer takes; `None` for any
 /// of them is [`WorldOptions::default`]'s.
 pub fn world_options(
@@ -99,15 +117,7 @@ pub fn world_options(
     mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<WorldOptions> {
-    let defaults = WorldOptions::default();
-    let collider = mujoco_collider
-        .as_ref()
-        .map_or(defaults.mujoco_collider.name(), |c| c.0.as_str());
-    Ok(WorldOptions {
-        difficulty,
-        targets: targets.map_or(defaults.targets, |t| t.0),
-        mesh: mesh.map_or(defaults.mesh, |m| m.0),
-        mujoco_collider: MujocoCollider::parse(collider, oversample)
-            .map_err(|e| world_error(py, &e))?,
-    })
+    world_config(targets, mesh, Some(difficulty), mujoco_collider, oversample)
+        .resolve()
+        .map_err(|e| world_error(py, &e))
 }

@@ -180,15 +180,6 @@ impl BatchOptions {
             force: false,
         }
     }
-
-    /// The scheme's own batch: its `# amount:` worlds of its `# seed:`,
-    /// into `out`, for the default targets. Every front end (command line,
-    /// Python, editor) starts here, so a scheme file means one dataset
-    /// whichever of them writes it.
-    pub fn for_scheme(scheme: &Scheme, out: impl Into<PathBuf>) -> Self {
-        let globals = scheme.globals();
-        BatchOptions::new(out, globals.amount, globals.seed, Targets::default())
-    }
 }
 
 /// A pool of `jobs` worker threads (`None`: one per core); `Some(0)` is
@@ -426,18 +417,6 @@ mod tests {
             "{err:?}"
         );
         assert_eq!(thread_pool(Some(2)).unwrap().current_num_threads(), 2);
-    }
-
-    #[test]
-    fn a_scheme_batch_is_its_amount_and_seed() {
-        let scheme = Scheme::from_csv(
-            "# size: 4x4\n# amount: 7\n# seed: 9\ntype,height\nrandom,1\n",
-            None,
-        )
-        .unwrap();
-        let options = BatchOptions::for_scheme(&scheme, "out");
-        assert_eq!((options.amount, options.seed), (7, 9));
-        assert_eq!(options.world.targets, Targets::default());
     }
 
     /// `Shard::from_slurm_array` over a fixed set of variables.

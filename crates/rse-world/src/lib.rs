@@ -5,12 +5,19 @@
 //! Modules by concern (a test keeps every crate's module graph free of
 //! circles): `files` (the folders on disk), `render` (a world's files in
 //! memory), `record` (`rse.json`, its options and its rebuild), then
-//! `batch` and `atlas`, which write worlds, and `memory` and `error`.
+//! `batch` and `atlas`, which write worlds, `config` (what a user gives a
+//! batch or a world, resolved once), and `memory` and `error`.
 //!
 //! ```no_run
-//! use rse_world::{BatchOptions, Targets, Templates, write_batch};
+//! use rse_world::{BatchConfig, Targets, Templates, WorldConfig, write_batch};
 //! let scheme = rse_core::Scheme::load("schemes/wall.csv")?;
-//! let options = BatchOptions::new("out", 10, 0, "gazebo,mujoco".parse::<Targets>()?);
+//! // What the user gave; the rest is the scheme's (`# amount:`, `# seed:`) or the default.
+//! let options = BatchConfig {
+//!     amount: Some(10),
+//!     world: WorldConfig { targets: Some("gazebo,mujoco".parse::<Targets>()?), ..WorldConfig::default() },
+//!     ..BatchConfig::default()
+//! }
+//! .resolve(&scheme, "out")?;
 //! let summary = write_batch(&scheme, &Templates::builtin(), &options, &|_| {})?;
 //! println!("{} worlds written", summary.written);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -18,6 +25,7 @@
 
 mod atlas;
 mod batch;
+mod config;
 mod error;
 mod files;
 mod memory;
@@ -29,6 +37,7 @@ pub use batch::{
     BatchOptions, Shard, Summary, thread_pool, world_index, world_name, write_batch,
     write_batch_until,
 };
+pub use config::{BatchConfig, WorldConfig};
 pub use error::Error;
 pub use files::digest::sha256_hex;
 pub use files::folder::{place_folder, write_world_at};

@@ -6,24 +6,24 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
-use rse_world::{BatchOptions, write_batch_until};
+use rse_world::{BatchConfig, write_batch_until};
 
 use crate::ExitStatus;
-use crate::args::{BatchArgs, SchemeOverrides};
+use crate::args::{BatchArgs, SchemeOverrides, in_flags};
 
 pub fn run(args: &BatchArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let scheme = super::load_scheme(&args.scheme, overrides)?;
     let templates = args.files.templates()?;
-    let scheme_batch = BatchOptions::for_scheme(&scheme, &args.output);
-    let options = BatchOptions {
-        amount: args.amount.unwrap_or(scheme_batch.amount),
-        seed: args.seed.unwrap_or(scheme_batch.seed),
-        world: args.files.options(args.difficulty.value)?,
+    let options = BatchConfig {
+        amount: args.amount,
+        seed: args.seed,
+        world: args.files.config(args.difficulty.value),
         jobs: args.jobs.map(usize::from),
-        shard: args.shard.unwrap_or_default(),
-        force: args.force,
-        ..scheme_batch
-    };
+        shard: args.shard,
+        force: Some(args.force),
+    }
+    .resolve(&scheme, &args.output)
+    .map_err(in_flags)?;
     let shard = options.shard;
     let worlds = shard.worlds(options.amount);
     // Drawn only on a terminal: indicatif hides it on a pipe or file.

@@ -168,7 +168,7 @@ class _RayMeshes:
         bounds = rc.hfield_bounds_size.numpy()
         self.meshes = []
         for env, hid in enumerate(self.hids):
-            points = wp.array(self._points(envs, env), dtype=wp.vec3, device=device)
+            points: Any = wp.array(self._points(envs, env), dtype=wp.vec3, device=device)
             mesh = wp.Mesh(points=points, indices=wp.array(indices, dtype=wp.int32, device=device), bvh_constructor="cubql")
             rc.hfield_registry.pop(int(bvh_ids[hid]), None)
             rc.hfield_registry[mesh.id] = mesh

@@ -107,6 +107,6 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
         # of it takes a plain copy, without a kernel launch per env.
         copy_env_samples(m.hfield_data.numpy(), envs, ids, adr, size)
         return
-    source = wp.array(envs.samples.reshape(-1), dtype=float, device="cpu", copy=False)
+    source: Any = wp.array(envs.samples.reshape(-1), dtype=float, device="cpu", copy=False)
     for e in ids:
         wp.copy(m.hfield_data, source, dest_offset=int(adr[e]), src_offset=e * size, count=size)

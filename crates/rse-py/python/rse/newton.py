@@ -103,7 +103,7 @@ def sync(model: Any, envs: EnvTerrains, env_ids: Any = None, *, solver: Optional
     if solver is not None:
         targets.append((solver.mjw_model.hfield_data, _mujoco_offsets(solver, envs)))
     for e in ids:
-        src = wp.array(envs.samples[e].ravel(), dtype=wp.float32, device=model.heightfield_elevations.device)
+        src: Any = wp.array(envs.samples[e].ravel(), dtype=wp.float32, device=model.heightfield_elevations.device)
         for dst, starts in targets:
             wp.copy(dst, src, dest_offset=starts[e], count=n)
 

@@ -1,0 +1,199 @@
+//! What a user gives a world or a batch, as ruff's configuration pattern
+//! has it: a `*Config` of `Option`s that each front end (the command line,
+//! Python, the editor) fills with what its user gave and nothing else,
+//! [`combine`](BatchConfig::combine) for precedence, and one
+//! [`resolve`](BatchConfig::resolve) that applies the scheme's values, the
+//! defaults and every check. "The user's value, else the scheme's" is
+//! written here, once.
+
+use std::path::PathBuf;
+
+use rse_core::{Difficulty, Scheme};
+
+use crate::batch::{BatchOptions, Shard};
+use crate::error::Error;
+use crate::record::options::{MeshMode, MujocoCollider, Targets, WorldOptions};
+
+/// What a world folder holds, as given: `None` is the default.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct WorldConfig {
+    /// The difficulty (validated where the user's number is read, by
+    /// [`Difficulty`]'s own parser); default [`Difficulty::FULL`].
+    pub difficulty: Option<Difficulty>,
+    /// The simulators; default [`Targets::default`].
+    pub targets: Option<Targets>,
+    /// The terrain model; default [`MeshMode::default`].
+    pub mesh: Option<MeshMode>,
+    /// The `MuJoCo` collider by name (`boxes`, `hfield`); default boxes.
+    pub mujoco_collider: Option<String>,
+    /// The height field's samples per cell; only with `hfield`.
+    pub oversample: Option<u32>,
+}
+
+impl WorldConfig {
+    /// `self`'s values, each unset one taken from `other`.
+    #[must_use]
+    pub fn combine(self, other: WorldConfig) -> WorldConfig {
+        WorldConfig {
+            difficulty: self.difficulty.or(other.difficulty),
+            targets: self.targets.or(other.targets),
+            mesh: self.mesh.or(other.mesh),
+            mujoco_collider: self.mujoco_collider.or(other.mujoco_collider),
+            oversample: self.oversample.or(other.oversample),
+        }
+    }
+
+    /// The world options: defaults for what is unset; an unknown collider,
+    /// or an oversample without a height field, is refused.
+    pub fn resolve(self) -> Result<WorldOptions, Error> {
+        let defaults = WorldOptions::default();
+        let collider = self
+            .mujoco_collider
+            .as_deref()
+            .unwrap_or(defaults.mujoco_collider.name());
+        Ok(WorldOptions {
+            difficulty: self.difficulty.unwrap_or(defaults.difficulty),
+            targets: self.targets.unwrap_or(defaults.targets),
+            mesh: self.mesh.unwrap_or(defaults.mesh),
+            mujoco_collider: MujocoCollider::parse(collider, self.oversample)?,
+        })
+    }
+}
+
+/// A batch, as given: `None` is the scheme's value or the default.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BatchConfig {
+    /// Worlds in the whole batch; default the scheme's `# amount:`.
+    pub amount: Option<u64>,
+    /// The batch's base seed; default the scheme's `# seed:`.
+    pub seed: Option<u64>,
+    /// What each world folder holds.
+    pub world: WorldConfig,
+    /// Worker threads; default one per core (0 is refused).
+    pub jobs: Option<usize>,
+    /// The part of the batch this run writes; default all of it.
+    pub shard: Option<Shard>,
+    /// Replace world folders that hold something else; default no.
+    pub force: Option<bool>,
+}
+
+impl BatchConfig {
+    /// `self`'s values, each unset one taken from `other`.
+    #[must_use]
+    pub fn combine(self, other: BatchConfig) -> BatchConfig {
+        BatchConfig {
+            amount: self.amount.or(other.amount),
+            seed: self.seed.or(other.seed),
+            world: self.world.combine(other.world),
+            jobs: self.jobs.or(other.jobs),
+            shard: self.shard.or(other.shard),
+            force: self.force.or(other.force),
+        }
+    }
+
+    /// The batch of `scheme` into `out`: the user's values, else the
+    /// scheme's (`# amount:`, `# seed:`), else the defaults; every option
+    /// checked.
+    pub fn resolve(self, scheme: &Scheme, out: impl Into<PathBuf>) -> Result<BatchOptions, Error> {
+        if self.jobs == Some(0) {
+            return Err(Error::BadOption {
+                option: "jobs",
+                message: "jobs must be at least 1".to_owned(),
+            });
+        }
+        let globals = scheme.globals();
+        Ok(BatchOptions {
+            out: out.into(),
+            amount: self.amount.unwrap_or(globals.amount),
+            seed: self.seed.unwrap_or(globals.seed),
+            world: self.world.resolve()?,
+            jobs: self.jobs,
+            shard: self.shard.unwrap_or_default(),
+            force: self.force.unwrap_or(false),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scheme() -> Scheme {
+        Scheme::from_csv(
+            "# size: 6x6\n# amount: 7\n# seed: 41\ntype,height\nrandom,2\n",
+            None,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_users_values_win_then_the_schemes_then_the_defaults() {
+        let unset = BatchConfig::default().resolve(&scheme(), "out").unwrap();
+        assert_eq!((unset.amount, unset.seed), (7, 41));
+        assert_eq!(unset.world, WorldOptions::default());
+        assert_eq!(
+            (unset.jobs, unset.shard, unset.force),
+            (None, Shard::default(), false)
+        );
+        let given = BatchConfig {
+            amount: Some(3),
+            seed: Some(2),
+            jobs: Some(2),
+            force: Some(true),
+            world: WorldConfig {
+                targets: Some(Targets::all()),
+                mujoco_collider: Some("hfield".to_owned()),
+                ..WorldConfig::default()
+            },
+            ..BatchConfig::default()
+        }
+        .resolve(&scheme(), "out")
+        .unwrap();
+        assert_eq!(
+            (given.amount, given.seed, given.jobs, given.force),
+            (3, 2, Some(2), true)
+        );
+        assert_eq!(given.world.targets, Targets::all());
+        assert_eq!(
+            given.world.mujoco_collider,
+            MujocoCollider::Hfield {
+                oversample: rse_core::DEFAULT_OVERSAMPLE
+            }
+        );
+    }
+
+    #[test]
+    fn combine_keeps_the_first_given() {
+        let first = BatchConfig {
+            amount: Some(1),
+            ..BatchConfig::default()
+        };
+        let second = BatchConfig {
+            amount: Some(2),
+            seed: Some(9),
+            ..BatchConfig::default()
+        };
+        let both = first.combine(second);
+        assert_eq!((both.amount, both.seed), (Some(1), Some(9)));
+    }
+
+    #[test]
+    fn bad_options_are_refused_naming_them() {
+        let jobs = BatchConfig {
+            jobs: Some(0),
+            ..BatchConfig::default()
+        };
+        assert!(
+            jobs.resolve(&scheme(), "out")
+                .unwrap_err()
+                .to_string()
+                .contains("jobs")
+        );
+        let oversample = WorldConfig {
+            oversample: Some(2),
+            ..WorldConfig::default()
+        };
+        let err = oversample.resolve().unwrap_err().to_string();
+        assert!(err.contains("hfield"), "{err}");
+    }
+}
