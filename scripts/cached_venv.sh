@@ -69,6 +69,3 @@ pip_install() {
     "$python" -m pip install --quiet --disable-pip-version-check "$@"
 }
 
-# make test's venv (.venv), which make test-quick shares: one recipe, so
-# one key.
-test_install() { pip_install "$1" -r tests/requirements.txt; }

@@ -8,9 +8,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 say() { printf '\n== %s\n' "$*"; }
 
-# shellcheck source=scripts/cached_venv.sh
-. scripts/cached_venv.sh
-
 if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! command -v munged >/dev/null; then
     say "Slurm and munge (apt)"
     sudo=""
@@ -20,9 +17,8 @@ if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null || ! comm
 fi
 say "rse-gen (the array jobs run it)"
 cargo build --release --locked --quiet -p rse-cli
-say "Ray (.venv-cluster, kept outside the clone: scripts/cached_venv.sh)"
-cluster_install() { pip_install "$1" -r tests/cluster/requirements.txt; }
-cached_venv .venv-cluster python3 cluster_install tests/cluster/requirements.txt
+say "Ray (.venv-cluster, kept outside the clone: scripts/venvs.sh)"
+scripts/venvs.sh cluster
 say "the rse package"
 rm -rf target/py-wheel-cluster
 .venv-cluster/bin/python -m pip wheel --quiet --disable-pip-version-check --no-deps -w target/py-wheel-cluster ./crates/rse-py

@@ -9,79 +9,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 say() { printf '\n== %s\n' "$*"; }
 
-# shellcheck source=scripts/cached_venv.sh
-. scripts/cached_venv.sh
-
-# Each venv is kept outside the clone, keyed by its pinned requirements
-# (scripts/cached_venv.sh): made once per machine and pin set, reused by
-# every clone after it.
-frameworks_install() {
-    pip_install "$1" -r tests/frameworks/requirements.txt
-    # Isaac Lab without its dependencies (they pull Isaac Sim; the terrain
-    # generator needs none of it).
-    pip_install "$1" --no-deps -r tests/frameworks/no-deps.txt
-}
-say "mjlab, Isaac Lab 2.3's terrain generator (.venv-frameworks)"
-cached_venv .venv-frameworks python3 frameworks_install tests/frameworks/requirements.txt tests/frameworks/no-deps.txt
-
-# Genesis pulls its own torch and compilers (8.5 GB): a venv of its own.
-genesis_install() { pip_install "$1" -r tests/genesis/requirements.txt; }
-say "Genesis (.venv-genesis)"
-cached_venv .venv-genesis python3 genesis_install tests/genesis/requirements.txt
-
-# Isaac Lab 3.0 runs on Python 3.12 only (its terrain generator, importer
-# and Newton physics, without Isaac Sim): a venv of its own. The first
-# Python 3.12 that runs: on PATH, else pyenv's (its shim for python3.12 is
-# on PATH even when 3.12 is not the selected version, and then fails, so
-# each candidate is tried).
-py312=""
-for candidate in "$(command -v python3.12 || true)" $(ls -d "$HOME"/.pyenv/versions/3.12*/bin/python 2>/dev/null | sort -rV); do
-    if [ -n "$candidate" ] && "$candidate" -c 'import sys; assert sys.version_info[:2] == (3, 12)' 2>/dev/null; then
-        py312=$candidate
-        break
-    fi
-done
-if [ -z "$py312" ]; then
-    echo "scripts/test-frameworks.sh: Isaac Lab 3.0 needs Python 3.12: install it (e.g. pyenv install 3.12) and rerun" >&2
-    exit 2
-fi
-isaaclab3_install() {
-    pip_install "$1" -r tests/isaaclab3/requirements.txt
-    # Isaac Lab's URDF importer, over Isaac Lab's usd-exchange pin (see
-    # tests/isaaclab3/importers.txt): pip prints the known conflict; only
-    # its failure stops the run.
-    local log
-    log=$(mktemp)
-    if ! pip_install "$1" -r tests/isaaclab3/importers.txt >"$log" 2>&1; then
-        cat "$log" >&2
-        return 1
-    fi
-}
-say "Isaac Lab 3.0 and its URDF importer (.venv-isaaclab3)"
-cached_venv .venv-isaaclab3 "$py312" isaaclab3_install tests/isaaclab3/requirements.txt tests/isaaclab3/importers.txt
-
-# Newton (rse.newton): per-world height fields natively; its own venv
-# (newton[sim] pins MuJoCo Warp 3.17; 26 s, 730 MB).
-newton_install() { pip_install "$1" -r tests/newton/requirements.txt; }
-say "Newton (.venv-newton)"
-cached_venv .venv-newton python3 newton_install tests/newton/requirements.txt
-
-# MuJoCo Playground (rse.playground): JAX, Brax and MJX pinned together; its
-# own venv (1.4 GB, 2 min). Playground git-clones MuJoCo Menagerie from
-# GitHub on first use, and the mujoco-menagerie package downloads its robots
-# from GitHub too: neither is reachable from the package registries alone.
-# The Go1's meshes (visual only) are Menagerie's unitree_go1 assets, which
-# mjlab's wheel ships.
-playground_install() {
-    pip_install "$1" -r tests/playground/requirements.txt
-    local menagerie go1
-    menagerie=$("$1" -c 'from mujoco_playground._src import mjx_env; print(mjx_env.MENAGERIE_PATH)')
-    go1=$(.venv-frameworks/bin/python -c 'import mjlab, pathlib; print(pathlib.Path(mjlab.__file__).parent / "asset_zoo/robots/unitree_go1/xmls/assets")')
-    mkdir -p "$menagerie/unitree_go1/assets"
-    cp "$go1"/*.stl "$menagerie/unitree_go1/assets/"
-}
-say "MuJoCo Playground (.venv-playground)"
-cached_venv .venv-playground python3 playground_install tests/playground/requirements.txt tests/frameworks/requirements.txt
+# Every framework's venv, kept outside the clone and keyed by its pins
+# (scripts/venvs.sh), made in parallel where missing; CI starts this at its
+# beginning, beside make test.
+scripts/venvs.sh frameworks
 
 say "the rse package (one wheel for every venv)"
 rm -rf target/py-wheel-frameworks

@@ -17,9 +17,7 @@ cargo fmt --all --check
 say "Rust tests (all crates but rse-cli)"
 cargo test --workspace --exclude rse-cli --locked --quiet
 say "the Python package (maturin, release)"
-# shellcheck source=scripts/cached_venv.sh
-. scripts/cached_venv.sh
-cached_venv .venv python3 test_install tests/requirements.txt
+scripts/venvs.sh test
 say "the Python package's lint and types (ruff, mypy)"
 scripts/lint-python.sh
 rm -rf target/py-wheel

@@ -75,16 +75,10 @@ say "Rust tests: the command line (release build)"
 cargo test --release -p rse-cli --locked -- --include-ignored 2>&1 | tee -a "$log"
 
 # The Python test dependencies download while the fuzz targets build, into
-# venvs kept outside the clone and keyed by their pins
-# (scripts/cached_venv.sh): a fresh clone on this machine reuses them.
-# MJX pins its own MuJoCo (3.17; .venv has 4.0): rse.mjx's tests get their own venv.
-# shellcheck source=scripts/cached_venv.sh
-. scripts/cached_venv.sh
-mjx_install() { pip_install "$1" -r tests/mjx/requirements.txt; }
-(
-    cached_venv .venv python3 test_install tests/requirements.txt
-    cached_venv .venv-mjx python3 mjx_install tests/mjx/requirements.txt
-) >"$pip_log" 2>&1 &
+# venvs kept outside the clone and keyed by their pins (scripts/venvs.sh):
+# a fresh clone on this machine reuses them. MJX pins its own MuJoCo (3.17;
+# .venv has 4.0): rse.mjx's tests get their own venv.
+scripts/venvs.sh test >"$pip_log" 2>&1 &
 pip_pid=$!
 
 say "fuzzing: every target, seeded and reproducible (scripts/fuzz.sh; kept inputs replay in the Rust tests above; make fuzz explores)"
