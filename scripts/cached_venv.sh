@@ -53,13 +53,13 @@ cached_venv() {
                 rm -rf "$old"
             fi
         done
+        # A venv made in the clone by an older version of these scripts is
+        # replaced by the link (under the lock: two runs may link at once).
+        if [ -d "$link" ] && [ ! -L "$link" ]; then
+            rm -rf "$link"
+        fi
+        ln -sfn "$dir" "$link"
     ) 9>"$cache/$name.lock"
-    # A venv made in the clone by an older version of these scripts is
-    # replaced by the link.
-    if [ -d "$link" ] && [ ! -L "$link" ]; then
-        rm -rf "$link"
-    fi
-    ln -sfn "$dir" "$link"
 }
 
 # `pip_install PYTHON ARGS...`: pip install, quietly, as every script does.
@@ -68,4 +68,3 @@ pip_install() {
     shift
     "$python" -m pip install --quiet --disable-pip-version-check "$@"
 }
-

@@ -35,16 +35,15 @@ fn graph_of(name: &str) -> rse_layout::ModuleGraph {
 #[test]
 fn the_graph_sees_uses_and_cycles() {
     // The reader itself, on a crate known to have edges: rse-world's
-    // `place` uses `nofollow`, and a made-up back edge is a circle.
+    // `files/place` uses `files/nofollow`, and a made-up back edge is a
+    // circle.
+    let (place, nofollow) = ("files/place", "files/nofollow");
     let mut graph = graph_of("rse-world");
-    assert!(graph["place"].contains("nofollow"), "{:?}", graph["place"]);
+    assert!(graph[place].contains(nofollow), "{:?}", graph[place]);
     assert!(find_cycle(&graph).is_none());
-    graph
-        .get_mut("nofollow")
-        .unwrap()
-        .insert("place".to_owned());
+    graph.get_mut(nofollow).unwrap().insert(place.to_owned());
     let cycle = find_cycle(&graph).expect("a back edge is a cycle");
-    assert!(cycle.contains(&"place".to_owned()) && cycle.contains(&"nofollow".to_owned()));
+    assert!(cycle.contains(&place.to_owned()) && cycle.contains(&nofollow.to_owned()));
     // A grouped import counts each of its items: rse-verify's `world`
     // names `crate::{references, terrain}`.
     let verify = crate_dirs()
