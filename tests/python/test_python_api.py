@@ -3,6 +3,8 @@ as the CLI and the batch, mesh arrays that are closed volumes in trimesh,
 MJCF that MuJoCo loads and that bodies rest on, hypothesis round trips and
 bad inputs, and stubs that match the module."""
 
+import ast
+import inspect
 import subprocess
 import sys
 from pathlib import Path
@@ -11,8 +13,9 @@ import mujoco
 import numpy as np
 import pytest
 import rse
+import rse._rse as _rse
 import trimesh
-from conftest import SCHEMES, heights, run
+from conftest import REPO, SCHEMES, heights, run
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -230,3 +233,52 @@ def test_bad_obstacle_values_raise_value_errors_never_crash(kind, height, angle,
 def test_stubs_match_the_module() -> None:
     done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "rse._rse"], capture_output=True, text=True)
     assert done.returncode == 0, done.stdout + done.stderr
+
+
+def _stub_defaults() -> list[tuple[str, object, str, object]]:
+    """(qualified name, runtime callable, parameter, default) of every
+    literal default `_rse.pyi` writes, for the functions and methods the
+    extension has."""
+    tree = ast.parse((REPO / "crates/rse-py/python/rse/_rse.pyi").read_text())
+    found = []
+
+    def defaults(qual: str, fn: ast.FunctionDef, runtime: object) -> None:
+        args = fn.args
+        positional = args.posonlyargs + args.args
+        given = dict(zip([a.arg for a in positional][len(positional) - len(args.defaults) :], args.defaults))
+        given.update({a.arg: d for a, d in zip(args.kwonlyargs, args.kw_defaults) if d is not None})
+        for name, node in given.items():
+            try:
+                found.append((qual, runtime, name, ast.literal_eval(node)))
+            except ValueError:
+                pass  # not a literal (a name, `...`)
+
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef) and hasattr(_rse, node.name):
+            defaults(node.name, node, getattr(_rse, node.name))
+        if isinstance(node, ast.ClassDef) and hasattr(_rse, node.name):
+            cls = getattr(_rse, node.name)
+            for item in node.body:
+                if isinstance(item, ast.FunctionDef) and callable(getattr(cls, item.name, None)):
+                    runtime = cls if item.name in ("__new__", "__init__") else getattr(cls, item.name)
+                    defaults(f"{node.name}.{item.name}", item, runtime)
+    return found
+
+
+def test_the_stubs_defaults_are_the_extensions() -> None:
+    """`_rse.pyi` restates defaults by hand: each literal one must be the
+    extension's own (its pyo3 signature, from Rust), and the scheme's
+    globals those of a default `Scheme` (rse-core's `Globals::default`)."""
+    stub = _stub_defaults()
+    assert len(stub) > 40, len(stub)
+    differ = []
+    for qual, runtime, name, want in stub:
+        got = inspect.signature(runtime).parameters[name].default  # type: ignore[arg-type]
+        if got != want and not (isinstance(want, tuple) and list(want) == got):
+            differ.append(f"{qual}({name}=): stub {want!r}, extension {got!r}")
+    assert not differ, differ
+    fields = rse.Scheme().fields()
+    scheme_defaults = {name: want for qual, _, name, want in stub if qual == "Scheme.__new__"}
+    assert set(scheme_defaults) >= {"size", "block_size", "step_height", "base", "amount", "seed"}, scheme_defaults
+    for name, want in scheme_defaults.items():
+        assert fields[name] == want, f"Scheme({name}=): stub {want!r}, Rust's default {fields[name]!r}"
