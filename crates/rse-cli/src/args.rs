@@ -202,7 +202,7 @@ pub struct AtlasArgs {
     pub difficulty: (Difficulty, Difficulty),
 
     /// A tile's origin z is the highest top within this many metres of its centre.
-    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_SPAWN_RADIUS, value_parser = non_negative_metres)]
+    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_SPAWN_RADIUS, value_parser = radius)]
     pub spawn_radius: f64,
 
     /// Flat patches per tile to list in atlas.json (spawn or goal points).
@@ -210,7 +210,7 @@ pub struct AtlasArgs {
     pub flat_patches: u32,
 
     /// Radius in metres of the disc a flat patch must cover.
-    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_PATCH_RADIUS, value_parser = non_negative_metres)]
+    #[arg(long, value_name = "M", default_value_t = rse_core::spawn::DEFAULT_PATCH_RADIUS, value_parser = radius)]
     pub patch_radius: f64,
 
     /// Largest height difference under a flat patch, in steps.
@@ -530,6 +530,14 @@ fn positive_metres(text: &str) -> Result<f64, String> {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err("expected a length in metres > 0".to_owned()),
     }
+}
+
+/// A radius in metres, by core's one rule for radii.
+fn radius(text: &str) -> Result<f64, String> {
+    let value = text
+        .parse::<f64>()
+        .map_err(|_| "expected a length in metres".to_owned())?;
+    rse_core::spawn::check_radius(value)
 }
 
 fn non_negative_metres(text: &str) -> Result<f64, String> {

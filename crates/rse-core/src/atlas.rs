@@ -12,7 +12,7 @@ use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::limits::{MAX_CELLS, MAX_EXTENT};
 use crate::scheme::Scheme;
-use crate::spawn::{DEFAULT_PATCH_RADIUS, DEFAULT_SPAWN_RADIUS, Region};
+use crate::spawn::{DEFAULT_PATCH_RADIUS, DEFAULT_SPAWN_RADIUS, Region, check_radius};
 use crate::terrain::Terrain;
 
 /// Flat patches to find on every tile (none when `count` is 0).
@@ -245,11 +245,11 @@ impl AtlasOptions {
                 ),
             );
         }
-        if !(self.spawn_radius.is_finite() && self.spawn_radius >= 0.0) {
-            return bad("spawn_radius", "must be a length of 0 m or more");
+        if let Err(why) = check_radius(self.spawn_radius) {
+            return bad("spawn_radius", &why);
         }
-        if !(self.patches.radius.is_finite() && self.patches.radius >= 0.0) {
-            return bad("patch_radius", "must be a length of 0 m or more");
+        if let Err(why) = check_radius(self.patches.radius) {
+            return bad("patch_radius", &why);
         }
         Ok(())
     }

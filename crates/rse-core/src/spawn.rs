@@ -21,6 +21,17 @@ pub const DEFAULT_SPAWN_RADIUS: f64 = 0.3;
 /// The radius, metres, of a flat patch when the user names none.
 pub const DEFAULT_PATCH_RADIUS: f64 = 0.3;
 
+/// The radius rule, for every radius a user gives (spawn origins, flat
+/// patches; the command line, Python, atlases and env pools): a finite
+/// length of 0 m or more. The error says what it must be.
+pub fn check_radius(radius: f64) -> Result<f64, String> {
+    if radius.is_finite() && radius >= 0.0 {
+        Ok(radius)
+    } else {
+        Err(format!("must be a length of 0 m or more, got {radius}"))
+    }
+}
+
 impl Terrain {
     /// Every cell of the terrain as a region.
     pub fn region(&self) -> Region {

@@ -21,10 +21,8 @@ pub fn _check_json(
     template: Option<std::path::PathBuf>,
     budget: Option<f64>,
 ) -> PyResult<String> {
-    if physics && !rse_verify::PHYSICS {
-        return Err(PyValueError::new_err(
-            "physics=True: this build of rse has no physics smoke test (built without the `physics` feature)",
-        ));
+    if let Some(why) = rse_verify::physics_unavailable().filter(|_| physics) {
+        return Err(PyValueError::new_err(format!("physics=True: {why}")));
     }
     let budget = budget
         .map(rse_verify::Budget::new)

@@ -482,13 +482,9 @@ impl Terrain {
 
 /// A radius argument: a finite length of 0 m or more, else `ValueError`.
 pub fn check_radius(name: &str, radius: f64) -> PyResult<()> {
-    if radius.is_finite() && radius >= 0.0 {
-        Ok(())
-    } else {
-        Err(pyo3::exceptions::PyValueError::new_err(format!(
-            "{name}: must be a length of 0 m or more, got {radius}"
-        )))
-    }
+    rse_core::spawn::check_radius(radius)
+        .map(drop)
+        .map_err(|why| pyo3::exceptions::PyValueError::new_err(format!("{name}: {why}")))
 }
 
 /// A height field error as `ValueError`.

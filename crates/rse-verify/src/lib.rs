@@ -31,6 +31,6 @@ mod world;
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
 pub use budget::{Budget, BudgetError};
 pub use fault::{Fault, FaultKind, NotAWorld, printable};
-pub use physics::PHYSICS;
+pub use physics::{PHYSICS, physics_unavailable};
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};
 pub use world::{CheckOptions, Estimate, WorldReport, check_world};

@@ -10,6 +10,15 @@ use crate::terrain::ObjMesh;
 /// `true` when this build runs the physics smoke test (feature `physics`).
 pub const PHYSICS: bool = cfg!(feature = "physics");
 
+/// Why this build cannot drop bodies, when it cannot: the one refusal the
+/// command line (`--physics`) and Python (`physics=True`) give before a
+/// check starts, in their own words around it, and the fault a check asked
+/// for physics anyway reports.
+pub fn physics_unavailable() -> Option<&'static str> {
+    (!PHYSICS)
+        .then_some("this build has no physics smoke test (built without the `physics` feature)")
+}
+
 #[cfg(feature = "physics")]
 /// The physics smoke test of each exact collider the world's targets load:
 /// each distinct mesh file (`meshes` holds one of each set of copies) where
@@ -75,7 +84,8 @@ pub(crate) fn run(_: &Manifest, _: Vec<(&str, ObjMesh)>, _: &Terrain, faults: &m
     faults.push(Fault::new(
         None,
         FaultKind::Physics {
-            error: "this build has no physics smoke test (built without the `physics` feature)"
+            error: physics_unavailable()
+                .expect("built without physics")
                 .to_owned(),
         },
     ));

@@ -13,10 +13,8 @@ use crate::ExitStatus;
 use crate::args::CheckArgs;
 
 pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
-    if args.physics && !rse_verify::PHYSICS {
-        anyhow::bail!(
-            "--physics: this rse-gen was built without the physics smoke test (cargo feature `physics`)"
-        );
+    if let Some(why) = rse_verify::physics_unavailable().filter(|_| args.physics) {
+        anyhow::bail!("--physics: {why}");
     }
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
     let templates = match &args.template {

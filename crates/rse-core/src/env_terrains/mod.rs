@@ -135,8 +135,8 @@ impl EnvTerrains {
                 ),
             ));
         }
-        if !(options.spawn_radius.is_finite() && options.spawn_radius >= 0.0) {
-            return Err(bad("spawn_radius", "expected a length of 0 m or more"));
+        if let Err(why) = crate::spawn::check_radius(options.spawn_radius) {
+            return Err(bad("spawn_radius", why));
         }
         let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(scheme.grid(), options)?;
         let mut envs = EnvTerrains {
