@@ -73,15 +73,58 @@ impl Default for AtlasOptions {
     }
 }
 
-impl AtlasOptions {
-    /// The base seed of an atlas of `schemes` when the user names none:
-    /// the first scheme's `# seed:` (0 without schemes), as a batch takes
-    /// its scheme's.
-    pub fn seed_of<'a>(schemes: impl IntoIterator<Item = &'a Scheme>) -> u64 {
-        schemes
-            .into_iter()
-            .next()
-            .map_or(0, |scheme| scheme.globals().seed)
+/// An atlas as a user gives it (ruff's configuration pattern, as
+/// `rse_world::BatchConfig`): the grid of tiles, and `None` for every
+/// setting left to the first scheme (`seed`) or to
+/// [`AtlasOptions::default`]. The command line and Python fill it with
+/// what their user gave; [`resolve`](Self::resolve) is the one place the
+/// rest is decided.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AtlasConfig {
+    /// Tiles along x.
+    pub rows: u32,
+    /// Tiles along y.
+    pub cols: u32,
+    /// Base seed; default the first scheme's `# seed:` (0 without schemes).
+    pub seed: Option<u64>,
+    /// Border cells.
+    pub border: Option<u32>,
+    /// Difficulty of the first row and of the last.
+    pub difficulty: Option<(Difficulty, Difficulty)>,
+    /// Spawn radius, metres.
+    pub spawn_radius: Option<f64>,
+    /// Flat patches per tile.
+    pub flat_patches: Option<u32>,
+    /// A flat patch's radius, metres.
+    pub patch_radius: Option<f64>,
+    /// A flat patch's largest height difference, steps.
+    pub max_step: Option<u16>,
+}
+
+impl AtlasConfig {
+    /// The atlas options for `schemes`: the user's values, the first
+    /// scheme's seed, the defaults for the rest.
+    pub fn resolve<'a>(self, schemes: impl IntoIterator<Item = &'a Scheme>) -> AtlasOptions {
+        let defaults = AtlasOptions::default();
+        let scheme_seed = || {
+            schemes
+                .into_iter()
+                .next()
+                .map_or(0, |scheme| scheme.globals().seed)
+        };
+        AtlasOptions {
+            rows: self.rows,
+            cols: self.cols,
+            seed: self.seed.unwrap_or_else(scheme_seed),
+            border: self.border.unwrap_or(defaults.border),
+            difficulty: self.difficulty.unwrap_or(defaults.difficulty),
+            spawn_radius: self.spawn_radius.unwrap_or(defaults.spawn_radius),
+            patches: PatchOptions {
+                count: self.flat_patches.unwrap_or(defaults.patches.count),
+                radius: self.patch_radius.unwrap_or(defaults.patches.radius),
+                max_step: self.max_step.unwrap_or(defaults.patches.max_step),
+            },
+        }
     }
 }
 

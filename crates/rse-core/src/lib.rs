@@ -55,7 +55,7 @@ pub mod spawn;
 mod stamp;
 mod terrain;
 
-pub use atlas::{Atlas, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
+pub use atlas::{Atlas, AtlasConfig, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use difficulty::{Difficulty, DifficultyError};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,

@@ -6,7 +6,7 @@ use numpy::ndarray::{Array3, Array4};
 use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use rse_core::{AtlasOptions, Difficulty, PatchOptions};
+use rse_core::{AtlasConfig, Difficulty};
 use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 
 use crate::args;
@@ -80,29 +80,26 @@ impl Atlas {
         patch_radius: Option<f64>,
         max_step: Option<u16>,
     ) -> PyResult<Self> {
-        let defaults = AtlasOptions::default();
         let difficulty = match difficulty {
-            None => defaults.difficulty,
+            None => None,
             Some(d) => {
                 let [easiest, hardest] = args::reals("difficulty", &d, "(0.0, 1.0)")?;
-                (difficulty_arg(easiest)?, difficulty_arg(hardest)?)
+                Some((difficulty_arg(easiest)?, difficulty_arg(hardest)?))
             }
         };
         let schemes = named_schemes(py, &schemes)?;
-        let seed = seed.unwrap_or_else(|| AtlasOptions::seed_of(schemes.iter().map(|s| &s.scheme)));
-        let options = AtlasOptions {
+        let options = AtlasConfig {
             rows,
             cols,
             seed,
-            border: border.unwrap_or(defaults.border),
+            border,
             difficulty,
-            spawn_radius: spawn_radius.unwrap_or(defaults.spawn_radius),
-            patches: PatchOptions {
-                count: flat_patches.unwrap_or(defaults.patches.count),
-                radius: patch_radius.unwrap_or(defaults.patches.radius),
-                max_step: max_step.unwrap_or(defaults.patches.max_step),
-            },
-        };
+            spawn_radius,
+            flat_patches,
+            patch_radius,
+            max_step,
+        }
+        .resolve(schemes.iter().map(|s| &s.scheme));
         if let Some(first) = schemes.first() {
             // The map's heights, a terrain per tile, and its patches.
             let grid = first.scheme.grid();

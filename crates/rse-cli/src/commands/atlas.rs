@@ -2,7 +2,7 @@
 //! `atlas.json` listing every tile's world, origin and flat patches.
 
 use anyhow::Context as _;
-use rse_core::{AtlasOptions, PatchOptions};
+use rse_core::AtlasConfig;
 use rse_world::{NamedScheme, Outcome, thread_pool, write_atlas};
 
 use crate::ExitStatus;
@@ -20,21 +20,18 @@ pub fn run(args: &AtlasArgs, overrides: &SchemeOverrides) -> anyhow::Result<Exit
             scheme: super::load_scheme(path, overrides)?,
         });
     }
-    let atlas_options = AtlasOptions {
+    let atlas_options = AtlasConfig {
         rows: args.rows,
         cols: args.cols,
-        seed: args
-            .seed
-            .unwrap_or_else(|| AtlasOptions::seed_of(schemes.iter().map(|s| &s.scheme))),
-        border: args.border,
-        difficulty: args.difficulty,
-        spawn_radius: args.spawn_radius,
-        patches: PatchOptions {
-            count: args.flat_patches,
-            radius: args.patch_radius,
-            max_step: args.max_step,
-        },
-    };
+        seed: args.seed,
+        border: Some(args.border),
+        difficulty: Some(args.difficulty),
+        spawn_radius: Some(args.spawn_radius),
+        flat_patches: Some(args.flat_patches),
+        patch_radius: Some(args.patch_radius),
+        max_step: Some(args.max_step),
+    }
+    .resolve(schemes.iter().map(|s| &s.scheme));
     let templates = args.files.templates()?;
     // An atlas's tiles carry their own difficulties; the map is as drawn.
     let options = args.files.options(rse_core::Difficulty::FULL)?;
