@@ -7,7 +7,9 @@ use pyo3::IntoPyObjectExt as _;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rse_core::{Globals, GlobalsPatch, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
+use rse_core::{
+    GlobalKey, Globals, GlobalsPatch, ObstacleFields, ObstacleKind, Param, SchemeErrorKind,
+};
 
 use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
@@ -157,39 +159,34 @@ impl Obstacle {
 /// turned on get a frame; `pallets=None` turns them off, any other `None`
 /// is not given).
 fn apply_patch(py: Python<'_>, given: &Bound<'_, PyDict>, onto: &Globals) -> PyResult<Globals> {
-    let value = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
-        Ok(given.get_item(key)?.filter(|v| !v.is_none()))
-    };
-    let real = |key: &str| value(key)?.map(|v| args::number(key, &v)).transpose();
-    let patch = GlobalsPatch {
-        size: value("size")?
-            .map(|v| args::whole_pair("size", &v))
-            .transpose()?
-            .map(Into::into),
-        pallets: given
-            .get_item("pallets")?
-            .map(|v| {
-                (!v.is_none())
-                    .then(|| args::whole_pair("pallets", &v).map(Into::into))
-                    .transpose()
-            })
-            .transpose()?,
-        pallet_size: value("pallet_size")?
-            .map(|v| args::whole("pallet_size", &v))
-            .transpose()?,
-        pallet_boundary: value("pallet_boundary")?
-            .map(|v| args::boolean("pallet_boundary", &v))
-            .transpose()?,
-        block_size: real("block_size")?,
-        step_height: real("step_height")?,
-        base: real("base")?,
-        amount: value("amount")?
-            .map(|v| args::whole("amount", &v))
-            .transpose()?,
-        seed: value("seed")?
-            .map(|v| args::whole("seed", &v))
-            .transpose()?,
-    };
+    let mut patch = GlobalsPatch::default();
+    for key in GlobalKey::ALL {
+        let name = key.name();
+        let Some(v) = given.get_item(name)? else {
+            continue;
+        };
+        // `pallets=None` turns pallets off; any other None is not given.
+        if v.is_none() && key != GlobalKey::Pallets {
+            continue;
+        }
+        match key {
+            GlobalKey::Size => patch.size = Some(args::whole_pair(name, &v)?.into()),
+            GlobalKey::Pallets => {
+                patch.pallets = Some(
+                    (!v.is_none())
+                        .then(|| args::whole_pair(name, &v).map(Into::into))
+                        .transpose()?,
+                );
+            }
+            GlobalKey::PalletSize => patch.pallet_size = Some(args::whole(name, &v)?),
+            GlobalKey::PalletBoundary => patch.pallet_boundary = Some(args::boolean(name, &v)?),
+            GlobalKey::BlockSize => patch.block_size = Some(args::number(name, &v)?),
+            GlobalKey::StepHeight => patch.step_height = Some(args::number(name, &v)?),
+            GlobalKey::Base => patch.base = Some(args::number(name, &v)?),
+            GlobalKey::Amount => patch.amount = Some(args::whole(name, &v)?),
+            GlobalKey::Seed => patch.seed = Some(args::whole(name, &v)?),
+        }
+    }
     patch
         .apply(onto)
         .map_err(|e| match (&e.kind, e.field.as_deref()) {
@@ -229,19 +226,21 @@ impl Scheme {
         seed: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let given = PyDict::new(py);
-        for (key, value) in [
-            ("size", size),
-            ("pallets", pallets),
-            ("pallet_size", pallet_size),
-            ("pallet_boundary", pallet_boundary),
-            ("block_size", block_size),
-            ("step_height", step_height),
-            ("base", base),
-            ("amount", amount),
-            ("seed", seed),
-        ] {
+        // The keywords in `GlobalKey::ALL`'s order, as the signature has them.
+        let values = [
+            size,
+            pallets,
+            pallet_size,
+            pallet_boundary,
+            block_size,
+            step_height,
+            base,
+            amount,
+            seed,
+        ];
+        for (key, value) in GlobalKey::ALL.into_iter().zip(values) {
             if let Some(value) = value {
-                given.set_item(key, value)?;
+                given.set_item(key.name(), value)?;
             }
         }
         let globals = apply_patch(py, &given, &Globals::default())?;
@@ -297,15 +296,23 @@ impl Scheme {
         let g = self.inner.globals();
         let dict = PyDict::new(py);
         dict.set_item("obstacles", self.obstacles())?;
-        dict.set_item("size", (g.size[0], g.size[1]))?;
-        dict.set_item("pallets", g.pallets.map(|p| (p.count[0], p.count[1])))?;
-        dict.set_item("pallet_size", g.pallets.map(|p| p.size))?;
-        dict.set_item("pallet_boundary", g.pallets.map(|p| p.boundary))?;
-        dict.set_item("block_size", g.block_size)?;
-        dict.set_item("step_height", g.step_height)?;
-        dict.set_item("base", g.base)?;
-        dict.set_item("amount", g.amount)?;
-        dict.set_item("seed", g.seed)?;
+        for key in GlobalKey::ALL {
+            let value = match key {
+                GlobalKey::Size => (g.size[0], g.size[1]).into_bound_py_any(py)?,
+                GlobalKey::Pallets => g
+                    .pallets
+                    .map(|p| (p.count[0], p.count[1]))
+                    .into_bound_py_any(py)?,
+                GlobalKey::PalletSize => g.pallets.map(|p| p.size).into_bound_py_any(py)?,
+                GlobalKey::PalletBoundary => g.pallets.map(|p| p.boundary).into_bound_py_any(py)?,
+                GlobalKey::BlockSize => g.block_size.into_bound_py_any(py)?,
+                GlobalKey::StepHeight => g.step_height.into_bound_py_any(py)?,
+                GlobalKey::Base => g.base.into_bound_py_any(py)?,
+                GlobalKey::Amount => g.amount.into_bound_py_any(py)?,
+                GlobalKey::Seed => g.seed.into_bound_py_any(py)?,
+            };
+            dict.set_item(key.name(), value)?;
+        }
         Ok(dict)
     }
 
