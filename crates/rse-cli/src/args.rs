@@ -435,19 +435,27 @@ pub struct SchemeOverrides {
     pub base: Option<f64>,
 }
 
+impl From<GlobalsPatch> for SchemeOverrides {
+    /// The flags of a patch (it holds no more than they set: it is made
+    /// from them).
+    fn from(patch: GlobalsPatch) -> Self {
+        SchemeOverrides {
+            size: patch.size,
+            pallets: patch.pallets.map(PalletsFlag),
+            pallet_size: patch.pallet_size,
+            pallet_boundary: patch.pallet_boundary,
+            block_size: patch.block_size,
+            step_height: patch.step_height,
+            base: patch.base,
+        }
+    }
+}
+
 impl SchemeOverrides {
     /// These flags, each unset one taken from `outer` (the same flags given
-    /// before the subcommand).
+    /// before the subcommand): core's `GlobalsPatch::combine`.
     pub fn or(self, outer: SchemeOverrides) -> SchemeOverrides {
-        SchemeOverrides {
-            size: self.size.or(outer.size),
-            pallets: self.pallets.or(outer.pallets),
-            pallet_size: self.pallet_size.or(outer.pallet_size),
-            pallet_boundary: self.pallet_boundary.or(outer.pallet_boundary),
-            block_size: self.block_size.or(outer.block_size),
-            step_height: self.step_height.or(outer.step_height),
-            base: self.base.or(outer.base),
-        }
+        SchemeOverrides::from(self.patch().combine(outer.patch()))
     }
 
     /// The flags as core's patch of the scheme's globals.
@@ -465,18 +473,9 @@ impl SchemeOverrides {
     }
 
     /// The first global flag given, as typed (`--size`), if any.
-    pub fn first_set(&self) -> Option<&'static str> {
-        [
-            (self.size.is_some(), "--size"),
-            (self.pallets.is_some(), "--pallets"),
-            (self.pallet_size.is_some(), "--pallet-size"),
-            (self.pallet_boundary.is_some(), "--pallet-boundary"),
-            (self.block_size.is_some(), "--block-size"),
-            (self.step_height.is_some(), "--step-height"),
-            (self.base.is_some(), "--base"),
-        ]
-        .into_iter()
-        .find_map(|(set, flag)| set.then_some(flag))
+    pub fn first_set(&self) -> Option<String> {
+        let key = *self.patch().given().first()?;
+        Some(format!("--{}", key.name().replace('_', "-")))
     }
 }
 

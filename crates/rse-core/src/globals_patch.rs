@@ -84,6 +84,39 @@ impl GlobalsPatch {
         *self == GlobalsPatch::default()
     }
 
+    /// `self`'s values, each unset one taken from `other` (ruff's
+    /// `combine`: the first given wins).
+    #[must_use]
+    pub fn combine(self, other: GlobalsPatch) -> GlobalsPatch {
+        GlobalsPatch {
+            size: self.size.or(other.size),
+            pallets: self.pallets.or(other.pallets),
+            pallet_size: self.pallet_size.or(other.pallet_size),
+            pallet_boundary: self.pallet_boundary.or(other.pallet_boundary),
+            block_size: self.block_size.or(other.block_size),
+            step_height: self.step_height.or(other.step_height),
+            base: self.base.or(other.base),
+            amount: self.amount.or(other.amount),
+            seed: self.seed.or(other.seed),
+        }
+    }
+
+    /// The keys given, in [`GlobalKey::ALL`] order.
+    pub fn given(&self) -> Vec<GlobalKey> {
+        let set = |key| match key {
+            GlobalKey::Size => self.size.is_some(),
+            GlobalKey::Pallets => self.pallets.is_some(),
+            GlobalKey::PalletSize => self.pallet_size.is_some(),
+            GlobalKey::PalletBoundary => self.pallet_boundary.is_some(),
+            GlobalKey::BlockSize => self.block_size.is_some(),
+            GlobalKey::StepHeight => self.step_height.is_some(),
+            GlobalKey::Base => self.base.is_some(),
+            GlobalKey::Amount => self.amount.is_some(),
+            GlobalKey::Seed => self.seed.is_some(),
+        };
+        GlobalKey::ALL.into_iter().filter(|&key| set(key)).collect()
+    }
+
     /// `onto` with the given values. Pallets turned on keep the size and
     /// frame they had (else [`DEFAULT_PALLET_SIZE`] and a frame); a pallet
     /// setting with pallets off is refused (error field: its key) unless it
