@@ -8,7 +8,7 @@
 //! `cargo bench -p rse-core --bench env_terrains`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rse_core::{Difficulty, EnvLayout, EnvOptions, EnvTerrains, Scheme, generate_at};
+use rse_core::{Difficulty, EnvLayout, EnvOptions, EnvRequest, EnvTerrains, Scheme, generate_at};
 use std::hint::black_box;
 
 const NUM_ENVS: usize = 4096;
@@ -44,9 +44,13 @@ fn bench(c: &mut Criterion) {
         ),
     ] {
         let options = EnvOptions {
-            num_envs: NUM_ENVS,
             layout,
-            ..EnvOptions::default()
+            ..EnvRequest {
+                num_envs: NUM_ENVS,
+                ..EnvRequest::default()
+            }
+            .resolve(&scheme)
+            .expect("valid options")
         };
         let mut envs = EnvTerrains::new(scheme.clone(), options).expect("valid options");
         let (n, rows, cols) = envs.buffer_shape();

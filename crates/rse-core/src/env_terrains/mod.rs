@@ -16,7 +16,6 @@ use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
 use crate::hfield::HFieldError;
 use crate::scheme::Scheme;
-use crate::spawn::DEFAULT_SPAWN_RADIUS;
 use crate::terrain::Terrain;
 
 mod layout;
@@ -58,20 +57,6 @@ pub struct EnvOptions {
     pub difficulty: Difficulty,
     /// Radius of the disc whose highest top an origin stands on, metres.
     pub spawn_radius: f64,
-}
-
-impl Default for EnvOptions {
-    fn default() -> Self {
-        EnvOptions {
-            num_envs: 1,
-            oversample: DEFAULT_ENV_OVERSAMPLE,
-            seed: 0,
-            env_offset: 0,
-            layout: EnvLayout::Slots,
-            difficulty: Difficulty::FULL,
-            spawn_radius: DEFAULT_SPAWN_RADIUS,
-        }
-    }
 }
 
 /// Why per-environment terrains cannot be made or reset as asked. Each
@@ -387,6 +372,16 @@ struct Renewal {
 mod tests {
     use super::*;
 
+    /// Every setting at its one default ([`EnvRequest::resolve`]), one env.
+    fn default_options() -> EnvOptions {
+        EnvRequest {
+            num_envs: 1,
+            ..EnvRequest::default()
+        }
+        .resolve(&scheme())
+        .unwrap()
+    }
+
     fn scheme() -> Scheme {
         Scheme::from_csv(
             "# size: 6x5\n# base: 0.05\ntype,height,angle,x1,y1\nrandom,0..3,,,\npeak,2..4,45,1..4,1..3\n",
@@ -401,7 +396,7 @@ mod tests {
             seed: 7,
             env_offset: 100,
             layout,
-            ..EnvOptions::default()
+            ..default_options()
         };
         EnvTerrains::new(scheme(), options).unwrap()
     }
@@ -565,7 +560,7 @@ mod tests {
         assert_eq!(
             named(with(EnvOptions {
                 num_envs: 0,
-                ..EnvOptions::default()
+                ..default_options()
             })),
             "num_envs"
         );
@@ -573,21 +568,21 @@ mod tests {
             named(with(EnvOptions {
                 num_envs: 2,
                 env_offset: u64::from(u32::MAX),
-                ..EnvOptions::default()
+                ..default_options()
             })),
             "env_offset"
         );
         assert_eq!(
             named(with(EnvOptions {
                 layout: EnvLayout::Tiles { cols: 0, border: 0 },
-                ..EnvOptions::default()
+                ..default_options()
             })),
             "cols"
         );
         assert!(matches!(
             with(EnvOptions {
                 oversample: 0,
-                ..EnvOptions::default()
+                ..default_options()
             }),
             Err(EnvError::HField(_))
         ));
