@@ -4,27 +4,11 @@
 
 use rayon::prelude::*;
 
-use super::{EnvError, EnvOptions, EnvTerrains, bad};
+use super::EnvTerrains;
+use super::options::{EnvError, EnvLayout, EnvOptions, bad};
 use crate::globals::Grid;
 use crate::hfield::{MAX_HFIELD_SAMPLES, field_geometry, hfield_shape_of};
 use crate::terrain::Terrain;
-
-/// Where each environment's samples go.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum EnvLayout {
-    /// One height field per environment, all of one shape: the buffer is
-    /// `num_envs × nrow × ncol`.
-    Slots,
-    /// One shared field of tiles, `cols` along x, rows along y as many as
-    /// needed, `border` cells of height 0 between tiles and around them;
-    /// environment `e`'s tile is row `e / cols`, column `e % cols`.
-    Tiles {
-        /// Tiles along x.
-        cols: u32,
-        /// Cells of height 0 between and around the tiles.
-        border: u32,
-    },
-}
 
 /// One environment's field, `(nrow, ncol)`, and the whole buffer,
 /// `(slots, rows, columns)`.

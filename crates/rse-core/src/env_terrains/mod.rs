@@ -6,24 +6,27 @@
 //! simulators that route a field per world) or one tile per environment
 //! of a single shared field (for those with one terrain for all).
 //!
-//! This module holds the environments' state and episodes; `layout` the
-//! buffer (slots or tiles, its shape, the writes), `request` what a user
-//! asks for, resolved to [`EnvOptions`] with the library's defaults.
+//! This module holds the environments' state and episodes; `options` what
+//! they are made with and their errors, `layout` the buffer (slots or
+//! tiles, its shape, the writes), `request` what a user asks for, resolved
+//! to [`EnvOptions`] with the library's defaults.
 
 use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
-use crate::hfield::HFieldError;
 use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
 mod layout;
+mod options;
 mod request;
 
 use layout::chunks_at;
+use options::bad;
 
-pub use layout::{EnvLayout, env_pool_bytes};
+pub use layout::env_pool_bytes;
+pub use options::{EnvError, EnvLayout, EnvOptions};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
@@ -37,51 +40,6 @@ pub const ENV_BITS: u32 = 32;
 /// `None` when either is `2³²` or more.
 pub fn env_world(env: u64, episode: u64) -> Option<u64> {
     (env >> ENV_BITS == 0 && episode >> ENV_BITS == 0).then_some((episode << ENV_BITS) | env)
-}
-
-/// How the terrains of [`EnvTerrains`] are made.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EnvOptions {
-    /// How many environments: ids `0..num_envs` in this process.
-    pub num_envs: usize,
-    /// Height-field samples per cell along each axis.
-    pub oversample: u32,
-    /// Base seed of every terrain.
-    pub seed: u64,
-    /// The global id of environment 0 (one process per device: each its
-    /// own range of ids).
-    pub env_offset: u64,
-    /// Slots or tiles.
-    pub layout: EnvLayout,
-    /// The starting difficulty of every environment.
-    pub difficulty: Difficulty,
-    /// Radius of the disc whose highest top an origin stands on, metres.
-    pub spawn_radius: f64,
-}
-
-/// Why per-environment terrains cannot be made or reset as asked. Each
-/// names the argument at fault.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum EnvError {
-    /// An argument out of its range.
-    #[error("{argument}: {reason}")]
-    Bad {
-        /// The argument, as the Python API names it.
-        argument: &'static str,
-        /// What is wrong.
-        reason: String,
-    },
-    /// The height field cannot be made.
-    #[error(transparent)]
-    HField(#[from] HFieldError),
-}
-
-fn bad(argument: &'static str, reason: impl Into<String>) -> EnvError {
-    EnvError::Bad {
-        argument,
-        reason: reason.into(),
-    }
 }
 
 /// The terrains of many environments and their height-field samples.

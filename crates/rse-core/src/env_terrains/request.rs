@@ -6,7 +6,7 @@
 
 use std::str::FromStr;
 
-use super::{EnvError, EnvLayout, EnvOptions, bad};
+use super::options::{EnvError, EnvLayout, EnvOptions, bad};
 use crate::difficulty::Difficulty;
 use crate::scheme::Scheme;
 use crate::spawn::DEFAULT_SPAWN_RADIUS;
