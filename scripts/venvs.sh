@@ -9,7 +9,8 @@
 #
 # Venvs that do not depend on each other install in parallel (pip waits on
 # the network and the disk more than on a core), each into a log of its own
-# under target/venv-logs/, shown when it fails. A venv present already
+# under target/venv-logs/ (NAME.PID.log: CI and make test may run this at
+# once), shown when it fails. A venv present already
 # costs nothing. Sourced by the make targets' scripts for `test_install`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -79,7 +80,7 @@ names=()
 venv() {
     local link=$1
     mkdir -p target/venv-logs
-    cached_venv "$@" >"target/venv-logs/${link#.}.log" 2>&1 &
+    cached_venv "$@" >"target/venv-logs/${link#.}.$$.log" 2>&1 &
     pids+=($!)
     names+=("$link")
 }
@@ -88,7 +89,7 @@ wait_all() {
     for i in "${!pids[@]}"; do
         if ! wait "${pids[$i]}"; then
             echo "scripts/venvs.sh: making ${names[$i]} failed:" >&2
-            cat "target/venv-logs/${names[$i]#.}.log" >&2
+            cat "target/venv-logs/${names[$i]#.}.$$.log" >&2
             failed=1
         fi
     done
