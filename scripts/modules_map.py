@@ -11,11 +11,16 @@ drift from the code: tests/python/test_docs.py fails when it is stale.
 from __future__ import annotations
 
 import ast
+import re
 import sys
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 OUT = REPO / "docs" / "modules.md"
+
+
+# A rustdoc link, [`Name`](path::Name): a path in the code, not a page.
+RUSTDOC_LINK = re.compile(r"\[([^\]]+)\]\(([^)]*::[^)]*|[A-Za-z_]+)\)")
 
 
 def first_paragraph(lines: list[str]) -> str:
@@ -26,7 +31,7 @@ def first_paragraph(lines: list[str]) -> str:
                 break
             continue
         paragraph.append(line.strip())
-    return " ".join(paragraph)
+    return RUSTDOC_LINK.sub(r"\1", " ".join(paragraph))
 
 
 def rust_doc(path: Path) -> str:

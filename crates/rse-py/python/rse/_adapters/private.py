@@ -103,9 +103,9 @@ USES = (
         "rse.playground.go1_joystick", "the rough scene whose height field rse replaces"),
     Use("playground", "mujoco_playground._src.locomotion.go1.joystick:Joystick", "_post_init",
         "rse.playground.go1_joystick", "the task's set-up after the model is read"),
-    Use("playground", "mujoco_playground._src.mjx_env:MjxEnv", "_mj_model", "rse.playground.go1_joystick",
+    Use("playground", "mujoco_playground._src.locomotion.go1.base:Go1Env", "_mj_model", "rse.playground.go1_joystick",
         "the host model whose field rse fills", instance=True),
-    Use("playground", "mujoco_playground._src.mjx_env:MjxEnv", "_mjx_model", "rse.playground.go1_joystick",
+    Use("playground", "mujoco_playground._src.locomotion.go1.base:Go1Env", "_mjx_model", "rse.playground.go1_joystick",
         "the device model, put again after the field is filled", instance=True),
     # Gymnasium's Ant: rse.gym's env is a subclass that resets its own way.
     Use("gymnasium", "gymnasium.envs.mujoco.ant_v5:AntEnv", "_reset_noise_scale", "rse.gym.AntStepfieldEnv",
