@@ -70,7 +70,7 @@ USES = (
     # Genesis: no public call rewrites a built terrain (rse.genesis.sync).
     Use("genesis", "genesis.engine.solvers.rigid.collider.collider:Collider", "collider_info", "rse.genesis.sync",
         "the collider's height field and bounds, rewritten in place", instance=True),
-    Use("genesis", "genesis.engine.entities.rigid_entity.rigid_entity:RigidEntity", "_terrain_height_field",
+    Use("genesis", "genesis.engine.entities.rigid_entity.terrain_entity:TerrainEntity", "_terrain_height_field",
         "rse.genesis.sync", "the heights get_terrain_height answers from", instance=True),
     # mjlab: the scene's env count and the ray sensors' state.
     Use("mjlab", "mjlab.sim.sim:Simulation", "_sensor_context", "rse.mjlab.EnvTerrainsEvent",
