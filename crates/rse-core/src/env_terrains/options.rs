@@ -23,7 +23,7 @@ pub enum EnvLayout {
     },
 }
 
-/// How the terrains of [`EnvTerrains`] are made.
+/// How the terrains of [`EnvTerrains`](super::EnvTerrains) are made.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnvOptions {
     /// How many environments: ids `0..num_envs` in this process.
