@@ -4,8 +4,7 @@
 
 use pyo3::exceptions::{PyNotADirectoryError, PyOSError, PyValueError};
 use pyo3::prelude::*;
-use rse_verify::{CheckOptions, DiscoverError, check_paths};
-use rse_world::Templates;
+use rse_verify::{CheckConfig, CheckConfigError, DiscoverError, check_paths};
 
 use crate::batch::pool;
 
@@ -21,26 +20,21 @@ pub fn _check_json(
     template: Option<std::path::PathBuf>,
     budget: Option<f64>,
 ) -> PyResult<String> {
-    if let Some(why) = rse_verify::physics_unavailable().filter(|_| physics) {
-        return Err(PyValueError::new_err(format!("physics=True: {why}")));
-    }
     let budget = budget
         .map(rse_verify::Budget::new)
         .transpose()
-        .map_err(|e| PyValueError::new_err(e.to_string()))?
-        .unwrap_or_default();
-    let templates = match template {
-        Some(dir) => Some(std::sync::Arc::new(
-            Templates::with_overrides(&dir).map_err(|e| PyValueError::new_err(e.to_string()))?,
-        )),
-        None => None,
-    };
-    let options = CheckOptions {
-        physics,
-        strict,
-        templates,
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let options = CheckConfig {
+        physics: Some(physics),
+        strict: Some(strict),
+        template,
         budget,
-    };
+    }
+    .resolve()
+    .map_err(|e| match e {
+        CheckConfigError::NoPhysics(why) => PyValueError::new_err(format!("physics=True: {why}")),
+        CheckConfigError::Template(e) => PyValueError::new_err(e.to_string()),
+    })?;
     let pool = pool(py, jobs)?;
     let report = py
         .detach(|| pool.install(|| check_paths(&paths, &options, &|| {})))

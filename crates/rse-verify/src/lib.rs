@@ -20,6 +20,7 @@
 
 mod batch;
 mod budget;
+mod config;
 mod fault;
 mod folder;
 pub mod limits;
@@ -30,6 +31,7 @@ mod world;
 
 pub use batch::{CheckReport, DiscoverError, check_paths, discover};
 pub use budget::{Budget, BudgetError};
+pub use config::{CheckConfig, CheckConfigError};
 pub use fault::{Fault, FaultKind, NotAWorld, printable};
 pub use physics::{PHYSICS, physics_unavailable};
 pub use terrain::{ObjMesh, mesh_faults_against, read_obj};

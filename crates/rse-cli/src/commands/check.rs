@@ -7,28 +7,24 @@ use std::io::Write as _;
 use indicatif::{ProgressBar, ProgressDrawTarget};
 #[cfg(feature = "physics")]
 use rse_physics::{ColliderKind, PhysicsReport};
-use rse_verify::{CheckOptions, CheckReport, check_paths};
+use rse_verify::{CheckConfig, CheckConfigError, CheckReport, check_paths};
 
 use crate::ExitStatus;
 use crate::args::CheckArgs;
 
 pub fn run(args: &CheckArgs) -> anyhow::Result<ExitStatus> {
-    if let Some(why) = rse_verify::physics_unavailable().filter(|_| args.physics) {
-        anyhow::bail!("--physics: {why}");
+    let options = CheckConfig {
+        physics: Some(args.physics),
+        strict: Some(args.strict),
+        template: args.template.clone(),
+        budget: args.budget,
     }
+    .resolve()
+    .map_err(|e| match e {
+        CheckConfigError::NoPhysics(why) => anyhow::anyhow!("--physics: {why}"),
+        CheckConfigError::Template(e) => e.into(),
+    })?;
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-    let templates = match &args.template {
-        Some(dir) => Some(std::sync::Arc::new(rse_world::Templates::with_overrides(
-            dir,
-        )?)),
-        None => None,
-    };
-    let options = CheckOptions {
-        physics: args.physics,
-        strict: args.strict,
-        templates,
-        budget: args.budget.unwrap_or_default(),
-    };
     let report = check_paths(&args.paths, &options, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let mut out = std::io::stdout().lock();
