@@ -17,12 +17,12 @@ test:
 test-quick:
 	scripts/test-quick.sh
 
-## The RL framework adapters inside the frameworks themselves (mjlab; see docs/frameworks.md).
-## Heavy (torch, MuJoCo 3.11): its own venv, .venv-frameworks, not part of `make test`.
+## The RL framework adapters inside the frameworks themselves (mjlab, Isaac Lab 2.3 and 3.0, Genesis, Newton, Playground; docs/frameworks.md).
+## Heavy (torch, JAX, gigabytes): venvs of their own, kept outside the clone (scripts/venvs.sh); CI runs it after `make test`.
 test-frameworks:
 	scripts/test-frameworks.sh
 
-## Mass generation on a cluster started and stopped by the tests: rse.ray on a two-node Ray cluster (its own venv, .venv-cluster; ~2 min). See docs/guide.md.
+## Mass generation on clusters started and stopped by the tests: Slurm, and rse.ray on a two-node Ray cluster (its own venv, .venv-cluster). See docs/guide.md.
 test-cluster:
 	scripts/test-cluster.sh
 
