@@ -100,9 +100,11 @@ def test_terrain_scan_sees_each_envs_own_terrain(go1) -> None:
         assert flat.sum() >= 10, f"env {e}: too few rays on flat tops"
         assert np.abs(hits[e, flat, 2] - exact[flat]).max() <= 0.01, e
         compared += int(flat.sum())
-        # Another env's tops are not what this env's rays see.
-        other = envs.heights_at([(e + 1) % NUM_ENVS], xy[None])[0]
-        assert np.abs(hits[e, flat, 2] - other[flat]).max() > 0.01, e
+        # Other envs' tops are not what this env's rays see. Under a small
+        # scan two random terrains can agree (both at ground level there:
+        # seen once in CI), so some other env must differ, not the next one.
+        others = [envs.heights_at([o], xy[None])[0] for o in range(NUM_ENVS) if o != e]
+        assert max(np.abs(hits[e, flat, 2] - other[flat]).max() for other in others) > 0.01, e
     assert compared >= 60
 
 
