@@ -11,7 +11,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._adapters import private
+from rse._adapters import contacts, private
 from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.pool import GEOM, POOL, add_env_geom, sync_env_hfields
 from rse._adapters.tiles import SchemeLike, launcher_rank, load
@@ -25,6 +25,10 @@ gives its terrain, which the velocity tasks' contact sensors
 GEOM_GROUP = 0
 """The geom group of the terrain: mjlab's ray sensors (``terrain_scan``,
 the feet's ``TerrainHeightSensorCfg``) see group 0 only ("terrain only")."""
+
+COARSE_GROUP = 3
+"""The geom group of the coarse field the robot's large geoms collide
+with: one the ray sensors do not see and MuJoCo's viewer hides."""
 
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
@@ -41,19 +45,38 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
     fills them), the terrain geom that shows one (``GEOM``, which
     ``rse.mujoco_warp`` routes per world) and a ground plane at the
-    terrain's foot, so that a robot walking off its slot keeps a floor."""
+    terrain's foot, so that a robot walking off its slot keeps a floor.
+
+    With more than one sample a cell, the robot's geoms too large for the
+    exact field (a trunk, a thigh: ``rse._adapters.contacts``) collide with
+    a coarse pool instead (``name + "_coarse"``, one sample a cell, geom
+    ``GEOM + "_coarse"`` in group 3, unseen by the ray sensors), so that no
+    pair passes MuJoCo's 50 prisms."""
     import mujoco
 
     probe = _probe(scheme, oversample)
     nrow, ncol = probe.field_shape
     zeros = np.zeros(nrow * ncol, dtype=np.float32)
-    for e in range(num_envs):
-        spec.add_hfield(name=f"{name}{e}", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
+    spec.add_hfield(name=f"{name}0", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
     # In a body named as mjlab's importer names its terrain, in the group
     # its ray sensors see: the tasks' sensors, rewards and terms find it.
     body = spec.worldbody.add_body(name=BODY)
-    add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
-    body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
+    exact = add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
+    ground = body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
+    k = contacts.oversample_of(probe)
+    # With one field in it, so that compiling it (the sensors name the
+    # terrain body) stays cheap.
+    small, large = contacts.split_geoms(spec, {exact.name, ground.name}, probe.terrain(0).block_size / k) if k > 1 else ([], [])
+    for e in range(1, num_envs):
+        spec.add_hfield(name=f"{name}{e}", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
+    if not large:
+        return
+    cy, cx = probe.terrain(0).heights.shape
+    coarse_zeros = np.zeros(cy * cx, dtype=np.float32)
+    for e in range(num_envs):
+        spec.add_hfield(name=f"{name}{contacts.COARSE}{e}", nrow=cy, ncol=cx, size=contacts.coarse_size(probe), userdata=coarse_zeros)
+    coarse = add_env_geom(spec, probe, f"{name}{contacts.COARSE}0", name=GEOM + contacts.COARSE, group=COARSE_GROUP, body=body)
+    contacts.route_geoms(small, large, exact, coarse, ground)
 
 
 class EnvTerrainsEvent:
@@ -95,6 +118,7 @@ class EnvTerrainsEvent:
         sim = env.sim
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
+        self._coarse = _CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
         self._copy_out(list(range(env.num_envs)))
 
     def _copy_out(self, ids: list[int]) -> None:
@@ -108,6 +132,7 @@ class EnvTerrainsEvent:
         sim = self._env.sim
         sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
         sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
+        self._coarse.sync(sim.wp_model, sim.mj_model, self.envs, ids)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
@@ -141,6 +166,40 @@ class EnvTerrainsEvent:
         ids = _ids(env, env_ids)
         self.envs.reset(ids)
         self._copy_out(ids)
+
+
+class _CoarsePool:
+    """The coarse fields ``add_pool`` made for the robot's large geoms, if
+    any: their geom routed to env ``w``'s coarse field in world ``w``, and
+    the reset envs' coarse samples copied in beside the exact ones."""
+
+    def __init__(self, m: Any, mjm: Any, envs: EnvTerrains, name: str) -> None:
+        import mujoco
+        import warp as wp
+
+        self.gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, GEOM + contacts.COARSE)
+        if self.gid < 0:
+            return
+        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}{contacts.COARSE}0")
+        self.adr = np.asarray(mjm.hfield_adr[first : first + envs.num_envs], dtype=np.int64)
+        dataid = m.geom_dataid.numpy()
+        dataid[:, self.gid] = first + np.arange(envs.num_envs)
+        wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+
+    def sync(self, m: Any, mjm: Any, envs: EnvTerrains, ids: list[int]) -> None:
+        import warp as wp
+
+        if self.gid < 0:
+            return
+        contacts.copy_coarse(mjm.hfield_data, envs, ids, self.adr)
+        if m.hfield_data.device.is_cpu:
+            contacts.copy_coarse(m.hfield_data.numpy(), envs, ids, self.adr)
+            return
+        samples = contacts.coarse_samples(envs, ids).reshape(-1)
+        size = samples.size // max(len(ids), 1)
+        source: Any = wp.array(samples, dtype=float, device="cpu", copy=False)
+        for i, e in enumerate(ids):
+            wp.copy(m.hfield_data, source, dest_offset=int(self.adr[e]), src_offset=i * size, count=size)
 
 
 class _RayMeshes:
@@ -343,6 +402,16 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
 
 
+def _terrain_colliders(scene: Any) -> int:
+    """How many geoms of the scene's entities collide with a plain terrain
+    geom (``contype`` or ``conaffinity`` bit 1), from their specs."""
+    count = 0
+    for entity in (getattr(scene, "entities", None) or {}).values():
+        spec = entity.spec_fn()
+        count += sum(1 for g in spec.geoms if (g.contype | g.conaffinity) & 1)
+    return count
+
+
 def _func_name(term: Any) -> str:
     return getattr(getattr(term, "func", None), "__name__", "")
 
@@ -392,7 +461,15 @@ def use_env_terrains(
         )
     if BODY in (getattr(scene, "entities", None) or {}):
         raise ValueError(f"env_cfg.scene.entities[{BODY!r}]: rse's terrain body is named {BODY!r}; rename the entity")
-    load(scheme)  # a bad scheme fails here, not when the scene is built
+    if isinstance(scene.spec_fn, _PoolSpec):
+        raise ValueError("env_cfg: has rse's terrains already (use_env_terrains was called on it once)")
+    # Bad arguments fail here, not when the env is built: the same
+    # arguments on one env.
+    EnvTerrains(load(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    if env_cfg.sim.nconmax is not None:
+        # Each geom that can touch the terrain is a broadphase pair with its
+        # env's field (which spans the slot) and with the ground plane.
+        env_cfg.sim.nconmax += 2 * _terrain_colliders(scene)
     scene.terrain = None
     earlier = scene.spec_fn
     scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
