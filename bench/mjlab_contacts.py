@@ -141,10 +141,11 @@ def main() -> None:
     parser.add_argument("--play", action="store_true", help="the play config (one long episode)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--spawn-radius", type=float, default=None)
+    parser.add_argument("--rse-only", action="store_true", help="leave out mjlab's terrain (one env in memory at 4096)")
     args = parser.parse_args()
 
     task = f"Mjlab-Velocity-Rough-Unitree-{args.task}"
-    runs: list[tuple[str, bool, Optional[int]]] = [("mjlab's terrain", False, None)]
+    runs: list[tuple[str, bool, Optional[int]]] = [] if args.rse_only else [("mjlab's terrain", False, None)]
     for k in args.oversample or [None]:
         runs.append((f"rse, oversample {k if k is not None else 'default'}", True, k))
     print(

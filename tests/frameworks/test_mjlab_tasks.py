@@ -209,6 +209,31 @@ def test_the_rse_tasks_are_in_mjlabs_registry() -> None:
             assert "terrain_levels" not in cfg.curriculum
 
 
+def test_the_registered_task_starts_spread_over_the_easy_levels_as_mjlabs_does() -> None:
+    """mjlab starts each env at a level drawn from 0 … 5 of its 10 rows
+    (``max_init_terrain_level``); the rse task starts each at difficulty
+    level/9 for such a level, the same for the same seed, and its
+    curriculum moves one level at a time."""
+    mjlab_terrain = load_env_cfg("Mjlab-Velocity-Rough-Unitree-Go1").scene.terrain
+    assert (mjlab_terrain.max_init_terrain_level, mjlab_terrain.terrain_generator.num_rows) == (5, 10)
+    cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1")
+    cfg.scene.num_envs = 24
+    assert cfg.curriculum["rse_terrain_difficulty"].params["step"] == pytest.approx(1 / 9)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        d = env_terrains(env).difficulty
+        levels = d * 9
+        np.testing.assert_allclose(levels, np.round(levels), atol=1e-9)
+        assert set(np.round(levels).astype(int)) <= set(range(6)) and len(set(np.round(levels))) >= 4
+        assert [env_terrains(env).terrain(e).difficulty for e in range(24)] == pytest.approx(list(d))
+    finally:
+        env.close()
+    # Given explicitly, one difficulty for all; out of range, refused at the call.
+    cfg = load_env_cfg("Mjlab-Velocity-Rough-Unitree-Go1")
+    with pytest.raises(ValueError, match="max_init_terrain_level"):
+        use_env_terrains(cfg, SCHEME, max_init_terrain_level=10)
+
+
 def test_the_g1_task_builds_with_the_envs_asked_for_and_scans_its_own_terrain() -> None:
     """mjlab's G1 rough task on rse's pool: a config whose env count is set
     after ``use_env_terrains`` builds that many fields, and the G1's
@@ -220,7 +245,7 @@ def test_the_g1_task_builds_with_the_envs_asked_for_and_scans_its_own_terrain() 
     try:
         model = env.sim.mj_model
         fields = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_HFIELD, h) for h in range(model.nhfield)]
-        assert [f for f in fields if f.startswith("rse_env")] == ["rse_env0", "rse_env1", "rse_env2"]
+        assert [f for f in fields if f.startswith("rse_env")] == [f"rse_env{s}{e}" for s in ("", "_coarse") for e in range(3)]
         env.reset()
         step(env, 2)
         assert scan_matches(env, min_rays=5) >= 30

@@ -103,15 +103,23 @@ class EnvTerrainsEvent:
 
         p = dict(cfg.params)
         self.name = p.get("name", POOL)
+        scheme = load(p["scheme"])
+        offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
+        spread = p.get("initial_levels") if p.get("difficulty") is None else None
+        difficulty = p.get("difficulty")
         self.envs = EnvTerrains(
-            load(p["scheme"]),
+            scheme,
             env.num_envs,
             oversample=p.get("oversample"),
             seed=p.get("seed"),
-            difficulty=p.get("difficulty"),
-            env_offset=launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"],
+            difficulty=0.0 if spread is not None else difficulty,
+            env_offset=offset,
             spawn_radius=p.get("spawn_radius"),
         )
+        if spread is not None:
+            # Every env's first terrain at its own starting level.
+            seed = scheme.seed if p.get("seed") is None else p["seed"]
+            self.envs.reset(list(range(env.num_envs)), difficulty=initial_difficulty(spread, env.num_envs, offset, seed))
         self._env = env
         self._rays_of: Any = None
         self._ray_meshes: Optional[_RayMeshes] = None
@@ -248,6 +256,18 @@ class _RayMeshes:
             mesh = self.meshes[e]
             mesh.points.assign(self._points(envs, e))
             mesh.refit()
+
+
+def initial_difficulty(spread: tuple[int, int], num_envs: int, env_offset: int, seed: int) -> np.ndarray:
+    """mjlab's start (``TerrainEntityCfg.max_init_terrain_level``) in rse's
+    difficulty: ``spread`` is ``(max_init_level, levels)``; each env starts
+    at a level drawn uniformly from 0 … ``max_init_level``, level ``i``
+    being difficulty ``i / (levels - 1)``, as mjlab's rows are. Drawn by
+    global env id (``env_offset`` on) from ``seed``: the same on every
+    machine and for any split of the envs over processes."""
+    max_init, levels = spread
+    drawn = np.random.default_rng([seed, 0x52534531]).integers(0, max_init + 1, size=env_offset + num_envs)
+    return drawn[env_offset:] / max(levels - 1, 1)
 
 
 def launcher_env_offset(num_envs: int) -> int:
@@ -402,6 +422,29 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
 
 
+def _initial_levels(terrain: Any, max_init: Optional[int], levels: Optional[int]) -> Optional[tuple[int, int]]:
+    """``(max_init_terrain_level, terrain_levels)``: the arguments, else
+    the replaced mjlab terrain's (``max_init_terrain_level``, clamped to
+    its generator's ``num_rows`` as mjlab clamps it); None when neither
+    says. Arguments out of range are refused."""
+    if levels is not None and levels < 2:
+        raise ValueError(f"terrain_levels: {levels}; expected 2 or more levels")
+    if max_init is not None and not 0 <= max_init < (levels or 2**31):
+        raise ValueError(f"max_init_terrain_level: {max_init}; expected 0 … terrain_levels - 1")
+    generator = getattr(terrain, "terrain_generator", None)
+    if levels is None and generator is not None:
+        levels = max(int(generator.num_rows), 2)
+    if max_init is None:
+        max_init = getattr(terrain, "max_init_terrain_level", None)
+        if max_init is not None and levels is not None:
+            max_init = min(max_init, levels - 1)
+    if max_init is None or levels is None:
+        return None
+    if max_init >= levels:
+        raise ValueError(f"max_init_terrain_level: {max_init}; expected 0 … {levels - 1} (terrain_levels - 1)")
+    return (max_init, levels)
+
+
 def _terrain_colliders(scene: Any) -> int:
     """How many geoms of the scene's entities collide with a plain terrain
     geom (``contype`` or ``conaffinity`` bit 1), from their specs."""
@@ -426,6 +469,8 @@ def use_env_terrains(
     spawn_radius: Optional[float] = None,
     env_offset: Optional[int] = None,
     curriculum: Optional[bool] = None,
+    max_init_terrain_level: Optional[int] = None,
+    terrain_levels: Optional[int] = None,
     term: str = TERM,
 ) -> None:
     """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
@@ -447,7 +492,14 @@ def use_env_terrains(
 
     and adds ``EnvTerrainsEvent`` as the first reset event ``term``. Every
     other term is kept. A config rse cannot serve is refused with a
-    ``ValueError`` naming the field."""
+    ``ValueError`` naming the field.
+
+    Without a ``difficulty``, the envs start as mjlab's do: each at a level
+    drawn from 0 … ``max_init_terrain_level`` of ``terrain_levels`` (level
+    ``i`` is difficulty ``i / (terrain_levels - 1)``), both read from the
+    terrain it replaces (the velocity tasks: 5 of 10) unless given; the
+    curriculum then moves an env one level (``1 / (terrain_levels - 1)``)
+    at a time. With neither, every env starts at difficulty 1."""
     from mjlab.managers.curriculum_manager import CurriculumTermCfg
     from mjlab.managers.event_manager import EventTermCfg
     from mjlab.managers.termination_manager import TerminationTermCfg
@@ -466,6 +518,7 @@ def use_env_terrains(
     # Bad arguments fail here, not when the env is built: the same
     # arguments on one env.
     EnvTerrains(load(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    spread = _initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
     if env_cfg.sim.nconmax is not None:
         # Each geom that can touch the terrain is a broadphase pair with its
         # env's field (which spans the slot) and with the ground plane.
@@ -473,7 +526,15 @@ def use_env_terrains(
     scene.terrain = None
     earlier = scene.spec_fn
     scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
-    params = dict(scheme=scheme, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    params = dict(
+        scheme=scheme,
+        oversample=oversample,
+        seed=seed,
+        difficulty=difficulty,
+        spawn_radius=spawn_radius,
+        env_offset=env_offset,
+        initial_levels=spread,
+    )
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
     env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
     levels = {k: c for k, c in env_cfg.curriculum.items() if _func_name(c) == "terrain_levels_vel"}
@@ -483,8 +544,9 @@ def use_env_terrains(
         curriculum = bool(levels)
     if curriculum:
         command = next((c.params.get("command_name") for c in levels.values()), None)
+        step = 0.1 if spread is None else 1.0 / max(spread[1] - 1, 1)
         env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(
-            func=terrain_difficulty, params={"term": term, "command_name": command}
+            func=terrain_difficulty, params={"term": term, "command_name": command, "step": step}
         )
     for k, t in list(env_cfg.terminations.items()):
         if _func_name(t) == "out_of_terrain_bounds":

@@ -93,7 +93,8 @@ def split_geoms(spec: Any, terrain: set[str], spacing: float) -> tuple[list[Any]
     (``contype`` and ``conaffinity`` 1) take part. Compiles ``spec`` once
     to read the geoms' sizes."""
     model = spec.compile()
-    small, large = [], []
+    small: list[Any] = []
+    large: list[Any] = []
     for geom in spec.geoms:
         if geom.name in terrain or not ((geom.contype | geom.conaffinity) & 1):
             continue
