@@ -170,11 +170,13 @@ def test_the_curriculum_moves_the_difficulty_of_the_envs_that_reset(go1) -> None
     step(go1, 5)
     # Every robot was asked to walk 1 m/s and stands near its spawn point:
     # it walked less than half of that, so the envs that reset go down a
-    # step (mjlab's terrain-levels rule), the others keep theirs.
+    # level (mjlab's terrain-levels rule; one of its 10 rows: 1/9), the
+    # others keep theirs.
     go1.command_manager.get_command("twist")[:, 0] = 1.0
     go1.reset(env_ids=torch.tensor([0, 3]))
-    assert np.allclose(envs.difficulty, [0.4, 0.5, 0.5, 0.4]), envs.difficulty
-    assert envs.terrain(0).difficulty == pytest.approx(0.4)
+    down = 0.5 - 1 / 9
+    assert np.allclose(envs.difficulty, [down, 0.5, 0.5, down]), envs.difficulty
+    assert envs.terrain(0).difficulty == pytest.approx(down)
 
 
 def scan_matches(env: ManagerBasedRlEnv, min_rays: int) -> int:
