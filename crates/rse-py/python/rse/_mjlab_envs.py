@@ -106,13 +106,12 @@ class EnvTerrainsEvent:
         scheme = load(p["scheme"])
         offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
         spread = p.get("initial_levels") if p.get("difficulty") is None else None
-        difficulty = p.get("difficulty")
         self.envs = EnvTerrains(
             scheme,
             env.num_envs,
             oversample=p.get("oversample"),
             seed=p.get("seed"),
-            difficulty=0.0 if spread is not None else difficulty,
+            difficulty=0.0 if spread is not None else p.get("difficulty"),
             env_offset=offset,
             spawn_radius=p.get("spawn_radius"),
         )
@@ -199,13 +198,14 @@ class _CoarsePool:
 
         if self.gid < 0:
             return
-        contacts.copy_coarse(mjm.hfield_data, envs, ids, self.adr)
+        # Gathered once, for the host model and the device's.
+        samples = contacts.coarse_samples(envs, ids)
+        contacts.copy_coarse(mjm.hfield_data, samples, ids, self.adr)
         if m.hfield_data.device.is_cpu:
-            contacts.copy_coarse(m.hfield_data.numpy(), envs, ids, self.adr)
+            contacts.copy_coarse(m.hfield_data.numpy(), samples, ids, self.adr)
             return
-        samples = contacts.coarse_samples(envs, ids).reshape(-1)
-        size = samples.size // max(len(ids), 1)
-        source: Any = wp.array(samples, dtype=float, device="cpu", copy=False)
+        size = samples[0].size if len(ids) else 0
+        source: Any = wp.array(samples.reshape(-1), dtype=float, device="cpu", copy=False)
         for i, e in enumerate(ids):
             wp.copy(m.hfield_data, source, dest_offset=int(self.adr[e]), src_offset=i * size, count=size)
 

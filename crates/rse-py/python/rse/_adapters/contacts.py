@@ -118,11 +118,11 @@ def route_geoms(small: list[Any], large: list[Any], exact: Any, coarse: Any, gro
     ground.contype, ground.conaffinity = 0, SMALL_BIT | LARGE_BIT
 
 
-def copy_coarse(data: np.ndarray, envs: EnvTerrains, ids: list[int], adr: np.ndarray) -> None:
-    """Copies the coarse samples of ``ids`` into ``data`` (a model's
-    ``hfield_data``, or a numpy view of a Warp model's on the CPU) at the
-    coarse fields' addresses ``adr`` (one per env)."""
-    samples = coarse_samples(envs, ids).reshape(len(ids), -1)
-    size = samples.shape[1]
-    for row, e in zip(samples, ids):
+def copy_coarse(data: np.ndarray, samples: np.ndarray, ids: list[int], adr: np.ndarray) -> None:
+    """Copies ``samples`` (``coarse_samples`` of ``ids``) into ``data`` (a
+    model's ``hfield_data``, or a numpy view of a Warp model's on the CPU)
+    at the coarse fields' addresses ``adr`` (one per env)."""
+    rows = samples.reshape(len(ids), -1)
+    size = rows.shape[1]
+    for row, e in zip(rows, ids):
         data[int(adr[e]) : int(adr[e]) + size] = row
