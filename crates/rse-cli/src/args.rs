@@ -60,6 +60,10 @@ pub enum Command {
     /// Check world folders (or batch folders of them): files, hashes, reproducibility, meshes, physics.
     #[command(after_help = examples::CHECK)]
     Check(CheckArgs),
+    /// Check a scheme as a curriculum: per difficulty level, the share of flat worlds, mean height, mean and
+    /// largest step, steepest slope and distinct worlds over many draws; exit 1 on a dead or non-rising level.
+    #[command(name = "check-curriculum", after_help = examples::CHECK_CURRICULUM)]
+    CheckCurriculum(CheckCurriculumArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
     #[command(after_help = examples::EDIT)]
     Edit(EditArgs),
@@ -129,6 +133,31 @@ pub struct CheckArgs {
     /// available per world checked at once) [default: 1].
     #[arg(long, value_name = "F", allow_negative_numbers = true)]
     pub budget: Option<rse_verify::Budget>,
+}
+
+#[derive(Debug, Args)]
+pub struct CheckCurriculumArgs {
+    /// The scheme CSV file.
+    pub scheme: PathBuf,
+
+    /// Difficulty levels from 0 to 1, evenly spaced (mjlab's terrain levels: 10).
+    #[arg(long, value_name = "N", default_value_t = rse_core::DEFAULT_LEVELS)]
+    pub levels: u32,
+
+    /// Worlds drawn per level (the same draws at every level).
+    #[arg(long, value_name = "N", default_value_t = rse_core::DEFAULT_DRAWS)]
+    pub draws: u32,
+
+    /// Base seed of the draws [default: the scheme's `seed`, else 0].
+    #[arg(long, value_name = "B")]
+    pub seed: Option<u64>,
+
+    /// Print the report as JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
 }
 
 #[derive(Debug, Args)]

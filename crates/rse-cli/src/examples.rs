@@ -61,6 +61,14 @@ Examples:
   # A JSON report for scripts
   rse-gen check worlds --json > report.json";
 
+pub const CHECK_CURRICULUM: &str = "\
+Examples:
+  # Ten levels (mjlab's), 50 worlds each: exit 1 if a level is dead or no higher than the one below
+  rse-gen check-curriculum schemes/curriculum.csv
+
+  # More draws, another seed, as JSON
+  rse-gen check-curriculum schemes/random.csv --draws 200 --seed 7 --json";
+
 pub const EDIT: &str = "\
 Examples:
   # Edit a scheme in the browser (Ctrl-C stops the editor)

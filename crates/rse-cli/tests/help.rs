@@ -8,7 +8,7 @@ use std::process::Command;
 use super::repo;
 
 /// Every help page: the top level, each subcommand, `templates export`.
-const PAGES: [&[&str]; 11] = [
+const PAGES: [&[&str]; 12] = [
     &[],
     &["heightmap"],
     &["preview"],
@@ -17,6 +17,7 @@ const PAGES: [&[&str]; 11] = [
     &["batch"],
     &["atlas"],
     &["check"],
+    &["check-curriculum"],
     &["edit"],
     &["templates"],
     &["templates", "export"],

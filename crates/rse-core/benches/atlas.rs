@@ -41,6 +41,7 @@ fn main() {
         seed: 0,
         border: 0,
         difficulty: (Difficulty::new(0.0).unwrap(), Difficulty::FULL),
+        rule: rse_core::DifficultyRule::CURRENT,
         spawn_radius: 0.3,
         patches: PatchOptions {
             count: 10,

@@ -5,8 +5,8 @@
 
 use rayon::prelude::*;
 
-use crate::difficulty::Difficulty;
-use crate::generate::generate_at;
+use crate::difficulty::{Difficulty, DifficultyRule};
+use crate::generate::generate_by;
 use crate::global_key::GlobalKey;
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
@@ -49,6 +49,9 @@ pub struct AtlasOptions {
     pub border: u32,
     /// Difficulty of the first row and of the last.
     pub difficulty: (Difficulty, Difficulty),
+    /// How the rows' scaled heights are rounded: today's rule, or the one
+    /// an older atlas's record names.
+    pub rule: DifficultyRule,
     /// Radius in metres of the disc around a tile's centre whose highest
     /// top is the origin's z.
     pub spawn_radius: f64,
@@ -67,6 +70,7 @@ impl Default for AtlasOptions {
                 Difficulty::new(0.0).expect("0 is a difficulty"),
                 Difficulty::FULL,
             ),
+            rule: DifficultyRule::CURRENT,
             spawn_radius: DEFAULT_SPAWN_RADIUS,
             patches: PatchOptions::default(),
         }
@@ -118,6 +122,7 @@ impl AtlasConfig {
             seed: self.seed.unwrap_or_else(scheme_seed),
             border: self.border.unwrap_or(defaults.border),
             difficulty: self.difficulty.unwrap_or(defaults.difficulty),
+            rule: defaults.rule,
             spawn_radius: self.spawn_radius.unwrap_or(defaults.spawn_radius),
             patches: PatchOptions {
                 count: self.flat_patches.unwrap_or(defaults.patches.count),
@@ -300,7 +305,7 @@ impl AtlasOptions {
 
 /// Builds the atlas of `schemes` (the scheme of column `c` is
 /// `schemes[c % len]`). Tile `(r, c)` is exactly
-/// `generate_at(scheme, seed, r·cols + c, lo + (hi − lo)·r/(rows − 1))`.
+/// `generate_by(scheme, seed, r·cols + c, lo + (hi − lo)·r/(rows − 1), rule)`.
 /// The same on any number of threads.
 pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, AtlasError> {
     options.validate()?;
@@ -353,7 +358,13 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
             let scheme = col as usize % schemes.len();
             let difficulty = Difficulty::lerp(lo, hi, row, options.rows);
             let index = u64::from(i);
-            let terrain = generate_at(&schemes[scheme], options.seed, index, difficulty);
+            let terrain = generate_by(
+                &schemes[scheme],
+                options.seed,
+                index,
+                difficulty,
+                options.rule,
+            );
             let region = Region {
                 x0: options.border + row * (tile_grid.nx + options.border),
                 y0: options.border + col * (tile_grid.ny + options.border),

@@ -1,6 +1,6 @@
 //! Difficulty: a factor in `[0, 1]` that scales every obstacle height of a
-//! world while keeping its layout, for curricula (the rule in
-//! `docs/schemes.md`, "Difficulty").
+//! world while keeping its layout, for curricula, and the rule that rounds
+//! the scaled heights to whole steps (`docs/schemes.md`, "Difficulty").
 
 use std::fmt;
 use std::str::FromStr;
@@ -8,12 +8,13 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 /// A difficulty `D`, finite and `0 ≤ D ≤ 1`. A non-frame cell of height
-/// `h` steps becomes `floor(D·h + 0.5)` steps; frames stay one step.
+/// `h` steps becomes `floor(D·h + u)` steps, `u` drawn once per world
+/// ([`DifficultyRule::Drawn`]); frames stay one step.
 ///
 /// `D = 1` leaves every height as it is, bit for bit; `D = 0` flattens
 /// every obstacle. The same `(seed, index)` at two difficulties draws the
-/// same obstacles, so a harder world is the easier one with taller blocks
-/// (`floor(D·h + 0.5)` is monotone in both `D` and `h`).
+/// same obstacles and the same `u`, so a harder world is the easier one
+/// with taller blocks (`floor(D·h + u)` is monotone in both `D` and `h`).
 #[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Serialize, Deserialize)]
 #[serde(try_from = "f64", into = "f64")]
 pub struct Difficulty(f64);
@@ -55,11 +56,18 @@ impl Difficulty {
         self.0 >= 1.0
     }
 
-    /// A height of `h` steps at this difficulty: `floor(D·h + 0.5)`.
+    /// A height of `h` steps at this difficulty, rounded half up:
+    /// `floor(D·h + 0.5)` ([`DifficultyRule::Nearest`]).
     pub fn scale(self, h: u16) -> u16 {
+        self.scale_offset(h, 0.5)
+    }
+
+    /// A height of `h` steps at this difficulty, rounded down after adding
+    /// `offset` (`0 ≤ offset < 1`): `floor(D·h + offset)`.
+    pub fn scale_offset(self, h: u16, offset: f64) -> u16 {
         // `D·h ≤ h ≤ 65535`, so the result fits; at D = 1 it is `h` exactly
-        // (`h + 0.5` is exact in f64 and floors to `h`).
-        (self.0 * f64::from(h) + 0.5).floor() as u16
+        // when `h + offset` is exact, which [`unit_offset`] makes sure of.
+        (self.0 * f64::from(h) + offset).floor() as u16
     }
 
     /// The `i`-th of `n` evenly spaced difficulties from `lo` to `hi`:
@@ -78,6 +86,45 @@ impl Difficulty {
         };
         Difficulty(d.clamp(0.0, 1.0))
     }
+}
+
+/// How a scaled height `D·h` becomes whole steps. Recorded in `rse.json`
+/// (`"difficulty_rule"`) beside a difficulty below 1, so `check` rebuilds a
+/// world by the rule it was written with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DifficultyRule {
+    /// `floor(D·h + 0.5)`: the rule of worlds written before the drawn
+    /// rule (their `rse.json` names no rule). Dead levels: a scheme of
+    /// 1-step blocks is flat at every `D < 0.5`.
+    Nearest,
+    /// `floor(D·h + u)`, `u` one draw per world from its own stream (after
+    /// the obstacles, so they are the same at every `D`), and the world's
+    /// highest cell (the first in row order; frames aside) at least one
+    /// step whenever `D > 0`. Over many worlds a cell's expected height is
+    /// exactly `D·h`, so the mean height rises with `D` without a dead zone,
+    /// and no world of a non-flat draw is flat above `D = 0`.
+    Drawn,
+}
+
+impl DifficultyRule {
+    /// The rule worlds are written with today.
+    pub const CURRENT: DifficultyRule = DifficultyRule::Drawn;
+
+    /// Its name in `rse.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DifficultyRule::Nearest => "nearest",
+            DifficultyRule::Drawn => "drawn",
+        }
+    }
+}
+
+/// A rounding offset in `[0, 1)` from 32 random bits: a multiple of `2⁻³²`,
+/// so `h + offset` is exact in f64 for every `h ≤ 65535` (16 + 32 bits)
+/// and `floor(1·h + offset)` is `h`.
+pub(crate) fn unit_offset(bits: u32) -> f64 {
+    f64::from(bits) / 4_294_967_296.0
 }
 
 impl Default for Difficulty {
@@ -144,6 +191,17 @@ mod tests {
         for h in 0..=300u16 {
             for pair in ds.windows(2) {
                 assert!(pair[0].scale(h) <= pair[1].scale(h), "h {h} {pair:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn full_keeps_every_height_at_any_offset() {
+        for bits in [0, 1, u32::MAX / 2, u32::MAX] {
+            let offset = unit_offset(bits);
+            assert!(offset < 1.0);
+            for h in [0, 1, 2, 7, 1000, u16::MAX] {
+                assert_eq!(Difficulty::FULL.scale_offset(h, offset), h);
             }
         }
     }

@@ -1,6 +1,7 @@
 //! Generating one world: draw the ranges, apply the obstacles in order, frame the pallets.
 
-use crate::difficulty::Difficulty;
+use crate::difficulty::{Difficulty, DifficultyRule, unit_offset};
+use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::limits::DEFAULT_SIGMA;
 use crate::obstacle::{DrawnObstacle, Obstacle, ObstacleKind};
@@ -27,18 +28,33 @@ pub fn generate(scheme: &Scheme, seed: u64, index: u64) -> Terrain {
 }
 
 /// World `index` of seed `seed` at `difficulty`: the world [`generate`]
-/// makes, with every non-frame height `h` scaled to `floor(D·h + 0.5)`
-/// steps. The obstacles drawn are the same at every difficulty.
+/// makes, with every non-frame height `h` scaled to `D·h` and rounded by
+/// today's rule ([`DifficultyRule::Drawn`]). The obstacles drawn are the
+/// same at every difficulty.
 ///
 /// ```
 /// use rse_core::{Difficulty, Scheme, generate_at};
 /// let scheme = Scheme::from_csv("# size: 5x5\ntype,height,angle,x1,y1\npeak,4,45,2,2\n", None)?;
 /// let half = generate_at(&scheme, 0, 0, Difficulty::new(0.5).unwrap());
-/// assert_eq!(half.heightmap().get(2, 2), 2);
-/// assert_eq!(half.heightmap().get(3, 2), 2); // 3 steps: floor(1.5 + 0.5)
+/// assert_eq!(half.heightmap().get(2, 2), 2); // 4 steps: 2 at any offset
+/// let low = generate_at(&scheme, 0, 0, Difficulty::new(0.01).unwrap());
+/// assert_eq!(low.heightmap().get(2, 2), 1); // the highest cell stays
 /// # Ok::<(), rse_core::SchemeError>(())
 /// ```
 pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficulty) -> Terrain {
+    generate_by(scheme, seed, index, difficulty, DifficultyRule::CURRENT)
+}
+
+/// World `index` of seed `seed` at `difficulty`, its heights rounded by
+/// `rule`: [`generate_at`] for worlds written today, and for rebuilding a
+/// world written by an older rule (its `rse.json` says which).
+pub fn generate_by(
+    scheme: &Scheme,
+    seed: u64,
+    index: u64,
+    difficulty: Difficulty,
+    rule: DifficultyRule,
+) -> Terrain {
     let globals = scheme.globals();
     let grid = scheme.grid();
     let units = Units {
@@ -55,10 +71,18 @@ pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficult
     }
     if !difficulty.is_full() {
         // Before the frames, which stay one step at any difficulty.
-        heightmap
-            .cells_mut()
-            .iter_mut()
-            .for_each(|h| *h = difficulty.scale(*h));
+        match rule {
+            DifficultyRule::Nearest => heightmap
+                .cells_mut()
+                .iter_mut()
+                .for_each(|h| *h = difficulty.scale(*h)),
+            DifficultyRule::Drawn => {
+                // The next draw of the world's stream, after every obstacle's:
+                // the same at every difficulty.
+                let offset = unit_offset(rng.next_u32());
+                scale_drawn(&mut heightmap, &grid, difficulty, offset);
+            }
+        }
     }
     if let Some(period) = grid.frame_period {
         // Frames are exactly one step, whatever the obstacles did (docs/schemes.md).
@@ -72,6 +96,28 @@ pub fn generate_at(scheme: &Scheme, seed: u64, index: u64, difficulty: Difficult
         }
     }
     Terrain::new(grid, heightmap, globals, (seed, index), difficulty, drawn)
+}
+
+/// [`DifficultyRule::Drawn`]: every cell `floor(D·h + offset)`, and the
+/// highest non-frame cell (the first in row order) at least one step when
+/// `D > 0`, so a world that has any obstacle is never flat above `D = 0`.
+fn scale_drawn(heightmap: &mut Heightmap, grid: &Grid, difficulty: Difficulty, offset: f64) {
+    let nx = grid.nx as usize;
+    let mut highest: Option<(usize, u16)> = None;
+    for (i, h) in heightmap.cells_mut().iter_mut().enumerate() {
+        // usize → u32 is exact: the grid's cells are indexed by u32 pairs.
+        let (x, y) = ((i % nx) as u32, (i / nx) as u32);
+        if *h > 0 && !grid.is_frame(x, y) && highest.is_none_or(|(_, top)| *h > top) {
+            highest = Some((i, *h));
+        }
+        *h = difficulty.scale_offset(*h, offset);
+    }
+    if let Some((i, _)) = highest
+        && difficulty.get() > 0.0
+    {
+        let cell = &mut heightmap.cells_mut()[i];
+        *cell = (*cell).max(1);
+    }
 }
 
 /// Resolves an obstacle's ranges in the fixed order x1, y1, x2, y2, height,

@@ -30,6 +30,7 @@
 //! `docs/meshes.md`.
 
 mod atlas;
+mod curriculum;
 mod difficulty;
 mod env_terrains;
 mod error;
@@ -56,13 +57,17 @@ mod stamp;
 mod terrain;
 
 pub use atlas::{Atlas, AtlasConfig, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
-pub use difficulty::{Difficulty, DifficultyError};
+pub use curriculum::{
+    CurriculumOptions, CurriculumOptionsError, CurriculumProblem, CurriculumReport, DEFAULT_DRAWS,
+    DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS, check_curriculum,
+};
+pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
     LayoutKind, env_pool_bytes, env_world,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
-pub use generate::{generate, generate_at};
+pub use generate::{generate, generate_at, generate_by};
 pub use global_key::GlobalKey;
 pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};
 pub use globals_patch::{GlobalsPatch, parse_pallets};

@@ -6,7 +6,8 @@
 #![allow(clippy::float_cmp)]
 
 use rse_core::{
-    AtlasError, AtlasOptions, Difficulty, PatchOptions, Scheme, Terrain, build_atlas, generate_at,
+    AtlasError, AtlasOptions, Difficulty, DifficultyRule, PatchOptions, Scheme, Terrain,
+    build_atlas, generate_at,
 };
 
 use crate::util::repo;
@@ -22,6 +23,7 @@ fn options() -> AtlasOptions {
         seed: 11,
         border: 2,
         difficulty: (Difficulty::new(0.2).unwrap(), Difficulty::new(0.9).unwrap()),
+        rule: DifficultyRule::CURRENT,
         spawn_radius: 0.35,
         patches: PatchOptions {
             count: 6,

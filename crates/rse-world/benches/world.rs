@@ -32,6 +32,7 @@ fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
 fn options(targets: &str) -> WorldOptions {
     WorldOptions {
         difficulty: Difficulty::FULL,
+        difficulty_rule: None,
         targets: Targets::parse(targets).expect("bench target lists are valid"),
         mesh: MeshMode::Auto,
         mujoco_collider: MujocoCollider::Boxes,

@@ -157,6 +157,8 @@ pub(crate) fn atlas_world(
     )]);
     let options = WorldOptions {
         difficulty: Difficulty::FULL,
+        // The rows' rule is the atlas record's (atlas.json), not the world's.
+        difficulty_rule: None,
         ..options.clone()
     };
     let world = terrain_files(atlas.terrain(), name, &options, templates, extra)?;

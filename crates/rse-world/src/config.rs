@@ -8,7 +8,7 @@
 
 use std::path::PathBuf;
 
-use rse_core::{Difficulty, Scheme};
+use rse_core::{Difficulty, DifficultyRule, Scheme};
 
 use crate::batch::{BatchOptions, Shard};
 use crate::error::Error;
@@ -51,8 +51,11 @@ impl WorldConfig {
             .mujoco_collider
             .as_deref()
             .unwrap_or(defaults.mujoco_collider.name());
+        let difficulty = self.difficulty.unwrap_or(defaults.difficulty);
         Ok(WorldOptions {
-            difficulty: self.difficulty.unwrap_or(defaults.difficulty),
+            difficulty,
+            // Recorded only below 1, so full worlds keep their bytes.
+            difficulty_rule: (!difficulty.is_full()).then_some(DifficultyRule::CURRENT),
             targets: self.targets.unwrap_or(defaults.targets),
             mesh: self.mesh.unwrap_or(defaults.mesh),
             mujoco_collider: MujocoCollider::parse(collider, self.oversample)?,

@@ -12,6 +12,7 @@ use crate::args::{Cli, Command, SchemeOverrides, WorldArgs};
 mod atlas;
 mod batch;
 pub mod check;
+mod check_curriculum;
 pub mod edit;
 mod heightmap;
 mod hfield;
@@ -39,6 +40,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
             }
             check::run(&args)
         }
+        Command::CheckCurriculum(args) => check_curriculum::run(&args, &args.overrides.or(outer)),
         Command::Edit(args) => edit::run(&args, &args.overrides.or(outer)),
         Command::Templates(args) => {
             if let Some(flag) = cli.overrides.first_set() {

@@ -2,7 +2,7 @@
 //! canonical CSV), layout, difficulty range and spawn options, enough to
 //! build it again.
 
-use rse_core::{AtlasOptions, Difficulty, PatchOptions, Scheme};
+use rse_core::{AtlasOptions, Difficulty, DifficultyRule, PatchOptions, Scheme};
 use serde::{Deserialize, Serialize};
 
 use crate::files::digest::sha256_hex;
@@ -29,6 +29,11 @@ pub struct AtlasRecord {
     pub border: u32,
     /// Difficulty of the first row and of the last.
     pub difficulty: [Difficulty; 2],
+    /// How the rows' heights are rounded; absent in atlases written before
+    /// it was recorded (read as [`DifficultyRule::Nearest`]) and where every
+    /// row is at full difficulty (no rounding happens).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub difficulty_rule: Option<DifficultyRule>,
     /// Spawn disc radius, metres.
     pub spawn_radius: f64,
     /// Flat patches asked for per tile.
@@ -69,6 +74,8 @@ impl AtlasRecord {
             cols: options.cols,
             border: options.border,
             difficulty: [options.difficulty.0, options.difficulty.1],
+            difficulty_rule: (!options.difficulty.0.is_full() || !options.difficulty.1.is_full())
+                .then_some(options.rule),
             spawn_radius: options.spawn_radius,
             flat_patches: PatchRecord {
                 count: options.patches.count,
@@ -97,6 +104,7 @@ impl AtlasRecord {
             seed,
             border: self.border,
             difficulty: (self.difficulty[0], self.difficulty[1]),
+            rule: self.difficulty_rule.unwrap_or(DifficultyRule::Nearest),
             spawn_radius: self.spawn_radius,
             patches: PatchOptions {
                 count: self.flat_patches.count,

@@ -6,7 +6,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use rse_core::Difficulty;
+use rse_core::{Difficulty, DifficultyRule};
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
@@ -20,6 +20,12 @@ pub struct WorldOptions {
     /// of full difficulty keep the bytes they had before difficulties.
     #[serde(default, skip_serializing_if = "is_full")]
     pub difficulty: Difficulty,
+    /// How the scaled heights were rounded: written beside a difficulty
+    /// below 1 ([`WorldConfig::resolve`](crate::WorldConfig::resolve) sets
+    /// today's rule); absent in worlds written before the rule was recorded,
+    /// which [`Self::rule`] reads as the rule they were written with.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub difficulty_rule: Option<DifficultyRule>,
     /// The simulators to write files for.
     pub targets: Targets,
     /// The terrain model of the simulator files.
@@ -28,6 +34,15 @@ pub struct WorldOptions {
     /// made before height fields keep their bytes.
     #[serde(default, skip_serializing_if = "MujocoCollider::is_boxes")]
     pub mujoco_collider: MujocoCollider,
+}
+
+impl WorldOptions {
+    /// The rule the heights are rounded by: the recorded one, else
+    /// [`DifficultyRule::Nearest`] (worlds from before the record, and
+    /// options built without [`WorldConfig`](crate::WorldConfig)).
+    pub fn rule(&self) -> DifficultyRule {
+        self.difficulty_rule.unwrap_or(DifficultyRule::Nearest)
+    }
 }
 
 /// For serde: whether a manifest's difficulty is left out.

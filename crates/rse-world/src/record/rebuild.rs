@@ -8,7 +8,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use rse_core::{Atlas, AtlasOptions, Scheme, SchemeError, Terrain, generate_at};
+use rse_core::{Atlas, AtlasOptions, Scheme, SchemeError, Terrain, generate_by};
 
 use crate::atlas::{atlas_of, atlas_world};
 use crate::error::Error;
@@ -125,11 +125,12 @@ impl<'m> Recipe<'m> {
         let manifest = self.manifest;
         let made = match self.source {
             Source::World(scheme) => {
-                let terrain = generate_at(
+                let terrain = generate_by(
                     &scheme,
                     manifest.seed,
                     manifest.index,
                     manifest.options.difficulty,
+                    manifest.options.rule(),
                 );
                 Made::World { scheme, terrain }
             }

@@ -4,7 +4,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use rse_core::export::{mtl, obj, usda};
-use rse_core::{Globals, Scheme, Terrain, generate_at, preview};
+use rse_core::{Globals, Scheme, Terrain, generate_by, preview};
 
 use crate::error::Error;
 use crate::files::digest::sha256_hex;
@@ -88,7 +88,7 @@ impl<'a> SchemeCsv<'a> {
         options: &WorldOptions,
         templates: &Templates,
     ) -> Result<WorldFiles, Error> {
-        let terrain = generate_at(self.scheme, seed, index, options.difficulty);
+        let terrain = generate_by(self.scheme, seed, index, options.difficulty, options.rule());
         self.world_of(&terrain, name, options, templates)
     }
 

@@ -1,0 +1,90 @@
+//! `rse-gen check-curriculum`: a scheme's per-level statistics as a table
+//! (or JSON), exit 1 when a level is dead or no higher than the one below.
+
+use std::io::Write as _;
+
+use anyhow::Context as _;
+use rse_core::{CurriculumOptions, CurriculumReport, check_curriculum};
+use serde_json::json;
+
+use crate::ExitStatus;
+use crate::args::{CheckCurriculumArgs, SchemeOverrides};
+
+pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
+    let scheme = super::load_scheme(&args.scheme, overrides)?;
+    let options = CurriculumOptions {
+        levels: args.levels,
+        draws: args.draws,
+        seed: args.seed.unwrap_or(scheme.globals().seed),
+    };
+    let report = check_curriculum(&scheme, options).context("check-curriculum")?;
+    let text = if args.json {
+        format!(
+            "{:#}\n",
+            report_json(&report, &args.scheme.display().to_string())
+        )
+    } else {
+        table(&report, &args.scheme.display().to_string())
+    };
+    let mut stdout = std::io::stdout().lock();
+    stdout.write_all(text.as_bytes())?;
+    stdout.flush()?;
+    Ok(if report.problems.is_empty() {
+        ExitStatus::Success
+    } else {
+        ExitStatus::Failure
+    })
+}
+
+/// The report as a table a person reads, problems last.
+fn table(report: &CurriculumReport, scheme: &str) -> String {
+    let o = report.options;
+    let mut out = format!(
+        "{scheme}: {} levels, {} worlds each (seed {})\n\
+         level  difficulty  flat   mean height  mean step  max step  max slope  distinct\n",
+        o.levels, o.draws, o.seed
+    );
+    for l in &report.levels {
+        out += &format!(
+            "{:>5}  {:>10.3}  {:>4.0}%  {:>9.1} mm  {:>6.1} mm  {:>5.0} mm  {:>7.1}°  {:>8}\n",
+            l.level,
+            l.difficulty.get(),
+            100.0 * l.flat_share,
+            1000.0 * l.mean_height,
+            1000.0 * l.mean_step,
+            1000.0 * l.max_step,
+            l.max_slope_deg,
+            l.distinct,
+        );
+    }
+    if report.problems.is_empty() {
+        out += "ok: no dead level, the mean height rises at every level\n";
+    }
+    for problem in &report.problems {
+        out += &format!("FAIL: {problem}\n");
+    }
+    out
+}
+
+/// The report as JSON: SI units, `ok` and the problems in words.
+fn report_json(report: &CurriculumReport, scheme: &str) -> serde_json::Value {
+    let o = report.options;
+    json!({
+        "scheme": scheme,
+        "levels": o.levels,
+        "draws": o.draws,
+        "seed": o.seed,
+        "ok": report.problems.is_empty(),
+        "problems": report.problems.iter().map(ToString::to_string).collect::<Vec<_>>(),
+        "per_level": report.levels.iter().map(|l| json!({
+            "level": l.level,
+            "difficulty": l.difficulty.get(),
+            "flat_share": l.flat_share,
+            "mean_height": l.mean_height,
+            "mean_step": l.mean_step,
+            "max_step": l.max_step,
+            "max_slope_deg": l.max_slope_deg,
+            "distinct": l.distinct,
+        })).collect::<Vec<_>>(),
+    })
+}
