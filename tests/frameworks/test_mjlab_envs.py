@@ -129,7 +129,7 @@ def test_bad_configurations_are_named() -> None:
     # mjlab's own terrain is replaced; anything else in its place is named.
     cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, terrain=TerrainEntityCfg()))
     use_env_terrains(cfg, SCHEME)
-    assert cfg.scene.terrain is None
+    assert type(cfg.scene.terrain).__name__ == "EnvTerrainCfg" and cfg.scene.terrain.scheme == SCHEME.to_csv()
     cfg = ManagerBasedRlEnvCfg(decimation=1, scene=SceneCfg(num_envs=2, terrain="a mesh of my own"))
     with pytest.raises(ValueError, match="^env_cfg.scene.terrain: a str is not"):
         use_env_terrains(cfg, SCHEME)

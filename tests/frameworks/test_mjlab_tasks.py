@@ -20,6 +20,7 @@ import torch
 from mjlab.envs import ManagerBasedRlEnv
 from mjlab.tasks.registry import load_env_cfg
 from rse.mjlab import env_terrains, out_of_slot, terrain_difficulty, use_env_terrains
+from rse.mjlab_tasks import STEPFIELD
 
 import mjlab.tasks  # noqa: F401  (registers the tasks)
 
@@ -60,7 +61,8 @@ def test_the_registered_config_is_taken_as_it_is() -> None:
     before = {k: set(getattr(cfg, k)) for k in ("events", "rewards", "terminations", "curriculum", "commands")}
     sensors = [s.name for s in cfg.scene.sensors]
     use_env_terrains(cfg, SCHEME)
-    assert cfg.scene.terrain is None
+    assert type(cfg.scene.terrain).__name__ == "EnvTerrainCfg" and cfg.scene.terrain.terrain_type == "plane"
+    assert cfg.scene.terrain.scheme == SCHEME.to_csv() and cfg.scene.terrain.max_init_terrain_level == 5
     assert set(cfg.rewards) == before["rewards"] and set(cfg.commands) == before["commands"]
     assert [s.name for s in cfg.scene.sensors] == sensors
     assert set(cfg.events) == before["events"] | {"rse_terrain"} and next(iter(cfg.events)) == "rse_terrain"
@@ -207,7 +209,9 @@ def test_the_rse_tasks_are_in_mjlabs_registry() -> None:
     for robot in ("Go1", "G1"):
         for play in (False, True):
             cfg = load_env_cfg(f"Rse-Velocity-Rough-Unitree-{robot}", play=play)
-            assert cfg.scene.terrain is None and next(iter(cfg.events)) == "rse_terrain"
+            terrain = cfg.scene.terrain
+            assert type(terrain).__name__ == "EnvTerrainCfg" and next(iter(cfg.events)) == "rse_terrain"
+            assert terrain.scheme == STEPFIELD and terrain.difficulty is None
             assert "terrain_levels" not in cfg.curriculum
 
 
@@ -255,17 +259,23 @@ def test_the_g1_task_builds_with_the_envs_asked_for_and_scans_its_own_terrain() 
         env.close()
 
 
-def test_mjlabs_own_train_script_runs_an_rse_task_with_its_terms_logged(tmp_path) -> None:
+def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_command_line(tmp_path) -> None:
     """mjlab's ``train`` runs ``Rse-Velocity-Rough-Unitree-Go1`` by name on
-    the CPU: one PPO iteration of its own runner, episodes short enough to
-    end within it, so rse's curriculum term is logged."""
+    the CPU with the scheme, seed and starting difficulty set on its own
+    command line (``--env.scene.terrain.*``): one PPO iteration of its own
+    runner, episodes short enough to end within it, so rse's curriculum
+    term is logged, into rse's own log folder."""
     import os
     import subprocess
     import sys
 
+    scheme = tmp_path / "mine.csv"
+    scheme.write_text("# size: 30x30\n# step_height: 0.04\ntype,height,angle,x1,y1\npeak,3,45,15,15\n")
     train = Path(sys.executable).parent / "train"
     done = subprocess.run(
         [str(train), "Rse-Velocity-Rough-Unitree-Go1", "--env.scene.num-envs", "3", "--env.episode-length-s", "0.1",
+         "--env.scene.terrain.scheme", str(scheme), "--env.scene.terrain.seed", "7",
+         "--env.scene.terrain.difficulty", "0.3",
          "--agent.max-iterations", "1", "--agent.num-steps-per-env", "12", "--agent.logger", "tensorboard"],
         cwd=tmp_path, capture_output=True, text=True, timeout=1200,
         env={**os.environ, "CUDA_VISIBLE_DEVICES": ""},
@@ -273,8 +283,41 @@ def test_mjlabs_own_train_script_runs_an_rse_task_with_its_terms_logged(tmp_path
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     assert "Learning iteration 0/1" in done.stdout
     assert "Curriculum/rse_terrain_difficulty/mean" in done.stdout, done.stdout[-3000:]
-    params = next(tmp_path.glob("logs/rsl_rl/*/*/params/env.yaml")).read_text()
+    # Its own experiment folder, apart from mjlab's go1_velocity.
+    logged = list(tmp_path.glob("logs/rsl_rl/*/*/params/env.yaml"))
+    assert [p.parents[2].name for p in logged] == ["rse_go1_velocity"]
+    params = logged[0].read_text()
     assert "rse_terrain_difficulty" in params and "num_envs: 3" in params
+    assert str(scheme) in params and "difficulty: 0.3" in params and "seed: 7" in params
+
+
+def test_the_scene_terrains_fields_set_the_pool(tmp_path) -> None:
+    """What ``train`` sets on the command line lands in the envs: the
+    scheme's grid, the seed's terrains, the difficulty, the starting
+    levels (``max_init_terrain_level``, mjlab's knob)."""
+    scheme = tmp_path / "mine.csv"
+    scheme.write_text("# size: 30x20\ntype,height\nrandom,3\n")
+    cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1")
+    cfg.scene.num_envs = 4
+    cfg.scene.terrain.scheme, cfg.scene.terrain.seed, cfg.scene.terrain.difficulty = str(scheme), 7, 0.3
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        pool = env_terrains(env)
+        assert pool.terrain(0).heights.shape == (20, 30)
+        np.testing.assert_array_equal(pool.difficulty, [0.3] * 4)
+        want = rse.EnvTerrains(rse.Scheme.load(scheme), 4, seed=7, difficulty=0.3)
+        for e in range(4):
+            np.testing.assert_array_equal(pool.terrain(e).heights, want.terrain(e).heights)
+    finally:
+        env.close()
+    cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1")
+    cfg.scene.num_envs = 30
+    cfg.scene.terrain.max_init_terrain_level = 1
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        assert set(np.round(env_terrains(env).difficulty * 9).astype(int)) == {0, 1}
+    finally:
+        env.close()
 
 
 def test_the_exact_height_scan_is_the_ray_scan_on_tops_and_exact_at_edges(go1) -> None:

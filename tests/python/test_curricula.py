@@ -179,3 +179,29 @@ def test_atlas_world_loads_in_pybullet_with_no_body_inside_a_block(tmp_path: Pat
                 assert contact[8] > -1e-3, contact  # contact distance: no penetration
     finally:
         p.disconnect(client)
+
+
+def test_check_curriculum_is_the_cli_report() -> None:
+    import json
+
+    for scheme in SAMPLES:
+        report = rse.check_curriculum(scheme, draws=10, seed=4)
+        assert report.ok, (scheme, report.problems)
+        assert [level.level for level in report.levels] == list(range(10))
+        means = [level.mean_height for level in report.levels]
+        assert means[0] == 0 and all(a < b for a, b in zip(means, means[1:])), means
+        assert all(level.flat_share < 1 for level in report.levels[1:])
+        cli = json.loads(run("check-curriculum", str(scheme), "--draws", "10", "--seed", "4", "--json"))
+        assert cli["ok"] and cli["seed"] == report.seed == 4
+        for ours, theirs in zip(report.levels, cli["per_level"]):
+            assert ours.mean_height == theirs["mean_height"] and ours.distinct == theirs["distinct"]
+
+
+def test_check_curriculum_finds_a_flat_scheme_and_refuses_bad_counts() -> None:
+    flat = rse.Scheme.from_csv("# size: 4x4\ntype,height\n")
+    report = rse.check_curriculum(flat, levels=3, draws=2)
+    assert not report and "flat at difficulty 1" in report.problems[0]
+    with pytest.raises(ValueError, match="levels 1"):
+        rse.check_curriculum(flat, levels=1)
+    with pytest.raises(ValueError, match="draws 0"):
+        rse.check_curriculum(flat, draws=0)

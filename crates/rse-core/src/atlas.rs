@@ -350,7 +350,7 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
     }
     let (nx, ny) = (nx as u32, ny as u32);
 
-    let (lo, hi) = options.difficulty;
+    let ((lo, hi), seed) = (options.difficulty, options.seed);
     let tiles: Vec<(Tile, Terrain)> = (0..options.rows * options.cols)
         .into_par_iter()
         .map(|i| {
@@ -358,13 +358,7 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
             let scheme = col as usize % schemes.len();
             let difficulty = Difficulty::lerp(lo, hi, row, options.rows);
             let index = u64::from(i);
-            let terrain = generate_by(
-                &schemes[scheme],
-                options.seed,
-                index,
-                difficulty,
-                options.rule,
-            );
+            let terrain = generate_by(&schemes[scheme], seed, index, difficulty, options.rule);
             let region = Region {
                 x0: options.border + row * (tile_grid.nx + options.border),
                 y0: options.border + col * (tile_grid.ny + options.border),

@@ -60,6 +60,9 @@ impl CurriculumOptions {
     }
 
     /// The difficulty of `level`.
+    ///
+    /// # Panics
+    /// Never: 0 is a difficulty.
     pub fn difficulty(&self, level: u32) -> Difficulty {
         let zero = Difficulty::new(0.0).expect("0 is a difficulty");
         Difficulty::lerp(zero, Difficulty::FULL, level, self.levels)
@@ -268,9 +271,9 @@ mod tests {
         let scheme = Scheme::from_csv("# size: 10x10\ntype,height\nrandom,1\n", None).unwrap();
         let report = check_curriculum(&scheme, options(10, 40)).unwrap();
         assert_eq!(report.problems, [], "{:?}", report.levels);
-        assert_eq!(report.levels[0].flat_share, 1.0);
+        assert!(report.levels[0].flat_share >= 1.0);
         assert_eq!(report.levels[0].distinct, 1);
-        assert!(report.levels[1..].iter().all(|l| l.flat_share == 0.0));
+        assert!(report.levels[1..].iter().all(|l| l.flat_share <= 0.0));
         assert!((report.levels[9].max_step - 0.1).abs() < 1e-12);
     }
 

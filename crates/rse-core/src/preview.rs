@@ -69,11 +69,20 @@ pub fn palette(h: u16, lo: u16, hi: u16) -> [u8; 3] {
 /// # Panics
 /// Never: drawing into memory cannot fail.
 pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
+    render_span(terrain, cell_pixels, height_span(terrain))
+}
+
+/// [`render`] with colours spanning heights `lo..=hi` (steps) instead of
+/// the terrain's own: several terrains side by side on one scale.
+///
+/// # Panics
+/// Never: drawing into memory cannot fail.
+pub fn render_span(terrain: &Terrain, cell_pixels: u32, (lo, hi): (u16, u16)) -> Preview {
     let grid = terrain.grid();
     let cp = cell_pixels.max(1);
     let (width, height) = (grid.nx * cp, grid.ny * cp);
     let mut rgb = Vec::with_capacity(width as usize * height as usize * 3);
-    for_each_row(terrain, cp, &mut |row| {
+    for_each_row(terrain, cp, (lo, hi), &mut |row| {
         rgb.extend_from_slice(row);
         Ok(())
     })
@@ -81,15 +90,11 @@ pub fn render(terrain: &Terrain, cell_pixels: u32) -> Preview {
     Preview { width, height, rgb }
 }
 
-/// Gives `emit` every pixel row of [`render`]'s image, from the top.
-fn for_each_row(
-    terrain: &Terrain,
-    cell_pixels: u32,
-    emit: &mut dyn FnMut(&[u8]) -> std::io::Result<()>,
-) -> std::io::Result<()> {
+/// The lowest and highest cell of `terrain` that is not frame, in steps
+/// (`(u16::MAX, 0)` when every cell is frame).
+pub fn height_span(terrain: &Terrain) -> (u16, u16) {
     let grid = terrain.grid();
     let map = terrain.heightmap();
-    let cp = cell_pixels.max(1);
     let (mut lo, mut hi) = (u16::MAX, 0u16);
     for y in 0..grid.ny {
         for (x, &h) in map.row(y).iter().enumerate() {
@@ -99,6 +104,19 @@ fn for_each_row(
             }
         }
     }
+    (lo, hi)
+}
+
+/// Gives `emit` every pixel row of [`render_span`]'s image, from the top.
+fn for_each_row(
+    terrain: &Terrain,
+    cell_pixels: u32,
+    (lo, hi): (u16, u16),
+    emit: &mut dyn FnMut(&[u8]) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let grid = terrain.grid();
+    let map = terrain.heightmap();
+    let cp = cell_pixels.max(1);
     let darker = |c: u8| c - c / 4;
     // Every pixel row of a cell row is the same line, but for the darker
     // edge row at the bottom: build the two lines once per cell row.
@@ -138,7 +156,7 @@ pub fn png(terrain: &Terrain, cell_pixels: Option<u32>) -> Result<Vec<u8>, Error
     let cp = cell_pixels.max(1);
     let (width, height) = (grid.nx * cp, grid.ny * cp);
     Ok(png_rows::encode(width, height, |emit| {
-        for_each_row(terrain, cp, emit)
+        for_each_row(terrain, cp, height_span(terrain), emit)
     })?)
 }
 

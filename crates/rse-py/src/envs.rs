@@ -17,6 +17,7 @@ use numpy::{
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
+use crate::errors::world_error;
 use crate::options::PyLayout;
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
@@ -416,6 +417,50 @@ impl EnvTerrains {
             inner: self.reading()?.terrain(env).clone(),
             scheme: Some(Arc::clone(&self.scheme)),
         })
+    }
+
+    /// A contact sheet of the current terrains as PNG bytes: one top-down
+    /// preview per env (`env_ids`, default every env, in the order given),
+    /// all on one colour scale, each labelled with its env id, episode and
+    /// difficulty, a legend of the scale below; written to `path` too when
+    /// given. `cols` tiles per row (default about square), `cell_pixels`
+    /// pixels per cell (default: tiles about 120 pixels wide).
+    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None))]
+    fn contact_sheet<'py>(
+        &self,
+        py: Python<'py>,
+        path: Option<std::path::PathBuf>,
+        env_ids: Option<&Bound<'py, PyAny>>,
+        cols: Option<u32>,
+        cell_pixels: Option<u32>,
+    ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        let envs = match env_ids {
+            Some(ids) => self::env_ids(ids, self.fixed.num_envs)?,
+            None => Vec::new(),
+        };
+        if env_ids.is_some() && envs.is_empty() {
+            return Err(PyValueError::new_err("env_ids: no environment to draw"));
+        }
+        if cols == Some(0) || cell_pixels == Some(0) {
+            return Err(PyValueError::new_err(
+                "cols and cell_pixels: expected a number above 0",
+            ));
+        }
+        let options = rse_core::SheetOptions { cols, cell_pixels };
+        let guard = self.reading()?;
+        let inner: &rse_core::EnvTerrains = &guard;
+        let png = py
+            .detach(|| {
+                rse_core::contact_sheet(inner, &envs, options)
+                    .and_then(|sheet| rse_core::preview::encode_png(&sheet))
+            })
+            .map_err(value_error)?;
+        drop(guard);
+        if let Some(path) = path {
+            // Whole or not at all, as every file rse writes.
+            rse_world::write_atomically(&path, &png).map_err(|e| world_error(py, &e))?;
+        }
+        Ok(pyo3::types::PyBytes::new(py, &png))
     }
 
     /// The exact tops under `points` (`(len(env_ids), P, 2)`, metres, each

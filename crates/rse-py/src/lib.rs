@@ -13,6 +13,7 @@ mod args;
 mod atlas;
 mod batch;
 mod check;
+mod curriculum;
 mod envs;
 mod errors;
 mod memory;
@@ -67,5 +68,6 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
+    m.add_function(wrap_pyfunction!(curriculum::_check_curriculum, m)?)?;
     Ok(())
 }

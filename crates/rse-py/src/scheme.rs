@@ -399,7 +399,8 @@ impl Scheme {
     /// World `index` of the batch with base seed `seed` (default: the
     /// scheme's `# seed:`, else 0, as on the command line), its obstacle
     /// heights scaled to `difficulty` (0 to 1: `h` becomes
-    /// `floor(difficulty·h + 0.5)` steps, frames stay 1 step).
+    /// `floor(difficulty·h + u)` steps, `u` one draw per world, the highest
+    /// cell kept at a step; frames stay 1 step; docs/schemes.md).
     #[pyo3(signature = (seed=None, index=0, difficulty=None))]
     fn generate(
         &self,

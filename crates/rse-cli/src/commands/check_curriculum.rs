@@ -1,6 +1,7 @@
 //! `rse-gen check-curriculum`: a scheme's per-level statistics as a table
 //! (or JSON), exit 1 when a level is dead or no higher than the one below.
 
+use std::fmt::Write as _;
 use std::io::Write as _;
 
 use anyhow::Context as _;
@@ -45,8 +46,9 @@ fn table(report: &CurriculumReport, scheme: &str) -> String {
         o.levels, o.draws, o.seed
     );
     for l in &report.levels {
-        out += &format!(
-            "{:>5}  {:>10.3}  {:>4.0}%  {:>9.1} mm  {:>6.1} mm  {:>5.0} mm  {:>7.1}°  {:>8}\n",
+        let _ = writeln!(
+            out,
+            "{:>5}  {:>10.3}  {:>4.0}%  {:>9.1} mm  {:>6.1} mm  {:>5.0} mm  {:>7.1}°  {:>8}",
             l.level,
             l.difficulty.get(),
             100.0 * l.flat_share,
@@ -61,7 +63,7 @@ fn table(report: &CurriculumReport, scheme: &str) -> String {
         out += "ok: no dead level, the mean height rises at every level\n";
     }
     for problem in &report.problems {
-        out += &format!("FAIL: {problem}\n");
+        let _ = writeln!(out, "FAIL: {problem}");
     }
     out
 }

@@ -21,6 +21,7 @@ use crate::terrain::Terrain;
 mod layout;
 mod options;
 mod request;
+mod sheet;
 
 use layout::chunks_at;
 use options::bad;
@@ -28,6 +29,7 @@ use options::bad;
 pub use layout::env_pool_bytes;
 pub use options::{EnvError, EnvLayout, EnvOptions};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
+pub use sheet::{SheetOptions, contact_sheet};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
 /// world index of env `g` at episode `k` is `k·2^32 + g` ([`env_world`]).

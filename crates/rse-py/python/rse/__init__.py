@@ -10,6 +10,7 @@ The generator lives in Rust (``rse._rse``); this package re-exports it::
 """
 
 from rse._check import CheckReport, Fault, WorldReport, check
+from rse._curriculum import CurriculumReport, LevelStats, check_curriculum
 from rse._rse import (
     DEFAULT_ENV_OVERSAMPLE,
     DEFAULT_OVERSAMPLE,
@@ -41,8 +42,10 @@ __all__ = [
     "TARGETS",
     "Atlas",
     "CheckReport",
+    "CurriculumReport",
     "EnvTerrains",
     "Fault",
+    "LevelStats",
     "Obstacle",
     "Scheme",
     "SchemeError",
@@ -51,6 +54,7 @@ __all__ = [
     "WorldReport",
     "__version__",
     "check",
+    "check_curriculum",
     "generate_batch",
     "write_world",
     "write_worlds",

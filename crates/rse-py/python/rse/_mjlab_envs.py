@@ -37,7 +37,7 @@ difficulty curriculum term is ``TERM + "_difficulty"``)."""
 def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
     """One env of ``scheme``: the slot's shape and size, which do not
     depend on the number of envs."""
-    return EnvTerrains(load(scheme), 1, oversample=oversample)
+    return EnvTerrains(scheme_of(scheme), 1, oversample=oversample)
 
 
 def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = POOL) -> None:
@@ -45,7 +45,8 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
     fills them), the terrain geom that shows one (``GEOM``, which
     ``rse.mujoco_warp`` routes per world) and a ground plane at the
-    terrain's foot, so that a robot walking off its slot keeps a floor.
+    terrain's foot, so that a robot walking off its slot keeps a floor
+    (mjlab's own plane where the scene has one: ``EnvTerrainCfg``).
 
     With more than one sample a cell, the robot's geoms too large for the
     exact field (a trunk, a thigh: ``rse._adapters.contacts``) collide with
@@ -60,9 +61,15 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     spec.add_hfield(name=f"{name}0", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
     # In a body named as mjlab's importer names its terrain, in the group
     # its ray sensors see: the tasks' sensors, rewards and terms find it.
-    body = spec.worldbody.add_body(name=BODY)
+    # Where mjlab built the scene's terrain as a plane (``EnvTerrainCfg``),
+    # its body and plane are the pool's body and ground.
+    body = spec.body(BODY)
+    ground = spec.geom(BODY) if body is not None else None
+    if body is None:
+        body = spec.worldbody.add_body(name=BODY)
     exact = add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
-    ground = body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
+    if ground is None:
+        ground = body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
     k = contacts.oversample_of(probe)
     # With one field in it, so that compiling it (the sensors name the
     # terrain body) stays cheap.
@@ -85,10 +92,13 @@ class EnvTerrainsEvent:
     every env its own ``rse.EnvTerrains`` slot, a new terrain each time it
     resets, spawned at its env's origin.
 
-    ``params``: ``scheme`` (a path or ``rse.Scheme``), and optionally
-    ``oversample``, ``seed``, ``difficulty``, ``spawn_radius``,
-    ``env_offset``, ``name`` as ``rse.EnvTerrains`` takes them. The scene
-    must hold the pool (``add_pool``; ``use_env_terrains`` wires both).
+    ``params``: ``scheme`` (a path, CSV text or ``rse.Scheme``), and
+    optionally ``oversample``, ``seed``, ``difficulty``, ``spawn_radius``,
+    ``env_offset``, ``name`` as ``rse.EnvTerrains`` takes them, and
+    ``initial_levels`` (``(max_init_terrain_level, terrain_levels)``). Where
+    the scene's terrain is an ``EnvTerrainCfg`` (``use_env_terrains``), its
+    fields win: ``train``'s command line sets them. The scene must hold the
+    pool (``add_pool``; ``use_env_terrains`` wires both).
 
     At construction it makes the ``EnvTerrains`` (``.envs``), expands the
     model's ``geom_dataid`` per world (mjlab's ``expand_model_fields``) and
@@ -101,11 +111,11 @@ class EnvTerrainsEvent:
     def __init__(self, cfg: Any, env: Any) -> None:
         from rse.mujoco_warp import route
 
-        p = dict(cfg.params)
+        p = {**dict(cfg.params), **_terrain_settings(env.cfg.scene.terrain)}
         self.name = p.get("name", POOL)
-        scheme = load(p["scheme"])
+        scheme = scheme_of(p["scheme"])
         offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
-        spread = p.get("initial_levels") if p.get("difficulty") is None else None
+        spread = _spread(p) if p.get("difficulty") is None else None
         self.envs = EnvTerrains(
             scheme,
             env.num_envs,
@@ -371,6 +381,50 @@ def exact_height_scan(
     return torch.where(reach > sensor.cfg.max_distance, torch.full_like(heights, miss_value), heights)
 
 
+def scheme_of(scheme: Any) -> Any:
+    """``scheme`` as an ``rse.Scheme``: one already, CSV text (a string
+    with a line break), or a CSV file's path."""
+    from rse._rse import Scheme
+
+    if isinstance(scheme, str) and "\n" in scheme:
+        return Scheme.from_csv(scheme, "env.scene.terrain.scheme")
+    return load(scheme)
+
+
+def scheme_setting(scheme: SchemeLike) -> str:
+    """``scheme`` as ``EnvTerrainCfg.scheme`` holds it: a path as text, CSV
+    text as it is, an ``rse.Scheme`` as its CSV (so the run's logged
+    config holds the whole scheme)."""
+    from rse._rse import Scheme
+
+    if isinstance(scheme, Scheme):
+        return scheme.to_csv()
+    return str(scheme)
+
+
+def _terrain_settings(terrain: Any) -> dict[str, Any]:
+    """The fields of an ``EnvTerrainCfg`` scene terrain as event params;
+    nothing for another terrain (or none)."""
+    if type(terrain).__name__ != "EnvTerrainCfg":
+        return {}
+    settings = {k: getattr(terrain, k) for k in ("scheme", "seed", "difficulty", "oversample", "spawn_radius")}
+    settings["max_init_terrain_level"] = terrain.max_init_terrain_level
+    return settings
+
+
+def _spread(params: dict[str, Any]) -> Optional[tuple[int, int]]:
+    """The envs' starting levels from the event's params: ``initial_levels``,
+    its first number replaced by ``max_init_terrain_level`` where the scene's
+    terrain sets one (clamped to the levels, as mjlab clamps it)."""
+    spread = params.get("initial_levels")
+    max_init = params.get("max_init_terrain_level")
+    if spread is None or max_init is None:
+        return spread
+    if max_init < 0:
+        raise ValueError(f"env.scene.terrain.max_init_terrain_level: {max_init}; expected 0 or more")
+    return (min(int(max_init), spread[1] - 1), spread[1])
+
+
 class _PoolSpec:
     """The scene's ``spec_fn``: the earlier one, then rse's pool, one field
     per env of the scene being built. Its env count is read from the
@@ -386,12 +440,16 @@ class _PoolSpec:
     def __call__(self, spec: Any) -> None:
         if self.earlier is not None:
             self.earlier(spec)
-        add_pool(spec, self.scheme, _num_envs_being_built(self.scene), oversample=self.oversample)
+        scene = _scene_being_built(self.scene)
+        settings = _terrain_settings(scene.terrain)
+        scheme = scheme_of(settings.get("scheme", self.scheme))
+        oversample = settings.get("oversample", self.oversample)
+        add_pool(spec, scheme, int(scene.num_envs), oversample=oversample)
 
 
-def _num_envs_being_built(fallback: Any) -> int:
-    """``num_envs`` of the mjlab ``Scene`` whose construction called this
-    (through ``spec_fn``), else of ``fallback``, a ``SceneCfg``."""
+def _scene_being_built(fallback: Any) -> Any:
+    """The ``SceneCfg`` of the mjlab ``Scene`` whose construction called
+    this (through ``spec_fn``), else ``fallback``."""
     import inspect
 
     from mjlab.scene import Scene
@@ -401,11 +459,11 @@ def _num_envs_being_built(fallback: Any) -> int:
         while frame is not None:
             owner = frame.f_locals.get("self")
             if isinstance(owner, Scene):
-                return int(private.getattr_checked(owner, "_cfg", "mjlab").num_envs)
+                return private.getattr_checked(owner, "_cfg", "mjlab")
             frame = frame.f_back
     finally:
         del frame
-    return int(fallback.num_envs)
+    return fallback
 
 
 def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
@@ -478,11 +536,15 @@ def use_env_terrains(
     is. It replaces:
 
     - the scene's terrain (``scene.terrain``, mjlab's generator or plane) by
-      rse's pool, added through the scene's ``spec_fn`` (sized by
-      ``scene.num_envs`` when the scene is built) in a body named
-      ``terrain`` in geom group 0, as mjlab's importer makes it: the
-      tasks' contact sensors, ``terrain_scan`` and the feet's height
-      sensors, and the rewards that read them, find it;
+      an ``EnvTerrainCfg`` (``rse._mjlab_scene``: mjlab's plane with rse's
+      settings as fields, which ``train`` and ``play`` set from their command
+      line: ``--env.scene.terrain.scheme my.csv``, ``.seed``,
+      ``.difficulty``, ``.max-init-terrain-level``, ``.oversample``,
+      ``.spawn-radius``) and rse's pool, added through the scene's
+      ``spec_fn`` (sized by ``scene.num_envs`` when the scene is built)
+      into mjlab's body named ``terrain``, in geom group 0, as mjlab's
+      importer makes it: the tasks' contact sensors, ``terrain_scan`` and
+      the feet's height sensors, and the rewards that read them, find it;
     - the terrain-level curriculum (``terrain_levels_vel``) by
       ``terrain_difficulty``, the same rule, continuous, with the same
       ``command_name`` (``curriculum=True`` adds it to a config without
@@ -517,24 +579,28 @@ def use_env_terrains(
         raise ValueError("env_cfg: has rse's terrains already (use_env_terrains was called on it once)")
     # Bad arguments fail here, not when the env is built: the same
     # arguments on one env.
-    EnvTerrains(load(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
     spread = _initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
     if env_cfg.sim.nconmax is not None:
         # Each geom that can touch the terrain is a broadphase pair with its
         # env's field (which spans the slot) and with the ground plane.
         env_cfg.sim.nconmax += 2 * _terrain_colliders(scene)
-    scene.terrain = None
-    earlier = scene.spec_fn
-    scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
-    params = dict(
-        scheme=scheme,
-        oversample=oversample,
+    from rse._mjlab_scene import EnvTerrainCfg
+
+    spacing = getattr(scene.terrain, "env_spacing", None)
+    scene.terrain = EnvTerrainCfg(
+        terrain_type="plane",
+        env_spacing=2.0 if spacing is None else spacing,
+        max_init_terrain_level=None if spread is None else spread[0],
+        scheme=scheme_setting(scheme),
         seed=seed,
         difficulty=difficulty,
+        oversample=oversample,
         spawn_radius=spawn_radius,
-        env_offset=env_offset,
-        initial_levels=spread,
     )
+    earlier = scene.spec_fn
+    scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
+    params = dict(env_offset=env_offset, initial_levels=spread)
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
     env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
     levels = {k: c for k, c in env_cfg.curriculum.items() if _func_name(c) == "terrain_levels_vel"}

@@ -28,6 +28,7 @@ __all__ = [
     "write_worlds",
     "_time_generate",
     "_check_json",
+    "_check_curriculum",
 ]
 
 __version__: str
@@ -271,6 +272,13 @@ class EnvTerrains:
         difficulty: Union[None, float, Sequence[float], npt.NDArray[np.floating]] = None,
     ) -> None: ...
     def terrain(self, env: int) -> Terrain: ...
+    def contact_sheet(
+        self,
+        path: Optional[Union[str, os.PathLike[str]]] = None,
+        env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None,
+        cols: Optional[int] = None,
+        cell_pixels: Optional[int] = None,
+    ) -> bytes: ...
     def heights_at(
         self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike
     ) -> npt.NDArray[np.float64]: ...
@@ -315,3 +323,6 @@ def _check_json(
     template: Optional[Union[str, os.PathLike[str]]] = None,
     budget: Optional[float] = None,
 ) -> str: ...
+def _check_curriculum(
+    scheme: Scheme, levels: int, draws: int, seed: Optional[int] = None
+) -> tuple[list[tuple[int, float, float, float, float, float, float, int]], list[str], int]: ...

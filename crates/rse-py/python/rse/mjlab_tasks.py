@@ -8,9 +8,14 @@ in place of mjlab's terrain levels. mjlab imports this module through its
 tasks by name::
 
     train Rse-Velocity-Rough-Unitree-Go1 --env.scene.num-envs 4096
+    train Rse-Velocity-Rough-Unitree-Go1 --env.scene.terrain.scheme my.csv \
+        --env.scene.terrain.seed 7 --env.scene.terrain.max-init-terrain-level 2
 
 The stepfield is ``STEPFIELD`` (8 m × 8 m, the size of a sub-terrain of
-mjlab's rough terrain); ``register(scheme, prefix=...)`` registers others."""
+mjlab's rough terrain), set on the command line by
+``--env.scene.terrain.scheme`` (``rse._mjlab_scene.EnvTerrainCfg``); runs
+log under ``logs/rsl_rl/rse_<mjlab's experiment name>/``;
+``register(scheme, prefix=...)`` registers others."""
 
 from __future__ import annotations
 
@@ -39,6 +44,12 @@ def rse_task_id(task_id: str, prefix: str = "Rse-Velocity-Rough-") -> str:
     return prefix + task_id[len(PREFIX) :]
 
 
+def experiment_name(mjlab_name: str) -> str:
+    """The experiment name (the log folder under ``logs/rsl_rl/``) of the rse
+    variant of an mjlab task named ``mjlab_name``: ``rse_`` before it."""
+    return "rse_" + mjlab_name
+
+
 def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Rough-", oversample: Optional[int] = None) -> list[str]:
     """Registers an rse variant of every mjlab rough velocity task on
     ``scheme`` (play configs too); returns their ids. A task registered
@@ -46,11 +57,9 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
     import mjlab.tasks  # noqa: F401  (mjlab's own tasks first)
     from mjlab.tasks import registry
 
-    from rse._mjlab_envs import use_env_terrains
-    from rse._rse import Scheme
+    from rse._mjlab_envs import scheme_of, use_env_terrains
 
-    if isinstance(scheme, str) and "\n" in scheme:
-        scheme = Scheme.from_csv(scheme, "rse.mjlab_tasks.STEPFIELD")
+    scheme_of(scheme)  # a bad scheme fails here, naming its line
     made = []
     for task_id in registry.list_tasks():
         if not task_id.startswith(PREFIX):
@@ -62,11 +71,14 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
         play_cfg = registry.load_env_cfg(task_id, play=True)
         for cfg in (env_cfg, play_cfg):
             use_env_terrains(cfg, scheme, oversample=oversample)
+        rl_cfg = registry.load_rl_cfg(task_id)
+        # Runs log apart from mjlab's own (logs/rsl_rl/rse_go1_velocity/).
+        rl_cfg.experiment_name = experiment_name(rl_cfg.experiment_name)
         registry.register_mjlab_task(
             task_id=new_id,
             env_cfg=env_cfg,
             play_env_cfg=play_cfg,
-            rl_cfg=registry.load_rl_cfg(task_id),
+            rl_cfg=rl_cfg,
             runner_cls=registry.load_runner_cls(task_id),
         )
         made.append(new_id)

@@ -1,0 +1,252 @@
+//! A contact sheet of a pool's current terrains: one top-down preview per
+//! env in a grid, all on one colour scale, each labelled with its env id,
+//! episode and difficulty, and a legend of the scale below.
+
+use font8x8::legacy::BASIC_LEGACY;
+
+use super::EnvTerrains;
+use crate::error::Error;
+use crate::preview::{MAX_PIXELS, Preview, height_span, palette, render_span};
+
+/// Pixels between tiles and around the sheet.
+const GAP: u32 = 6;
+/// A glyph's side, pixels (the 8×8 font, unscaled).
+const GLYPH: u32 = 8;
+/// Pixels of one text line: a glyph and its leading.
+const LINE: u32 = GLYPH + 3;
+/// The sheet's background and its text.
+const BACKGROUND: [u8; 3] = [32, 32, 32];
+const TEXT: [u8; 3] = [235, 235, 235];
+/// A tile is at least this wide, so its label fits ("ep 123 D 0.444").
+const MIN_TILE: u32 = 15 * GLYPH;
+
+/// How to lay out a contact sheet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SheetOptions {
+    /// Tiles per row; default `ceil(sqrt(n))`.
+    pub cols: Option<u32>,
+    /// Pixels per cell; default the fewest that make a tile at least
+    /// 120 pixels wide (and at most 16).
+    pub cell_pixels: Option<u32>,
+}
+
+/// The contact sheet of envs `envs` of `pool` (every env when empty), in
+/// the order given. Refused past [`MAX_PIXELS`] before anything is drawn.
+pub fn contact_sheet(
+    pool: &EnvTerrains,
+    envs: &[usize],
+    options: SheetOptions,
+) -> Result<Preview, Error> {
+    let all: Vec<usize>;
+    let envs = if envs.is_empty() {
+        all = (0..pool.num_envs()).collect();
+        &all[..]
+    } else {
+        envs
+    };
+    let grid = pool.terrain(0).grid();
+    let n = envs.len() as u64;
+    let cols = u64::from(options.cols.unwrap_or(0));
+    let cols = if cols == 0 {
+        n.isqrt() + u64::from(n.isqrt().pow(2) < n)
+    } else {
+        cols
+    }
+    .max(1);
+    let rows = n.div_ceil(cols).max(1);
+    let cp = options
+        .cell_pixels
+        .unwrap_or_else(|| MIN_TILE.div_ceil(grid.nx.max(1)).clamp(1, 16))
+        .max(1);
+    let (tile_w, tile_h) = (
+        u64::from(grid.nx) * u64::from(cp),
+        u64::from(grid.ny) * u64::from(cp),
+    );
+    let label_h = u64::from(2 * LINE);
+    let (cell_w, cell_h) = (tile_w.max(u64::from(MIN_TILE)), tile_h + label_h);
+    let gap = u64::from(GAP);
+    let width = gap + cols * (cell_w + gap);
+    let height = gap + rows * (cell_h + gap) + u64::from(2 * LINE) + gap;
+    if width.saturating_mul(height) > MAX_PIXELS {
+        return Err(Error::PreviewTooLarge {
+            width,
+            height,
+            max: MAX_PIXELS,
+        });
+    }
+    // Within MAX_PIXELS (2²⁸), so every coordinate fits a u32.
+    let mut sheet = Canvas::new(width as u32, height as u32);
+    // One scale for every tile: 0 to the highest cell shown.
+    let hi = envs
+        .iter()
+        .map(|&e| height_span(pool.terrain(e)).1)
+        .max()
+        .unwrap_or(0);
+    for (i, &e) in envs.iter().enumerate() {
+        let (col, row) = (i as u64 % cols, i as u64 / cols);
+        let x0 = (gap + col * (cell_w + gap)) as u32;
+        let y0 = (gap + row * (cell_h + gap)) as u32;
+        let terrain = pool.terrain(e);
+        sheet.text(x0, y0, &format!("env {e}"));
+        let difficulty = terrain.difficulty().get();
+        sheet.text(
+            x0,
+            y0 + LINE,
+            &format!("ep {} D {difficulty:.3}", pool.episode(e)),
+        );
+        sheet.blit(x0, y0 + 2 * LINE, &render_span(terrain, cp, (0, hi)));
+    }
+    let step = grid_step_mm(pool);
+    let legend_y = (gap + rows * (cell_h + gap)) as u32;
+    sheet.legend(GAP, legend_y, hi, step);
+    Ok(sheet.into_preview())
+}
+
+/// The step height of the pool's scheme, millimetres.
+fn grid_step_mm(pool: &EnvTerrains) -> f64 {
+    pool.scheme().globals().step_height * 1000.0
+}
+
+/// An RGB image being drawn.
+struct Canvas {
+    width: u32,
+    height: u32,
+    rgb: Vec<u8>,
+}
+
+impl Canvas {
+    fn new(width: u32, height: u32) -> Canvas {
+        let pixels = width as usize * height as usize;
+        Canvas {
+            width,
+            height,
+            rgb: BACKGROUND.repeat(pixels),
+        }
+    }
+
+    fn put(&mut self, x: u32, y: u32, colour: [u8; 3]) {
+        if x < self.width && y < self.height {
+            let at = 3 * (y as usize * self.width as usize + x as usize);
+            self.rgb[at..at + 3].copy_from_slice(&colour);
+        }
+    }
+
+    /// `image` with its top-left corner at `(x0, y0)`.
+    fn blit(&mut self, x0: u32, y0: u32, image: &Preview) {
+        let row_bytes = 3 * image.width as usize;
+        for (y, row) in image.rgb.chunks(row_bytes.max(1)).enumerate() {
+            for (x, px) in row.chunks_exact(3).enumerate() {
+                // Both fit: the image was sized to fit the canvas.
+                self.put(x0 + x as u32, y0 + y as u32, [px[0], px[1], px[2]]);
+            }
+        }
+    }
+
+    /// `text` in the 8×8 font, ASCII only (anything else is a `?`).
+    fn text(&mut self, x0: u32, y0: u32, text: &str) {
+        for (i, c) in text.chars().enumerate() {
+            let glyph = BASIC_LEGACY[if c.is_ascii() {
+                c as usize
+            } else {
+                '?' as usize
+            }];
+            for (dy, bits) in glyph.iter().enumerate() {
+                for dx in 0..8 {
+                    // font8x8: bit 0 is the leftmost pixel of a row.
+                    if bits & (1 << dx) != 0 {
+                        self.put(x0 + i as u32 * GLYPH + dx, y0 + 1 + dy as u32, TEXT);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The colour scale from 0 to `hi` steps, as a bar and its ends in
+    /// steps and millimetres.
+    fn legend(&mut self, x0: u32, y0: u32, hi: u16, step_mm: f64) {
+        let bar = 120;
+        for x in 0..bar {
+            // Equal lengths of bar for the heights 0 … hi.
+            let h = ((u32::from(hi) + 1) * x / bar).min(u32::from(hi)) as u16;
+            for y in 0..GLYPH {
+                self.put(x0 + x, y0 + 1 + y, palette(h, 0, hi));
+            }
+        }
+        let top = f64::from(hi) * step_mm;
+        self.text(
+            x0 + bar + GLYPH,
+            y0,
+            &format!("0 .. {hi} steps (0 .. {top:.0} mm)"),
+        );
+    }
+
+    fn into_preview(self) -> Preview {
+        Preview {
+            width: self.width,
+            height: self.height,
+            rgb: self.rgb,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{EnvRequest, Scheme};
+
+    fn pool(n: usize) -> EnvTerrains {
+        let scheme = Scheme::from_csv("# size: 20x10\ntype,height\nrandom,3\n", None).unwrap();
+        let options = EnvRequest {
+            num_envs: n,
+            difficulty: Some(0.5),
+            ..EnvRequest::default()
+        }
+        .resolve(&scheme)
+        .unwrap();
+        EnvTerrains::new(scheme, options).unwrap()
+    }
+
+    #[test]
+    fn tiles_are_the_terrains_on_one_scale_in_a_grid() {
+        let pool = pool(5);
+        let sheet = contact_sheet(&pool, &[], SheetOptions::default()).unwrap();
+        // 5 envs: 3 columns, 2 rows; 20 cells × 6 px = 120 px tiles.
+        let cell_w = 120;
+        assert_eq!(sheet.width, GAP + 3 * (cell_w + GAP));
+        let hi = (0..5)
+            .map(|e| height_span(pool.terrain(e)).1)
+            .max()
+            .unwrap();
+        let tile = render_span(pool.terrain(4), 6, (0, hi));
+        // Env 4: column 1, row 1.
+        let (x0, y0) = (
+            GAP + cell_w + GAP,
+            GAP + (10 * 6 + 2 * LINE) + GAP + 2 * LINE,
+        );
+        for y in 0..tile.height {
+            let at = |img: &[u8], w: u32, x: u32, y: u32| {
+                let i = 3 * (y * w + x) as usize;
+                [img[i], img[i + 1], img[i + 2]]
+            };
+            for x in 0..tile.width {
+                assert_eq!(
+                    at(&sheet.rgb, sheet.width, x0 + x, y0 + y),
+                    at(&tile.rgb, tile.width, x, y)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_sheet_too_large_is_refused() {
+        let pool = pool(2);
+        let options = SheetOptions {
+            cols: None,
+            cell_pixels: Some(100_000),
+        };
+        assert!(matches!(
+            contact_sheet(&pool, &[], options),
+            Err(Error::PreviewTooLarge { .. })
+        ));
+    }
+}
