@@ -25,7 +25,8 @@ HEADER = """\
 Generated from the docstrings of the installed package by
 `scripts/python_api_docs.py` (the tests fail when it is stale: run
 `.venv/bin/python scripts/python_api_docs.py` after changing a docstring).
-Install: `pip install rse-gen` (guide.md, "Python"); import: `import rse`.
+Install, from a clone's root: `pip install ./crates/rse-cli ./crates/rse-py`
+(`pip install rse-gen` once published; guide.md, "Python"); import: `import rse`.
 Lengths are metres, heights are whole steps, arrays are numpy, `(lo, hi)`
 pairs are inclusive ranges drawn per world.
 """

@@ -116,3 +116,19 @@ def test_no_file_cites_an_issue_the_repository_does_not_hold() -> None:
         if cited.search(line)
     ]
     assert not found, found
+
+
+def test_every_install_instruction_is_the_one_line_that_works_from_a_clone() -> None:
+    """One install line, the same on every page a newcomer reads; the
+    package index's name only beside "once published" (it is not there)."""
+    line = "pip install ./crates/rse-cli ./crates/rse-py"
+    for page in ["README.md", "docs/guide.md", "docs/python.md", "docs/train.md", "docs/frameworks.md"]:
+        text = (REPO / page).read_text()
+        assert line in text, page
+        for number, row in enumerate(text.splitlines(), 1):
+            command = row.split("#")[0]
+            asks_the_index = "pip install rse-gen" in row or (
+                "pip install" in command and "rse-gen" in command.replace("`", " ").split()
+            )
+            if asks_the_index:
+                assert "once published" in row, f"{page}:{number}: {row}"

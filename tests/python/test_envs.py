@@ -229,3 +229,46 @@ def test_a_model_without_the_pool_is_named() -> None:
     other = rse.EnvTerrains(SMALL, 2, oversample=3)
     with pytest.raises(ValueError, match="^model: height field rse_env0 holds"):
         rse.mujoco.sync_env_hfields(model, other)
+
+
+def test_a_contact_sheet_shows_every_env_on_one_scale_with_its_label(tmp_path) -> None:
+    """The PNG a person looks at to see a pool's terrains: read back with
+    Pillow, one tile per env in the order asked, each the env's heights in
+    the preview palette on the pool's common scale, labels above."""
+    from PIL import Image
+
+    scheme = rse.Scheme.from_csv("# size: 20x12\ntype,height\nrandom,4\n")
+    envs = rse.EnvTerrains(scheme, 5, seed=3, difficulty=0.5)
+    envs.reset([1, 3], difficulty=[1.0, 0.25])
+    path = tmp_path / "sheet.png"
+    png = envs.contact_sheet(path, env_ids=[3, 1, 0], cols=2, cell_pixels=7)
+    assert path.read_bytes() == png
+    image = np.asarray(Image.open(path).convert("RGB")).astype(int)
+    gap, line, tile_w, tile_h = 6, 11, 20 * 7, 12 * 7
+    cell_w = max(tile_w, 120)
+    assert image.shape[1] == gap + 2 * (cell_w + gap)
+    hi = max(int(envs.terrain(e).heights.max()) for e in (3, 1, 0))
+
+    def colour(h: int) -> list[int]:
+        # rse's preview palette (rse_core::preview::palette) from 0 to hi.
+        t = h * 510 // hi
+        return [0, t, 255 - t] if t <= 255 else [t - 255, 510 - t, 0]
+
+    for i, e in enumerate([3, 1, 0]):
+        x0 = gap + (i % 2) * (cell_w + gap)
+        y0 = gap + (i // 2) * (tile_h + 2 * line + gap) + 2 * line
+        heights = envs.terrain(e).heights
+        for y in range(12):
+            for x in range(20):
+                # The cell's centre pixel; north (y = 11) at the top.
+                px = image[y0 + (11 - y) * 7 + 3, x0 + x * 7 + 3]
+                assert list(px) == colour(int(heights[y, x])), (e, x, y)
+        label = image[y0 - 2 * line : y0, x0 : x0 + 100]
+        assert (label == 235).all(axis=2).sum() > 50, "no label text above the tile"
+    assert envs.contact_sheet() == envs.contact_sheet(env_ids=range(5))
+    with pytest.raises(ValueError, match="env_ids: 9 is not an environment"):
+        envs.contact_sheet(env_ids=[9])
+    with pytest.raises(ValueError, match="cols and cell_pixels"):
+        envs.contact_sheet(cols=0)
+    with pytest.raises(ValueError, match="pixel preview is more than"):
+        envs.contact_sheet(cell_pixels=100_000)
