@@ -265,6 +265,7 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
     command line (``--env.scene.terrain.*``): one PPO iteration of its own
     runner, episodes short enough to end within it, so rse's curriculum
     term is logged, into rse's own log folder."""
+    import json
     import os
     import subprocess
     import sys
@@ -289,6 +290,33 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
     params = logged[0].read_text()
     assert "rse_terrain_difficulty" in params and "num_envs: 3" in params
     assert str(scheme) in params and "difficulty: 0.3" in params and "seed: 7" in params
+
+    # The one-iteration checkpoint, evaluated on a fixed set of stepfields:
+    # the same report twice, and for mjlab's own task (rse's terrain in
+    # place of its own) on the same terrains.
+    checkpoint = next(logged[0].parents[1].glob("model_*.pt"))
+    reports = []
+    for task in ("Rse-Velocity-Rough-Unitree-Go1", "Rse-Velocity-Rough-Unitree-Go1", "Mjlab-Velocity-Rough-Unitree-Go1"):
+        out = tmp_path / f"eval{len(reports)}.json"
+        done = subprocess.run(
+            [sys.executable, "-m", "rse.mjlab_eval", str(checkpoint), "--task", task, "--levels", "3", "--per-level", "2",
+             "--seconds", "1", "--seed", "5", "--json", str(out)],
+            cwd=tmp_path, capture_output=True, text=True, timeout=1200,
+            env={**os.environ, "CUDA_VISIBLE_DEVICES": ""},
+        )
+        assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+        assert "level  difficulty  distance mean (min)  falls  crossed  time to cross" in done.stdout, done.stdout[-2000:]
+        reports.append(json.loads(out.read_text()))
+    first = reports[0]
+    assert first["seed"] == 5 and first["levels"] == 3 and first["scheme"] == STEPFIELD
+    assert [r["difficulty"] for r in first["per_level_results"]] == [0.0, 0.5, 1.0]
+    assert [e["difficulty"] for e in first["episodes"]] == [0.0, 0.0, 0.5, 0.5, 1.0, 1.0]
+    assert all(r["episodes"] == 2 and 0 <= r["falls"] <= 2 for r in first["per_level_results"])
+    assert reports[1]["episodes"] == first["episodes"], "the same terrains and results on a rerun"
+    assert [e["episode"] for e in reports[2]["episodes"]] == [e["episode"] for e in first["episodes"]]
+    done = subprocess.run([sys.executable, "-m", "rse.mjlab_eval", str(checkpoint), "--levels", "0"],
+                          capture_output=True, text=True, timeout=600, env={**os.environ, "CUDA_VISIBLE_DEVICES": ""})
+    assert done.returncode == 2 and "levels and per_level: 0" in done.stderr, done.stderr[-2000:]
 
 
 def test_the_scene_terrains_fields_set_the_pool(tmp_path) -> None:
@@ -349,3 +377,53 @@ def test_the_exact_height_scan_is_the_ray_scan_on_tops_and_exact_at_edges(go1) -
         assert np.allclose(exact[e], frame_z[e] - tops, atol=1e-5), e
         differ += int((np.abs(exact[e] - rays[e]) > 0.005).sum())
     assert differ > 0, "no ray near an edge: nothing shows the scan is exact there"
+
+
+def test_play_lays_the_envs_out_apart_each_robot_on_its_own_terrain_in_the_viewers_model() -> None:
+    """mjlab's viewers draw the env they follow from the host model with
+    that env's per-world fields synced in (mjlab's ``sync_model_fields``),
+    and every other env's dynamic geoms (``mjv_addGeoms``, ``mjCAT_DYNAMIC``).
+    In the play config each env's terrain is in its own place: the view
+    geom (a mocap body's, so drawn for every env) shows the env's own field
+    there, its robot stands on it, and ``out_of_slot`` measures in the
+    env's own slot."""
+    import copy
+
+    from mjlab.viewer.model_sync import VIEWER_MODEL_FIELDS, sync_model_fields
+
+    cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1", play=True)
+    assert cfg.scene.terrain.apart and not load_env_cfg("Rse-Velocity-Rough-Unitree-Go1").scene.terrain.apart
+    cfg.scene.num_envs = 4
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        env.reset()
+        for _ in range(5):
+            env.step(torch.zeros(env.action_space.shape))
+        sim, pool = env.sim, env_terrains(env)
+        host = copy.copy(sim.mj_model)
+        data = mujoco.MjData(host)
+        view = mujoco.mj_name2id(host, mujoco.mjtObj.mjOBJ_GEOM, "rse_terrain_view")
+        first = mujoco.mj_name2id(host, mujoco.mjtObj.mjOBJ_HFIELD, "rse_env0")
+        x, y, _ = pool.hfield_pos
+        places = []
+        for e in range(4):
+            sync_model_fields(host, sim.model, sim.expanded_fields & VIEWER_MODEL_FIELDS, e)
+            data.qpos[:] = sim.data.qpos[e].cpu().numpy()
+            data.mocap_pos[:] = sim.data.mocap_pos[e].cpu().numpy()
+            mujoco.mj_forward(host, data)
+            assert host.geom_dataid[view] == first + e
+            centre = data.geom_xpos[view][:2].copy()
+            places.append(centre)
+            scene = mujoco.MjvScene(host, maxgeom=10000)
+            mujoco.mjv_addGeoms(host, data, mujoco.MjvOption(), mujoco.MjvPerturb(), mujoco.mjtCatBit.mjCAT_DYNAMIC.value, scene)
+            assert view in {scene.geoms[i].objid for i in range(scene.ngeom)}, "other envs' terrains are drawn"
+            root = env.scene["robot"].data.root_link_pos_w[e].numpy()
+            assert abs(root[0] - centre[0]) < x and abs(root[1] - centre[1]) < y, (e, root, centre)
+            top = pool.heights_at([e], [[[root[0] - centre[0] + x, root[1] - centre[1] + y]]])[0, 0]
+            assert 0.1 < root[2] - top < 0.6, (e, root[2], top)
+        for a in range(4):
+            for b in range(a):
+                assert np.abs(places[a] - places[b]).max() >= 2 * min(x, y), "the envs' terrains are apart"
+        assert not out_of_slot(env).any()
+    finally:
+        env.close()

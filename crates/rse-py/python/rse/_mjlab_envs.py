@@ -30,6 +30,17 @@ COARSE_GROUP = 3
 """The geom group of the coarse field the robot's large geoms collide
 with: one the ray sensors do not see and MuJoCo's viewer hides."""
 
+VIEW_GROUP = 1
+"""The geom group of the view geom (``apart``): one mjlab's viewer draws
+and its ray sensors (group 0 only) do not see."""
+
+VIEW = "_view"
+"""Suffix of the body and geom that show each env's terrain in its own
+place when the envs are laid out apart."""
+
+APART_GAP = 1.0
+"""Metres between two envs' slots when they are laid out apart."""
+
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
 difficulty curriculum term is ``TERM + "_difficulty"``)."""
@@ -40,7 +51,9 @@ def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
     return EnvTerrains(scheme_of(scheme), 1, oversample=oversample)
 
 
-def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = POOL) -> None:
+def add_pool(
+    spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Optional[int] = None, name: str = POOL, apart: bool = False
+) -> None:
     """Adds to an mjlab scene's ``spec`` the pool of ``num_envs`` height
     fields of ``scheme``'s slot shape (zeros until ``EnvTerrainsEvent``
     fills them), the terrain geom that shows one (``GEOM``, which
@@ -52,7 +65,13 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     exact field (a trunk, a thigh: ``rse._adapters.contacts``) collide with
     a coarse pool instead (``name + "_coarse"``, one sample a cell, geom
     ``GEOM + "_coarse"`` in group 3, unseen by the ray sensors), so that no
-    pair passes MuJoCo's 50 prisms."""
+    pair passes MuJoCo's 50 prisms.
+
+    ``apart``: for watching the envs laid out apart (``EnvTerrainCfg.apart``),
+    a mocap body ``BODY + VIEW`` with a geom showing each world's field
+    (no contacts, group ``VIEW_GROUP``) in place of the exact geom, which
+    is hidden: a body mjlab's viewer draws for every env, not only the one
+    it follows."""
     import mujoco
 
     probe = _probe(scheme, oversample)
@@ -70,6 +89,11 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     exact = add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
     if ground is None:
         ground = body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
+    if apart:
+        view = spec.worldbody.add_body(name=BODY + VIEW, mocap=True)
+        shown = add_env_geom(spec, probe, f"{name}0", name=GEOM + VIEW, group=VIEW_GROUP, body=view)
+        shown.contype, shown.conaffinity = 0, 0
+        exact.rgba = [*exact.rgba[:3], 0.0]
     k = contacts.oversample_of(probe)
     # With one field in it, so that compiling it (the sensors name the
     # terrain body) stays cheap.
@@ -136,6 +160,7 @@ class EnvTerrainsEvent:
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = _CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
+        self.apart = _Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._copy_out(list(range(env.num_envs)))
 
     def _copy_out(self, ids: list[int]) -> None:
@@ -153,7 +178,10 @@ class EnvTerrainsEvent:
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
-        origins[index] = torch.as_tensor(self.envs.origins[ids], dtype=origins.dtype, device=origins.device)
+        at = self.envs.origins[ids].copy()
+        at[:, :2] += self.apart.offsets[ids]
+        origins[index] = torch.as_tensor(at, dtype=origins.dtype, device=origins.device)
+        self.apart.place(sim, ids)
 
     def _refresh_rays(self, ids: list[int]) -> None:
         """Brings the ray-cast meshes of the fields of ``ids`` up to date in
@@ -218,6 +246,81 @@ class _CoarsePool:
         source: Any = wp.array(samples.reshape(-1), dtype=float, device="cpu", copy=False)
         for i, e in enumerate(ids):
             wp.copy(m.hfield_data, source, dest_offset=int(self.adr[e]), src_offset=i * size, count=size)
+
+
+class _Apart:
+    """Where each env's terrain is in its world: all at one place (the
+    default: every env in a world of its own), or laid out on a grid,
+    ``APART_GAP`` between slots, as mjlab's own terrain lays its envs out,
+    so that a viewer drawing every world at once shows each robot on its
+    own terrain. ``offsets[e]`` is env ``e``'s xy shift: its terrain geoms
+    (per-world ``geom_pos``), its origin and its view body (``mocap_pos``)
+    move by it."""
+
+    def __init__(self, sim: Any, envs: EnvTerrains, name: str, on: bool) -> None:
+        import mujoco
+        import warp as wp
+
+        n = envs.num_envs
+        self.offsets = np.zeros((n, 2))
+        self.mocap = -1
+        if not on:
+            return
+        self.offsets = apart_offsets(envs)
+        mjm, m = sim.mj_model, sim.wp_model
+        if "geom_pos" not in sim.expanded_fields:
+            sim.expand_model_fields(("geom_pos",))
+            m = sim.wp_model
+        pos = m.geom_pos.numpy()
+        for geom in (GEOM, GEOM + contacts.COARSE):
+            gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, geom)
+            if gid >= 0:
+                pos[:, gid, :2] = mjm.geom_pos[gid, :2] + self.offsets
+        wp.copy(m.geom_pos, wp.array(pos, dtype=wp.vec3, device=m.geom_pos.device))
+        view = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, GEOM + VIEW)
+        if view < 0:
+            raise ValueError("apart: the scene has no view geom (add_pool(..., apart=True) makes it)")
+        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
+        dataid = m.geom_dataid.numpy()
+        dataid[:, view] = first + np.arange(n)
+        wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+        self.mocap = int(mjm.body_mocapid[mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_BODY, BODY + VIEW)])
+
+    def place(self, sim: Any, ids: list[int]) -> None:
+        """Puts the view bodies of ``ids`` at their envs' places (a reset
+        may have put them back)."""
+        import torch
+
+        if self.mocap < 0 or not ids:
+            return
+        mocap = sim.data.mocap_pos
+        index = torch.as_tensor(ids, dtype=torch.long, device=mocap.device)
+        at = torch.zeros((len(ids), 3), dtype=mocap.dtype, device=mocap.device)
+        at[:, :2] = torch.as_tensor(self.offsets[ids], dtype=mocap.dtype, device=mocap.device)
+        mocap[index, self.mocap] = at
+
+
+def apart_offsets(envs: EnvTerrains) -> np.ndarray:
+    """The xy shift of each env's slot laid out apart: a grid of
+    ``ceil(sqrt(num_envs))`` columns, ``APART_GAP`` metres between slots,
+    env ``e`` in row ``e // cols``, column ``e % cols``."""
+    x, y, _ = envs.hfield_pos
+    n = envs.num_envs
+    cols = max(int(np.ceil(np.sqrt(n))), 1)
+    e = np.arange(n)
+    return np.stack([(e % cols) * (2.0 * x + APART_GAP), (e // cols) * (2.0 * y + APART_GAP)], axis=1)
+
+
+def _slot_xy(env: Any, term: str, xy: Any) -> Any:
+    """World xy (torch, ``[num_envs, ..., 2]``) in each env's slot frame:
+    less its env's ``apart`` offset."""
+    import torch
+
+    offsets = _event(env, term).apart.offsets
+    if not offsets.any():
+        return xy
+    shift = torch.as_tensor(offsets, dtype=xy.dtype, device=xy.device)
+    return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
 
 
 class _RayMeshes:
@@ -298,10 +401,15 @@ def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
     """The ``rse.EnvTerrains`` of a running mjlab ``env`` (its event term
     ``term``): episodes, difficulties, origins, ``heights_at`` for height
     scans."""
+    return _event(env, term).envs
+
+
+def _event(env: Any, term: str) -> EnvTerrainsEvent:
+    """The ``EnvTerrainsEvent`` of ``env``'s event term ``term``."""
     func = env.event_manager.get_term_cfg(term).func
     if not isinstance(func, EnvTerrainsEvent):
         raise ValueError(f"term: event term {term!r} is not an rse.mjlab.EnvTerrainsEvent")
-    return func.envs
+    return func
 
 
 def terrain_difficulty(
@@ -369,7 +477,7 @@ def exact_height_scan(
     if origins is None:
         raise ValueError(f"sensor_name: {sensor_name!r} has cast no rays yet (step or reset the env first)")
     B = origins.shape[0]
-    xy = origins[..., :2].detach().to("cpu", torch.float64).numpy()
+    xy = _slot_xy(env, term, origins[..., :2].detach()).to("cpu", torch.float64).numpy()
     tops = envs.heights_at(np.arange(B), xy)
     tops = torch.as_tensor(np.nan_to_num(tops, nan=0.0), device=origins.device, dtype=origins.dtype)
     F, N = sensor.num_frames, sensor.num_rays_per_frame
@@ -407,7 +515,7 @@ def _terrain_settings(terrain: Any) -> dict[str, Any]:
     nothing for another terrain (or none)."""
     if type(terrain).__name__ != "EnvTerrainCfg":
         return {}
-    settings = {k: getattr(terrain, k) for k in ("scheme", "seed", "difficulty", "oversample", "spawn_radius")}
+    settings = {k: getattr(terrain, k) for k in ("scheme", "seed", "difficulty", "oversample", "spawn_radius", "apart")}
     settings["max_init_terrain_level"] = terrain.max_init_terrain_level
     return settings
 
@@ -444,7 +552,7 @@ class _PoolSpec:
         settings = _terrain_settings(scene.terrain)
         scheme = scheme_of(settings.get("scheme", self.scheme))
         oversample = settings.get("oversample", self.oversample)
-        add_pool(spec, scheme, int(scene.num_envs), oversample=oversample)
+        add_pool(spec, scheme, int(scene.num_envs), oversample=oversample, apart=bool(settings.get("apart")))
 
 
 def _scene_being_built(fallback: Any) -> Any:
@@ -475,7 +583,7 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     import torch
 
     x, y, _ = env_terrains(env, term).hfield_pos
-    xy = env.scene[asset_name].data.root_link_pos_w[:, :2]
+    xy = _slot_xy(env, term, env.scene[asset_name].data.root_link_pos_w[:, :2])
     size = torch.tensor([2.0 * x, 2.0 * y], device=xy.device, dtype=xy.dtype)
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
 
@@ -529,6 +637,7 @@ def use_env_terrains(
     curriculum: Optional[bool] = None,
     max_init_terrain_level: Optional[int] = None,
     terrain_levels: Optional[int] = None,
+    apart: bool = False,
     term: str = TERM,
 ) -> None:
     """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
@@ -561,7 +670,13 @@ def use_env_terrains(
     ``i`` is difficulty ``i / (terrain_levels - 1)``), both read from the
     terrain it replaces (the velocity tasks: 5 of 10) unless given; the
     curriculum then moves an env one level (``1 / (terrain_levels - 1)``)
-    at a time. With neither, every env starts at difficulty 1."""
+    at a time. With neither, every env starts at difficulty 1.
+
+    ``apart=True`` lays the envs' terrains out on a grid (``apart_offsets``),
+    each robot on its own terrain in its own place, as mjlab's own terrain
+    lays out its envs: for watching (the registered tasks' play configs set
+    it). By default every env's terrain is at one place in its own world,
+    where float32 positions are most precise."""
     from mjlab.managers.curriculum_manager import CurriculumTermCfg
     from mjlab.managers.event_manager import EventTermCfg
     from mjlab.managers.termination_manager import TerminationTermCfg
@@ -597,6 +712,7 @@ def use_env_terrains(
         difficulty=difficulty,
         oversample=oversample,
         spawn_radius=spawn_radius,
+        apart=apart,
     )
     earlier = scene.spec_fn
     scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)

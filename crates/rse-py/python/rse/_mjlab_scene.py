@@ -38,3 +38,7 @@ class EnvTerrainCfg(TerrainEntityCfg):
     spawn_radius: Optional[float] = None
     """Radius of the disc around an env's centre whose highest top the
     robot spawns above, metres; None: rse's default."""
+    apart: bool = False
+    """Lay the envs' terrains out on a grid, each robot on its own terrain in
+    its own place (for watching: the play configs set it); else every env's
+    terrain is at one place in its own world."""

@@ -69,8 +69,9 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
             continue
         env_cfg = registry.load_env_cfg(task_id)
         play_cfg = registry.load_env_cfg(task_id, play=True)
-        for cfg in (env_cfg, play_cfg):
-            use_env_terrains(cfg, scheme, oversample=oversample)
+        use_env_terrains(env_cfg, scheme, oversample=oversample)
+        # play shows each robot on its own terrain, apart, as mjlab's own task.
+        use_env_terrains(play_cfg, scheme, oversample=oversample, apart=True)
         rl_cfg = registry.load_rl_cfg(task_id)
         # Runs log apart from mjlab's own (logs/rsl_rl/rse_go1_velocity/).
         rl_cfg.experiment_name = experiment_name(rl_cfg.experiment_name)
