@@ -212,6 +212,10 @@ def test_the_rse_tasks_are_in_mjlabs_registry() -> None:
             terrain = cfg.scene.terrain
             assert type(terrain).__name__ == "EnvTerrainCfg" and next(iter(cfg.events)) == "rse_terrain"
             assert terrain.scheme == STEPFIELD and terrain.difficulty is None
+            # The robots may be moved ±0.5 m in x and y around their origin
+            # (reset_base): the spawn disc covers that square.
+            assert cfg.events["reset_base"].params["pose_range"]["x"] == (-0.5, 0.5)
+            assert terrain.spawn_radius == pytest.approx(0.5 * 2**0.5)
             assert "terrain_levels" not in cfg.curriculum
 
 

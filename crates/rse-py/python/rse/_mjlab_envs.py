@@ -41,6 +41,14 @@ place when the envs are laid out apart."""
 APART_GAP = 1.0
 """Metres between two envs' slots when they are laid out apart."""
 
+RAY_LEAF = 4
+"""Triangles per leaf of the ray meshes' BVHs."""
+
+RAY_BYTES_PER_SAMPLE = 116
+"""What a ray mesh costs per height-field sample: its points (12 bytes)
+and its BVH (SAH, ``RAY_LEAF`` triangles a leaf), measured with Warp 1.19
+on a 160 × 160 field (2.94 MB)."""
+
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
 difficulty curriculum term is ``TERM + "_difficulty"``)."""
@@ -194,17 +202,19 @@ class EnvTerrainsEvent:
         the field's grid as MuJoCo triangulates it, made once; a reset moves
         its points and refits its BVH in place (a rebuild by MuJoCo Warp's
         own ``build_hfield_bvh`` took 72 ms a field). A context made anew
-        (mjlab recreates it when an event expands a model field) gets every
-        env's mesh again."""
+        (mjlab recreates it when an event expands a model field) gets the
+        same meshes."""
         ctx = private.getattr_checked(self._env.sim, "_sensor_context", "mjlab")
         if ctx is None or not ctx.has_raycasts:
             return
         rc = ctx.render_context
-        if rc is not self._rays_of:
+        if self._ray_meshes is None:
             self._rays_of = rc
             self._ray_meshes = _RayMeshes(self._env.sim.mj_model, rc, self.envs, self.name)
             return
-        assert self._ray_meshes is not None, "made with the context it was made for"
+        if rc is not self._rays_of:
+            self._rays_of = rc
+            self._ray_meshes.attach(rc)
         self._ray_meshes.update(self.envs, ids)
 
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
@@ -344,18 +354,31 @@ class _RayMeshes:
         a, b, d, e = quad, quad + 1, quad + ncol, quad + ncol + 1
         indices = np.stack([a, b, e, a, e, d], axis=1).ravel().astype(np.int32)
         device = rc.hfield_bvh_id.device
+        self.meshes = []
+        # One index array for every env (the grids are alike), and the BVH
+        # MuJoCo Warp builds for its own fields (SAH): 2.9 MB an env of
+        # 160² samples, where a copy of the indices each and cuBQL's BVH
+        # took 6.0 MB (4096 envs: 24 GB).
+        shared: Any = wp.array(indices, dtype=wp.int32, device=device)
+        for env in range(len(self.hids)):
+            points: Any = wp.array(self._points(envs, env), dtype=wp.vec3, device=device)
+            self.meshes.append(wp.Mesh(points=points, indices=shared, bvh_constructor="sah", bvh_leaf_size=RAY_LEAF))
+        self.half = (sx, sy)
+        self.attach(rc)
+
+    def attach(self, rc: Any) -> None:
+        """Registers the meshes in the render context ``rc`` in place of
+        the BVHs it built for the pool's fields: the same meshes for a
+        context made anew (mjlab recreates it when an event expands a model
+        field), not a second set (1024 envs: 2.6 GB more)."""
         bvh_ids = rc.hfield_bvh_id.numpy()
         bounds = rc.hfield_bounds_size.numpy()
-        self.meshes = []
-        for env, hid in enumerate(self.hids):
-            points: Any = wp.array(self._points(envs, env), dtype=wp.vec3, device=device)
-            mesh = wp.Mesh(points=points, indices=wp.array(indices, dtype=wp.int32, device=device), bvh_constructor="cubql")
+        for hid, mesh in zip(self.hids, self.meshes):
             rc.hfield_registry.pop(int(bvh_ids[hid]), None)
             rc.hfield_registry[mesh.id] = mesh
             bvh_ids[hid] = mesh.id
             # The box that holds every possible top: [0, elevation] in z.
-            bounds[hid] = (sx, sy, 0.5 * self.sz)
-            self.meshes.append(mesh)
+            bounds[hid] = (*self.half, 0.5 * self.sz)
         rc.hfield_bvh_id.assign(bvh_ids)
         rc.hfield_bounds_size.assign(bounds)
 
@@ -548,16 +571,57 @@ class _PoolSpec:
     def __call__(self, spec: Any) -> None:
         if self.earlier is not None:
             self.earlier(spec)
-        scene = _scene_being_built(self.scene)
+        scene, device = _scene_being_built(self.scene)
         settings = _terrain_settings(scene.terrain)
         scheme = scheme_of(settings.get("scheme", self.scheme))
         oversample = settings.get("oversample", self.oversample)
-        add_pool(spec, scheme, int(scene.num_envs), oversample=oversample, apart=bool(settings.get("apart")))
+        n = int(scene.num_envs)
+        host, on_device = pool_memory(_probe(scheme, oversample), n, device)
+        print(
+            f"[INFO] rse terrains: {n} envs, {(host + on_device) / n / 2**20:.2f} MiB an env, "
+            f"{host / 2**30:.2f} GiB in host memory" + (f" and {on_device / 2**30:.2f} GiB on {device}" if on_device else "")
+        )
+        available = _available_memory()
+        if available is not None and host > available:
+            raise MemoryError(
+                f"env.scene.num_envs: {n} envs of this scheme take about {host / 2**30:.1f} GiB of host memory "
+                f"and {available / 2**30:.1f} GiB is available; use fewer envs, a smaller scheme or "
+                "--env.scene.terrain.oversample 1"
+            )
+        add_pool(spec, scheme, n, oversample=oversample, apart=bool(settings.get("apart")))
 
 
-def _scene_being_built(fallback: Any) -> Any:
-    """The ``SceneCfg`` of the mjlab ``Scene`` whose construction called
-    this (through ``spec_fn``), else ``fallback``."""
+def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu") -> tuple[int, int]:
+    """What ``num_envs`` envs of ``probe``'s shape cost in an mjlab scene,
+    bytes, in host memory and on ``device`` (0 for "cpu", where it is all
+    host memory): the samples (``EnvTerrains``), the host model's fields
+    (exact and coarse), MuJoCo Warp's copy of them, and the ray sensors'
+    meshes (``RAY_BYTES_PER_SAMPLE``)."""
+    nrow, ncol = probe.field_shape
+    samples = nrow * ncol
+    cells = probe.terrain(0).heights.size if contacts.oversample_of(probe) > 1 else 0
+    host = num_envs * 4 * (2 * samples + cells)
+    on_device = num_envs * (4 * (samples + cells) + RAY_BYTES_PER_SAMPLE * samples)
+    if str(device).startswith("cpu"):
+        return host + on_device, 0
+    return host, on_device
+
+
+def _available_memory() -> Optional[int]:
+    """``MemAvailable`` of ``/proc/meminfo``, bytes; None where there is none."""
+    try:
+        with open("/proc/meminfo") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
+def _scene_being_built(fallback: Any) -> tuple[Any, str]:
+    """The ``SceneCfg`` and device of the mjlab ``Scene`` whose construction
+    called this (through ``spec_fn``), else ``fallback`` on the CPU."""
     import inspect
 
     from mjlab.scene import Scene
@@ -567,11 +631,12 @@ def _scene_being_built(fallback: Any) -> Any:
         while frame is not None:
             owner = frame.f_locals.get("self")
             if isinstance(owner, Scene):
-                return private.getattr_checked(owner, "_cfg", "mjlab")
+                cfg = private.getattr_checked(owner, "_cfg", "mjlab")
+                return cfg, str(owner.device)
             frame = frame.f_back
     finally:
         del frame
-    return fallback
+    return fallback, "cpu"
 
 
 def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
@@ -619,6 +684,23 @@ def _terrain_colliders(scene: Any) -> int:
         spec = entity.spec_fn()
         count += sum(1 for g in spec.geoms if (g.contype | g.conaffinity) & 1)
     return count
+
+
+def _spawn_radius_of(env_cfg: Any) -> Optional[float]:
+    """The spawn radius that covers where the task's ``reset_base`` event
+    may put a robot around its env's origin (``pose_range`` x and y: the
+    velocity tasks' ±0.5 m give 0.71 m, the square's half diagonal), so no
+    robot starts below a top it may be moved over; None (rse's default)
+    for a task without one."""
+    import math
+
+    for term in env_cfg.events.values():
+        pose = (getattr(term, "params", None) or {}).get("pose_range")
+        if _func_name(term) == "reset_root_state_uniform" and pose:
+            reach = [max(abs(lo), abs(hi)) for lo, hi in (pose.get("x", (0.0, 0.0)), pose.get("y", (0.0, 0.0)))]
+            radius = math.hypot(*reach)
+            return radius if radius > 0 else None
+    return None
 
 
 def _func_name(term: Any) -> str:
@@ -672,6 +754,11 @@ def use_env_terrains(
     curriculum then moves an env one level (``1 / (terrain_levels - 1)``)
     at a time. With neither, every env starts at difficulty 1.
 
+    Without a ``spawn_radius``, the radius covers where the task's
+    ``reset_root_state_uniform`` event may move a robot (its ``pose_range``
+    x and y: 0.71 m for the velocity tasks' ±0.5 m), so no robot starts
+    below a top it may be moved over.
+
     ``apart=True`` lays the envs' terrains out on a grid (``apart_offsets``),
     each robot on its own terrain in its own place, as mjlab's own terrain
     lays out its envs: for watching (the registered tasks' play configs set
@@ -692,6 +779,8 @@ def use_env_terrains(
         raise ValueError(f"env_cfg.scene.entities[{BODY!r}]: rse's terrain body is named {BODY!r}; rename the entity")
     if isinstance(scene.spec_fn, _PoolSpec):
         raise ValueError("env_cfg: has rse's terrains already (use_env_terrains was called on it once)")
+    if spawn_radius is None:
+        spawn_radius = _spawn_radius_of(env_cfg)
     # Bad arguments fail here, not when the env is built: the same
     # arguments on one env.
     EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)

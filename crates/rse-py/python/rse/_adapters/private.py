@@ -78,7 +78,7 @@ USES = (
     Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", "_cached_world_origins", "rse.mjlab.exact_height_scan",
         "where the scan's rays start this step", instance=True),
     Use("mjlab", "mjlab.scene.scene:Scene", "_cfg", "rse.mjlab.use_env_terrains",
-        "the env count of the scene being built (read from the stack in spec_fn)", instance=True),
+        "the env count and terrain settings of the scene being built (read from the stack in spec_fn)", instance=True),
     # MuJoCo Warp's render context (mjlab's ray sensors): per-field BVHs,
     # fields of a public class that MuJoCo Warp fills and reads itself.
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",
