@@ -17,7 +17,7 @@ import textwrap
 from pathlib import Path
 
 PAGE = Path(__file__).resolve().parents[1] / "docs" / "python.md"
-MODULES = ["rse", "rse.mujoco", "rse.mujoco_warp", "rse.mjx", "rse.gym", "rse.isaaclab", "rse.mjlab", "rse.genesis", "rse.newton", "rse.playground", "rse.ray"]
+MODULES = ["rse", "rse.mujoco", "rse.mujoco_warp", "rse.mjx", "rse.gym", "rse.isaaclab", "rse.mjlab", "rse.mjlab_eval", "rse.genesis", "rse.newton", "rse.playground", "rse.ray"]
 
 HEADER = """\
 # Python API reference

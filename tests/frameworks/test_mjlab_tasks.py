@@ -431,3 +431,12 @@ def test_play_lays_the_envs_out_apart_each_robot_on_its_own_terrain_in_the_viewe
         assert not out_of_slot(env).any()
     finally:
         env.close()
+
+
+def test_the_registered_stepfield_has_no_dead_level_on_mjlabs_ten_levels() -> None:
+    """Every level the curriculum moves through teaches something: no level
+    above 0 all flat, the mean height rising level by level."""
+    report = rse.check_curriculum(rse.Scheme.from_csv(STEPFIELD), levels=10, draws=30)
+    assert report.ok, report.problems
+    assert report.levels[0].flat_share == 1.0 and all(level.flat_share == 0.0 for level in report.levels[1:])
+    assert all(level.distinct == 30 for level in report.levels[1:]), "every env its own terrain at every level"

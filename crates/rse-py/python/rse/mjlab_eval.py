@@ -39,6 +39,8 @@ from typing import Any, Optional
 
 import numpy as np
 
+__all__ = ["LevelResult", "evaluate", "main", "table"]
+
 
 @dataclass(frozen=True)
 class LevelResult:
