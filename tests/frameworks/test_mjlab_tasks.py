@@ -429,6 +429,13 @@ def test_play_lays_the_envs_out_apart_each_robot_on_its_own_terrain_in_the_viewe
             for b in range(a):
                 assert np.abs(places[a] - places[b]).max() >= 2 * min(x, y), "the envs' terrains are apart"
         assert not out_of_slot(env).any()
+        # The contact sheet of the running pool: every env's current terrain.
+        import struct
+
+        png = pool.contact_sheet()
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        width, height = struct.unpack(">II", png[16:24])
+        assert width >= 2 * 160 and height >= 2 * 160, (width, height)
     finally:
         env.close()
 

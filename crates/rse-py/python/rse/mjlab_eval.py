@@ -17,6 +17,8 @@ episode the env is at after it is built and reset (the report gives it):
 the same terrains on every machine, whatever ran before. Every
 robot starts at its terrain's origin facing +x, commanded ``speed`` m/s
 forward (no sideways or turning command); an episode lasts ``seconds``.
+The env is the task's play config (no observation noise) seeded with
+``seed`` (its randomized events too): a rerun gives the same figures.
 
 - **distance made good**: how far the robot got along +x from its start,
   metres, when its episode ended (at a fall: the last control step before
@@ -85,7 +87,10 @@ def evaluate(
         raise ValueError(f"levels and per_level: {levels}, {per_level}; expected 1 or more")
     if not seconds > 0 or not math.isfinite(speed):
         raise ValueError(f"seconds and speed: {seconds}, {speed}; expected seconds > 0 and a finite speed")
-    cfg = load_env_cfg(task)
+    # The play config: no observation noise, as a policy is deployed; the
+    # env's own seed too, for its randomized events (friction at startup).
+    cfg = load_env_cfg(task, play=True)
+    cfg.seed = seed
     n = levels * per_level
     cfg.scene.num_envs = n
     if type(cfg.scene.terrain).__name__ != "EnvTerrainCfg":
