@@ -327,3 +327,75 @@ def test_open_without_a_browser_says_so_in_one_line(tmp_path: Path) -> None:
         process.wait(timeout=10)
         process.stdout.close()
         process.stderr.close()
+
+
+def test_a_reload_keeps_unsaved_edits_asks_before_leaving_and_save_makes_them_the_files(editor, page: Page) -> None:
+    url, folder = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    assert page.locator("#file-name").inner_text() == str(folder / "start.csv")
+    assert page.locator("#unsaved").is_hidden()
+    edit(page, lambda: cell(page, 0, "height").fill("3"))
+    assert page.locator("#unsaved").is_visible()
+    dialogs: list[str] = []
+    page.on("dialog", lambda dialog: (dialogs.append(dialog.type), dialog.accept()))
+    page.reload()
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    assert dialogs == ["beforeunload"], "leaving with unsaved changes asks first"
+    assert cell(page, 0, "height").input_value() == "3", "the edit survived the reload"
+    assert page.locator("#unsaved").is_visible()
+    assert "restored" in page.locator("#status").inner_text()
+    # Save: the file holds it, nothing is unsaved, a reload starts from it.
+    page.get_by_role("button", name="Save", exact=True).click()
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    assert page.locator("#unsaved").is_hidden()
+    assert "random,3" in (folder / "start.csv").read_text()
+    page.reload()
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    assert dialogs == ["beforeunload"], "nothing unsaved: no question"
+    assert cell(page, 0, "height").input_value() == "3" and page.locator("#unsaved").is_hidden()
+
+
+def test_undo_and_redo_by_buttons_and_keys(editor, page: Page) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    undo, redo = page.get_by_role("button", name="Undo"), page.get_by_role("button", name="Redo")
+    assert undo.is_disabled() and redo.is_disabled()
+    edit(page, lambda: cell(page, 0, "height").fill("2"))
+    edit(page, lambda: page.click("#add"))
+    assert len(table(page)) == 2
+    edit(page, lambda: undo.click())
+    assert len(table(page)) == 1 and cell(page, 0, "height").input_value() == "2"
+    edit(page, lambda: undo.click())
+    assert cell(page, 0, "height").input_value() == "1" and undo.is_disabled()
+    edit(page, lambda: redo.click())
+    assert cell(page, 0, "height").input_value() == "2"
+    # Outside a text field the keys do the same.
+    page.locator("h1").click()
+    edit(page, lambda: page.keyboard.press("Control+Shift+Z"))
+    assert len(table(page)) == 2 and redo.is_disabled()
+    edit(page, lambda: page.keyboard.press("Control+Z"))
+    assert len(table(page)) == 1
+    edit(page, lambda: page.keyboard.press("Control+Y"))
+    assert len(table(page)) == 2
+
+
+def test_delete_acts_on_the_obstacle_being_edited_and_undo_brings_it_back(editor, page: Page) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    edit(page, lambda: page.click("#add"))
+    edit(page, lambda: page.click("#add"))
+    edit(page, lambda: cell(page, 2, "height").fill("4"))
+    before = table(page)
+    assert len(before) == 3
+    page.click('#table tbody tr[data-row="0"] td')  # highlight row 1 by pointer …
+    cell(page, 1, "height").focus()  # … then edit row 2 by keyboard
+    page.keyboard.type("2")
+    edit(page, lambda: page.click("#delete"))
+    after = table(page)
+    assert len(after) == 2 and after[0] == before[0] and after[1]["height.lo"] == "4", after
+    edit(page, lambda: page.get_by_role("button", name="Undo").click())
+    restored = table(page)
+    assert len(restored) == 3 and restored[1]["height.lo"] == "12", restored

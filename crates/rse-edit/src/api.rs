@@ -22,6 +22,10 @@ pub struct Editor {
     pub path: Option<PathBuf>,
     /// The scheme it held when the editor started.
     pub initial: PageScheme,
+    /// The file the page saved last and the scheme written there: what a
+    /// reload starts from from then on (it started from `initial`, so the
+    /// next Save wrote the old values back).
+    pub saved: Mutex<Option<(PathBuf, PageScheme)>>,
     /// The batch being written (or last written).
     pub job: Arc<Job>,
 }
@@ -58,12 +62,21 @@ fn bad(message: impl Into<String>) -> Value {
     json!({ "ok": false, "error": { "row": null, "field": null, "message": message.into() } })
 }
 
-/// `GET /api/state`: the scheme to start from.
+/// `GET /api/state`: the scheme to start from: the one saved last, else
+/// the file the editor started on.
+///
+/// # Panics
+/// If the lock is poisoned (a panic while saving).
 pub fn state(editor: &Editor) -> Value {
+    let saved = editor.saved.lock().unwrap();
+    let (path, scheme) = match &*saved {
+        Some((path, scheme)) => (Some(path), scheme),
+        None => (editor.path.as_ref(), &editor.initial),
+    };
     json!({
         "ok": true,
-        "scheme": editor.initial,
-        "path": editor.path.as_ref().map(|p| p.display().to_string()),
+        "scheme": scheme,
+        "path": path.map(|p| p.display().to_string()),
     })
 }
 
@@ -207,8 +220,12 @@ struct SaveRequest {
 }
 
 /// `POST /api/save`: writes the scheme as canonical CSV to the file the
-/// user named (the only file the editor writes besides the batch).
-pub fn save(body: &[u8]) -> Answer {
+/// user named (the only file the editor writes besides the batch), and
+/// remembers it as what a reload starts from.
+///
+/// # Panics
+/// If the lock is poisoned (a panic while saving).
+pub fn save(editor: &Editor, body: &[u8]) -> Answer {
     let request: SaveRequest = request(body)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     if request.path.extension().is_none_or(|e| e != "csv") {
@@ -216,7 +233,11 @@ pub fn save(body: &[u8]) -> Answer {
     }
     rse_world::write_atomically(&request.path, scheme.to_csv().as_bytes())
         .map_err(|e| bad(format!("{:#}", anyhow::Error::from(e))))?;
-    Ok(json!({ "ok": true, "path": request.path.display().to_string() }))
+    let path = request.path.display().to_string();
+    let written = PageScheme::from_scheme(&scheme);
+    let answer = json!({ "ok": true, "path": path, "scheme": written });
+    *editor.saved.lock().unwrap() = Some((request.path, written));
+    Ok(answer)
 }
 
 #[derive(Deserialize)]

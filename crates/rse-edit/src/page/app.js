@@ -22,6 +22,103 @@ async function api(path, body) {
   return response.json();
 }
 
+// --- never lose work: undo history and the draft kept in this browser -------
+//
+// Every edit records the page's scheme after it (typing in one field within
+// HISTORY_MERGE_MS is one edit). Undo and Redo move through the records; the
+// newest is also kept in the browser's storage under the file's name until it
+// is saved, so a reload or a restart of the browser brings it back.
+
+const HISTORY_MERGE_MS = 600;
+const undoLog = { past: [], future: [], lastKey: null, lastAt: 0, restoring: false };
+let savedText = null; // the page's scheme as the file holds it, as JSON
+let fileText = null; // the server's answer for the file: a draft made from it is still good
+let filePath = "";
+
+function draftKey() { return `rse-editor:${filePath || "(unnamed)"}`; }
+
+function snapshot() { return JSON.stringify({ scheme: pageScheme(), selected: state.selected }); }
+
+function record(key) {
+  if (undoLog.restoring) return;
+  const now = performance.now();
+  const text = snapshot();
+  const top = undoLog.past[undoLog.past.length - 1];
+  if (text === top) return;
+  if (key !== null && key === undoLog.lastKey && now - undoLog.lastAt < HISTORY_MERGE_MS && undoLog.past.length > 1) {
+    undoLog.past[undoLog.past.length - 1] = text;
+  } else {
+    undoLog.past.push(text);
+  }
+  undoLog.lastKey = key; undoLog.lastAt = now;
+  undoLog.future = [];
+  changed();
+}
+
+function restore(text) {
+  undoLog.restoring = true;
+  const { scheme, selected } = JSON.parse(text);
+  loadScheme(scheme, selected);
+  undoLog.restoring = false;
+  changed();
+}
+
+function undo() {
+  if (undoLog.past.length < 2) return;
+  undoLog.future.push(undoLog.past.pop());
+  undoLog.lastKey = null;
+  restore(undoLog.past[undoLog.past.length - 1]);
+}
+
+function redo() {
+  if (!undoLog.future.length) return;
+  const text = undoLog.future.pop();
+  undoLog.past.push(text);
+  undoLog.lastKey = null;
+  restore(text);
+}
+
+// The page's scheme differs from the file: say so, keep it in the browser.
+function changed() {
+  const scheme = JSON.stringify(pageScheme());
+  const unsaved = savedText !== null && scheme !== savedText;
+  $("unsaved").hidden = !unsaved;
+  $("undo").disabled = undoLog.past.length < 2;
+  $("redo").disabled = !undoLog.future.length;
+  try {
+    if (unsaved) localStorage.setItem(draftKey(), JSON.stringify({ scheme: pageScheme(), base: fileText }));
+    else localStorage.removeItem(draftKey());
+  } catch (e) { /* storage full or refused: the page still works, only without the draft */ }
+}
+
+function startHistory(scheme, path, draft) {
+  filePath = path || "";
+  $("file-name").textContent = filePath || "(not saved yet)";
+  fileText = JSON.stringify(scheme);
+  undoLog.past = []; undoLog.future = []; undoLog.lastKey = null;
+  loadScheme(scheme);
+  savedText = JSON.stringify(pageScheme());
+  if (draft) loadScheme(draft);
+  undoLog.past.push(snapshot());
+  changed();
+}
+
+window.addEventListener("beforeunload", (e) => {
+  if (!$("unsaved").hidden) { e.preventDefault(); e.returnValue = ""; }
+});
+
+// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y outside text fields (inside one they are
+// the field's own undo).
+document.addEventListener("keydown", (e) => {
+  const typing = e.target instanceof HTMLElement && e.target.matches("input:not([type=checkbox]):not([type=file]), textarea");
+  if (typing || !(e.ctrlKey || e.metaKey)) return;
+  const key = e.key.toLowerCase();
+  if (key === "z" && !e.shiftKey) { e.preventDefault(); undo(); }
+  else if ((key === "z" && e.shiftKey) || key === "y") { e.preventDefault(); redo(); }
+});
+$("undo").onclick = undo;
+$("redo").onclick = redo;
+
 // --- the scheme as the page holds it ----------------------------------------
 
 function pageScheme() {
@@ -36,7 +133,7 @@ function pageScheme() {
   return { globals, obstacles, notes: $("notes").value };
 }
 
-function loadScheme(scheme) {
+function loadScheme(scheme, selected) {
   document.querySelectorAll("[data-global]").forEach((input) => { input.value = scheme.globals[input.dataset.global] ?? ""; });
   $("notes").value = scheme.notes ?? "";
   state.rows = scheme.obstacles.map((o) => {
@@ -44,7 +141,7 @@ function loadScheme(scheme) {
     for (const c of COLUMNS) { const [lo, hi] = o[c] ?? ["", ""]; row[c + ".lo"] = lo; row[c + ".hi"] = hi; }
     return row;
   });
-  state.selected = state.rows.length ? 0 : -1;
+  state.selected = selected ?? (state.rows.length ? 0 : -1);
   renderTable();
   refresh();
 }
@@ -56,14 +153,18 @@ function renderTable() {
     const tr = document.createElement("tr");
     tr.dataset.row = i;
     if (i === state.selected) tr.classList.add("selected");
-    tr.addEventListener("click", () => { state.selected = i; document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i)); });
+    // The obstacle the user last touched, by pointer or keyboard, is the
+    // one Delete, Copy and Move act on.
+    const select_row = () => { state.selected = i; document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i)); };
+    tr.addEventListener("click", select_row);
+    tr.addEventListener("focusin", select_row);
     const num = document.createElement("td"); num.textContent = i + 1; tr.append(num);
     const typeCell = document.createElement("td");
     const select = document.createElement("select");
     select.dataset.field = "type";
     for (const t of TYPES) { const option = document.createElement("option"); option.value = option.textContent = t; select.append(option); }
     select.value = row.type;
-    select.addEventListener("change", () => { row.type = select.value; refresh(); });
+    select.addEventListener("change", () => { row.type = select.value; record(null); refresh(); });
     typeCell.append(select); tr.append(typeCell);
     for (const c of COLUMNS) {
       const td = document.createElement("td");
@@ -72,7 +173,7 @@ function renderTable() {
         input.dataset.field = c; input.dataset.part = part;
         input.className = part; input.value = row[`${c}.${part}`] ?? "";
         input.title = part === "lo" ? c : `${c}: high end of a random range`;
-        input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; refresh(); });
+        input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; record(`${i}.${c}.${part}`); refresh(); });
         td.append(input);
       }
       tr.append(td);
@@ -83,7 +184,7 @@ function renderTable() {
 
 // --- table tools --------------------------------------------------------------
 
-function edit(change) { change(); renderTable(); refresh(); }
+function edit(change) { change(); renderTable(); record(null); refresh(); }
 $("add").onclick = () => edit(() => { state.rows.push({ type: "random", "height.lo": "1" }); state.selected = state.rows.length - 1; });
 $("copy").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected + 1, 0, { ...state.rows[state.selected] }); state.selected += 1; });
 $("delete").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected, 1); state.selected = Math.min(state.selected, state.rows.length - 1); });
@@ -95,7 +196,7 @@ function move(by) {
 }
 $("up").onclick = () => edit(() => move(-1));
 $("down").onclick = () => edit(() => move(1));
-$("notes").addEventListener("input", refresh);
+$("notes").addEventListener("input", () => { record("notes"); refresh(); });
 $("seed").addEventListener("input", refresh);
 $("index").addEventListener("input", refresh);
 $("redraw").onclick = () => { $("index").value = String((Number($("index").value) || 0) + 1); refresh(); };
@@ -261,13 +362,27 @@ $("load").addEventListener("change", async () => {
   const file = $("load").files[0];
   if (!file) return;
   const answer = await api("/api/parse", { csv: await file.text() });
-  if (answer.ok) loadScheme(answer.scheme); else markError(answer.error);
+  if (answer.ok) { loadScheme(answer.scheme); record(null); } else markError(answer.error);
 });
 
 $("save").onclick = async () => {
-  const answer = await api("/api/save", { scheme: pageScheme(), path: $("save-path").value.trim() });
-  $("status").textContent = answer.ok ? `saved ${answer.path}` : "";
-  if (!answer.ok) markError(answer.error);
+  const path = $("save-path").value.trim();
+  let answer;
+  try {
+    answer = await api("/api/save", { scheme: pageScheme(), path });
+  } catch (e) {
+    $("status").textContent = `not saved: the editor's server did not answer (${e.message}); your edits are kept in this browser`;
+    return;
+  }
+  if (!answer.ok) { $("status").textContent = "not saved"; markError(answer.error); return; }
+  $("status").textContent = `saved ${answer.path}`;
+  // The file is now what the page holds: the draft goes, the name stays.
+  try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
+  filePath = answer.path;
+  $("file-name").textContent = filePath;
+  fileText = JSON.stringify(answer.scheme);
+  savedText = JSON.stringify(pageScheme());
+  changed();
 };
 
 $("generate").onclick = async () => {
@@ -298,7 +413,7 @@ function buildFields(schema) {
     const label = document.createElement("label");
     const input = document.createElement("input");
     input.dataset.global = g.key; input.placeholder = g.default;
-    input.addEventListener("input", refresh);
+    input.addEventListener("input", () => { record(`global.${g.key}`); refresh(); });
     label.append(`${g.key.replaceAll("_", " ")}${g.unit ? ` (${g.unit})` : ""} `, input);
     globals.append(label);
   }
@@ -318,5 +433,13 @@ api("/api/schema").then(async (schema) => {
   buildFields(schema);
   const answer = await api("/api/state");
   if (answer.path) $("save-path").value = answer.path;
-  loadScheme(answer.scheme);
+  // A draft this browser kept for this file wins, if it was made from what
+  // the file still holds (else the file changed since: the file wins).
+  let draft = null;
+  try {
+    const kept = JSON.parse(localStorage.getItem(`rse-editor:${answer.path || "(unnamed)"}`) ?? "null");
+    if (kept && kept.base === JSON.stringify(answer.scheme)) draft = kept.scheme;
+  } catch (e) { /* no draft */ }
+  startHistory(answer.scheme, answer.path, draft);
+  if (draft) $("status").textContent = "unsaved changes restored from this browser";
 });
