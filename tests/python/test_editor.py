@@ -399,3 +399,28 @@ def test_delete_acts_on_the_obstacle_being_edited_and_undo_brings_it_back(editor
     edit(page, lambda: page.get_by_role("button", name="Undo").click())
     restored = table(page)
     assert len(restored) == 3 and restored[1]["height.lo"] == "12", restored
+
+
+def test_the_table_is_edited_by_the_controls_accessible_names(editor, page: Page) -> None:
+    """What a screen reader says is what a test finds: buttons and fields
+    by their accessible names, never by a selector."""
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+    edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("peak"))
+    edit(page, lambda: page.get_by_label("height of obstacle 2", exact=True).fill("3"))
+    edit(page, lambda: page.get_by_label("angle of obstacle 2", exact=True).fill("45"))
+    edit(page, lambda: page.get_by_label("x1 of obstacle 2", exact=True).fill("5"))
+    edit(page, lambda: page.get_by_label("y1 of obstacle 2", exact=True).fill("6"))
+    edit(page, lambda: page.get_by_label("height range high end of obstacle 1").fill("2"))
+    assert table(page) == [
+        {"type": "random", "height.lo": "1", "height.hi": "2"},
+        {"type": "peak", "height.lo": "3", "angle.lo": "45", "x1.lo": "5", "y1.lo": "6"},
+    ]
+    assert page.locator("#error").inner_text() == ""
+    edit(page, lambda: page.get_by_role("button", name="Copy obstacle").click())
+    edit(page, lambda: page.get_by_role("button", name="Move up").click())
+    edit(page, lambda: page.get_by_role("button", name="Delete obstacle").click())
+    assert [row["type"] for row in table(page)] == ["random", "peak"]
+    assert page.get_by_label("world seed").is_visible() and page.get_by_label("index").is_visible()

@@ -162,6 +162,7 @@ function renderTable() {
     const typeCell = document.createElement("td");
     const select = document.createElement("select");
     select.dataset.field = "type";
+    select.setAttribute("aria-label", `type of obstacle ${i + 1}`);
     for (const t of TYPES) { const option = document.createElement("option"); option.value = option.textContent = t; select.append(option); }
     select.value = row.type;
     select.addEventListener("change", () => { row.type = select.value; record(null); refresh(); });
@@ -173,6 +174,8 @@ function renderTable() {
         input.dataset.field = c; input.dataset.part = part;
         input.className = part; input.value = row[`${c}.${part}`] ?? "";
         input.title = part === "lo" ? c : `${c}: high end of a random range`;
+        // Names a screen reader reads and tests find the fields by.
+        input.setAttribute("aria-label", part === "lo" ? `${c} of obstacle ${i + 1}` : `${c} range high end of obstacle ${i + 1}`);
         input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; record(`${i}.${c}.${part}`); refresh(); });
         td.append(input);
       }
