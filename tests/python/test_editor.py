@@ -424,3 +424,19 @@ def test_the_table_is_edited_by_the_controls_accessible_names(editor, page: Page
     edit(page, lambda: page.get_by_role("button", name="Delete obstacle").click())
     assert [row["type"] for row in table(page)] == ["random", "peak"]
     assert page.get_by_label("world seed").is_visible() and page.get_by_label("index").is_visible()
+
+
+def test_download_csv_is_the_file_save_writes(editor, page: Page) -> None:
+    url, folder = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("2"))
+    with page.expect_download() as download:
+        page.get_by_role("button", name="Download CSV").click()
+    assert download.value.suggested_filename == "start.csv"
+    got = folder / "downloaded.csv"
+    download.value.save_as(got)
+    assert (folder / "start.csv").read_text() == "# size: 20x16\ntype,height\nrandom,1\n", "a download writes no file"
+    page.get_by_role("button", name="Save", exact=True).click()
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    assert got.read_text() == (folder / "start.csv").read_text() and "random,2" in got.read_text()

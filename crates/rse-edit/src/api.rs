@@ -214,6 +214,19 @@ pub fn parse(body: &[u8]) -> Answer {
 }
 
 #[derive(Deserialize)]
+struct CsvRequest {
+    scheme: PageScheme,
+}
+
+/// `POST /api/csv`: the page's scheme as the canonical CSV Save writes, for
+/// the page to offer as a download (nothing is written here).
+pub fn csv(body: &[u8]) -> Answer {
+    let request: CsvRequest = request(body)?;
+    let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
+    Ok(json!({ "ok": true, "csv": scheme.to_csv() }))
+}
+
+#[derive(Deserialize)]
 struct SaveRequest {
     scheme: PageScheme,
     path: PathBuf,

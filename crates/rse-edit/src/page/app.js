@@ -388,6 +388,26 @@ $("save").onclick = async () => {
   changed();
 };
 
+// The canonical CSV Save would write, as a file the browser saves: named
+// as the file the page edits (or scheme.csv).
+$("download").onclick = async () => {
+  let answer;
+  try {
+    answer = await api("/api/csv", { scheme: pageScheme() });
+  } catch (e) {
+    $("status").textContent = `no download: the editor's server did not answer (${e.message})`;
+    return;
+  }
+  if (!answer.ok) { $("status").textContent = "no download: the scheme has an error"; markError(answer.error); return; }
+  const link = document.createElement("a");
+  link.href = URL.createObjectURL(new Blob([answer.csv], { type: "text/csv" }));
+  link.download = (filePath.split(/[\\/]/).pop() || "scheme.csv");
+  document.body.append(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+};
+
 $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
