@@ -5,6 +5,7 @@
 //! "Checking a curriculum").
 
 use std::collections::HashSet;
+use std::hash::{DefaultHasher, Hash, Hasher};
 
 use rayon::prelude::*;
 
@@ -171,13 +172,18 @@ struct WorldStats {
     step_sum: u64,
     steps: u64,
     max_step: u16,
-    cells_hash: Vec<u16>,
+    /// The heights' digest: distinct worlds are counted by it, so a level
+    /// holds a number per draw, not a copy of every heightmap.
+    digest: u64,
 }
 
 impl WorldStats {
     fn of(terrain: &Terrain) -> WorldStats {
         let grid = terrain.grid();
         let map = terrain.heightmap();
+        // `DefaultHasher::new` has fixed keys: the same digest in every run.
+        let mut hasher = DefaultHasher::new();
+        map.cells().hash(&mut hasher);
         let mut stats = WorldStats {
             flat: true,
             height_sum: 0,
@@ -185,42 +191,38 @@ impl WorldStats {
             step_sum: 0,
             steps: 0,
             max_step: 0,
-            cells_hash: map.cells().to_vec(),
+            digest: hasher.finish(),
         };
-        let mut step = |a: u16, b: u16| {
-            let d = a.abs_diff(b);
-            if d > 0 {
-                stats.step_sum += u64::from(d);
-                stats.steps += 1;
-                stats.max_step = stats.max_step.max(d);
-            }
-        };
-        // Neighbouring pairs of non-frame cells, each once (right and up).
+        // Each non-frame cell, and its pairs with its non-frame neighbours
+        // to the right and above (each pair once).
         for y in 0..grid.ny {
             for x in 0..grid.nx {
                 if grid.is_frame(x, y) {
                     continue;
                 }
                 let h = map.get(x, y);
+                stats.flat &= h == 0;
+                stats.height_sum += u64::from(h);
+                stats.cells += 1;
                 if x + 1 < grid.nx && !grid.is_frame(x + 1, y) {
-                    step(h, map.get(x + 1, y));
+                    stats.add_step(h, map.get(x + 1, y));
                 }
                 if y + 1 < grid.ny && !grid.is_frame(x, y + 1) {
-                    step(h, map.get(x, y + 1));
-                }
-            }
-        }
-        for y in 0..grid.ny {
-            for x in 0..grid.nx {
-                if !grid.is_frame(x, y) {
-                    let h = map.get(x, y);
-                    stats.flat &= h == 0;
-                    stats.height_sum += u64::from(h);
-                    stats.cells += 1;
+                    stats.add_step(h, map.get(x, y + 1));
                 }
             }
         }
         stats
+    }
+
+    /// The pair of neighbouring heights `a`, `b`: a step where they differ.
+    fn add_step(&mut self, a: u16, b: u16) {
+        let d = a.abs_diff(b);
+        if d > 0 {
+            self.step_sum += u64::from(d);
+            self.steps += 1;
+            self.max_step = self.max_step.max(d);
+        }
     }
 }
 
@@ -236,7 +238,7 @@ impl LevelStats {
         let step_height = globals.step_height;
         let max_step =
             f64::from(worlds.iter().map(|w| w.max_step).max().unwrap_or(0)) * step_height;
-        let distinct: HashSet<&[u16]> = worlds.iter().map(|w| w.cells_hash.as_slice()).collect();
+        let distinct: HashSet<u64> = worlds.iter().map(|w| w.digest).collect();
         LevelStats {
             level,
             difficulty,
