@@ -223,6 +223,17 @@ class EnvTerrainsEvent:
         self._copy_out(ids)
 
 
+def _route_per_world(m: Any, gid: int, first: int) -> None:
+    """Points geom ``gid`` of world ``w`` of the device model ``m`` at
+    height field ``first + w`` (``geom_dataid`` batched per world), leaving
+    every other geom's routing as it is."""
+    import warp as wp
+
+    dataid = m.geom_dataid.numpy()
+    dataid[:, gid] = first + np.arange(dataid.shape[0])
+    wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+
+
 class _CoarsePool:
     """The coarse fields ``add_pool`` made for the robot's large geoms, if
     any: their geom routed to env ``w``'s coarse field in world ``w``, and
@@ -230,16 +241,13 @@ class _CoarsePool:
 
     def __init__(self, m: Any, mjm: Any, envs: EnvTerrains, name: str) -> None:
         import mujoco
-        import warp as wp
 
         self.gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, GEOM + contacts.COARSE)
         if self.gid < 0:
             return
         first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}{contacts.COARSE}0")
         self.adr = np.asarray(mjm.hfield_adr[first : first + envs.num_envs], dtype=np.int64)
-        dataid = m.geom_dataid.numpy()
-        dataid[:, self.gid] = first + np.arange(envs.num_envs)
-        wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+        _route_per_world(m, self.gid, first)
 
     def sync(self, m: Any, mjm: Any, envs: EnvTerrains, ids: list[int]) -> None:
         import warp as wp
@@ -290,11 +298,18 @@ class _Apart:
         view = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, GEOM + VIEW)
         if view < 0:
             raise ValueError("apart: the scene has no view geom (add_pool(..., apart=True) makes it)")
-        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
-        dataid = m.geom_dataid.numpy()
-        dataid[:, view] = first + np.arange(n)
-        wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+        _route_per_world(m, view, mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0"))
         self.mocap = int(mjm.body_mocapid[mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_BODY, BODY + VIEW)])
+
+    def slot_xy(self, xy: Any) -> Any:
+        """World xy (torch, ``[num_envs, ..., 2]``) in each env's slot
+        frame: less its env's offset."""
+        import torch
+
+        if not self.offsets.any():
+            return xy
+        shift = torch.as_tensor(self.offsets, dtype=xy.dtype, device=xy.device)
+        return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
 
     def place(self, sim: Any, ids: list[int]) -> None:
         """Puts the view bodies of ``ids`` at their envs' places (a reset
@@ -319,18 +334,6 @@ def apart_offsets(envs: EnvTerrains) -> np.ndarray:
     cols = max(int(np.ceil(np.sqrt(n))), 1)
     e = np.arange(n)
     return np.stack([(e % cols) * (2.0 * x + APART_GAP), (e // cols) * (2.0 * y + APART_GAP)], axis=1)
-
-
-def _slot_xy(env: Any, term: str, xy: Any) -> Any:
-    """World xy (torch, ``[num_envs, ..., 2]``) in each env's slot frame:
-    less its env's ``apart`` offset."""
-    import torch
-
-    offsets = _event(env, term).apart.offsets
-    if not offsets.any():
-        return xy
-    shift = torch.as_tensor(offsets, dtype=xy.dtype, device=xy.device)
-    return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
 
 
 class _RayMeshes:
@@ -495,12 +498,13 @@ def exact_height_scan(
     import torch
 
     sensor = env.scene[sensor_name]
-    envs = env_terrains(env, term)
+    event = _event(env, term)
+    envs = event.envs
     origins = private.getattr_checked(sensor, "_cached_world_origins", "mjlab")
     if origins is None:
         raise ValueError(f"sensor_name: {sensor_name!r} has cast no rays yet (step or reset the env first)")
     B = origins.shape[0]
-    xy = _slot_xy(env, term, origins[..., :2].detach()).to("cpu", torch.float64).numpy()
+    xy = event.apart.slot_xy(origins[..., :2].detach()).to("cpu", torch.float64).numpy()
     tops = envs.heights_at(np.arange(B), xy)
     tops = torch.as_tensor(np.nan_to_num(tops, nan=0.0), device=origins.device, dtype=origins.dtype)
     F, N = sensor.num_frames, sensor.num_rays_per_frame
@@ -647,8 +651,9 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     ``hfield_pos``: no terrain is copied out in a step)."""
     import torch
 
-    x, y, _ = env_terrains(env, term).hfield_pos
-    xy = _slot_xy(env, term, env.scene[asset_name].data.root_link_pos_w[:, :2])
+    event = _event(env, term)
+    x, y, _ = event.envs.hfield_pos
+    xy = event.apart.slot_xy(env.scene[asset_name].data.root_link_pos_w[:, :2])
     size = torch.tensor([2.0 * x, 2.0 * y], device=xy.device, dtype=xy.dtype)
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
 

@@ -114,10 +114,11 @@ def evaluate(
         policy = runner.get_inference_policy(device=device)
         # Every env's evaluated terrain: its next episode, at its level.
         wrapped.reset()
-        episodes = _run(env, wrapped, policy, event, seconds)
+        # Half a terrain ahead: its far edge, from its centre.
+        half = 0.5 * event.envs.terrain(0).block_size * event.envs.terrain(0).heights.shape[1]
+        episodes = _run(env, wrapped, policy, event, seconds, half)
     finally:
         env.close()
-    half = 0.5 * event.envs.terrain(0).block_size * event.envs.terrain(0).heights.shape[1]
     results = []
     for level in range(levels):
         rows = [e for e in episodes if e["env"] // per_level == level]
@@ -177,15 +178,15 @@ def _fix_for_evaluation(cfg: Any, seconds: float, speed: float) -> None:
         twist.resampling_time_range = (1e9, 1e9)
 
 
-def _run(env: Any, wrapped: Any, policy: Any, event: Any, seconds: float) -> list[dict[str, Any]]:
-    """Steps every env until its first episode ends; each env's figures."""
+def _run(env: Any, wrapped: Any, policy: Any, event: Any, seconds: float, half: float) -> list[dict[str, Any]]:
+    """Steps every env until its first episode ends; each env's figures
+    (crossed: ``half`` metres ahead of its start)."""
     import torch
 
     n = env.num_envs
     episode = event.envs.episode.copy()
     robot = env.scene["robot"]
     start = robot.data.root_link_pos_w[:, :2].detach().cpu().numpy().copy()
-    half = 0.5 * event.envs.terrain(0).block_size * event.envs.terrain(0).heights.shape[1]
     dt = env.step_dt
     steps = int(math.ceil(seconds / dt)) + 1
     done = np.zeros(n, dtype=bool)
