@@ -64,13 +64,13 @@ def edit(page: Page, action) -> None:
     page.wait_for_function(f"window.rseEditor?.answers > {before}")
 
 
-def preview_round_trips(page: Page, url: str, count: int) -> list[float]:
+def preview_round_trips(page: Page, url: str, count: int, size: int = 50) -> list[float]:
     """Milliseconds from an edit to its new picture and 3D view, as the page
-    times them, for `count` new draws of a 50x50 scheme."""
+    times them, for `count` new draws of a `size`×`size` scheme."""
     page.goto(url)
     page.wait_for_function("window.rseEditor?.previews >= 1")
-    page.fill('[data-global="size"]', "50x50")
-    page.wait_for_function("document.getElementById('timing').textContent.startsWith('50×50')")
+    page.fill('[data-global="size"]', f"{size}x{size}")
+    page.wait_for_function(f"document.getElementById('timing').textContent.startsWith('{size}×{size}')")
     times = []
     for i in range(1, count + 1):
         drawn = page.evaluate("window.rseEditor.previews")

@@ -60,7 +60,10 @@ impl GlobalKey {
     pub const fn unit(self) -> Option<&'static str> {
         match self {
             GlobalKey::BlockSize | GlobalKey::StepHeight | GlobalKey::Base => Some("m"),
-            _ => None,
+            GlobalKey::Size | GlobalKey::PalletSize => Some("cells"),
+            GlobalKey::Pallets => Some("pallets"),
+            GlobalKey::Amount => Some("worlds"),
+            GlobalKey::PalletBoundary | GlobalKey::Seed => None,
         }
     }
 
@@ -77,18 +80,22 @@ impl GlobalKey {
         }
     }
 
-    /// One line of documentation.
+    /// One line of documentation: the "value" column of docs/schemes.md's
+    /// table of keys, without its backticks (the editor's tooltip; a test
+    /// in rse-edit holds the two together).
     pub const fn doc(self) -> &'static str {
         match self {
-            GlobalKey::Size => "Grid size in cells, NXxNY (under pallets, the pallets define it)",
-            GlobalKey::Pallets => "Pallets along x and y, NXxNY, or off",
-            GlobalKey::PalletSize => "Cells along a pallet's side (needs pallets)",
-            GlobalKey::PalletBoundary => "A frame around every pallet (needs pallets)",
-            GlobalKey::BlockSize => "Cell side, metres",
-            GlobalKey::StepHeight => "One step of height, metres",
-            GlobalKey::Base => "Slab under the grid, metres",
-            GlobalKey::Amount => "Worlds in a batch",
-            GlobalKey::Seed => "The batch's base seed",
+            GlobalKey::Size => "NXxNY cells, used when pallets are off",
+            GlobalKey::Pallets => "PXxPY pallets, or off",
+            GlobalKey::PalletSize => "pallet side in cells, inside the frame (needs pallets)",
+            GlobalKey::PalletBoundary => {
+                "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)"
+            }
+            GlobalKey::BlockSize => "cell side S in metres",
+            GlobalKey::StepHeight => "height of one step in metres",
+            GlobalKey::Base => "slab under the whole grid, metres",
+            GlobalKey::Amount => "worlds in a batch",
+            GlobalKey::Seed => "base seed of a batch, 0..2^64-1",
         }
     }
 

@@ -147,6 +147,32 @@ impl Field {
         }
     }
 
+    /// The unit of its numbers, as the editor shows it beside them.
+    pub const fn unit(self) -> Option<&'static str> {
+        match self {
+            Field::Type => None,
+            Field::Height | Field::Sigma => Some("steps"),
+            Field::Angle => Some("degrees"),
+            Field::X1 | Field::Y1 | Field::X2 | Field::Y2 => Some("cells"),
+        }
+    }
+
+    /// One line of documentation: the "meaning" column of docs/schemes.md's
+    /// table of columns, without its backticks (the editor's tooltip; a
+    /// test in rse-edit holds the two together).
+    pub const fn doc(self) -> &'static str {
+        match self {
+            Field::Type => "the obstacle: random, gaussian, peak, pit, wall or long_pit",
+            Field::Height => "height H in whole steps (the depth of a pit or long pit)",
+            Field::Angle => "slope of its sides from the ground, 0 to 90 (90: straight sides)",
+            Field::X1 => "column of the point (the first end of a wall or long pit), from 0",
+            Field::Y1 => "row of the point (the first end of a wall or long pit), from 0",
+            Field::X2 => "column of the second end of a wall or long pit",
+            Field::Y2 => "row of the second end of a wall or long pit",
+            Field::Sigma => "spread of a gaussian's heights, in steps (default 1)",
+        }
+    }
+
     /// The column for a header name (trimmed, case-insensitive).
     pub fn from_header(name: &str) -> Option<Field> {
         let name = name.trim().to_ascii_lowercase();

@@ -9,7 +9,9 @@ use std::time::Instant;
 use base64::Engine as _;
 use rse_core::{Field, GlobalKey, Globals, ObstacleKind, Usage, preview};
 use rse_verify::{CheckOptions, check_paths};
-use rse_world::{BatchConfig, Target, Targets, Templates, WorldConfig, write_batch};
+use rse_world::{
+    BatchConfig, MeshMode, Target, Targets, Templates, WorldConfig, write_batch,
+};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -111,10 +113,13 @@ pub fn schema() -> Value {
             })
             .collect::<serde_json::Map<_, _>>()
     };
+    let column = |f: &Field| json!({ "name": f.name(), "unit": f.unit(), "doc": f.doc() });
     json!({
         "ok": true,
         "globals": GlobalKey::ALL.map(global),
         "columns": columns.iter().map(|f| f.name()).collect::<Vec<_>>(),
+        "column_docs": Field::ALL.iter().map(column).collect::<Vec<_>>(),
+        "mesh_modes": MeshMode::ALL.map(|m| m.name()),
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
         "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),
@@ -124,11 +129,39 @@ pub fn schema() -> Value {
 #[derive(Deserialize)]
 struct PreviewRequest {
     scheme: PageScheme,
-    /// The world's base seed; absent or null: the scheme's `# seed:`.
+    /// The world's base seed as typed (a number or its text); absent, null
+    /// or blank: the scheme's `# seed:`.
     #[serde(default)]
-    seed: Option<u64>,
+    seed: Value,
+    /// The world's index as typed; absent, null or blank: 0.
     #[serde(default)]
-    index: Option<u64>,
+    index: Value,
+}
+
+/// A refusal of one of the page's own controls (not a scheme field): the
+/// page marks the control whose id is `control`.
+fn control_error(control: &str, message: String) -> Value {
+    json!({ "ok": false, "error": { "row": null, "field": null, "control": control, "message": message } })
+}
+
+/// A whole number the page's control `control` (shown as `label`) holds, as
+/// typed: `None` when blank, else a number `0..=u64::MAX` or a refusal in
+/// words (a parser's text such as "expected u64" tells a user nothing).
+fn whole_number(control: &str, label: &str, value: &Value) -> Result<Option<u64>, Value> {
+    let text = match value {
+        Value::Null => return Ok(None),
+        Value::String(text) => text.trim().to_owned(),
+        other => other.to_string(),
+    };
+    if text.is_empty() {
+        return Ok(None);
+    }
+    text.parse::<u64>().map(Some).map_err(|_| {
+        control_error(
+            control,
+            format!("the {label} must be a whole number from 0 to {}, not `{text}`", u64::MAX),
+        )
+    })
 }
 
 /// The largest grid the editor previews, in cells (500×500): its answer
@@ -142,10 +175,17 @@ pub const MAX_PREVIEW_CELLS: u64 = 250_000;
 /// took 25 s.
 pub const MAX_PREVIEW_VISITS: u64 = 50_000_000;
 
-/// `POST /api/preview`: the world's heights, boxes and top-down PNG.
+/// `POST /api/preview`: the world's heights, for the page to draw both its
+/// views from (the top-down view with [`preview::palette`]'s colours, so it
+/// matches `preview.png` pixel for pixel, and the 3D view on the same
+/// scale): one byte a cell, two (little-endian) where a cell is above 255
+/// steps, base64. A 200×200 world is 53 kB (its PNG and box list were
+/// 858 kB).
 pub fn preview(body: &[u8]) -> Answer {
     let start = Instant::now();
     let request: PreviewRequest = request(body)?;
+    let seed = whole_number("seed", "world seed", &request.seed)?;
+    let index = whole_number("index", "index", &request.index)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     let grid = scheme.grid();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
@@ -175,28 +215,39 @@ pub fn preview(body: &[u8]) -> Answer {
         }));
     }
     let terrain = rse_core::WorldRequest {
-        seed: request.seed,
-        index: request.index,
+        seed,
+        index,
         difficulty: None,
     }
     .generate(&scheme);
-    let png = preview::png(&terrain, None).map_err(|e| bad(e.to_string()))?;
-    let boxes: Vec<[f64; 6]> = terrain
-        .boxes()
-        .iter()
-        .map(|b| {
-            let ([cx, cy, cz], [hx, hy, hz]) = (b.center, b.half_size);
-            [cx, cy, cz, hx, hy, hz]
-        })
-        .collect();
+    let (lo, hi) = preview::height_span(&terrain);
+    let map = terrain.heightmap();
+    let wide = map.max() > u16::from(u8::MAX);
+    let mut bytes = Vec::with_capacity(grid.cells() * if wide { 2 } else { 1 });
+    for y in 0..grid.ny {
+        for &h in map.row(y) {
+            if wide {
+                bytes.extend_from_slice(&h.to_le_bytes());
+            } else {
+                bytes.push(u8::try_from(h).expect("at most 255: not wide"));
+            }
+        }
+    }
+    let globals = scheme.globals();
     Ok(json!({
         "ok": true,
         "nx": grid.nx,
         "ny": grid.ny,
-        "max_height": terrain.heightmap().max(),
-        "block_size": terrain.block_size(),
-        "png": format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(png)),
-        "boxes": boxes,
+        "heights": base64::engine::general_purpose::STANDARD.encode(bytes),
+        "bytes_per_height": if wide { 2 } else { 1 },
+        // The colour scale: the lowest and highest cell that is not frame.
+        "lo": lo,
+        "hi": hi,
+        "frame_period": grid.frame_period,
+        "cell_pixels": preview::auto_cell_pixels(grid.nx, grid.ny),
+        "block_size": globals.block_size,
+        "step_height": globals.step_height,
+        "base": globals.base,
         "server_ms": start.elapsed().as_secs_f64() * 1e3,
     }))
 }
@@ -211,6 +262,48 @@ pub fn parse(body: &[u8]) -> Answer {
     let request: ParseRequest = request(body)?;
     let scheme = rse_core::Scheme::from_csv(&request.csv, None).map_err(|e| bad(e.to_string()))?;
     Ok(json!({ "ok": true, "scheme": PageScheme::from_scheme(&scheme) }))
+}
+
+#[derive(Deserialize)]
+struct OpenRequest {
+    path: PathBuf,
+}
+
+/// The largest scheme file the editor opens (16 MiB): far above any table
+/// a person edits, and a stray path to a huge file is refused before it is
+/// read whole.
+pub const MAX_OPEN_BYTES: u64 = 16 << 20;
+
+/// `POST /api/open`: reads the scheme file at `path` (a `.csv`), and makes
+/// it the file Save writes and a reload starts from.
+///
+/// # Panics
+/// If the lock is poisoned (a panic while saving).
+pub fn open(editor: &Editor, body: &[u8]) -> Answer {
+    let request: OpenRequest = request(body)?;
+    let path = request.path;
+    let shown = path.display();
+    if path.extension().is_none_or(|e| e != "csv") {
+        return Err(control_error("path", format!("{shown}: a scheme file ends in .csv")));
+    }
+    let read = || -> std::io::Result<String> {
+        let file = std::fs::File::open(&path)?;
+        let size = file.metadata()?.len();
+        if size > MAX_OPEN_BYTES {
+            return Err(std::io::Error::other(format!(
+                "{size} bytes, more than a scheme the editor opens ({MAX_OPEN_BYTES})"
+            )));
+        }
+        std::io::read_to_string(file)
+    };
+    let text = read().map_err(|e| control_error("path", format!("cannot open {shown}: {e}")))?;
+    let name = shown.to_string();
+    let scheme = rse_core::Scheme::from_csv(&text, Some(&name))
+        .map_err(|e| control_error("path", e.to_string()))?;
+    let page = PageScheme::from_scheme(&scheme);
+    let answer = json!({ "ok": true, "path": name, "scheme": page });
+    *editor.saved.lock().unwrap() = Some((path, page));
+    Ok(answer)
 }
 
 #[derive(Deserialize)]
@@ -257,12 +350,15 @@ pub fn save(editor: &Editor, body: &[u8]) -> Answer {
 struct GenerateRequest {
     scheme: PageScheme,
     out: PathBuf,
-    /// Absent or null: the scheme's `# amount:` and `# seed:`, as
-    /// `rse-gen batch` takes them.
+    /// As typed; absent, null or blank: the scheme's `# amount:` and
+    /// `# seed:`, as `rse-gen batch` takes them.
     #[serde(default)]
-    amount: Option<u64>,
+    amount: Value,
     #[serde(default)]
-    seed: Option<u64>,
+    seed: Value,
+    /// `auto`, `single` or `blocks` (absent: auto).
+    #[serde(default)]
+    mesh: Option<String>,
     /// Target names; none given: the default targets.
     #[serde(default)]
     targets: Vec<String>,
@@ -274,11 +370,28 @@ struct GenerateRequest {
 /// If the job's lock is poisoned (a panic in the batch thread).
 pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let request: GenerateRequest = request(body)?;
+    let amount = whole_number("gen-amount", "amount of worlds", &request.amount)?;
+    let seed = whole_number("seed", "world seed", &request.seed)?;
+    let mesh = request
+        .mesh
+        .as_deref()
+        .map(str::parse::<MeshMode>)
+        .transpose()
+        .map_err(|e| control_error("mesh", e.to_string()))?;
+    if request.out.as_os_str().is_empty() {
+        return Err(control_error(
+            "gen-out",
+            "name the folder the worlds go into".to_owned(),
+        ));
+    }
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     let targets = if request.targets.is_empty() {
         None
     } else {
-        Some(Targets::parse(&request.targets.join(",")).map_err(|e| bad(e.to_string()))?)
+        Some(
+            Targets::parse(&request.targets.join(","))
+                .map_err(|e| control_error("gen-targets", e.to_string()))?,
+        )
     };
     let job = Arc::clone(&editor.job);
     {
@@ -289,16 +402,23 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         *running = true;
     }
     let options = BatchConfig {
-        amount: request.amount,
-        seed: request.seed,
+        amount,
+        seed,
         world: WorldConfig {
             targets,
+            mesh,
             ..WorldConfig::default()
         },
         ..BatchConfig::default()
     }
-    .resolve(&scheme, request.out)
-    .map_err(|e| bad(e.to_string()))?;
+    .resolve(&scheme, request.out);
+    let options = match options {
+        Ok(options) => options,
+        Err(e) => {
+            *job.running.lock().expect("not poisoned") = false;
+            return Err(bad(e.to_string()));
+        }
+    };
     job.done.store(0, Ordering::SeqCst);
     job.total.store(options.amount, Ordering::SeqCst);
     *job.result.lock().expect("not poisoned") = None;
@@ -395,6 +515,84 @@ mod tests {
         );
     }
 
+    /// The tooltips are docs/schemes.md's words: each key's and column's
+    /// `doc` is its table row's text there, backticks removed.
+    #[test]
+    fn the_tooltips_are_the_scheme_docs_text() {
+        let docs = include_str!("../../../docs/schemes.md");
+        let row = |name: &str| -> Vec<String> {
+            let start = format!("| `{name}` |");
+            let line = docs
+                .lines()
+                .find(|l| l.starts_with(&start))
+                .unwrap_or_else(|| panic!("docs/schemes.md has no table row for `{name}`"));
+            line.trim_matches('|')
+                .split(" | ")
+                .map(|cell| cell.trim().replace('`', ""))
+                .collect()
+        };
+        let schema = schema();
+        for g in schema["globals"].as_array().unwrap() {
+            let cells = row(g["key"].as_str().unwrap());
+            assert_eq!(cells[1], g["doc"].as_str().unwrap(), "{}", g["key"]);
+        }
+        for c in schema["column_docs"].as_array().unwrap() {
+            let cells = row(c["name"].as_str().unwrap());
+            assert_eq!(cells[2], c["doc"].as_str().unwrap(), "{}", c["name"]);
+            assert_eq!(cells[1], c["unit"].as_str().unwrap_or("–"), "{}", c["name"]);
+        }
+    }
+
+    #[test]
+    fn a_page_control_typed_wrong_is_refused_in_words_on_that_control() {
+        let scheme = seeded_page_scheme();
+        for (seed, index, control, words) in [
+            (json!("abc"), json!(0), "seed", "the world seed must be a whole number from 0 to"),
+            (json!(null), json!(-1), "index", "the index must be a whole number from 0 to"),
+            (json!(""), json!("1.5"), "index", "not `1.5`"),
+        ] {
+            let body = json!({ "scheme": scheme, "seed": seed, "index": index });
+            let refusal = preview(body.to_string().as_bytes()).unwrap_err();
+            assert_eq!(refusal["error"]["control"], control, "{refusal}");
+            let message = refusal["error"]["message"].as_str().unwrap();
+            assert!(message.contains(words), "{message}");
+            assert!(!message.contains("expected u64"), "{message}");
+        }
+        let body = json!({ "scheme": scheme, "seed": " 9 ", "index": "" });
+        assert!(preview(body.to_string().as_bytes()).is_ok(), "blank and spaced numbers are fine");
+
+        let editor = Editor::default();
+        let body = json!({ "scheme": scheme, "out": "w", "amount": "abc" });
+        let refusal = generate(&editor, body.to_string().as_bytes()).unwrap_err();
+        assert_eq!(refusal["error"]["control"], "gen-amount", "{refusal}");
+        assert!(!*editor.job.running.lock().unwrap(), "nothing started");
+    }
+
+    #[test]
+    fn open_reads_a_scheme_and_makes_it_the_file_a_reload_starts_from() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("other.csv");
+        std::fs::write(&path, "# size: 7x6\ntype,height\nrandom,2\n").unwrap();
+        let editor = Editor::default();
+        let answer = open(&editor, json!({ "path": path }).to_string().as_bytes()).unwrap();
+        assert_eq!(answer["scheme"]["globals"]["size"], "7x6");
+        let now = state(&editor);
+        assert_eq!(now["path"], path.display().to_string());
+        assert_eq!(now["scheme"], answer["scheme"]);
+
+        let missing = dir.path().join("missing.csv");
+        let refusal = open(&editor, json!({ "path": missing }).to_string().as_bytes()).unwrap_err();
+        assert!(refusal["error"]["message"].as_str().unwrap().starts_with("cannot open "), "{refusal}");
+        std::fs::write(dir.path().join("bad.csv"), "type,height\nrandom,x\n").unwrap();
+        let bad = dir.path().join("bad.csv");
+        let refusal = open(&editor, json!({ "path": bad }).to_string().as_bytes()).unwrap_err();
+        let message = refusal["error"]["message"].as_str().unwrap();
+        assert!(message.contains("bad.csv:2:") && message.contains("height"), "{message}");
+        let refusal = open(&editor, json!({ "path": "/etc/passwd" }).to_string().as_bytes()).unwrap_err();
+        assert!(refusal["error"]["message"].as_str().unwrap().contains(".csv"), "{refusal}");
+        assert_eq!(state(&editor)["path"], path.display().to_string(), "a refusal changes nothing");
+    }
+
     /// A page scheme with `# seed: 9` and `# amount: 2` of `random,3`.
     fn seeded_page_scheme() -> Value {
         json!({
@@ -408,7 +606,7 @@ mod tests {
         let preview_of = |seed: Value| {
             let body = json!({ "scheme": seeded_page_scheme(), "seed": seed, "index": null });
             let answer = preview(body.to_string().as_bytes()).unwrap();
-            (answer["png"].clone(), answer["boxes"].clone())
+            answer["heights"].clone()
         };
         assert_eq!(
             preview_of(Value::Null),

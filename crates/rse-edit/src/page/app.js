@@ -1,41 +1,84 @@
 // rse scheme editor: the page keeps the scheme as typed, asks the server
-// (rse-core) for every preview, and draws the answer: a top-down PNG and a
-// WebGL view of the box set. No third-party script.
+// (rse-core) for every preview and draws the answer's heights twice: the
+// top-down map (map.js), which also edits points and walls, and the 3D view
+// (view3d.js). Edits are undoable and kept in this browser until saved. No
+// third-party script.
 "use strict";
 
-// The global keys, columns, obstacle types and targets come from the
-// server (GET /api/schema), which takes them from rse-core and rse-world.
+import { decodePreview } from "./colours.js";
+import { TopView } from "./map.js";
+import { BlockView } from "./view3d.js";
+
+// The global keys, columns, obstacle types, mesh modes and targets come
+// from the server (GET /api/schema), which takes them from rse-core and
+// rse-world, tooltips included.
 let COLUMNS = [];
-let TYPES = [];
+let TYPE_COLUMNS = {}; // type → column → "required" | "optional" | "unused"
+let GLOBAL_DEFAULTS = {};
 const $ = (id) => document.getElementById(id);
 
-const state = { rows: [], selected: -1, request: 0, shown: 0, lastBoxes: null, view: { yaw: -0.6, pitch: 0.9, zoom: 1.0 } };
-// For tests and curious users: answers counts every preview answer (drawn
-// or refused), previews the drawn ones.
-window.rseEditor = { state, lastRoundTripMs: null, previews: 0, answers: 0 };
+const state = { rows: [], selected: -1 };
+// For tests and curious users: `requests` counts previews asked for,
+// `answers` every answer (drawn or refused), `previews` the maps drawn,
+// `views` the 3D views built.
+window.rseEditor = { state, lastRoundTripMs: null, lastViewMs: null, previews: 0, answers: 0, requests: 0, views: 0, preview: null };
 
+/** The server's JSON answer; throws `Lost` when the server cannot be
+ * reached (then the page says so and retries, see `connectionLost`). */
+class Lost extends Error {}
 async function api(path, body) {
-  const response = await fetch(path, body === undefined ? {} : {
-    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
-  });
+  let response;
+  try {
+    response = await fetch(path, body === undefined ? {} : {
+      method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body),
+    });
+  } catch (e) {
+    connectionLost();
+    throw new Lost(`the editor's server did not answer (${e.message})`);
+  }
   if (!response.ok) throw new Error(`${path}: ${response.status} ${await response.text()}`);
   return response.json();
+}
+
+// --- a lost server: say so, retry, carry on --------------------------------
+
+let retrying = null;
+function connectionLost() {
+  const banner = $("connection");
+  banner.textContent = "The editor's server is not answering (is `rse-gen edit` still running?). Retrying every 2 seconds; your edits are kept in this browser.";
+  banner.hidden = false;
+  if (retrying) return;
+  retrying = setInterval(async () => {
+    try {
+      const response = await fetch("/api/schema");
+      if (!response.ok) return;
+    } catch (e) { return; }
+    clearInterval(retrying); retrying = null;
+    banner.hidden = true;
+    $("status").textContent = "connected to the editor's server again";
+    refresh();
+  }, 2000);
 }
 
 // --- never lose work: undo history and the draft kept in this browser -------
 //
 // Every edit records the page's scheme after it (typing in one field within
-// HISTORY_MERGE_MS is one edit). Undo and Redo move through the records; the
-// newest is also kept in the browser's storage under the file's name until it
-// is saved, so a reload or a restart of the browser brings it back.
+// HISTORY_MERGE_MS is one edit, a drag on the map is one edit). Undo and
+// Redo move through the records; the newest is also kept in the browser's
+// storage under the file the server holds for this editor until it is
+// saved, so a reload or a restart of the browser brings it back.
 
 const HISTORY_MERGE_MS = 600;
 const undoLog = { past: [], future: [], lastKey: null, lastAt: 0, restoring: false };
-let savedText = null; // the page's scheme as the file holds it, as JSON
-let fileText = null; // the server's answer for the file: a draft made from it is still good
-let filePath = "";
+const file = {
+  path: "", // the file Save writes ("" : none yet, Save asks)
+  name: "", // what the header shows
+  server: "", // the file the server starts a reload from
+  base: null, // the server's scheme for it, as JSON: a draft made from it is still good
+  saved: null, // the page's scheme as that file holds it, as JSON (null: not on disk)
+};
 
-function draftKey() { return `rse-editor:${filePath || "(unnamed)"}`; }
+function draftKey() { return `rse-editor:${file.server || "(unnamed)"}`; }
 
 function snapshot() { return JSON.stringify({ scheme: pageScheme(), selected: state.selected }); }
 
@@ -81,24 +124,37 @@ function redo() {
 // The page's scheme differs from the file: say so, keep it in the browser.
 function changed() {
   const scheme = JSON.stringify(pageScheme());
-  const unsaved = savedText !== null && scheme !== savedText;
+  const unsaved = scheme !== file.saved;
   $("unsaved").hidden = !unsaved;
+  $("file-name").textContent = file.name || "(not saved yet)";
   $("undo").disabled = undoLog.past.length < 2;
   $("redo").disabled = !undoLog.future.length;
   try {
-    if (unsaved) localStorage.setItem(draftKey(), JSON.stringify({ scheme: pageScheme(), base: fileText }));
+    if (unsaved) localStorage.setItem(draftKey(), JSON.stringify({ scheme: pageScheme(), base: file.base, path: file.path, name: file.name }));
     else localStorage.removeItem(draftKey());
   } catch (e) { /* storage full or refused: the page still works, only without the draft */ }
 }
 
-function startHistory(scheme, path, draft) {
-  filePath = path || "";
-  $("file-name").textContent = filePath || "(not saved yet)";
-  fileText = JSON.stringify(scheme);
+/** Starts editing `scheme`, the server's file `server` (its answer): a
+ * draft this browser kept for that file wins if it was made from what the
+ * file still holds (else the file changed since, and the file wins). */
+function startFile(scheme, server) {
+  file.server = server || "";
+  file.path = file.server; file.name = file.server;
+  file.base = JSON.stringify(scheme);
   undoLog.past = []; undoLog.future = []; undoLog.lastKey = null;
   loadScheme(scheme);
-  savedText = JSON.stringify(pageScheme());
-  if (draft) loadScheme(draft);
+  file.saved = JSON.stringify(pageScheme());
+  let draft = null;
+  try {
+    const kept = JSON.parse(localStorage.getItem(draftKey()) ?? "null");
+    if (kept && kept.base === file.base) draft = kept;
+  } catch (e) { /* no draft */ }
+  if (draft) {
+    loadScheme(draft.scheme);
+    file.path = draft.path ?? file.path; file.name = draft.name ?? file.name;
+    say("unsaved changes restored from this browser");
+  }
   undoLog.past.push(snapshot());
   changed();
 }
@@ -119,11 +175,19 @@ document.addEventListener("keydown", (e) => {
 $("undo").onclick = undo;
 $("redo").onclick = redo;
 
+function say(text) { $("status").textContent = text; }
+
 // --- the scheme as the page holds it ----------------------------------------
+
+/** A global's text as the file would hold it ("" : not given). */
+function globalText(input) {
+  if (input.type === "checkbox") return input.dataset.explicit === "1" ? String(input.checked) : "";
+  return input.value.trim();
+}
 
 function pageScheme() {
   const globals = {};
-  document.querySelectorAll("[data-global]").forEach((input) => { globals[input.dataset.global] = input.value.trim(); });
+  document.querySelectorAll("[data-global]").forEach((input) => { globals[input.dataset.global] = globalText(input); });
   const obstacles = state.rows.map((row) => {
     const out = { type: row.type };
     // Each column's two inputs as they are: the server joins a range.
@@ -134,7 +198,13 @@ function pageScheme() {
 }
 
 function loadScheme(scheme, selected) {
-  document.querySelectorAll("[data-global]").forEach((input) => { input.value = scheme.globals[input.dataset.global] ?? ""; });
+  document.querySelectorAll("[data-global]").forEach((input) => {
+    const text = scheme.globals[input.dataset.global] ?? "";
+    if (input.type === "checkbox") {
+      input.dataset.explicit = text === "" ? "0" : "1";
+      input.checked = (text === "" ? GLOBAL_DEFAULTS[input.dataset.global] : text) === "true";
+    } else input.value = text;
+  });
   $("notes").value = scheme.notes ?? "";
   state.rows = scheme.obstacles.map((o) => {
     const row = { type: o.type };
@@ -143,7 +213,20 @@ function loadScheme(scheme, selected) {
   });
   state.selected = selected ?? (state.rows.length ? 0 : -1);
   renderTable();
+  updateGlobals();
   refresh();
+}
+
+/** Whether `row` leaves column `c` unused (and empty: a value there stays
+ * editable, so its error can be fixed). */
+function unused(row, c) {
+  return TYPE_COLUMNS[row.type]?.[c] === "unused" && !row[`${c}.lo`] && !row[`${c}.hi`];
+}
+
+function select(i) {
+  state.selected = i;
+  document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i));
+  map.drawOverlay();
 }
 
 function renderTable() {
@@ -154,35 +237,45 @@ function renderTable() {
     tr.dataset.row = i;
     if (i === state.selected) tr.classList.add("selected");
     // The obstacle the user last touched, by pointer or keyboard, is the
-    // one Delete, Copy and Move act on.
-    const select_row = () => { state.selected = i; document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i)); };
-    tr.addEventListener("click", select_row);
-    tr.addEventListener("focusin", select_row);
+    // one Delete, Copy, Move and the map act on.
+    tr.addEventListener("click", () => select(i));
+    tr.addEventListener("focusin", () => select(i));
     const num = document.createElement("td"); num.textContent = i + 1; tr.append(num);
     const typeCell = document.createElement("td");
-    const select = document.createElement("select");
-    select.dataset.field = "type";
-    select.setAttribute("aria-label", `type of obstacle ${i + 1}`);
-    for (const t of TYPES) { const option = document.createElement("option"); option.value = option.textContent = t; select.append(option); }
-    select.value = row.type;
-    select.addEventListener("change", () => { row.type = select.value; record(null); refresh(); });
-    typeCell.append(select); tr.append(typeCell);
+    const choice = document.createElement("select");
+    choice.dataset.field = "type";
+    choice.setAttribute("aria-label", `type of obstacle ${i + 1}`);
+    choice.title = COLUMN_DOCS.type ?? "";
+    for (const t of Object.keys(TYPE_COLUMNS)) { const option = document.createElement("option"); option.value = option.textContent = t; choice.append(option); }
+    choice.value = row.type;
+    choice.addEventListener("change", () => {
+      // A type leaves some columns unused: they are emptied (Undo brings
+      // them back), as the scheme refuses a value there.
+      row.type = choice.value;
+      for (const c of COLUMNS) if (TYPE_COLUMNS[row.type]?.[c] === "unused") { row[`${c}.lo`] = ""; row[`${c}.hi`] = ""; }
+      renderTable(); record(null); refresh();
+      document.querySelector(`#table tbody tr[data-row="${i}"] select`)?.focus();
+    });
+    typeCell.append(choice); tr.append(typeCell);
     for (const c of COLUMNS) {
       const td = document.createElement("td");
       for (const part of ["lo", "hi"]) {
         const input = document.createElement("input");
         input.dataset.field = c; input.dataset.part = part;
         input.className = part; input.value = row[`${c}.${part}`] ?? "";
-        input.title = part === "lo" ? c : `${c}: high end of a random range`;
+        input.inputMode = "decimal";
+        input.disabled = unused(row, c);
+        input.title = part === "lo" ? COLUMN_DOCS[c] : `${COLUMN_DOCS[c]}: the high end of a random range`;
         // Names a screen reader reads and tests find the fields by.
         input.setAttribute("aria-label", part === "lo" ? `${c} of obstacle ${i + 1}` : `${c} range high end of obstacle ${i + 1}`);
-        input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; record(`${i}.${c}.${part}`); refresh(); });
+        input.addEventListener("input", () => { row[`${c}.${part}`] = input.value; record(`${i}.${c}.${part}`); refresh(); map.drawOverlay(); });
         td.append(input);
       }
       tr.append(td);
     }
     body.append(tr);
   });
+  map.drawOverlay();
 }
 
 // --- table tools --------------------------------------------------------------
@@ -204,189 +297,207 @@ $("seed").addEventListener("input", refresh);
 $("index").addEventListener("input", refresh);
 $("redraw").onclick = () => { $("index").value = String((Number($("index").value) || 0) + 1); refresh(); };
 
-// --- preview -----------------------------------------------------------------
+// --- the map edits rows too ----------------------------------------------------
 
+const map = new TopView({
+  rows: () => state.rows,
+  selected: () => state.selected,
+  select,
+  change(i, fields) { Object.assign(state.rows[i], fields); },
+  // A drag's steps show at once (table and preview); its end is one edit.
+  rendered() { renderTable(); refresh(); },
+  done() { record(null); },
+  hint: say,
+});
+const blocks = new BlockView($("blocks"));
+
+// --- errors where they are ---------------------------------------------------
+
+/** Marks the field an error concerns (`aria-invalid`, the message as its
+ * tooltip) and says it in words under the table; `null` clears. */
 function markError(error) {
-  document.querySelectorAll(".invalid").forEach((e) => { e.classList.remove("invalid"); e.removeAttribute("aria-invalid"); });
+  document.querySelectorAll("[aria-invalid]").forEach((e) => {
+    e.classList.remove("invalid"); e.removeAttribute("aria-invalid");
+    if (e.dataset.title !== undefined) { e.title = e.dataset.title; delete e.dataset.title; }
+  });
   $("error").textContent = "";
   if (!error) return;
   let where = "";
   let targets = [];
-  if (error.row !== null && error.row !== undefined) {
+  if (error.control) {
+    const control = $(error.control === "path" ? "dialog-path" : error.control);
+    if (control) targets = [control];
+    where = `${control?.labels?.[0]?.textContent ?? error.control}: `;
+  } else if (error.row !== null && error.row !== undefined) {
     where = `obstacle ${error.row + 1}${error.field ? ", " + error.field : ""}: `;
     const tr = document.querySelector(`#table tbody tr[data-row="${error.row}"]`);
-    if (tr) targets = error.field ? [...tr.querySelectorAll(`[data-field="${error.field}"]`)] : [...tr.querySelectorAll("input, select")];
+    if (tr) targets = error.field ? [...tr.querySelectorAll(`[data-field="${error.field}"]:not(:disabled)`)] : [...tr.querySelectorAll("input:not(:disabled), select")];
+    if (error.field && targets.length === 0 && tr) targets = [...tr.querySelectorAll(`[data-field="${error.field}"]`)];
   } else if (error.field) {
-    where = `${error.field}: `;
+    where = `${error.field.replaceAll("_", " ")}: `;
     targets = [...document.querySelectorAll(`[data-global="${error.field}"]`)];
+    if (error.field === "notes") targets = [$("notes")];
   }
-  for (const t of targets) { t.classList.add("invalid"); t.setAttribute("aria-invalid", "true"); t.title = error.message; }
+  for (const t of targets) {
+    t.classList.add("invalid"); t.setAttribute("aria-invalid", "true");
+    t.dataset.title = t.title; t.title = error.message;
+  }
   $("error").textContent = where + error.message;
 }
 
-// A number field as the API takes it: null when empty, so the server's
-// default rules (the scheme's `# seed:` and `# amount:`).
-function given(id) {
-  const text = $(id).value.trim();
-  return text === "" ? null : Number(text);
+/** The pictures no longer show the scheme (it has an error, or the server
+ * is gone): say so and grey them out until a new preview is drawn. */
+function stale(yes) {
+  $("pictures").classList.toggle("stale", yes);
+  $("stale").hidden = !yes;
+  if (yes) $("timing").textContent = "";
 }
 
-async function refresh() {
-  const id = ++state.request;
-  const started = performance.now();
+// --- preview: debounced and superseded ----------------------------------------
+//
+// One request at a time: an edit while one is on its way only marks the
+// preview dirty, and when the answer comes back it is dropped (older than
+// the page's scheme) and the newest scheme is asked for instead. Typing
+// "200x200" sends two or three requests, not seven, and an old answer never
+// overwrites a newer picture. Nothing waits on a timer, so a single edit is
+// drawn as soon as the server answers. The round trip is timed from the
+// first edit not yet shown to the new map on the page.
+//
+// The 3D view is rebuilt once edits pause for VIEW_DELAY_MS: a 200x200 world
+// is a million vertices, which a software-rendered browser takes a few
+// hundred milliseconds over, and the map must not wait for it.
+
+const VIEW_DELAY_MS = 150;
+const preview = { busy: false, dirty: false, since: null, view: null };
+
+function refresh() {
+  preview.since ??= performance.now();
+  if (preview.busy) { preview.dirty = true; return; }
+  send();
+}
+
+async function send() {
+  preview.busy = true; preview.dirty = false;
+  const since = preview.since;
+  preview.since = null;
+  window.rseEditor.requests += 1;
   let answer;
   try {
-    answer = await api("/api/preview", { scheme: pageScheme(), seed: given("seed"), index: given("index") });
-  } catch (e) { $("error").textContent = String(e.message); return; }
-  if (id < state.shown) return; // an older answer arriving late
-  state.shown = id;
-  if (!answer.ok) { markError(answer.error); window.rseEditor.answers += 1; return; }
+    answer = await api("/api/preview", { scheme: pageScheme(), seed: $("seed").value, index: $("index").value });
+  } catch (e) {
+    preview.busy = false;
+    stale(true);
+    $("error").textContent = e instanceof Lost ? "" : String(e.message);
+    return;
+  }
+  preview.busy = false;
+  if (preview.dirty) { // superseded while on its way: its edits wait for the next
+    preview.since = Math.min(since, preview.since ?? since);
+    send();
+    return;
+  }
+  window.rseEditor.answers += 1;
+  if (!answer.ok) { markError(answer.error); stale(true); return; }
   markError(null);
-  const img = $("heatmap");
-  await new Promise((resolve) => { img.onload = resolve; img.onerror = resolve; img.src = answer.png; });
-  drawBlocks(answer);
-  const ms = performance.now() - started;
+  const answered = performance.now();
+  const drawn = decodePreview(answer);
+  window.rseEditor.preview = drawn;
+  const decoded = performance.now();
+  map.show(drawn);
+  stale(false);
+  const shown = performance.now();
+  const ms = shown - since;
+  // Where the time goes, for bench/editor.py.
+  window.rseEditor.lastBreakdownMs = {
+    server: answer.server_ms, answer: answered - since, decode: decoded - answered, map: shown - decoded,
+  };
   window.rseEditor.lastRoundTripMs = ms;
   window.rseEditor.previews += 1;
-  window.rseEditor.answers += 1;
   $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
+  clearTimeout(preview.view);
+  preview.view = setTimeout(() => {
+    const started = performance.now();
+    blocks.show(drawn);
+    window.rseEditor.lastViewMs = performance.now() - started;
+    window.rseEditor.views += 1;
+  }, VIEW_DELAY_MS);
 }
 
-// --- the 3D view: the box set in WebGL -------------------------------------------
+// --- files ---------------------------------------------------------------------
 
-const gl = $("blocks").getContext("webgl", { preserveDrawingBuffer: true });
-const program = (() => {
-  const compile = (type, source) => { const s = gl.createShader(type); gl.shaderSource(s, source); gl.compileShader(s); return s; };
-  const p = gl.createProgram();
-  gl.attachShader(p, compile(gl.VERTEX_SHADER, `
-    attribute vec3 position; attribute vec3 normal; attribute vec3 colour;
-    uniform mat4 view; varying vec3 shade;
-    void main() {
-      float light = 0.45 + 0.55 * max(dot(normal, normalize(vec3(0.4, 0.3, 0.85))), 0.0);
-      shade = colour * light; gl_Position = view * vec4(position, 1.0);
-    }`));
-  gl.attachShader(p, compile(gl.FRAGMENT_SHADER, `
-    precision mediump float; varying vec3 shade;
-    void main() { gl_FragColor = vec4(shade, 1.0); }`));
-  gl.linkProgram(p);
-  return p;
-})();
-const buffer = gl.createBuffer();
-let vertexCount = 0, sceneSize = 1, sceneCentre = [0, 0, 0];
-
-function palette(t) { // blue → green → red, as the preview
-  const v = Math.round(t * 510);
-  return v <= 255 ? [0, v / 255, (255 - v) / 255] : [(v - 255) / 255, (510 - v) / 255, 0];
-}
-
-function drawBlocks(answer) {
-  // Filled in place (5 faces x 6 vertices x 9 floats a box): building a JS
-  // array with push(...) first cost more than the server's whole answer.
-  const data = new Float32Array(answer.boxes.length * 5 * 6 * 9);
-  let n = 0;
-  let maxTop = 1e-9, minTop = Infinity;
-  for (const b of answer.boxes) { maxTop = Math.max(maxTop, 2 * b[5]); minTop = Math.min(minTop, 2 * b[5]); }
-  minTop = Math.min(minTop, maxTop);
-  const faces = [ // normal, then four corners as signs of the half sizes
-    [[0, 0, 1], [[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]]],
-    [[1, 0, 0], [[1, -1, -1], [1, 1, -1], [1, 1, 1], [1, -1, 1]]],
-    [[-1, 0, 0], [[-1, 1, -1], [-1, -1, -1], [-1, -1, 1], [-1, 1, 1]]],
-    [[0, 1, 0], [[1, 1, -1], [-1, 1, -1], [-1, 1, 1], [1, 1, 1]]],
-    [[0, -1, 0], [[-1, -1, -1], [1, -1, -1], [1, -1, 1], [-1, -1, 1]]],
-  ];
-  for (const [cx, cy, cz, hx, hy, hz] of answer.boxes) {
-    const colour = palette(maxTop > minTop ? (2 * hz - minTop) / (maxTop - minTop) : 0.5);
-    for (const [normal, corners] of faces) {
-      const p = corners.map(([sx, sy, sz]) => [cx + sx * hx, cy + sy * hy, cz + sz * hz]);
-      for (const k of [0, 1, 2, 0, 2, 3]) { data.set(p[k], n); data.set(normal, n + 3); data.set(colour, n + 6); n += 9; }
-    }
-  }
-  vertexCount = data.length / 9;
-  const s = answer.block_size;
-  sceneSize = Math.max(answer.nx, answer.ny) * s;
-  sceneCentre = [answer.nx * s / 2, answer.ny * s / 2, 0];
-  gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-  gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
-  render();
-}
-
-function multiply(a, b) {
-  const out = new Array(16).fill(0);
-  for (let i = 0; i < 4; i++) for (let j = 0; j < 4; j++) for (let k = 0; k < 4; k++) out[j * 4 + i] += a[k * 4 + i] * b[j * 4 + k];
-  return out;
-}
-
-function render() {
-  const { yaw, pitch, zoom } = state.view;
-  const distance = 1.6 * sceneSize / zoom;
-  const eye = [
-    sceneCentre[0] + distance * Math.cos(pitch) * Math.sin(yaw),
-    sceneCentre[1] - distance * Math.cos(pitch) * Math.cos(yaw),
-    sceneCentre[2] + distance * Math.sin(pitch),
-  ];
-  const f = sceneCentre.map((c, i) => c - eye[i]); const fl = Math.hypot(...f); f.forEach((v, i) => { f[i] = v / fl; });
-  const up = [0, 0, 1];
-  const r = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]];
-  const rl = Math.hypot(...r) || 1; r.forEach((v, i) => { r[i] = v / rl; });
-  const u = [r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]];
-  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const lookAt = [r[0], u[0], -f[0], 0, r[1], u[1], -f[1], 0, r[2], u[2], -f[2], 0, -dot(r, eye), -dot(u, eye), dot(f, eye), 1];
-  const aspect = gl.canvas.width / gl.canvas.height, near = distance / 50, far = distance * 4, t = 1 / Math.tan(0.4);
-  const perspective = [t / aspect, 0, 0, 0, 0, t, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0];
-  gl.viewport(0, 0, gl.canvas.width, gl.canvas.height);
-  gl.clearColor(0.87, 0.87, 0.92, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-  gl.enable(gl.DEPTH_TEST);
-  gl.useProgram(program);
-  gl.uniformMatrix4fv(gl.getUniformLocation(program, "view"), false, new Float32Array(multiply(perspective, lookAt)));
-  gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-  const attribute = (name, offset) => { const a = gl.getAttribLocation(program, name); gl.enableVertexAttribArray(a); gl.vertexAttribPointer(a, 3, gl.FLOAT, false, 36, offset); };
-  attribute("position", 0); attribute("normal", 12); attribute("colour", 24);
-  gl.drawArrays(gl.TRIANGLES, 0, vertexCount);
-}
-
-(() => { // orbit with the mouse, zoom with the wheel
-  const canvas = $("blocks");
-  let drag = null;
-  canvas.addEventListener("mousedown", (e) => { drag = [e.clientX, e.clientY]; });
-  window.addEventListener("mouseup", () => { drag = null; });
-  window.addEventListener("mousemove", (e) => {
-    if (!drag) return;
-    state.view.yaw += (e.clientX - drag[0]) * 0.01;
-    state.view.pitch = Math.min(1.5, Math.max(0.05, state.view.pitch + (e.clientY - drag[1]) * 0.01));
-    drag = [e.clientX, e.clientY];
-    render();
+/** Asks for a file path in the page's dialog; null when cancelled. */
+function askPath(title, suggestion) {
+  const dialog = $("path-dialog");
+  $("dialog-title").textContent = title;
+  $("dialog-path").value = suggestion;
+  $("dialog-error").textContent = "";
+  dialog.showModal();
+  return new Promise((resolve) => {
+    dialog.addEventListener("close", () => resolve(dialog.returnValue === "ok" ? $("dialog-path").value.trim() : null), { once: true });
   });
-  canvas.addEventListener("wheel", (e) => { e.preventDefault(); state.view.zoom = Math.min(8, Math.max(0.3, state.view.zoom * (e.deltaY < 0 ? 1.1 : 0.9))); render(); });
-})();
+}
 
-// --- files and generation ----------------------------------------------------
+async function openPath() {
+  const path = await askPath("Open a file", file.path);
+  if (!path) return;
+  let answer;
+  try { answer = await api("/api/open", { path }); } catch (e) { say(`not opened: ${e.message}`); return; }
+  if (!answer.ok) { say(`not opened: ${answer.error.message}`); $("error").textContent = answer.error.message; return; }
+  // The draft of the file left behind stays in this browser: opening it
+  // again brings it back.
+  startFile(answer.scheme, answer.path);
+  say(`opened ${answer.path}`);
+}
+$("open-path").onclick = openPath;
 
+// A file from this computer: its contents, but no path the editor's server
+// can write (a browser does not tell), so Save asks where.
+$("open-file").onclick = () => $("load").click();
 $("load").addEventListener("change", async () => {
-  const file = $("load").files[0];
-  if (!file) return;
-  const answer = await api("/api/parse", { csv: await file.text() });
-  if (answer.ok) { loadScheme(answer.scheme); record(null); } else markError(answer.error);
+  const picked = $("load").files[0];
+  if (!picked) return;
+  let answer;
+  try { answer = await api("/api/parse", { csv: await picked.text() }); } catch (e) { say(`not opened: ${e.message}`); return; }
+  $("load").value = "";
+  if (!answer.ok) { say(`not opened: ${picked.name}: ${answer.error.message}`); markError(answer.error); return; }
+  loadScheme(answer.scheme);
+  file.path = ""; file.name = `${picked.name} (from this computer: Save asks where to write it)`;
+  file.saved = null;
+  file.suggestion = picked.name;
+  record(null);
+  changed();
+  say(`opened ${picked.name}`);
 });
 
-$("save").onclick = async () => {
-  const path = $("save-path").value.trim();
+async function saveTo(path) {
   let answer;
   try {
     answer = await api("/api/save", { scheme: pageScheme(), path });
   } catch (e) {
-    $("status").textContent = `not saved: the editor's server did not answer (${e.message}); your edits are kept in this browser`;
-    return;
+    say(`not saved: ${e.message}; your edits are kept in this browser`);
+    return false;
   }
-  if (!answer.ok) { $("status").textContent = "not saved"; markError(answer.error); return; }
-  $("status").textContent = `saved ${answer.path}`;
-  // The file is now what the page holds: the draft goes, the name stays.
+  if (!answer.ok) {
+    say(`not saved: ${answer.error.message}`);
+    if (answer.error.row !== null || answer.error.field !== null) markError(answer.error);
+    return false;
+  }
+  // The file is now what the page holds: the drafts go, the name stays.
   try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
-  filePath = answer.path;
-  $("file-name").textContent = filePath;
-  fileText = JSON.stringify(answer.scheme);
-  savedText = JSON.stringify(pageScheme());
+  file.server = file.path = file.name = answer.path;
+  file.base = JSON.stringify(answer.scheme);
+  file.saved = JSON.stringify(pageScheme());
   changed();
-};
+  say(`saved ${answer.path}`);
+  return true;
+}
+
+async function saveAs() {
+  const path = await askPath("Save as", file.path || file.suggestion || "scheme.csv");
+  if (path) await saveTo(path);
+}
+$("save").onclick = () => (file.path ? saveTo(file.path) : saveAs());
+$("save-as").onclick = saveAs;
 
 // The canonical CSV Save would write, as a file the browser saves: named
 // as the file the page edits (or scheme.csv).
@@ -395,29 +506,36 @@ $("download").onclick = async () => {
   try {
     answer = await api("/api/csv", { scheme: pageScheme() });
   } catch (e) {
-    $("status").textContent = `no download: the editor's server did not answer (${e.message})`;
+    say(`no download: ${e.message}`);
     return;
   }
-  if (!answer.ok) { $("status").textContent = "no download: the scheme has an error"; markError(answer.error); return; }
+  if (!answer.ok) { say("no download: the scheme has an error"); markError(answer.error); return; }
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([answer.csv], { type: "text/csv" }));
-  link.download = (filePath.split(/[\\/]/).pop() || "scheme.csv");
+  link.download = (file.path.split(/[\\/]/).pop() || file.suggestion || "scheme.csv");
   document.body.append(link);
   link.click();
   link.remove();
   setTimeout(() => URL.revokeObjectURL(link.href), 1000);
 };
 
+// --- generate ------------------------------------------------------------------
+
 $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
-  const answer = await api("/api/generate", {
-    scheme: pageScheme(), out: $("gen-out").value.trim(), amount: given("gen-amount"),
-    seed: given("seed"), targets,
-  });
-  if (!answer.ok) { markError(answer.error); return; }
+  let answer;
+  try {
+    answer = await api("/api/generate", {
+      scheme: pageScheme(), out: $("gen-out").value.trim(), amount: $("gen-amount").value,
+      seed: $("seed").value, targets, mesh: $("mesh").value,
+    });
+  } catch (e) { $("gen-summary").textContent = `not started: ${e.message}`; return; }
+  if (!answer.ok) { markError(answer.error); $("gen-summary").textContent = `not started: ${answer.error.message}`; return; }
+  markError(null);
   const poll = async () => {
-    const job = await api("/api/job");
+    let job;
+    try { job = await api("/api/job"); } catch (e) { setTimeout(poll, 2000); return; }
     $("gen-progress").max = Math.max(1, job.total); $("gen-progress").value = job.done;
     if (job.running || (!job.summary && !job.error)) { setTimeout(poll, 100); return; }
     $("gen-summary").textContent = job.error ? `failed: ${job.error}` : job.summary;
@@ -426,22 +544,91 @@ $("generate").onclick = async () => {
   poll();
 };
 
-// The fields the schema names: one input per global, a header cell per
-// column, a checkbox per target (the default ones ticked).
+// --- the fields the schema names ----------------------------------------------
+
+let COLUMN_DOCS = {};
+
+/** A step height above 1 m or a block size above 2 m is most likely
+ * centimetres typed as metres: ask, offering the value in metres. */
+const UNIT_LIMITS = { step_height: 1, block_size: 2 };
+function askUnits() {
+  const box = $("unit-question");
+  for (const [key, limit] of Object.entries(UNIT_LIMITS)) {
+    const input = document.querySelector(`[data-global="${key}"]`);
+    const value = Number(input.value);
+    if (input.value.trim() !== "" && value > limit && input.dataset.kept !== input.value) {
+      const label = key.replaceAll("_", " ");
+      const metres = String(value / 100);
+      box.replaceChildren(`A ${label} of ${value} m: did you mean ${value} cm? `);
+      const yes = document.createElement("button");
+      yes.textContent = `Use ${metres} m`;
+      yes.onclick = () => { input.value = metres; record(null); refresh(); askUnits(); input.focus(); };
+      const no = document.createElement("button");
+      no.textContent = `Keep ${value} m`;
+      no.onclick = () => { input.dataset.kept = input.value; askUnits(); input.focus(); };
+      box.append(yes, " ", no);
+      box.hidden = false;
+      return;
+    }
+  }
+  box.hidden = true;
+  box.replaceChildren();
+}
+
+/** Pallet size and boundary mean something only with pallets: greyed out
+ * without (unless they hold a value, which the scheme then refuses). */
+function updateGlobals() {
+  const pallets = document.querySelector('[data-global="pallets"]')?.value.trim().toLowerCase() ?? "";
+  const on = pallets !== "" && pallets !== "off";
+  for (const key of ["pallet_size", "pallet_boundary"]) {
+    const input = document.querySelector(`[data-global="${key}"]`);
+    if (!input) continue;
+    input.disabled = !on && globalText(input) === "";
+  }
+  askUnits();
+}
+
 function buildFields(schema) {
   COLUMNS = schema.columns;
-  TYPES = schema.types.map((t) => t.name);
+  TYPE_COLUMNS = Object.fromEntries(schema.types.map((t) => [t.name, t.columns]));
+  COLUMN_DOCS = Object.fromEntries(schema.column_docs.map((c) => [c.name, c.doc]));
   const globals = $("global-fields");
   for (const g of schema.globals) {
+    GLOBAL_DEFAULTS[g.key] = g.default;
     const label = document.createElement("label");
     const input = document.createElement("input");
-    input.dataset.global = g.key; input.placeholder = g.default;
-    input.addEventListener("input", () => { record(`global.${g.key}`); refresh(); });
-    label.append(`${g.key.replaceAll("_", " ")}${g.unit ? ` (${g.unit})` : ""} `, input);
-    globals.append(label);
+    input.id = `global-${g.key}`;
+    label.htmlFor = input.id;
+    label.textContent = g.key.replaceAll("_", " ");
+    input.dataset.global = g.key;
+    input.title = g.doc;
+    if (g.key === "pallet_boundary") {
+      input.type = "checkbox";
+      input.addEventListener("change", () => { input.dataset.explicit = "1"; record(null); refresh(); });
+    } else {
+      input.placeholder = g.default;
+      input.addEventListener("input", () => { record(`global.${g.key}`); updateGlobals(); refresh(); });
+    }
+    const unit = document.createElement("span");
+    unit.className = "unit"; unit.textContent = g.unit ?? "";
+    globals.append(label, input, unit);
   }
   const head = document.querySelector("#table thead tr");
-  for (const c of COLUMNS) { const th = document.createElement("th"); th.textContent = c; head.append(th); }
+  for (const c of schema.column_docs.filter((c) => c.name !== "type")) {
+    const th = document.createElement("th");
+    th.scope = "col"; th.title = c.doc; th.textContent = c.name;
+    const unit = document.createElement("span");
+    unit.className = "unit"; unit.textContent = c.unit ?? "";
+    th.append(unit);
+    head.append(th);
+  }
+  head.children[1].title = COLUMN_DOCS.type;
+  const names = { auto: "each target's best (auto)", single: "single mesh", blocks: "blocks (one box each)" };
+  for (const m of schema.mesh_modes) {
+    const option = document.createElement("option");
+    option.value = m; option.textContent = names[m] ?? m;
+    $("mesh").append(option);
+  }
   const targets = $("gen-targets");
   for (const t of schema.targets) {
     const label = document.createElement("label");
@@ -452,17 +639,12 @@ function buildFields(schema) {
   }
 }
 
-api("/api/schema").then(async (schema) => {
-  buildFields(schema);
-  const answer = await api("/api/state");
-  if (answer.path) $("save-path").value = answer.path;
-  // A draft this browser kept for this file wins, if it was made from what
-  // the file still holds (else the file changed since: the file wins).
-  let draft = null;
+(async () => {
+  let schema, answer;
   try {
-    const kept = JSON.parse(localStorage.getItem(`rse-editor:${answer.path || "(unnamed)"}`) ?? "null");
-    if (kept && kept.base === JSON.stringify(answer.scheme)) draft = kept.scheme;
-  } catch (e) { /* no draft */ }
-  startHistory(answer.scheme, answer.path, draft);
-  if (draft) $("status").textContent = "unsaved changes restored from this browser";
-});
+    schema = await api("/api/schema");
+    answer = await api("/api/state");
+  } catch (e) { say(`the editor's server did not answer: ${e.message}; reload the page once it runs`); return; }
+  buildFields(schema);
+  startFile(answer.scheme, answer.path);
+})();

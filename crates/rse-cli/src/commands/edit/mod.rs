@@ -85,6 +85,7 @@ fn route(editor: &Editor, method: &Method, path: &str, body: &[u8]) -> http::Rep
                 "/api/preview" => api::preview(body),
                 "/api/parse" => api::parse(body),
                 "/api/save" => api::save(editor, body),
+                "/api/open" => api::open(editor, body),
                 "/api/csv" => api::csv(body),
                 "/api/generate" => api::generate(editor, body),
                 _ => return http::text(404, "not found"),
