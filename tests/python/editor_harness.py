@@ -78,3 +78,53 @@ def preview_round_trips(page: Page, url: str, count: int, size: int = 50) -> lis
         assert page.evaluate("window.rseEditor.previews") == drawn + 1, "each edit drew a new preview"
         times.append(page.evaluate("window.rseEditor.lastRoundTripMs"))
     return times
+
+
+# --- finding things on the page, as the browser tests do -----------------------
+
+
+def wait_ready(page: Page, url: str) -> None:
+    """Opens the editor and waits for its first map."""
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+
+
+def cell(page: Page, row: int, field: str, part: str = "lo"):
+    """The table field `field` (its low or high end) of obstacle `row` (0-based)."""
+    return page.locator(f'#table tbody tr[data-row="{row}"] [data-field="{field}"][data-part="{part}"]')
+
+
+def table(page: Page) -> list[dict]:
+    """The table's rows: type and every filled field (`height.lo`, `height.hi`, …)."""
+    rows = page.evaluate("window.rseEditor.state.rows.map(r => ({...r}))")
+    return [{k: v for k, v in row.items() if v != ""} for row in rows]
+
+
+def status_says(page: Page, start: str) -> None:
+    """Waits until the header's status line starts with `start`."""
+    page.wait_for_function(f"document.getElementById('status').textContent.startsWith({start!r})")
+
+
+def save_as(page: Page, path: Path | str) -> None:
+    """Save as → the path typed into the dialog → OK, and waits for "saved"."""
+    page.evaluate("document.getElementById('status').textContent = ''")
+    page.get_by_role("button", name="Save as").click()
+    page.get_by_label("file path").fill(str(path))
+    page.get_by_role("button", name="OK").click()
+    status_says(page, "saved")
+
+
+def cell_point(page: Page, x: int, y: int) -> tuple[float, float]:
+    """The page coordinates of the centre of grid cell (x, y) on the map
+    (north up: row 0 at the bottom)."""
+    box = page.locator("#map-overlay").bounding_box()
+    nx, ny = page.evaluate("[window.rseEditor.preview.nx, window.rseEditor.preview.ny]")
+    return box["x"] + (x + 0.5) * box["width"] / nx, box["y"] + (ny - 1 - y + 0.5) * box["height"] / ny
+
+
+def drag_on_map(page: Page, start: tuple[int, int], end: tuple[int, int]) -> None:
+    """Presses the mouse on cell `start`, moves to cell `end` in steps, lets go."""
+    page.mouse.move(*cell_point(page, *start))
+    page.mouse.down()
+    page.mouse.move(*cell_point(page, *end), steps=8)
+    page.mouse.up()

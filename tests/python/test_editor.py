@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
-from editor_harness import chromium_page, edit, preview_round_trips, running_editor
+from editor_harness import cell, chromium_page, edit, preview_round_trips, running_editor, save_as, table
 from PIL import Image
 from playwright.sync_api import Page
 
@@ -45,16 +45,6 @@ def previews(page: Page) -> int:
     return page.evaluate("window.rseEditor.previews")
 
 
-def cell(page: Page, row: int, field: str, part: str = "lo"):
-    return page.locator(f'#table tbody tr[data-row="{row}"] [data-field="{field}"][data-part="{part}"]')
-
-
-def table(page: Page) -> list[dict]:
-    """The table's rows: type and every filled field (`height.lo`, `height.hi`, …)."""
-    rows = page.evaluate("window.rseEditor.state.rows.map(r => ({...r}))")
-    return [{k: v for k, v in row.items() if v != ""} for row in rows]
-
-
 def image_pixels(png_bytes: bytes) -> np.ndarray:
     """A PNG screenshot as (height, width, 4) uint8."""
     return np.asarray(Image.open(io.BytesIO(png_bytes)).convert("RGBA"))
@@ -64,7 +54,7 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
     url, folder = editor
     page.goto(url)
     page.wait_for_function("window.rseEditor?.previews >= 1")
-    first = page.locator("#heatmap").screenshot()
+    first = page.locator("#map").screenshot()
 
     # Replace the random field by a wall and a peak, then put the peak first.
     edit(page, lambda: page.click("#delete"))
@@ -82,14 +72,12 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
     # A random range: the peak's height from 2 to 4.
     edit(page, lambda: cell(page, 0, "height", "hi").fill("4"))
     assert page.locator("#error").inner_text() == ""
-    after = page.locator("#heatmap").screenshot()
+    after = page.locator("#map").screenshot()
     assert not np.array_equal(image_pixels(first), image_pixels(after)), "the preview's pixels changed"
 
     # Save, then load the file back into a fresh page: the same table.
     saved = folder / "saved.csv"
-    page.fill("#save-path", str(saved))
-    page.click("#save")
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    save_as(page, saved)
     scheme = rse.Scheme.load(saved)
     assert [o.type for o in scheme.obstacles] == ["peak", "wall"]
     assert scheme.obstacles[0].height == (2, 4)
@@ -115,7 +103,7 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
 def test_the_3d_view_draws_blocks(editor, page: Page) -> None:
     url, _ = editor
     page.goto(url)
-    page.wait_for_function("window.rseEditor?.previews >= 1")
+    page.wait_for_function("window.rseEditor?.views >= 1")
     pixels = image_pixels(page.locator("#blocks").screenshot())
     background = np.array([221, 221, 235])  # the clear colour, 0.87 0.87 0.92
     drawn = np.abs(pixels[:, :, :3].astype(int) - background).sum(axis=2) > 30
@@ -137,7 +125,7 @@ def test_invalid_values_are_marked_at_the_field(editor, page: Page) -> None:
     assert "invalid" in (cell(page, 0, "x1").get_attribute("class") or "")
     assert page.locator("#error").inner_text().startswith("obstacle 1, x1: ")
     page.fill('[data-global="block_size"]', "-1")
-    page.wait_for_function("document.getElementById('error').textContent.startsWith('block_size')")
+    page.wait_for_function("document.getElementById('error').textContent.startsWith('block size')")
     assert "invalid" in (page.locator('[data-global="block_size"]').get_attribute("class") or "")
     assert "Traceback" not in page.content() and "panicked" not in page.content()
 
@@ -198,9 +186,7 @@ def test_saving_keeps_the_schemes_notes(tmp_path: Path, page: Page) -> None:
         page.wait_for_function("window.rseEditor?.previews >= 1")
         assert page.input_value("#notes") == "A stepfield for the Husky tests\n(see lab wiki, 2026)"
         saved = tmp_path / "saved.csv"
-        page.fill("#save-path", str(saved))
-        page.click("#save")
-        page.wait_for_function("document.querySelector('#status').textContent.includes('saved')")
+        save_as(page, saved)
         assert rse.Scheme.load(saved) == rse.Scheme.load(scheme), "notes and all"
         assert saved.read_text().startswith("# A stepfield for the Husky tests\n# (see lab wiki, 2026)\n")
         page.fill("#notes", "Husky, run 2")

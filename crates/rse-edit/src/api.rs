@@ -370,7 +370,7 @@ struct GenerateRequest {
 /// If the job's lock is poisoned (a panic in the batch thread).
 pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let request: GenerateRequest = request(body)?;
-    let amount = whole_number("gen-amount", "amount of worlds", &request.amount)?;
+    let amount = whole_number("gen-amount", "number of worlds", &request.amount)?;
     let seed = whole_number("seed", "world seed", &request.seed)?;
     let mesh = request
         .mesh

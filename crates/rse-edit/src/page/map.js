@@ -48,7 +48,6 @@ export class TopView {
 
   /** Draws a new preview (see colours.js `decodePreview`). */
   show(preview) {
-    this.t0 = performance.now();
     const { nx, ny } = preview;
     const cp = preview.cell_pixels;
     const changedSize = !this.preview || this.preview.nx !== nx || this.preview.ny !== ny || this.preview.cell_pixels !== cp;
@@ -88,12 +87,9 @@ export class TopView {
       const top = (ny - 1 - y) * cp; // north up: row ny-1 is the image's first
       for (let py = 0; py < cp; py++) pixels.set(edges && py === cp - 1 ? edgeLine : line, (top + py) * width);
     }
-    const filled = performance.now();
     this.context.putImageData(this.image, 0, 0);
-    const put = performance.now();
     this.drawOverlay();
     this.drawLegend();
-    window.rseEditor.mapParts = { fill: filled - this.t0, put: put - filled, rest: performance.now() - put };
   }
 
   drawLegend() {

@@ -1,0 +1,242 @@
+"""The editor's fields in a real Chromium, as a person uses them: units and
+the "did you mean cm?" question, fields a type does not use greyed out,
+pallet boundary as a checkbox, the mesh type, tooltips from
+docs/schemes.md, errors marked where they are and the pictures marked out
+of date, 800 px without sideways scrolling, Tab order and skip links, every
+control's accessible name, and previews that do not pile up."""
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+import rse
+from conftest import rse_gen_release_path
+from editor_harness import cell, chromium_page, edit, running_editor, wait_ready
+from playwright.sync_api import Page
+
+pytestmark = pytest.mark.thirdparty
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture
+def editor(tmp_path: Path):
+    """A running `rse-gen edit` on six_obstacles.csv's copy; yields (url, folder)."""
+    scheme = tmp_path / "six.csv"
+    scheme.write_text((REPO / "schemes/six_obstacles.csv").read_text())
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
+        yield url, tmp_path
+
+
+@pytest.fixture
+def page():
+    with chromium_page() as page:
+        yield page
+
+
+def is_stale(page: Page) -> bool:
+    return page.evaluate("document.getElementById('pictures').classList.contains('stale') && !document.getElementById('stale').hidden")
+
+
+def test_units_show_and_a_step_in_metres_that_looks_like_cm_is_questioned(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    headers = page.locator("#table thead th").all_inner_texts()
+    assert [h.split("\n") for h in headers[2:]] == [
+        ["height", "steps"], ["angle", "degrees"], ["x1", "cells"], ["y1", "cells"],
+        ["x2", "cells"], ["y2", "cells"], ["sigma", "steps"],
+    ]
+    for key, unit in [("step height", "m"), ("block size", "m"), ("base", "m"), ("size", "cells"), ("amount", "worlds")]:
+        field = page.get_by_label(key, exact=True).first
+        assert field.evaluate("e => e.nextElementSibling.textContent") == unit, key
+    step = page.get_by_label("step height", exact=True)
+    edit(page, lambda: step.fill("10"))
+    question = page.locator("#unit-question")
+    assert question.is_visible() and "did you mean 10 cm?" in question.inner_text()
+    edit(page, lambda: page.get_by_role("button", name="Use 0.1 m").click())
+    assert step.input_value() == "0.1" and question.is_hidden()
+    edit(page, lambda: page.get_by_label("block size", exact=True).fill("5"))
+    assert "did you mean 5 cm?" in question.inner_text()
+    page.get_by_role("button", name="Keep 5 m").click()
+    assert question.is_hidden() and page.get_by_label("block size", exact=True).input_value() == "5"
+
+
+def test_fields_a_type_does_not_use_are_greyed_out_and_emptied_when_it_changes(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    # Row 3 of six_obstacles is a peak: x1, y1 used, x2, y2, sigma not.
+    assert page.get_by_label("x1 of obstacle 3", exact=True).is_enabled()
+    for name in ["x2 of obstacle 3", "y2 of obstacle 3", "sigma of obstacle 3", "angle of obstacle 1", "sigma of obstacle 1"]:
+        assert page.get_by_label(name, exact=True).is_disabled(), name
+    assert page.get_by_label("sigma of obstacle 2", exact=True).is_enabled(), "gaussian takes sigma"
+    edit(page, lambda: page.get_by_label("type of obstacle 3").select_option("wall"))
+    assert page.get_by_label("x2 of obstacle 3", exact=True).is_enabled()
+    edit(page, lambda: page.get_by_label("type of obstacle 3").select_option("random"))
+    row = page.evaluate("({...window.rseEditor.state.rows[2]})")
+    assert row["x1.lo"] == row["angle.lo"] == "" and row["height.lo"] == "6", "unused fields are emptied"
+    assert page.get_by_label("x1 of obstacle 3", exact=True).is_disabled()
+    assert page.locator("#error").inner_text() == ""
+    edit(page, lambda: page.get_by_role("button", name="Undo").click())
+    assert page.get_by_label("x1 of obstacle 3", exact=True).input_value() == "10", "Undo brings them back"
+
+
+def test_tooltips_are_the_words_of_docs_schemes(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    docs = (REPO / "docs/schemes.md").read_text()
+
+    def doc_row(name: str, column: int) -> str:
+        line = next(line for line in docs.splitlines() if line.startswith(f"| `{name}` |"))
+        return line.strip("|").split(" | ")[column].strip().replace("`", "")
+
+    for column in ["height", "angle", "x1", "sigma"]:
+        assert page.get_by_label(f"{column} of obstacle 1", exact=True).get_attribute("title") == doc_row(column, 2)
+        header = page.locator("#table thead th", has_text=re.compile(f"^{column}"))
+        assert header.get_attribute("title") == doc_row(column, 2)
+    for key in ["step_height", "pallets", "seed"]:
+        assert page.locator(f'[data-global="{key}"]').get_attribute("title") == doc_row(key, 1)
+
+
+def test_pallet_boundary_is_a_checkbox_and_mesh_a_choice_both_reach_the_worlds(editor, page: Page) -> None:
+    url, folder = editor
+    wait_ready(page, url)
+    boundary = page.get_by_label("pallet boundary")
+    assert boundary.get_attribute("type") == "checkbox"
+    assert boundary.is_disabled(), "no pallets, no boundary"
+    edit(page, lambda: page.get_by_label("pallets", exact=True).fill("2x2"))
+    edit(page, lambda: page.get_by_label("pallet size", exact=True).fill("25"))
+    assert boundary.is_enabled() and boundary.is_checked(), "on by default, as the scheme format says"
+    assert page.evaluate("window.rseEditor.preview.frame_period") == 26
+    edit(page, lambda: boundary.uncheck())
+    assert page.evaluate("window.rseEditor.preview.frame_period") is None
+    # Generate one world with blocks as its collider.
+    page.get_by_label("mesh").select_option(label="blocks (one box each)")
+    page.get_by_label("number of worlds").fill("1")
+    page.get_by_label("output folder").fill(str(folder / "worlds"))
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-check').textContent !== ''", timeout=60_000)
+    manifest = json.loads((folder / "worlds/world_0000/rse.json").read_text())
+    assert manifest["mesh"] == "blocks", manifest.get("mesh")
+    assert "# pallet_boundary: false\n" in manifest["scheme"], manifest["scheme"]
+
+
+def test_refused_values_are_marked_in_words_and_the_pictures_marked_out_of_date(editor, page: Page) -> None:
+    url, folder = editor
+    wait_ready(page, url)
+    assert not is_stale(page)
+    for label, value, words in [
+        ("index", "-1", "the index must be a whole number from 0 to"),
+        ("world seed", "abc", "the world seed must be a whole number from 0 to"),
+    ]:
+        field = page.get_by_label(label, exact=True)
+        edit(page, lambda field=field, value=value: field.fill(value))
+        assert field.get_attribute("aria-invalid") == "true", label
+        said = page.locator("#error").inner_text()
+        assert said.startswith(f"{label}: {words}") and "expected" not in said and "line 1 column" not in said, said
+        assert is_stale(page) and page.locator("#timing").inner_text() == ""
+        edit(page, lambda field=field: field.fill(""))
+        assert field.get_attribute("aria-invalid") is None and not is_stale(page)
+    # A table field: the message is rse-core's, on that field.
+    height = page.get_by_label("height of obstacle 1", exact=True)
+    edit(page, lambda: height.fill("two"))
+    assert height.get_attribute("aria-invalid") == "true"
+    assert page.locator("#error").inner_text().startswith("obstacle 1, height: `two` is not a whole number")
+    assert is_stale(page)
+    edit(page, lambda: height.fill("2"))
+    # Generate with an amount that is not a number: refused on that field, nothing written.
+    page.get_by_label("number of worlds").fill("abc")
+    page.get_by_label("output folder").fill(str(folder / "worlds"))
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-summary').textContent.startsWith('not started')")
+    assert page.get_by_label("number of worlds").get_attribute("aria-invalid") == "true"
+    assert "the number of worlds must be a whole number" in page.locator("#gen-summary").inner_text()
+    assert not (folder / "worlds").exists()
+
+
+def test_at_800_px_nothing_scrolls_sideways_and_the_preview_moves_below_the_table(tmp_path: Path) -> None:
+    scheme = tmp_path / "six.csv"
+    scheme.write_text((REPO / "schemes/six_obstacles.csv").read_text())
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
+        for width in (800, 1024, 1280, 1920):
+            with chromium_page(width, 900) as page:
+                wait_ready(page, url)
+                scroll, client = page.evaluate("[document.documentElement.scrollWidth, document.documentElement.clientWidth]")
+                assert scroll <= client, f"{width} px: the page is {scroll} px wide"
+                table_box = page.locator("#table").bounding_box()
+                map_box = page.locator("#map-overlay").bounding_box()
+                assert map_box["x"] + map_box["width"] <= width and table_box["x"] + table_box["width"] <= width
+                if width < 1450:
+                    assert map_box["y"] >= table_box["y"] + table_box["height"], f"{width} px: the preview is below the table"
+                else:
+                    assert map_box["x"] >= table_box["x"] + table_box["width"], f"{width} px: the preview is beside the table"
+
+
+def focus_section(page: Page) -> str:
+    return page.evaluate(
+        "(() => { const e = document.activeElement; const s = e.closest('section, header, nav');"
+        " return s ? (s.id || s.tagName.toLowerCase()) : e.tagName.toLowerCase(); })()"
+    )
+
+
+def test_tab_goes_globals_table_preview_generate_and_skip_links_jump(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    page.locator("body").focus()
+    seen: list[str] = []
+    for _ in range(200):
+        page.keyboard.press("Tab")
+        where = focus_section(page)
+        if not seen or seen[-1] != where:
+            seen.append(where)
+        if page.evaluate("document.activeElement.id") == "generate":
+            break
+    assert seen == ["nav", "header", "globals", "table-panel", "view", "generate-panel"], seen
+    # The skip link to Generate: two key presses from the top.
+    page.reload()
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    page.locator("body").focus()
+    for _ in range(3):
+        page.keyboard.press("Tab")
+    assert page.evaluate("document.activeElement.textContent") == "Skip to Generate"
+    page.keyboard.press("Enter")
+    page.keyboard.press("Tab")
+    assert focus_section(page) == "generate-panel"
+
+
+def test_every_control_has_the_accessible_name_the_issue_lists(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    for name in ["Undo", "Redo", "Save", "Save as", "Download CSV", "Add obstacle", "Copy obstacle", "Delete obstacle", "Move up", "Move down", "Generate"]:
+        assert page.get_by_role("button", name=name, exact=True).count() == 1, name
+    for label in ["height of obstacle 1", "type of obstacle 1", "angle of obstacle 3", "x2 of obstacle 4", "sigma of obstacle 2", "index", "world seed", "mesh", "pallet boundary"]:
+        assert page.get_by_label(label, exact=True).count() == 1, label
+    # Nothing focusable without a name.
+    nameless = page.evaluate(
+        """[...document.querySelectorAll('button, input, select, textarea, [tabindex="0"]')]
+             .filter(e => !e.hidden && e.type !== 'file')
+             .filter(e => !(e.getAttribute('aria-label') || (e.labels && e.labels.length) || e.textContent.trim() || e.closest('label')))
+             .map(e => e.outerHTML.slice(0, 80))"""
+    )
+    assert nameless == []
+
+
+def test_typing_a_size_sends_a_few_previews_and_draws_the_last(editor, page: Page) -> None:
+    url, _ = editor
+    wait_ready(page, url)
+    before = page.evaluate("window.rseEditor.requests")
+    size = page.get_by_label("size", exact=True)
+    size.fill("")
+    size.press_sequentially("200x200")
+    page.wait_for_function("document.getElementById('timing').textContent.startsWith('200×200')")
+    page.wait_for_timeout(300)
+    sent = page.evaluate("window.rseEditor.requests") - before
+    assert sent <= 4, f"{sent} previews for 8 key presses"
+    assert page.evaluate("[window.rseEditor.preview.nx, window.rseEditor.preview.ny]") == [200, 200]
+    # The reply is the heights: ≤ 100 kB at 200x200, whatever the terrain.
+    reply = page.evaluate(
+        """(async () => { const r = await fetch('/api/preview', {method: 'POST', headers: {'Content-Type': 'application/json'},
+             body: JSON.stringify({scheme: {globals: {size: '200x200'}, obstacles: [{type: 'random', height: ['200', '']}]}})});
+             return (await r.text()).length; })()"""
+    )
+    assert reply <= 100_000, reply

@@ -1,0 +1,158 @@
+"""The editor opens and saves like a desktop program, in a real Chromium:
+open by path and from this computer, Save writes the file opened last,
+Save as, failed saves said in words, and a lost server that comes back."""
+
+import socket
+import subprocess
+from pathlib import Path
+
+import pytest
+from conftest import rse_gen_release_path
+from editor_harness import cell, chromium_page, edit, running_editor, save_as, status_says, table, wait_ready
+from playwright.sync_api import Page
+
+pytestmark = pytest.mark.thirdparty
+
+START = "# size: 20x16\ntype,height\nrandom,1\n"
+
+
+@pytest.fixture
+def editor(tmp_path: Path):
+    """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
+    (tmp_path / "start.csv").write_text(START)
+    with running_editor(rse_gen_release_path(), tmp_path / "start.csv", tmp_path) as url:
+        yield url, tmp_path
+
+
+@pytest.fixture
+def page():
+    with chromium_page() as page:
+        yield page
+
+
+def open_path(page: Page, path: Path) -> None:
+    page.evaluate("document.getElementById('status').textContent = ''")
+    page.get_by_role("button", name="Open path").click()
+    page.get_by_label("file path").fill(str(path))
+    edit(page, lambda: page.get_by_role("button", name="OK").click())
+    status_says(page, "opened")
+
+
+def test_open_by_path_then_save_writes_the_opened_file_and_save_as_moves_on(editor, page: Page) -> None:
+    url, folder = editor
+    other = folder / "other.csv"
+    other.write_text("# size: 12x9\ntype,height,angle,x1,y1\npeak,3,45,4,4\n")
+    wait_ready(page, url)
+    open_path(page, other)
+    assert page.locator("#file-name").inner_text() == str(other), "the page shows which file Save writes"
+    assert table(page) == [{"type": "peak", "height.lo": "3", "angle.lo": "45", "x1.lo": "4", "y1.lo": "4"}]
+    edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("5"))
+    page.get_by_role("button", name="Save", exact=True).click()
+    status_says(page, "saved")
+    assert "peak,5,45,4,4" in other.read_text()
+    assert (folder / "start.csv").read_text() == START, "the file the editor started on is untouched"
+    # A reload starts from the file opened last, not the one on the command line.
+    page.reload()
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    assert page.locator("#file-name").inner_text() == str(other)
+    assert cell(page, 0, "height").input_value() == "5"
+    # Save as: a third file, which Save then writes.
+    third = folder / "third.csv"
+    save_as(page, third)
+    assert page.locator("#file-name").inner_text() == str(third)
+    edit(page, lambda: page.get_by_label("angle of obstacle 1", exact=True).fill("60"))
+    page.get_by_role("button", name="Save", exact=True).click()
+    status_says(page, "saved")
+    assert "peak,5,60,4,4" in third.read_text() and "peak,5,45,4,4" in other.read_text()
+
+
+def test_a_file_from_this_computer_is_edited_and_save_asks_where(editor, page: Page) -> None:
+    url, folder = editor
+    picked = folder / "picked.csv"
+    picked.write_text("# size: 9x9\ntype,height\nrandom,4\n")
+    wait_ready(page, url)
+    edit(page, lambda: page.set_input_files("#load", str(picked)))
+    assert table(page) == [{"type": "random", "height.lo": "4"}]
+    assert page.locator("#file-name").inner_text().startswith("picked.csv (from this computer")
+    assert page.locator("#unsaved").is_visible(), "not written anywhere the editor knows yet"
+    page.get_by_role("button", name="Save", exact=True).click()
+    assert page.get_by_label("file path").input_value() == "picked.csv", "Save asks, offering the picked name"
+    page.get_by_label("file path").fill(str(folder / "kept.csv"))
+    page.get_by_role("button", name="OK").click()
+    status_says(page, "saved")
+    assert "random,4" in (folder / "kept.csv").read_text() and page.locator("#unsaved").is_hidden()
+
+
+def test_a_failed_save_or_open_says_why_in_words(editor, page: Page) -> None:
+    url, folder = editor
+    wait_ready(page, url)
+    save = page.get_by_role("button", name="Save as")
+    for path, words in [(folder / "no/such/folder/x.csv", "not saved: "), (folder / "x.txt", ".csv")]:
+        page.evaluate("document.getElementById('status').textContent = ''")
+        save.click()
+        page.get_by_label("file path").fill(str(path))
+        page.get_by_role("button", name="OK").click()
+        status_says(page, "not saved")
+        said = page.locator("#status").inner_text()
+        assert words in said and "bad request" not in said, said
+        assert not path.exists()
+    page.get_by_role("button", name="Open path").click()
+    page.get_by_label("file path").fill(str(folder / "missing.csv"))
+    page.get_by_role("button", name="OK").click()
+    status_says(page, "not opened")
+    assert "cannot open" in page.locator("#status").inner_text()
+    assert page.locator("#file-name").inner_text() == str(folder / "start.csv"), "still the same file"
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_editor(scheme: Path, port: int) -> subprocess.Popen:
+    process = subprocess.Popen(
+        [str(rse_gen_release_path()), "edit", str(scheme), "--port", str(port)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        cwd=scheme.parent,
+    )
+    assert process.stdout.readline().startswith("http://127.0.0.1:")
+    return process
+
+
+def stop(process: subprocess.Popen) -> None:
+    process.terminate()
+    process.wait(timeout=10)
+    process.stdout.close()
+
+
+def test_a_lost_server_is_said_retried_and_the_edits_kept(tmp_path: Path, page: Page) -> None:
+    scheme = tmp_path / "start.csv"
+    scheme.write_text(START)
+    port = free_port()
+    server = start_editor(scheme, port)
+    try:
+        wait_ready(page, f"http://127.0.0.1:{port}/")
+        stop(server)
+        # The server is gone: an edit, a save, all said, nothing lost.
+        cell(page, 0, "height").fill("2")
+        page.wait_for_function("!document.getElementById('connection').hidden")
+        assert "not answering" in page.locator("#connection").inner_text()
+        assert page.locator("#pictures").evaluate("e => e.classList.contains('stale')"), "the pictures are marked out of date"
+        page.get_by_role("button", name="Save", exact=True).click()
+        status_says(page, "not saved")
+        assert "did not answer" in page.locator("#status").inner_text()
+        assert START == scheme.read_text()
+        # It comes back: the page notices by itself, draws the edit, saves.
+        server = start_editor(scheme, port)
+        page.wait_for_function("document.getElementById('connection').hidden", timeout=15_000)
+        page.wait_for_function("!document.getElementById('pictures').classList.contains('stale')")
+        assert cell(page, 0, "height").input_value() == "2"
+        page.get_by_role("button", name="Save", exact=True).click()
+        status_says(page, "saved")
+        assert "random,2" in scheme.read_text()
+    finally:
+        if server.poll() is None:
+            stop(server)
