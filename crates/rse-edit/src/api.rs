@@ -9,9 +9,7 @@ use std::time::Instant;
 use base64::Engine as _;
 use rse_core::{Field, GlobalKey, Globals, ObstacleKind, Usage, preview};
 use rse_verify::{CheckOptions, check_paths};
-use rse_world::{
-    BatchConfig, MeshMode, Target, Targets, Templates, WorldConfig, write_batch,
-};
+use rse_world::{BatchConfig, MeshMode, Target, Targets, Templates, WorldConfig, write_batch};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -119,7 +117,7 @@ pub fn schema() -> Value {
         "globals": GlobalKey::ALL.map(global),
         "columns": columns.iter().map(|f| f.name()).collect::<Vec<_>>(),
         "column_docs": Field::ALL.iter().map(column).collect::<Vec<_>>(),
-        "mesh_modes": MeshMode::ALL.map(|m| m.name()),
+        "mesh_modes": MeshMode::ALL.map(MeshMode::name),
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
         "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),
@@ -140,7 +138,7 @@ struct PreviewRequest {
 
 /// A refusal of one of the page's own controls (not a scheme field): the
 /// page marks the control whose id is `control`.
-fn control_error(control: &str, message: String) -> Value {
+fn control_error(control: &str, message: &str) -> Value {
     json!({ "ok": false, "error": { "row": null, "field": null, "control": control, "message": message } })
 }
 
@@ -159,7 +157,10 @@ fn whole_number(control: &str, label: &str, value: &Value) -> Result<Option<u64>
     text.parse::<u64>().map(Some).map_err(|_| {
         control_error(
             control,
-            format!("the {label} must be a whole number from 0 to {}, not `{text}`", u64::MAX),
+            &format!(
+                "the {label} must be a whole number from 0 to {}, not `{text}`",
+                u64::MAX
+            ),
         )
     })
 }
@@ -226,11 +227,9 @@ pub fn preview(body: &[u8]) -> Answer {
     let mut bytes = Vec::with_capacity(grid.cells() * if wide { 2 } else { 1 });
     for y in 0..grid.ny {
         for &h in map.row(y) {
-            if wide {
-                bytes.extend_from_slice(&h.to_le_bytes());
-            } else {
-                bytes.push(u8::try_from(h).expect("at most 255: not wide"));
-            }
+            // Not wide: every height is at most 255, its low byte.
+            let le = h.to_le_bytes();
+            bytes.extend_from_slice(if wide { &le } else { &le[..1] });
         }
     }
     let globals = scheme.globals();
@@ -284,7 +283,10 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
     let path = request.path;
     let shown = path.display();
     if path.extension().is_none_or(|e| e != "csv") {
-        return Err(control_error("path", format!("{shown}: a scheme file ends in .csv")));
+        return Err(control_error(
+            "path",
+            &format!("{shown}: a scheme file ends in .csv"),
+        ));
     }
     let read = || -> std::io::Result<String> {
         let file = std::fs::File::open(&path)?;
@@ -296,10 +298,10 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
         }
         std::io::read_to_string(file)
     };
-    let text = read().map_err(|e| control_error("path", format!("cannot open {shown}: {e}")))?;
+    let text = read().map_err(|e| control_error("path", &format!("cannot open {shown}: {e}")))?;
     let name = shown.to_string();
     let scheme = rse_core::Scheme::from_csv(&text, Some(&name))
-        .map_err(|e| control_error("path", e.to_string()))?;
+        .map_err(|e| control_error("path", &e.to_string()))?;
     let page = PageScheme::from_scheme(&scheme);
     let answer = json!({ "ok": true, "path": name, "scheme": page });
     *editor.saved.lock().unwrap() = Some((path, page));
@@ -377,11 +379,11 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         .as_deref()
         .map(str::parse::<MeshMode>)
         .transpose()
-        .map_err(|e| control_error("mesh", e.to_string()))?;
+        .map_err(|e| control_error("mesh", &e.to_string()))?;
     if request.out.as_os_str().is_empty() {
         return Err(control_error(
             "gen-out",
-            "name the folder the worlds go into".to_owned(),
+            "name the folder the worlds go into",
         ));
     }
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
@@ -390,7 +392,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     } else {
         Some(
             Targets::parse(&request.targets.join(","))
-                .map_err(|e| control_error("gen-targets", e.to_string()))?,
+                .map_err(|e| control_error("gen-targets", &e.to_string()))?,
         )
     };
     let job = Arc::clone(&editor.job);
@@ -547,8 +549,18 @@ mod tests {
     fn a_page_control_typed_wrong_is_refused_in_words_on_that_control() {
         let scheme = seeded_page_scheme();
         for (seed, index, control, words) in [
-            (json!("abc"), json!(0), "seed", "the world seed must be a whole number from 0 to"),
-            (json!(null), json!(-1), "index", "the index must be a whole number from 0 to"),
+            (
+                json!("abc"),
+                json!(0),
+                "seed",
+                "the world seed must be a whole number from 0 to",
+            ),
+            (
+                json!(null),
+                json!(-1),
+                "index",
+                "the index must be a whole number from 0 to",
+            ),
             (json!(""), json!("1.5"), "index", "not `1.5`"),
         ] {
             let body = json!({ "scheme": scheme, "seed": seed, "index": index });
@@ -559,7 +571,10 @@ mod tests {
             assert!(!message.contains("expected u64"), "{message}");
         }
         let body = json!({ "scheme": scheme, "seed": " 9 ", "index": "" });
-        assert!(preview(body.to_string().as_bytes()).is_ok(), "blank and spaced numbers are fine");
+        assert!(
+            preview(body.to_string().as_bytes()).is_ok(),
+            "blank and spaced numbers are fine"
+        );
 
         let editor = Editor::default();
         let body = json!({ "scheme": scheme, "out": "w", "amount": "abc" });
@@ -582,15 +597,38 @@ mod tests {
 
         let missing = dir.path().join("missing.csv");
         let refusal = open(&editor, json!({ "path": missing }).to_string().as_bytes()).unwrap_err();
-        assert!(refusal["error"]["message"].as_str().unwrap().starts_with("cannot open "), "{refusal}");
+        assert!(
+            refusal["error"]["message"]
+                .as_str()
+                .unwrap()
+                .starts_with("cannot open "),
+            "{refusal}"
+        );
         std::fs::write(dir.path().join("bad.csv"), "type,height\nrandom,x\n").unwrap();
         let bad = dir.path().join("bad.csv");
         let refusal = open(&editor, json!({ "path": bad }).to_string().as_bytes()).unwrap_err();
         let message = refusal["error"]["message"].as_str().unwrap();
-        assert!(message.contains("bad.csv:2:") && message.contains("height"), "{message}");
-        let refusal = open(&editor, json!({ "path": "/etc/passwd" }).to_string().as_bytes()).unwrap_err();
-        assert!(refusal["error"]["message"].as_str().unwrap().contains(".csv"), "{refusal}");
-        assert_eq!(state(&editor)["path"], path.display().to_string(), "a refusal changes nothing");
+        assert!(
+            message.contains("bad.csv:2:") && message.contains("height"),
+            "{message}"
+        );
+        let refusal = open(
+            &editor,
+            json!({ "path": "/etc/passwd" }).to_string().as_bytes(),
+        )
+        .unwrap_err();
+        assert!(
+            refusal["error"]["message"]
+                .as_str()
+                .unwrap()
+                .contains(".csv"),
+            "{refusal}"
+        );
+        assert_eq!(
+            state(&editor)["path"],
+            path.display().to_string(),
+            "a refusal changes nothing"
+        );
     }
 
     /// A page scheme with `# seed: 9` and `# amount: 2` of `random,3`.
