@@ -1,10 +1,10 @@
 """The editor's preview round trip: from an edit in the page to the new
 top-down map drawn, on the page's own timer, in Debian's headless Chromium
-against the release `rse-gen edit`, at 50x50 and 200x200 (issue 41's aims:
+against the release `rse-gen edit`, at 50x50 and 200x200 (the aims:
 a median of at most 20 ms and 40 ms). Prints the median and the worst of
 EDITS edits two ways, the reply's size, and the 3D view's build time,
-beside the figures of the editor before issue 41 (a PNG and a box list per
-preview, measured on this machine the same way).
+beside the figures of the editor before the page drew from heights (a PNG
+and a box list per preview, measured on this machine the same way).
 
 - "typed in the page": the edit is made by the page's own script (an input
   event on the index field), as a person's key press is: nothing else runs.
@@ -28,7 +28,7 @@ sys.path.insert(0, str(REPO / "tests" / "python"))
 from editor_harness import chromium_page, preview_round_trips, running_editor  # noqa: E402
 
 AIM_MS = {50: 20.0, 200: 40.0}
-# Before issue 41 (commit 1971ffb), this machine, through Playwright: median, max (ms), reply (bytes).
+# Before the page drew from heights (commit 1971ffb), this machine, through Playwright: median, max (ms), reply (bytes).
 BEFORE = {50: (27.2, 55.9, 58_392), 200: (208.1, 271.8, 440_252)}
 EDITS = 60
 
@@ -68,7 +68,7 @@ def main() -> None:
         scheme = Path(folder) / "start.csv"
         scheme.write_text("# size: 20x16\ntype,height\nrandom,1\n")
         with running_editor(REPO / "target/release/rse-gen", scheme, Path(folder)) as url, chromium_page() as page:
-            print(f"editor preview round trip, {EDITS} edits each, ms (before: issue 41's starting point, same machine)")
+            print(f"editor preview round trip, {EDITS} edits each, ms (before: the PNG-per-preview page, same machine)")
             print(f"{'grid':>8} {'how':>20} {'median':>7} {'max':>7}   {'before':>13} {'faster':>7}   aim           reply (before)")
             for size in (50, 200):
                 preview_round_trips(page, url, 10, size)  # warm up: JIT, shaders, connection
