@@ -193,6 +193,16 @@ pub enum SchemeErrorKind {
     /// A height above what a cell can hold.
     #[error("{0} is above the largest supported height, {max} steps", max = crate::limits::MAX_HEIGHT)]
     HeightTooLarge(u64),
+    /// A height whose top is so many step heights up that an `f32` no
+    /// longer tells one step from the next there (see
+    /// [`MAX_LATTICE_UNITS`](crate::MAX_LATTICE_UNITS)).
+    #[error("{height} steps reach {steps:?} step heights up (base included), more than {max}: an f32 mesh no longer tells one step from the next that high; use a larger step_height or a thinner base", max = crate::limits::MAX_LATTICE_UNITS)]
+    TooManySteps {
+        /// The height, steps (a range's upper end).
+        height: u32,
+        /// `(base + height·step_height) / step_height`.
+        steps: f64,
+    },
     /// A height whose top is too high for the block size (see
     /// [`MAX_TOP_IN_BLOCKS`](crate::MAX_TOP_IN_BLOCKS)).
     #[error("{height} steps reach {top} m, more than {max} block sizes ({limit} m): meshes of walls that slender are not exact in f32; use fewer steps, a smaller step_height or a larger block_size", max = crate::limits::MAX_TOP_IN_BLOCKS)]

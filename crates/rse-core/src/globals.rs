@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{SchemeError, SchemeErrorKind};
 use crate::global_key::{GLOBAL_KEYS, GlobalKey};
-use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
+use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
 
 /// The global whose name `word` most likely misspells (any case, `-` or a
 /// space for `_`, one edit away for a short name, two for a long one), if
@@ -214,6 +214,31 @@ impl Globals {
                 format!("{:?}", self.block_size),
                 &format!(
                     "the grid would be {longest:?} m long; at most {MAX_EXTENT} m is supported"
+                ),
+            );
+        }
+        // Past these an f32 mesh no longer tells neighbouring corners (or
+        // steps) apart, and check could not map its vertices back.
+        if u64::from(grid.nx.max(grid.ny)) > MAX_LATTICE_UNITS {
+            let key = if self.pallets.is_some() {
+                GlobalKey::Pallets
+            } else {
+                GlobalKey::Size
+            };
+            return bad(
+                key,
+                format!("{}x{}", grid.nx, grid.ny),
+                &format!(
+                    "more than {MAX_LATTICE_UNITS} cells along a side: an f32 mesh no longer tells neighbouring cell corners apart"
+                ),
+            );
+        }
+        if self.base / self.step_height + 1.0 > MAX_LATTICE_UNITS as f64 {
+            return bad(
+                GlobalKey::Base,
+                format!("{:?}", self.base),
+                &format!(
+                    "is more than {MAX_LATTICE_UNITS} step heights: an f32 mesh no longer tells one step from the next above it"
                 ),
             );
         }

@@ -75,7 +75,7 @@ pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use limits::{
     DEFAULT_PALLET_SIZE, DEFAULT_SIGMA, GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_HEIGHT,
-    MAX_TOP_IN_BLOCKS, MIN_LENGTH, QUOTE_CHARS,
+    MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS, MIN_LENGTH, QUOTE_CHARS,
 };
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};

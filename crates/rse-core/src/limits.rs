@@ -35,6 +35,14 @@ pub const MAX_EXTENT: f64 = 1e5;
 /// 60 worlds, `random,1000` none of 620).
 pub const MAX_TOP_IN_BLOCKS: f64 = 1000.0;
 
+/// The most lattice units along a grid side (cells) or up a top (step
+/// heights, `(base + h·step_height) / step_height`), 2^21: an `f32` then
+/// tells every lattice point from its neighbours by at least four units in
+/// the last place, so a mesh file's vertices map back to the lattice
+/// exactly ([`MeshUnits::snap`](crate::mesh::MeshUnits::snap)) and `check`
+/// decides its invariants without a tolerance.
+pub const MAX_LATTICE_UNITS: u64 = 1 << 21;
+
 /// Largest obstacle height in steps; cells are stored as `u16`.
 pub const MAX_HEIGHT: u32 = u16::MAX as u32;
 

@@ -212,6 +212,14 @@ fn check_height(obstacle: &Obstacle, globals: &Globals) -> Result<(), SchemeErro
         })
         .with_field("height"));
     }
+    let steps = top / globals.step_height;
+    if steps > crate::limits::MAX_LATTICE_UNITS as f64 {
+        return Err(SchemeError::new(SchemeErrorKind::TooManySteps {
+            height: height.hi(),
+            steps,
+        })
+        .with_field("height"));
+    }
     Ok(())
 }
 

@@ -59,7 +59,7 @@ pub fn scheme(data: &[u8]) {
     }
     let terrain = generate(&scheme, 0, 0);
     let mesh = terrain.mesh();
-    let faults = rse_core::mesh::invariants::faults(mesh.vertices(), mesh.triangles());
+    let faults = mesh.faults();
     assert!(
         faults.is_empty(),
         "generated mesh breaks the mesh invariants: {faults:?}"

@@ -2,7 +2,7 @@
 //! manifest: the heightmap cell by cell, and every OBJ re-read against
 //! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
-use rse_core::mesh::invariants::{bounding_box, faults as mesh_faults, volume};
+use rse_core::mesh::invariants::{bounding_box, lattice_faults, volume};
 use rse_core::{Heightmap, HeightmapCsvError, Terrain};
 
 use crate::fault::FaultKind;
@@ -149,7 +149,29 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
 /// Faults of `mesh` as the mesh of `terrain`: docs/meshes.md first; then, for a
 /// sound mesh, volume, bounding box and top heights.
 pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> {
-    let broken = mesh_faults(&mesh.vertices, &mesh.triangles);
+    // Every vertex of the terrain's mesh is a lattice point rounded to f32:
+    // mapped back, the invariants are decided exactly (a true corner a few
+    // microns off a long, thin wall triangle's edge is a corner, not a
+    // T-junction as an f32 tolerance took it to be).
+    let units = terrain.mesh_units();
+    let mut points = Vec::with_capacity(mesh.vertices.len());
+    for (i, &v) in mesh.vertices.iter().enumerate() {
+        let Some(point) = units.snap(v) else {
+            return vec![FaultKind::BadMesh {
+                faults: 1,
+                first: format!(
+                    "vertex {} at ({}, {}, {}) is not a corner of the terrain's cells",
+                    i + 1,
+                    v[0],
+                    v[1],
+                    v[2]
+                ),
+            }];
+        };
+        points.push(point);
+    }
+    let positions: Vec<[f64; 3]> = points.iter().map(|&p| units.position(p)).collect();
+    let broken = lattice_faults(&points, &positions, &mesh.triangles);
     if let Some(first) = broken.first() {
         return vec![FaultKind::BadMesh {
             faults: broken.len(),

@@ -110,8 +110,83 @@ impl std::fmt::Display for MeshFault {
 
 /// Every fault of `vertices`/`triangles`, in a stable order (empty: the mesh
 /// is a closed, oriented, T-junction-free surface of triangles with area).
+///
+/// For a mesh of unknown origin: a vertex within two `f32` units of the
+/// largest coordinate of an edge's inside is a T-junction (a vertex meant to
+/// lie on the edge is off it by its rounding alone). A mesh of a terrain's
+/// lattice is checked exactly by [`lattice_faults`] instead: there a true
+/// corner can be closer than that to a long, thin wall triangle's edge.
 pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
-    let mut faults: Vec<MeshFault> = vertices
+    let positions: Vec<[f64; 3]> = vertices.iter().map(|&p| point(p)).collect();
+    let scale = extent(vertices).max(f64::MIN_POSITIVE);
+    let largest = positions
+        .iter()
+        .flat_map(|p| p.iter().map(|c| c.abs()))
+        .fold(0.0, f64::max);
+    let tolerance = 2.0 * f64::from(f32::EPSILON) * largest.max(scale * 1e-3);
+    let degenerate = |t: [u32; 3]| {
+        let [p, q, r] = t.map(|v| positions[v as usize]);
+        let c = cross(sub(q, p), sub(r, p));
+        dot(c, c).sqrt() <= 1e-10 * scale * scale
+    };
+    let on_edge = |v: u32, a: u32, b: u32| {
+        let (p, q) = (positions[a as usize], positions[b as usize]);
+        let (d, w) = (sub(q, p), sub(positions[v as usize], p));
+        let t = dot(w, d) / dot(d, d);
+        let off = sub(w, d.map(|c| c * t));
+        t > 1e-9 && t < 1.0 - 1e-9 && length(off) < tolerance
+    };
+    checked(&positions, triangles, &degenerate, &on_edge)
+}
+
+/// Every fault of a mesh whose vertices are points of a lattice, exactly:
+/// `points` are the vertices in whole lattice units per axis (see
+/// [`MeshUnits::lattice_point`](super::MeshUnits::lattice_point)),
+/// `positions` the same in metres (only to sort vertices into buckets).
+/// A triangle is degenerate when its corners are collinear, and a vertex
+/// is a T-junction when it lies on an edge strictly between its ends, both
+/// in integer arithmetic: no tolerance, so no true corner is mistaken for a
+/// T-junction however thin the triangle (a corner 23 µm off a 43 m wall
+/// edge was, under `f32` tolerances), and none is missed.
+///
+/// # Panics
+/// If `points` and `positions` differ in length.
+pub fn lattice_faults(
+    points: &[[i128; 3]],
+    positions: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+) -> Vec<MeshFault> {
+    assert_eq!(points.len(), positions.len(), "one position per point");
+    let isub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    // Lattice coordinates stay below 2^80 (`MeshUnits`), so every product
+    // below stays far inside i128.
+    let collinear = |p: [i128; 3], q: [i128; 3], r: [i128; 3]| {
+        let (a, b) = (isub(q, p), isub(r, p));
+        a[1] * b[2] == a[2] * b[1] && a[2] * b[0] == a[0] * b[2] && a[0] * b[1] == a[1] * b[0]
+    };
+    let degenerate = |t: [u32; 3]| {
+        let [p, q, r] = t.map(|v| points[v as usize]);
+        collinear(p, q, r)
+    };
+    let on_edge = |v: u32, a: u32, b: u32| {
+        let (p, q, w) = (points[a as usize], points[b as usize], points[v as usize]);
+        w != p
+            && w != q
+            && (0..3).all(|i| p[i].min(q[i]) <= w[i] && w[i] <= p[i].max(q[i]))
+            && collinear(p, q, w)
+    };
+    checked(positions, triangles, &degenerate, &on_edge)
+}
+
+/// The checks of [`faults`] and [`lattice_faults`], with their two tests:
+/// is a triangle degenerate, does vertex `v` lie inside edge `a–b`.
+fn checked(
+    positions: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    degenerate: &dyn Fn([u32; 3]) -> bool,
+    on_edge: &dyn Fn(u32, u32, u32) -> bool,
+) -> Vec<MeshFault> {
+    let mut faults: Vec<MeshFault> = positions
         .iter()
         .enumerate()
         .filter(|(_, p)| !p.iter().all(|c| c.is_finite()))
@@ -121,7 +196,7 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
         // Every measure below would be NaN or infinite.
         return faults;
     }
-    let n = vertices.len() as u32;
+    let n = positions.len() as u32;
     for (i, t) in triangles.iter().enumerate() {
         if t.iter().any(|&v| v >= n) {
             faults.push(MeshFault::BadIndex { triangle: i });
@@ -161,15 +236,12 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
     if faults.is_empty() {
         faults.extend(pinched_vertices(triangles, &edges));
     }
-    let scale = extent(vertices).max(f64::MIN_POSITIVE);
-    for (i, t) in triangles.iter().enumerate() {
-        let [p, q, r] = t.map(|v| point(vertices[v as usize]));
-        let c = cross(sub(q, p), sub(r, p));
-        if dot(c, c).sqrt() <= 1e-10 * scale * scale {
+    for (i, &t) in triangles.iter().enumerate() {
+        if degenerate(t) {
             faults.push(MeshFault::Degenerate { triangle: i });
         }
     }
-    faults.extend(t_junctions(vertices, &edges, scale));
+    faults.extend(t_junctions(positions, &edges, on_edge));
     faults
 }
 
@@ -229,8 +301,13 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
     x
 }
 
-/// Vertices lying strictly inside an edge, found through a grid of buckets.
-fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFault> {
+/// Vertices lying strictly inside an edge (`on_edge`), found through a grid
+/// of buckets over `positions`.
+fn t_junctions(
+    positions: &[[f64; 3]],
+    edges: &[Edge],
+    on_edge: &dyn Fn(u32, u32, u32) -> bool,
+) -> Vec<MeshFault> {
     let mut undirected: Vec<(u32, u32)> = edges
         .iter()
         .map(|&((a, b), _)| (a.min(b), a.max(b)))
@@ -239,19 +316,14 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
     undirected.dedup();
     let shortest = undirected
         .iter()
-        .map(|&(a, b)| {
-            length(sub(
-                point(vertices[b as usize]),
-                point(vertices[a as usize]),
-            ))
-        })
+        .map(|&(a, b)| length(sub(positions[b as usize], positions[a as usize])))
         .filter(|&l| l > 0.0)
         .fold(f64::INFINITY, f64::min);
     if !shortest.is_finite() {
         return Vec::new();
     }
     let budget = MAX_SEARCH_STEPS_PER_ELEMENT
-        .saturating_mul((undirected.len() + vertices.len()) as u64)
+        .saturating_mul((undirected.len() + positions.len()) as u64)
         .saturating_add(MIN_SEARCH_STEPS);
     // Buckets as small as the shortest edge keep few vertices in each; but
     // an edge thousands of times longer (a 65,535-step tower) would walk
@@ -265,7 +337,7 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
         undirected
             .iter()
             .map(|&(a, b)| {
-                let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
+                let (p, q) = (positions[a as usize], positions[b as usize]);
                 let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
                 (0..3).fold(1u128, |n, i| {
                     n.saturating_mul((i128::from(hi[i]) - i128::from(lo[i])) as u128 + 1)
@@ -279,19 +351,9 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
     }
     let bucket = bucket_of(size);
     let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-    for (v, &p) in vertices.iter().enumerate() {
-        buckets.entry(bucket(point(p))).or_default().push(v as u32);
+    for (v, &p) in positions.iter().enumerate() {
+        buckets.entry(bucket(p)).or_default().push(v as u32);
     }
-    // A vertex meant to lie on an edge is off it by its rounding to f32
-    // alone: half a unit in the last place per coordinate. Two units of the
-    // largest coordinate catch every such vertex; a looser tolerance
-    // (relative to the mesh's extent) flagged true corners of long, thin
-    // wall triangles, which sit a hundred microns from the far edge.
-    let largest = vertices
-        .iter()
-        .flat_map(|p| p.iter().map(|c| f64::from(c.abs())))
-        .fold(0.0, f64::max);
-    let tolerance = 2.0 * f64::from(f32::EPSILON) * largest.max(scale * 1e-3);
     let mut found = Vec::new();
     // Every bucket visited and every vertex tested is a step; past the
     // budget the mesh is reported instead of searched.
@@ -302,9 +364,7 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
         }]
     };
     for &(a, b) in &undirected {
-        let (p, q) = (point(vertices[a as usize]), point(vertices[b as usize]));
-        let d = sub(q, p);
-        let len2 = dot(d, d);
+        let (p, q) = (positions[a as usize], positions[b as usize]);
         let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
@@ -315,13 +375,7 @@ fn t_junctions(vertices: &[[f32; 3]], edges: &[Edge], scale: f64) -> Vec<MeshFau
                         return too_irregular(steps);
                     }
                     for &v in inside {
-                        if v == a || v == b {
-                            continue;
-                        }
-                        let w = sub(point(vertices[v as usize]), p);
-                        let t = dot(w, d) / len2;
-                        let off = sub(w, d.map(|c| c * t));
-                        if t > 1e-9 && t < 1.0 - 1e-9 && length(off) < tolerance {
+                        if v != a && v != b && on_edge(v, a, b) {
                             found.push(MeshFault::TJunction {
                                 vertex: v,
                                 edge: [a, b],
@@ -494,6 +548,44 @@ mod tests {
             }),
             "{found:?}"
         );
+    }
+
+    /// `vertices` as lattice points (whole numbers) and their positions.
+    fn on_lattice(v: &[[f32; 3]]) -> (Vec<[i128; 3]>, Vec<[f64; 3]>) {
+        let points: Vec<[i128; 3]> = v.iter().map(|p| p.map(|c| c as i128)).collect();
+        let positions = v.iter().map(|&p| point(p)).collect();
+        (points, positions)
+    }
+
+    #[test]
+    fn on_the_lattice_a_t_junction_and_a_flat_triangle_are_found_exactly() {
+        // The cube doubled (its top's edge 4–5 from x = 0 to 2), split at x = 1.
+        let (mut v, mut t) = cube();
+        for p in &mut v {
+            *p = p.map(|c| c * 2.0);
+        }
+        v.push([1.0, 0.0, 2.0]);
+        t.retain(|&tri| tri != [4, 5, 6]);
+        t.extend([[4, 8, 6], [8, 5, 6]]);
+        let (points, positions) = on_lattice(&v);
+        let found = lattice_faults(&points, &positions, &t);
+        assert!(
+            found.contains(&MeshFault::TJunction {
+                vertex: 8,
+                edge: [4, 5]
+            }),
+            "{found:?}"
+        );
+        let (v, mut t) = cube();
+        t.push([0, 1, 1]);
+        let (points, positions) = on_lattice(&v);
+        assert!(
+            lattice_faults(&points, &positions, &t)
+                .contains(&MeshFault::Degenerate { triangle: 12 })
+        );
+        let (v, t) = cube();
+        let (points, positions) = on_lattice(&v);
+        assert_eq!(lattice_faults(&points, &positions, &t), []);
     }
 
     #[test]

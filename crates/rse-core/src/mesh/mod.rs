@@ -26,6 +26,9 @@ pub struct TriMesh {
     vertices: Vec<[f32; 3]>,
     triangles: Vec<[u32; 3]>,
     normals: Vec<Normal>,
+    /// Each vertex as the mesher placed it, before rounding to `f32`.
+    lattice: Vec<LatticePoint>,
+    units: MeshUnits,
 }
 
 impl TriMesh {
@@ -47,6 +50,33 @@ impl TriMesh {
     /// `true` for the mesh of an empty solid.
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()
+    }
+
+    /// Its faults against docs/meshes.md, checked exactly on the lattice
+    /// its vertices come from ([`invariants::lattice_faults`]).
+    pub fn faults(&self) -> Vec<invariants::MeshFault> {
+        let points: Vec<[i128; 3]> = self
+            .lattice
+            .iter()
+            .map(|&p| self.units.lattice_point(p))
+            .collect();
+        let positions: Vec<[f64; 3]> = points.iter().map(|&p| self.units.position(p)).collect();
+        invariants::lattice_faults(&points, &positions, &self.triangles)
+    }
+}
+
+/// `v = m · 2^e` for a finite `v ≥ 0`, `m` a whole number.
+fn binary(v: f64) -> (u64, i32) {
+    if v == 0.0 {
+        return (0, 0);
+    }
+    let bits = v.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i32;
+    let fraction = bits & ((1 << 52) - 1);
+    if exponent == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | 1 << 52, exponent - 1075)
     }
 }
 
@@ -70,6 +100,66 @@ impl MeshUnits {
         } else {
             self.base + f64::from(level - 1) * self.step_height
         }
+    }
+
+    /// The exact binary unit of heights, `2^e`, and `base` and
+    /// `step_height` as whole multiples of it (both are `f64`: each is a
+    /// whole number times a power of two). A height is `a·base + k·step`
+    /// with whole `a`, `k`: a whole multiple of the unit, so collinearity
+    /// is a question of integers.
+    fn height_unit(self) -> (i32, i128, i128) {
+        let ((mb, eb), (ms, es)) = (binary(self.base), binary(self.step_height));
+        let e = if mb == 0 { es } else { eb.min(es) };
+        // Shifts stay small: base ≤ 2^21 steps (MAX_LATTICE_UNITS), so
+        // base's exponent is at most ~75 above step's.
+        let whole = |m: u64, exp: i32| i128::from(m) << (exp - e).clamp(0, 100);
+        (e, whole(mb, eb), whole(ms, es))
+    }
+
+    /// A lattice point `[x, y, level]` in whole units: cells along x and y,
+    /// [`height_unit`](Self::height_unit)s up.
+    pub fn lattice_point(self, [x, y, level]: [u32; 3]) -> [i128; 3] {
+        let (_, base, step) = self.height_unit();
+        let z = if level == 0 {
+            0
+        } else {
+            base + i128::from(level - 1) * step
+        };
+        [i128::from(x), i128::from(y), z]
+    }
+
+    /// A whole-unit lattice point in metres (for sorting, not deciding).
+    pub fn position(self, [x, y, z]: [i128; 3]) -> [f64; 3] {
+        let (e, ..) = self.height_unit();
+        [
+            x as f64 * self.block_size,
+            y as f64 * self.block_size,
+            z as f64 * 2f64.powi(e),
+        ]
+    }
+
+    /// The lattice point whose vertex the mesher writes as `v`, in whole
+    /// units, or `None` when `v` is not exactly such a vertex (its `f32`
+    /// coordinates are not the rounding of a cell corner, the ground or a
+    /// cell's top).
+    pub fn snap(self, v: [f32; 3]) -> Option<[i128; 3]> {
+        let s = self.block_size;
+        let corner = |c: f32| {
+            let i = (f64::from(c) / s).round();
+            // The very bits the mesher writes: an exact test, by intent.
+            let same = ((i * s) as f32).to_bits() == c.to_bits();
+            (i >= 0.0 && i <= f64::from(u32::MAX) && same).then_some(i as u32)
+        };
+        let (x, y) = (corner(v[0])?, corner(v[1])?);
+        let level = if v[2] == 0.0 {
+            0
+        } else {
+            let k = ((f64::from(v[2]) - self.base) / self.step_height).round();
+            let ok = k >= 0.0 && k < f64::from(u16::MAX) + 1.0;
+            let level = (k as u32) + 1;
+            (ok && (self.z(level) as f32).to_bits() == v[2].to_bits()).then_some(level)?
+        };
+        Some(self.lattice_point([x, y, level]))
     }
 }
 
@@ -99,7 +189,7 @@ pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
     let levels = faces::Levels::new(heights, units.base > 0.0);
     let triangles = stitch::triangulate(&levels, |emit| faces::faces(&levels, emit));
     let (keys, ids, normals) = weld::split_saddles(triangles, &levels);
-    let position = |[x, y, level]: LatticePoint| {
+    let position = |&[x, y, level]: &LatticePoint| {
         [
             (f64::from(x) * units.block_size) as f32,
             (f64::from(y) * units.block_size) as f32,
@@ -107,8 +197,10 @@ pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
         ]
     };
     TriMesh {
-        vertices: keys.into_iter().map(position).collect(),
+        vertices: keys.iter().map(position).collect(),
         triangles: ids,
         normals,
+        lattice: keys,
+        units,
     }
 }
