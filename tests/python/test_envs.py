@@ -61,6 +61,30 @@ def test_a_reset_touches_the_named_envs_only() -> None:
     assert envs.terrain(1).difficulty == 0.5
 
 
+@pytest.mark.parametrize(
+    "mask",
+    [[True, False, True, False], np.array([True, False, True, False]), (True, False, True, False)],
+    ids=["list", "numpy", "tuple"],
+)
+def test_a_boolean_mask_means_the_envs_where_it_is_true(mask) -> None:
+    """True and False are 1 and 0 to Python: read as numbers the mask reset
+    envs 1, 0, 1, 0 and left env 2 alone. One rule in the extension and in
+    every adapter (`rse._adapters.ids.env_ids`)."""
+    from rse._adapters.ids import env_ids
+
+    envs = rse.EnvTerrains(SMALL, 4, seed=2)
+    envs.reset(mask)
+    assert envs.episode.tolist() == [1, 0, 1, 0]
+    assert env_ids(4, mask) == [0, 2]
+    assert envs.heights_at(mask, np.zeros((2, 1, 2))).shape == (2, 1)
+    for wrong in ([True, False], np.ones((2, 2), bool)):
+        with pytest.raises(ValueError, match="^env_ids: a boolean mask"):
+            envs.reset(wrong)
+        with pytest.raises(ValueError, match="^env_ids: a mask"):
+            env_ids(4, wrong)
+    assert envs.episode.tolist() == [1, 0, 1, 0], "a refused mask changes nothing"
+
+
 def test_bad_arguments_name_themselves() -> None:
     envs = rse.EnvTerrains(SMALL, 4)
     cases = [

@@ -282,3 +282,45 @@ def test_the_stubs_defaults_are_the_extensions() -> None:
     assert set(scheme_defaults) >= {"size", "block_size", "step_height", "base", "amount", "seed"}, scheme_defaults
     for name, want in scheme_defaults.items():
         assert fields[name] == want, f"Scheme({name}=): stub {want!r}, Rust's default {fields[name]!r}"
+
+
+def test_a_terrain_from_forged_state_is_refused_not_a_later_panic() -> None:
+    """`rse.Terrain(state, cells)` is pickle's constructor: a state no scheme
+    could give (a 0x0 grid, a block of no size, frames every 0 cells) is
+    refused there, instead of a panic in `spawn_origin()` later."""
+    import json
+
+    terrain = rse.Scheme.from_csv("# size: 4x3\ntype,height\nrandom,2\n").generate()
+    constructor, (state, cells, scheme) = terrain.__reduce__()
+    assert constructor(state, cells, scheme).heights.tolist() == terrain.heights.tolist()
+    fields = json.loads(state)
+    forgeries = {
+        "0x0 grid": ({**fields, "grid": {**fields["grid"], "nx": 0, "ny": 0}}, b""),
+        "no block": ({**fields, "block_size": 0.0}, cells),
+        "negative step": ({**fields, "step_height": -0.1}, cells),
+        "frames every 0 cells": ({**fields, "grid": {**fields["grid"], "frame_period": 0}}, cells),
+    }
+    for forged, forged_cells in forgeries.values():
+        with pytest.raises(ValueError, match="not the state of a pickled rse.Terrain"):
+            rse.Terrain(json.dumps(forged), forged_cells, scheme)
+
+
+def test_flat_patches_never_pad_past_what_a_terrain_holds() -> None:
+    """A caller's n sizes no allocation past one patch a cell: 10**8 asked
+    for 9.6 GB and aborted the interpreter under an address-space limit."""
+    terrain = rse.Scheme.from_csv("# size: 6x5\ntype,height\nrandom,0\n").generate()
+    patches = terrain.flat_patches(10**8, radius=0.05)
+    assert patches.shape == (30, 3) and not np.isnan(patches).any()
+    atlas = rse.Atlas([rse.Scheme.from_csv("# size: 4x4\ntype,height\nrandom,0\n")], rows=2, cols=3)
+    tiled = atlas.flat_patches(2**32 - 1, radius=0.05)
+    assert tiled.shape[:2] == (2, 3) and 16 <= tiled.shape[2] <= 64, tiled.shape
+    # As the report had it: under a 3 GB address-space limit, in a process of its own.
+    script = (
+        "import resource, rse\n"
+        "resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))\n"
+        "s = rse.Scheme.from_csv('# size: 50x50\\ntype,height\\nrandom,1\\n')\n"
+        "print(rse.Atlas([s], rows=4, cols=4).flat_patches(10**8, radius=0.05).shape)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("(4, 4, "), done.stdout

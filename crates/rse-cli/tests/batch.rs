@@ -315,6 +315,64 @@ fn a_different_world_is_replaced_only_with_force() {
     assert_same_tree(&reference, &out);
 }
 
+/// A plain file named like a world, replaced under `--force`: no leftover
+/// stays (it stayed as a file `.world_0000.old-PID`, which every later run
+/// failed to remove as a folder while `check` said good); a leftover that
+/// is a file is removed by the next run and reported by `check`; a world
+/// named twice on `check`'s line is one world, never its own duplicate.
+#[test]
+fn force_over_a_plain_file_leaves_nothing_behind_and_a_world_named_twice_is_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (reference, out) = (dir.path().join("ref"), dir.path().join("out"));
+    stdout(&batch(&reference, &["--amount", "2"]));
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("world_0000"), "a note, not a world\n").unwrap();
+    let forced = batch(&out, &["--amount", "2", "--force"]);
+    assert!(
+        stderr(&forced).contains("1 replaced"),
+        "{}",
+        stderr(&forced)
+    );
+    assert_same_tree(&reference, &out);
+
+    std::fs::write(
+        out.join(".world_0001.old-99"),
+        "moved aside, then cut short",
+    )
+    .unwrap();
+    let check = |paths: &[&Path]| {
+        let texts: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        let mut args = vec!["check"];
+        args.extend(texts.iter().map(String::as_str));
+        rse_gen(&args)
+    };
+    let said = |o: &Output| {
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        )
+    };
+    let found = check(&[&out]);
+    assert_eq!(found.status.code(), Some(1), "a leftover file is a fault");
+    assert!(
+        said(&found).contains(".world_0001.old-99"),
+        "{}",
+        said(&found)
+    );
+    let again = batch(&out, &["--amount", "2"]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_same_tree(&reference, &out);
+
+    let twice = check(&[&out, &out.join("world_0001"), &out]);
+    let said = stdout(&twice) + &stderr(&twice);
+    assert!(twice.status.success(), "{said}");
+    assert!(
+        said.contains("checked 2 worlds: 2 good, 0 failed") && !said.contains("duplicate"),
+        "{said}"
+    );
+}
+
 #[test]
 fn user_templates_overlay_ours_and_their_files_reach_every_world() {
     let dir = tempfile::tempdir().unwrap();

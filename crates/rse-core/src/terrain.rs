@@ -77,10 +77,32 @@ impl Terrain {
 
     /// A terrain from its JSON (serde, without heightmap) and its cells,
     /// row by row from y = 0: what a Python pickle carries. `None` when
-    /// the JSON does not parse or the cells do not fill its grid.
+    /// the JSON does not parse, the cells do not fill its grid, or the
+    /// grid or units are none a scheme could give (a 0×0 grid, a block of
+    /// no size, frames every 0 cells): every method may then rely on them.
     pub fn from_parts(json: &str, cells: Vec<u16>) -> Option<Terrain> {
+        use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_LATTICE_UNITS, MIN_LENGTH};
         let mut terrain: Terrain = serde_json::from_str(json).ok()?;
-        terrain.heightmap = Heightmap::from_cells(terrain.grid.nx, terrain.grid.ny, cells)?;
+        let Grid {
+            nx,
+            ny,
+            frame_period,
+        } = terrain.grid;
+        let length = |v: f64| v.is_finite() && v >= MIN_LENGTH;
+        let sound = nx >= 1
+            && ny >= 1
+            && u64::from(nx) * u64::from(ny) <= MAX_CELLS
+            && u64::from(nx.max(ny)) <= MAX_LATTICE_UNITS
+            && frame_period.is_none_or(|p| p >= 2)
+            && length(terrain.block_size)
+            && length(terrain.step_height)
+            && (terrain.base == 0.0 || length(terrain.base))
+            && f64::from(nx.max(ny)) * terrain.block_size <= MAX_EXTENT
+            && terrain.base / terrain.step_height + 1.0 <= MAX_LATTICE_UNITS as f64;
+        if !sound {
+            return None;
+        }
+        terrain.heightmap = Heightmap::from_cells(nx, ny, cells)?;
         Some(terrain)
     }
 

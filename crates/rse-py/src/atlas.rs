@@ -177,7 +177,8 @@ impl Atlas {
     /// Up to `n` flat patches per tile: centres `[x, y, z]` (metres) of
     /// discs of `radius` metres inside the tile over which every cell is
     /// within `max_step` steps of the others, z the highest top under the
-    /// disc. Shape `(rows, cols, n, 3)`; a tile with fewer has NaN rows.
+    /// disc. Shape `(rows, cols, min(n, cells of the largest tile), 3)`; a
+    /// tile with fewer has NaN rows.
     #[pyo3(signature = (n, radius=None, max_step=0))]
     fn flat_patches<'py>(
         &self,
@@ -190,13 +191,34 @@ impl Atlas {
         check_radius("radius", radius)?;
         let o = self.inner.options();
         let terrain = self.inner.terrain();
-        let mut out =
-            Array4::from_elem((o.rows as usize, o.cols as usize, n as usize, 3), f64::NAN);
+        // At most one patch a cell of the largest tile: rows past that would
+        // only ever be NaN, so none are made; what is left must fit memory
+        // (a caller's number never sizes an allocation that could abort).
+        let most = self
+            .inner
+            .tiles()
+            .iter()
+            .map(|t| u64::from(t.region.nx) * u64::from(t.region.ny))
+            .max()
+            .unwrap_or(0);
+        let per_tile = u64::from(n).min(most);
+        crate::memory::fits(
+            "n",
+            u64::from(o.rows)
+                .saturating_mul(u64::from(o.cols))
+                .saturating_mul(per_tile)
+                .saturating_mul(48),
+            format_args!("{n} flat patches in each of {} tiles", o.rows * o.cols),
+        )?;
+        let mut out = Array4::from_elem(
+            (o.rows as usize, o.cols as usize, per_tile as usize, 3),
+            f64::NAN,
+        );
         let found: Vec<_> = py.detach(|| {
             self.inner
                 .tiles()
                 .iter()
-                .map(|t| terrain.flat_patches(t.region, n, radius, max_step))
+                .map(|t| terrain.flat_patches(t.region, per_tile as u32, radius, max_step))
                 .collect()
         });
         for (tile, patches) in self.inner.tiles().iter().zip(found) {

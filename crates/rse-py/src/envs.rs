@@ -82,7 +82,10 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
-/// `env_ids` as indices below `n`, or a `ValueError` naming it.
+/// `env_ids` as indices below `n`, or a `ValueError` naming it: numbers
+/// (a list, an array, a tensor on the CPU), or a boolean mask of `n` (a
+/// numpy bool array, a list of bools), meaning the envs where it is true —
+/// the rule of `rse._adapters.ids.env_ids`, which every adapter uses.
 fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
     // Bytes are a sequence of small integers to Python: `b"\x01\x02"` would
     // read as envs 1 and 2. Text and bytes are never environment numbers.
@@ -93,6 +96,31 @@ fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
         return Err(PyValueError::new_err(
             "env_ids: expected a sequence of environment numbers, not bytes or text",
         ));
+    }
+    // True and False are 1 and 0 to Python: read as numbers, the mask
+    // [True, False, True, False] reset envs 1, 0, 1, 0 and left env 2 alone.
+    // numpy says whether what was given is booleans (a list, a tuple, an
+    // array or a tensor it can read).
+    let numpy = ids.py().import("numpy")?;
+    if let Ok(array) = numpy.call_method1("asarray", (ids,)) {
+        let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+        if kind == "b" {
+            let mask: Vec<bool> = array
+                .call_method0("ravel")?
+                .call_method0("tolist")?
+                .extract()?;
+            let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+            if shape != [n] {
+                return Err(PyValueError::new_err(format!(
+                    "env_ids: a boolean mask of shape {shape:?} for {n} envs (it must be ({n},))"
+                )));
+            }
+            return Ok(mask
+                .iter()
+                .enumerate()
+                .filter_map(|(i, &on)| on.then_some(i))
+                .collect());
+        }
     }
     // An int64 numpy array is read in place; anything else (lists, other
     // dtypes, tensors) item by item.

@@ -242,7 +242,8 @@ impl Terrain {
     /// Up to `n` flat patches: centres `[x, y, z]` (metres) of discs of
     /// `radius` metres inside the terrain over which every cell is within
     /// `max_step` steps of the others, z the highest top under the disc.
-    /// Shape `(n, 3)`; when fewer are found the rest are NaN rows. The same
+    /// Shape `(min(n, cells), 3)`; when fewer are found the rest are NaN
+    /// rows. The same
     /// points `rse.Atlas` and `rse-gen atlas` give.
     #[pyo3(signature = (n, radius=None, max_step=0))]
     fn flat_patches<'py>(
@@ -254,16 +255,22 @@ impl Terrain {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let radius = radius.unwrap_or(rse_core::spawn::DEFAULT_PATCH_RADIUS);
         check_radius("radius", radius)?;
-        // The (n, 3) result and the points found, float64.
+        // A terrain holds at most one patch a cell: rows past that would
+        // only ever be NaN, so none are made (a caller's 10**8 once asked
+        // for 9.6 GB and aborted the interpreter).
+        let region = self.inner.region();
+        let rows = u64::from(n).min(u64::from(region.nx) * u64::from(region.ny));
+        // The (rows, 3) result and the points found, float64.
         crate::memory::fits(
             "n",
-            u64::from(n).saturating_mul(48),
+            rows.saturating_mul(48),
             format_args!("{n} flat patches"),
         )?;
-        let found = self
-            .inner
-            .flat_patches(self.inner.region(), n, radius, max_step);
-        let mut out = Array2::from_elem((n as usize, 3), f64::NAN);
+        let found = py.detach(|| {
+            self.inner
+                .flat_patches(region, rows as u32, radius, max_step)
+        });
+        let mut out = Array2::from_elem((rows as usize, 3), f64::NAN);
         for (k, point) in found.into_iter().enumerate() {
             for (axis, v) in point.into_iter().enumerate() {
                 out[[k, axis]] = v;

@@ -120,7 +120,8 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
             let name = entry.file_name().to_string_lossy().into_owned();
             // The entry itself, never a link's target.
             let kind = entry.file_type().map_err(unreadable)?;
-            let leftover = kind.is_dir() && Leftover::world_of(&name).is_some();
+            // A leftover may be a plain file: what `force` moved aside.
+            let leftover = Leftover::world_of(&name).is_some();
             if !leftover && (name.starts_with('.') || kind.is_file()) {
                 continue; // not a world, and let be
             }
@@ -159,6 +160,18 @@ pub fn discover(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<Fault>), Discove
         );
         worlds.extend(found);
     }
+    // A world named twice (directly and inside its batch folder, or a
+    // folder given twice) is one world, checked once: never reported as a
+    // duplicate of itself, nor a leftover beside it twice.
+    let canonical =
+        |path: &Path| std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut seen = std::collections::HashSet::new();
+    worlds.retain(|world| seen.insert(canonical(world)));
+    let mut seen = std::collections::HashSet::new();
+    faults.retain(|fault| {
+        let at = fault.file.as_deref().map(|f| canonical(Path::new(f)));
+        seen.insert((at, fault.message.clone()))
+    });
     Ok((worlds, faults))
 }
 
@@ -179,7 +192,6 @@ fn leftovers_of_world(world: &Path) -> Vec<Fault> {
     };
     let mut found: Vec<PathBuf> = entries
         .filter_map(Result::ok)
-        .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
         .filter(|e| e.file_name().to_str().and_then(Leftover::world_of) == Some(name))
         .map(|e| world.with_file_name(e.file_name()))
         .collect();

@@ -69,8 +69,7 @@ pub(crate) fn remove_leftovers(parent: &Path, mine: impl Fn(&str) -> bool) -> Re
             continue;
         };
         if mine(world) {
-            let path = entry.path();
-            std::fs::remove_dir_all(&path).map_err(Error::io("remove", &path))?;
+            remove_entry(&entry.path())?;
         }
     }
     Ok(())
@@ -284,8 +283,25 @@ pub fn place_world(out: &Path, world: &WorldFiles, force: bool) -> Result<Outcom
     let old = out.join(Leftover::Old.name_for(&world.name));
     std::fs::rename(&dest, &old).map_err(Error::io("move aside", &dest))?;
     std::fs::rename(&temp, &dest).map_err(Error::io("rename into place", &dest))?;
-    std::fs::remove_dir_all(&old).map_err(Error::io("remove", &old))?;
+    remove_entry(&old)?;
     Ok(Outcome::Replaced(size))
+}
+
+/// Removes `path` whatever it is: a folder with everything in it, or a
+/// plain file or a link (never followed). What `force` replaces, and so
+/// what a leftover `.NAME.old-PID` holds, need not be a folder: a plain
+/// file named like a world once stayed behind as one, and every later run
+/// failed removing it as a folder.
+fn remove_entry(path: &Path) -> Result<(), Error> {
+    let is_folder = std::fs::symlink_metadata(path)
+        .map_err(Error::io("remove", path))?
+        .is_dir();
+    if is_folder {
+        std::fs::remove_dir_all(path)
+    } else {
+        std::fs::remove_file(path)
+    }
+    .map_err(Error::io("remove", path))
 }
 
 /// Writes every file of `world` under `root`, making each folder once,
