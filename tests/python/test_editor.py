@@ -280,6 +280,48 @@ def test_trickling_and_idle_clients_neither_hold_the_editor_nor_stop_it(editor) 
         assert page.status == 200 and b"<html" in page.read().lower()
 
 
+def test_clients_that_never_read_their_replies_are_cut_off_at_the_write_deadline(editor) -> None:
+    """64 clients (every connection slot) send many previews each and never
+    read a reply: they held every slot (503 for everyone else) and 1.2 GB of
+    unread replies for as long as they stayed. Now each reply must be taken
+    within the write deadline (10 s): the slots come back, the editor's
+    memory stays bounded."""
+    import socket
+    from urllib.parse import urlparse
+
+    url, _ = editor
+    where = urlparse(url)
+    body = json.dumps(
+        {"scheme": {"globals": {"size": "300x300"}, "obstacles": [{"type": "random", "height": ["300", ""]}]}}
+    ).encode()
+    request = (
+        f"POST /api/preview HTTP/1.1\r\nHost: 127.0.0.1:{where.port}\r\n"
+        f"Content-Type: application/json\r\nContent-Length: {len(body)}\r\n\r\n"
+    ).encode() + body
+    hogs = []
+    for _ in range(64):
+        s = socket.create_connection((where.hostname, where.port))
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+        s.sendall(request * 12)  # 12 replies of 240 kB: far more than the socket buffers hold
+        hogs.append(s)
+    started = time.monotonic()
+    try:
+        served = None
+        while time.monotonic() - started < 30:
+            try:
+                with urllib.request.urlopen(url + "api/state", timeout=5) as answer:
+                    served = answer.status
+                    break
+            except (urllib.error.URLError, ConnectionError, TimeoutError):
+                time.sleep(0.5)
+        waited = time.monotonic() - started
+        assert served == 200, "the editor answers again"
+        assert waited < 20, f"served after {waited:.1f} s: the write deadline is 10 s"
+    finally:
+        for s in hogs:
+            s.close()
+
+
 def test_request_headers_above_the_cap_get_431(editor) -> None:
     url, _ = editor
     request = urllib.request.Request(url + "api/state", headers={"X-Padding": "a" * (20 << 10)})

@@ -27,6 +27,12 @@ pub const HEAD_TIMEOUT: Duration = Duration::from_secs(5);
 /// trickles a byte every few seconds is cut off all the same.
 pub const BODY_DEADLINE: Duration = Duration::from_secs(10);
 
+/// How long a reply's bytes may wait to be taken by the client: a client
+/// that sends requests but never reads the replies is cut off after this
+/// (64 such clients once held every connection slot, and 1.2 GB of unread
+/// replies, for as long as they stayed).
+pub const WRITE_DEADLINE: Duration = Duration::from_secs(10);
+
 /// A response ready to send.
 pub type Reply = Response<Full<Bytes>>;
 

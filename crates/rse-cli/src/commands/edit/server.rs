@@ -8,13 +8,17 @@
 //! timeout, so the editor accepts for as long as it runs.
 
 use std::convert::Infallible;
+use std::future::Future as _;
+use std::pin::Pin;
 use std::sync::Arc;
+use std::task::{Context, Poll};
 
 use hyper::Request;
 use hyper::body::Incoming;
 use hyper::server::conn::http1;
 use hyper::service::service_fn;
 use hyper_util::rt::{TokioIo, TokioTimer};
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::net::{TcpListener, TcpSocket, TcpStream};
 use tokio::sync::Semaphore;
 
@@ -83,14 +87,105 @@ async fn connection(stream: TcpStream, port: u16, handler: Arc<Handler>) {
     // would otherwise wait for the browser's delayed ACK (40 ms).
     let _ = stream.set_nodelay(true);
     let service = service_fn(move |request| answer(request, port, Arc::clone(&handler)));
+    // One request at a time per connection, its reply written within
+    // WRITE_DEADLINE: what a connection holds is bounded by one request's
+    // head and body and one reply, for a bounded time.
     let served = http1::Builder::new()
         .timer(TokioTimer::new())
         .header_read_timeout(http::HEAD_TIMEOUT)
         .max_buf_size(http::MAX_HEAD)
-        .serve_connection(TokioIo::new(stream), service)
+        .serve_connection(TokioIo::new(WriteDeadline::new(stream)), service)
         .await;
     // A client that went away, or was too slow, is not the editor's problem.
     drop(served);
+}
+
+/// A stream whose writes must make progress within [`http::WRITE_DEADLINE`]:
+/// a write the client's window keeps waiting longer fails with `TimedOut`,
+/// and hyper closes the connection (freeing its slot and its reply).
+struct WriteDeadline<S> {
+    inner: S,
+    deadline: Pin<Box<tokio::time::Sleep>>,
+    /// A write is waiting, since the deadline was set.
+    waiting: bool,
+}
+
+impl<S> WriteDeadline<S> {
+    fn new(inner: S) -> Self {
+        WriteDeadline {
+            inner,
+            deadline: Box::pin(tokio::time::sleep(http::WRITE_DEADLINE)),
+            waiting: false,
+        }
+    }
+
+    /// `polled` is a write's outcome: progress clears the clock; waiting
+    /// starts it, and past the deadline is an error.
+    fn timed<T>(
+        &mut self,
+        cx: &mut Context<'_>,
+        polled: Poll<std::io::Result<T>>,
+    ) -> Poll<std::io::Result<T>> {
+        if polled.is_ready() {
+            self.waiting = false;
+            return polled;
+        }
+        if !self.waiting {
+            self.waiting = true;
+            let at = tokio::time::Instant::now() + http::WRITE_DEADLINE;
+            self.deadline.as_mut().reset(at);
+        }
+        match self.deadline.as_mut().poll(cx) {
+            Poll::Ready(()) => Poll::Ready(Err(std::io::Error::new(
+                std::io::ErrorKind::TimedOut,
+                "the client did not take the reply in time",
+            ))),
+            Poll::Pending => Poll::Pending,
+        }
+    }
+}
+
+impl<S: AsyncRead + Unpin> AsyncRead for WriteDeadline<S> {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.inner).poll_read(cx, buf)
+    }
+}
+
+impl<S: AsyncWrite + Unpin> AsyncWrite for WriteDeadline<S> {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<std::io::Result<usize>> {
+        let polled = Pin::new(&mut self.inner).poll_write(cx, buf);
+        self.timed(cx, polled)
+    }
+
+    fn poll_write_vectored(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        bufs: &[std::io::IoSlice<'_>],
+    ) -> Poll<std::io::Result<usize>> {
+        let polled = Pin::new(&mut self.inner).poll_write_vectored(cx, bufs);
+        self.timed(cx, polled)
+    }
+
+    fn is_write_vectored(&self) -> bool {
+        self.inner.is_write_vectored()
+    }
+
+    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        let polled = Pin::new(&mut self.inner).poll_flush(cx);
+        self.timed(cx, polled)
+    }
+
+    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.inner).poll_shutdown(cx)
+    }
 }
 
 async fn answer(
