@@ -179,8 +179,12 @@ fn physics_finds_no_error_on_any_sample() {
     }
 }
 
+/// A mesh that differs from its rebuild is a fault and nothing more:
+/// physics is never run on it (a forged mesh of a million coplanar
+/// triangles ran for minutes at 6.9 GB). That the smoke test finds bodies
+/// sinking through such a mesh is tested in rse-verify, on the mesh itself.
 #[test]
-fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
+fn physics_never_runs_on_a_mesh_that_failed() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("batch");
     write_batch("schemes/six_obstacles.csv", &out, &["--target", "obj"]);
@@ -198,8 +202,8 @@ fn physics_finds_bodies_falling_through_a_terrain_with_holes() {
     std::fs::write(&obj, holed).unwrap();
     let (code, text) = check_with(&["--physics"], &out);
     assert_eq!(code, Some(1), "{text}");
-    assert!(text.contains("physics: mesh: body"), "{text}");
-    assert!(text.contains("sank into the terrain"), "{text}");
+    assert!(text.contains("meshes/terrain.obj: differs"), "{text}");
+    assert!(!text.contains("sank into the terrain"), "{text}");
 }
 
 #[test]

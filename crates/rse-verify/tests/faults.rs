@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use common::*;
 use rse_core::Scheme;
-use rse_verify::{CheckOptions, FaultKind, WorldReport, check_paths, check_world};
+use rse_verify::{CheckOptions, FaultKind, check_paths, check_world};
 use rse_world::{Templates, sha256_hex};
 
 #[test]
@@ -92,6 +92,7 @@ fn outside_world_a_reference_that_climbs_out() {
     let edited = text.replace("../meshes/terrain.obj", "../../../etc/passwd");
     assert_ne!(text, edited);
     std::fs::write(&path, edited).unwrap();
+    hashed_only(&world);
     forge(&world);
     let report = check(&world);
     assert_fault(&report, Some("webots/rse.wbt"), |k| {
@@ -362,6 +363,7 @@ fn not_text_a_world_file_that_is_not_utf8() {
     let dir = tempfile::tempdir().unwrap();
     let world = good_world(dir.path());
     std::fs::write(world.join("urdf/rse.urdf"), b"<robot>\xff\xfe</robot>").unwrap();
+    hashed_only(&world);
     forge(&world);
     let report = check(&world);
     assert_fault(&report, Some("urdf/rse.urdf"), |k| *k == FaultKind::NotText);
@@ -387,6 +389,7 @@ fn bad_xml_broken_entity_bomb_and_deep() {
     ] {
         assert!(bad.len() <= text.len());
         std::fs::write(&mjcf, &bad).unwrap();
+        hashed_only(&world);
         forge(&world);
         let report = check(&world);
         assert_fault(
@@ -395,7 +398,9 @@ fn bad_xml_broken_entity_bomb_and_deep() {
             |k| matches!(k, FaultKind::BadXml { reason: r, .. } if r.contains(reason)),
         );
     }
+    // Rebuilt (ours), a file is read no longer than ours.
     std::fs::write(&mjcf, &huge).unwrap();
+    edit_manifest(&world, |m| m.templates = rse_world::TemplateSet::Builtin);
     forge(&world);
     assert_fault(
         &check(&world),
@@ -413,6 +418,7 @@ fn missing_and_absolute_references() {
     let edited = text.replacen("../meshes/terrain.obj", "/abs/terrain.obj", 1);
     let edited = edited.replacen("../meshes/terrain.obj", "../meshes/none.obj", 1);
     std::fs::write(&urdf, edited).unwrap();
+    hashed_only(&world);
     forge(&world);
     let report = check(&world);
     assert_fault(
@@ -427,11 +433,38 @@ fn missing_and_absolute_references() {
     );
 }
 
-/// Replaces `meshes/terrain.obj` by `text` and forges the hashes.
-fn replace_obj(world: &Path, text: &str) -> WorldReport {
+/// Replaces `meshes/terrain.obj` (world 1 of seed 3 of `scheme`) by
+/// `text` and forges the hashes: `check` finds it differs and examines it
+/// no further (no parse, no mesh check, no physics). Returns what examining
+/// it would have found: the OBJ reader's and mesh checks' own faults.
+fn replace_obj(world: &Path, scheme: &str, text: &str) -> Vec<FaultKind> {
     std::fs::write(world.join("meshes/terrain.obj"), text).unwrap();
     forge(world);
-    check(world)
+    let report = check_world(
+        world,
+        &CheckOptions {
+            physics: true,
+            ..CheckOptions::default()
+        },
+    );
+    let of_obj: Vec<&FaultKind> = report
+        .faults
+        .iter()
+        .filter(|f| f.file.as_deref() == Some("meshes/terrain.obj"))
+        .map(|f| &f.kind)
+        .collect();
+    assert!(
+        matches!(
+            of_obj[..],
+            [FaultKind::Differs { .. } | FaultKind::TooLarge { .. }]
+        ),
+        "a failed file is not examined further: {of_obj:#?}"
+    );
+    let terrain = rse_core::generate(&Scheme::from_csv(scheme, None).unwrap(), 3, 1);
+    match rse_verify::read_obj(text.as_bytes()) {
+        Ok(mesh) => rse_verify::mesh_faults_against(&mesh, &terrain),
+        Err(kind) => vec![kind],
+    }
 }
 
 #[test]
@@ -463,10 +496,11 @@ fn bad_obj_non_finite_bad_indices_garbage_and_non_triangles() {
         "\u{0}\u{1}garbage".to_owned(),
     ];
     for case in &cases {
-        let report = replace_obj(&world, case);
-        assert_fault(&report, Some("meshes/terrain.obj"), |k| {
-            matches!(k, FaultKind::BadObj { .. })
-        });
+        let found = replace_obj(&world, SCHEME, case);
+        assert!(
+            found.iter().any(|k| matches!(k, FaultKind::BadObj { .. })),
+            "{found:#?}"
+        );
     }
 }
 
@@ -476,11 +510,16 @@ fn bad_mesh_a_hole() {
     let world = good_world(dir.path());
     let good = std::fs::read_to_string(world.join("meshes/terrain.obj")).unwrap();
     let first_f = good.lines().find(|l| l.starts_with("f ")).unwrap();
-    let report = replace_obj(&world, &good.replacen(&format!("{first_f}\n"), "", 1));
-    assert_fault(
-        &report,
-        Some("meshes/terrain.obj"),
-        |k| matches!(k, FaultKind::BadMesh { first, .. } if first.contains("edge")),
+    let found = replace_obj(
+        &world,
+        SCHEME,
+        &good.replacen(&format!("{first_f}\n"), "", 1),
+    );
+    assert!(
+        found
+            .iter()
+            .any(|k| matches!(k, FaultKind::BadMesh { first, .. } if first.contains("edge"))),
+        "{found:#?}"
     );
 }
 
@@ -500,35 +539,46 @@ fn volume_bounds_and_tops_of_a_sound_mesh_of_another_terrain() {
     // refused unread): less volume.
     let one_more = format!("{PEAK_A}peak,1,90,8,8\n");
     let fuller = write_world(dir.path(), "world_0000", &one_more, &Templates::builtin());
-    let report = replace_obj(&fuller, &obj_of(PEAK_A));
-    assert_fault(
-        &report,
-        Some("meshes/terrain.obj"),
-        |k| matches!(k, FaultKind::VolumeDiffers { measured, expected } if measured < expected),
+    let found = replace_obj(&fuller, &one_more, &obj_of(PEAK_A));
+    assert!(
+        found.iter().any(
+            |k| matches!(k, FaultKind::VolumeDiffers { measured, expected } if measured < expected)
+        ),
+        "{found:#?}"
     );
     let world = write_world(dir.path(), "world_0001", PEAK_A, &Templates::builtin());
     // Taller: other bounds.
     let taller = obj_of(&PEAK_A.replace("peak,3,", "peak,5,"));
-    let report = replace_obj(&world, &taller);
-    assert_fault(&report, Some("meshes/terrain.obj"), |k| {
-        matches!(k, FaultKind::BoundsDiffer { .. })
-    });
+    let found = replace_obj(&world, PEAK_A, &taller);
+    assert!(
+        found
+            .iter()
+            .any(|k| matches!(k, FaultKind::BoundsDiffer { .. })),
+        "{found:#?}"
+    );
     // The peak elsewhere: same volume, same bounds, tops misplaced.
     let moved = obj_of(&PEAK_A.replace(",2,5", ",7,5"));
-    let report = replace_obj(&world, &moved);
-    assert_fault(&report, Some("meshes/terrain.obj"), |k| {
-        matches!(k, FaultKind::TopMisplaced { .. })
-    });
+    let found = replace_obj(&world, PEAK_A, &moved);
     assert!(
-        !report.faults.iter().any(|f| matches!(
-            f.kind,
+        found
+            .iter()
+            .any(|k| matches!(k, FaultKind::TopMisplaced { .. })),
+        "{found:#?}"
+    );
+    assert!(
+        !found.iter().any(|k| matches!(
+            k,
             FaultKind::VolumeDiffers { .. } | FaultKind::BoundsDiffer { .. }
         )),
-        "{:#?}",
-        report.faults
+        "{found:#?}"
     );
 }
 
+/// The physics smoke test finds a mesh without tops: bodies sink. `check`
+/// runs it on meshes that match their rebuild only (a forged one is not
+/// examined further, physics least of all), so here it is driven directly
+/// on the holed mesh, as `check` would have.
+#[cfg(feature = "physics")]
 #[test]
 fn physics_bodies_fall_through_a_mesh_without_tops() {
     let dir = tempfile::tempdir().unwrap();
@@ -539,21 +589,20 @@ fn physics_bodies_fall_through_a_mesh_without_tops() {
         .split_inclusive('\n')
         .filter(|l| !(l.starts_with("f ") && l.contains("//5 ")))
         .collect();
-    std::fs::write(world.join("meshes/terrain.obj"), holed).unwrap();
-    forge(&world);
-    let report = check_world(
-        &world,
-        &CheckOptions {
-            physics: true,
-            ..CheckOptions::default()
-        },
+    replace_obj(&world, SCHEME, &holed);
+    let mesh = rse_verify::read_obj(holed.as_bytes()).unwrap();
+    let terrain = rse_core::generate(&Scheme::from_csv(SCHEME, None).unwrap(), 3, 1);
+    let model = rse_physics::TerrainModel::Mesh {
+        vertices: mesh.vertices,
+        triangles: mesh.triangles,
+    };
+    let reports = rse_physics::smoke_tests(
+        &[(&model, Some("meshes/terrain.obj"))],
+        &terrain,
+        rse_physics::SmokeTest::default(),
     );
-    assert!(!report.physics.is_empty());
-    assert_fault(
-        &report,
-        Some("meshes/terrain.obj"),
-        |k| matches!(k, FaultKind::Physics { error } if error.contains("sank")),
-    );
+    let said: Vec<String> = reports[0].errors.iter().map(ToString::to_string).collect();
+    assert!(said.iter().any(|e| e.contains("sank")), "{said:?}");
 }
 
 #[test]
