@@ -122,15 +122,22 @@ impl Slope {
 }
 
 /// At most how many cells [`apply`] visits for any drawing of `obstacle`
-/// on `grid`: every cell for a random or gaussian field; for a peak, pit,
+/// on `grid`: every cell for a random or gaussian field (a gaussian's table
+/// priced in visits too, [`crate::rng::table_visits`]); for a peak, pit,
 /// wall or long pit the box around the span of its points widened by the
 /// reach of its steepest-to-gentlest slope (highest height, lowest angle),
 /// kept to the grid. What `check` budgets before it rebuilds a world.
 pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
     let f = obstacle.fields();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
+    if obstacle.kind() == ObstacleKind::Gaussian {
+        // Every cell, and the table of its heights' odds first.
+        let height = f.height.map_or(0, |h| h.hi());
+        let sigma = f.sigma.map_or(crate::limits::DEFAULT_SIGMA, |s| s.hi());
+        return cells.saturating_add(crate::rng::table_visits(height, sigma));
+    }
     let (Some(height), Some(angle), Some(x1), Some(y1)) = (f.height, f.angle, f.x1, f.y1) else {
-        return cells; // random, gaussian
+        return cells; // random
     };
     let reach = Slope::new(height.hi(), angle.lo(), units).reach();
     let margin = reach.min(f64::from(u32::MAX)).ceil() + 1.0;

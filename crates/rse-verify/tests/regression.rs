@@ -55,6 +55,30 @@ fn a_huge_recorded_scheme_is_refused_by_the_budget_not_rebuilt() {
     );
 }
 
+/// Gaussian rows are priced by the table each builds (65,535 odds, every
+/// one an erfc for a wide sigma): 4000 such rows in a forged `rse.json`
+/// were budgeted like 4000 cells (0.1 s) and ran 11 s. Now the estimate is
+/// the work (bench/budget.py measures it within 2×), so a budget a tenth of
+/// it refuses them before anything is built.
+#[test]
+fn gaussian_tables_are_priced_by_what_they_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let rows = "gaussian,65535,10000\n".repeat(4000);
+    let scheme = format!("# size: 2x2\n# step_height: 0.001\ntype,height,sigma\n{rows}");
+    let visits = Scheme::from_csv(&scheme, None).unwrap().generation_visits();
+    assert!(visits >= 4000 * 65_535 * 8, "priced {visits} visits");
+    edit_manifest(&world, |m| m.scheme = scheme);
+    // 4000 tables are some 2·10⁹ visits (about 10 s): a budget of 10⁹
+    // visits (a twentieth of the default) refuses them, unbuilt.
+    let tight = CheckOptions {
+        budget: rse_verify::Budget::new(0.05).unwrap(),
+        ..CheckOptions::default()
+    };
+    let report = check_world(&world, &tight);
+    assert!(over_budget(&report), "{:#?}", report.faults);
+}
+
 /// Item 1: 100,000 peaks that reach the whole of a 1000×1000 map cost
 /// 10¹¹ cell visits (some ten minutes): refused by the work budget.
 #[test]

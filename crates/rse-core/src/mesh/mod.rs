@@ -117,7 +117,8 @@ impl MeshUnits {
     }
 
     /// A lattice point `[x, y, level]` in whole units: cells along x and y,
-    /// [`height_unit`](Self::height_unit)s up.
+    /// units of height up (`2^e`, whole multiples of which `base` and
+    /// `step_height` both are).
     pub fn lattice_point(self, [x, y, level]: [u32; 3]) -> [i128; 3] {
         let (_, base, step) = self.height_unit();
         let z = if level == 0 {
