@@ -231,7 +231,10 @@ def test_typing_a_size_sends_a_few_previews_and_draws_the_last(editor, page: Pag
     page.wait_for_function("document.getElementById('timing').textContent.startsWith('200×200')")
     page.wait_for_timeout(300)
     sent = page.evaluate("window.rseEditor.requests") - before
-    assert sent <= 4, f"{sent} previews for 8 key presses"
+    # One request on its way at a time: keys typed meanwhile go together
+    # in the next (how many depends on the machine's speed, never all 8).
+    assert page.evaluate("window.rseEditor.mostInFlight") == 1
+    assert sent < 8, f"{sent} previews for 8 key presses"
     assert page.evaluate("[window.rseEditor.preview.nx, window.rseEditor.preview.ny]") == [200, 200]
     # The reply is the heights: ≤ 100 kB at 200x200, whatever the terrain.
     reply = page.evaluate(

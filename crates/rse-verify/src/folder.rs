@@ -80,13 +80,34 @@ impl Folder {
         match open.read(path, cap) {
             Ok(file) if file.links > 1 => Err(FaultKind::HardLinked { links: file.links }),
             Ok(file) => Ok(file.bytes),
-            Err(ReadError::Missing) => Err(FaultKind::Missing),
-            Err(ReadError::NotAFile) => Err(FaultKind::NotAFile),
-            Err(ReadError::TooLarge { bytes, cap }) => Err(FaultKind::TooLarge { bytes, cap }),
-            Err(ReadError::Io(e)) => Err(FaultKind::Unreadable {
-                reason: e.to_string(),
-            }),
+            Err(e) => Err(read_fault(e)),
         }
+    }
+
+    /// The SHA-256 (lower-case hex) and size of the listed file `path`,
+    /// as [`read`](Self::read) would read it, hashed as it streams: memory
+    /// that does not grow with the file, however large a manifest says it is.
+    pub fn digest(&self, path: &str, cap: u64) -> Result<(String, u64), FaultKind> {
+        let (Some(open), true) = (&self.open, self.has(path)) else {
+            return Err(FaultKind::Missing);
+        };
+        match open.digest(path, cap) {
+            Ok(file) if file.links > 1 => Err(FaultKind::HardLinked { links: file.links }),
+            Ok(file) => Ok((file.sha256, file.size)),
+            Err(e) => Err(read_fault(e)),
+        }
+    }
+}
+
+/// The fault of a file that could not be read.
+fn read_fault(e: ReadError) -> FaultKind {
+    match e {
+        ReadError::Missing => FaultKind::Missing,
+        ReadError::NotAFile => FaultKind::NotAFile,
+        ReadError::TooLarge { bytes, cap } => FaultKind::TooLarge { bytes, cap },
+        ReadError::Io(e) => FaultKind::Unreadable {
+            reason: e.to_string(),
+        },
     }
 }
 

@@ -13,7 +13,6 @@ use rse_core::Terrain;
 use rse_physics::PhysicsReport;
 use rse_world::{
     Generated, MANIFEST, Manifest, RebuildCost, RebuildError, Rebuilt, Recipe, Templates,
-    sha256_hex,
 };
 use serde::Serialize;
 
@@ -320,17 +319,26 @@ fn check_against_manifest(
             Err(kind) => faults.push(Fault::of(path, kind)),
         }
     }
+    // Files check can only hash are hashed as they stream, never held: the
+    // manifest can claim any number of them, each up to the rendered-file
+    // cap. One that names other files is then read for its references, one
+    // at a time and no larger than the memory budget.
+    let text_cap = file_cap(cells).min(
+        options
+            .budget
+            .scale(rebuild_bytes(rayon::current_num_threads())),
+    );
+    let mut referenced = Vec::new();
     for path in &hashed_only {
         let Some(digest) = manifest.files.get(path) else {
             continue;
         };
-        match folder.read(path, file_cap(cells)) {
-            Ok(bytes) if sha256_hex(&bytes) != *digest => {
+        match folder.digest(path, file_cap(cells)) {
+            Ok((found, _)) if found != *digest => {
                 faults.push(Fault::of(path, FaultKind::HashMismatch));
             }
-            Ok(bytes) => {
-                contents.insert(path, bytes);
-            }
+            Ok(_) if references::names_files(path) => referenced.push(path),
+            Ok(_) => {}
             Err(kind) => faults.push(Fault::of(path, kind)),
         }
     }
@@ -342,6 +350,12 @@ fn check_against_manifest(
     // The files checked on their own: world files' references, meshes.
     for (path, bytes) in &contents {
         faults.extend(references::check(path, bytes, folder));
+    }
+    for path in referenced {
+        match folder.read(path, text_cap) {
+            Ok(bytes) => faults.extend(references::check(path, &bytes, folder)),
+            Err(kind) => faults.push(Fault::of(path, kind)),
+        }
     }
     let mut meshes: Vec<(&str, terrain::ObjMesh)> = Vec::new();
     let is_obj = |p: &str| {

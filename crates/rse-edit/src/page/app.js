@@ -21,7 +21,10 @@ const state = { rows: [], selected: -1 };
 // For tests and curious users: `requests` counts previews asked for,
 // `answers` every answer (drawn or refused), `previews` the maps drawn,
 // `views` the 3D views built.
-window.rseEditor = { state, lastRoundTripMs: null, lastViewMs: null, previews: 0, answers: 0, requests: 0, views: 0, preview: null };
+window.rseEditor = {
+  state, lastRoundTripMs: null, lastViewMs: null, previews: 0, answers: 0, requests: 0, views: 0, preview: null,
+  inFlight: 0, mostInFlight: 0, // previews on their way now, and at most at once
+};
 
 /** The server's JSON answer; throws `Lost` when the server cannot be
  * reached (then the page says so and retries, see `connectionLost`). */
@@ -378,6 +381,8 @@ function refresh() {
 
 async function send() {
   preview.busy = true; preview.dirty = false;
+  window.rseEditor.inFlight += 1;
+  window.rseEditor.mostInFlight = Math.max(window.rseEditor.mostInFlight, window.rseEditor.inFlight);
   const since = preview.since;
   preview.since = null;
   window.rseEditor.requests += 1;
@@ -386,11 +391,13 @@ async function send() {
     answer = await api("/api/preview", { scheme: pageScheme(), seed: $("seed").value, index: $("index").value });
   } catch (e) {
     preview.busy = false;
+    window.rseEditor.inFlight -= 1;
     stale(true);
     $("error").textContent = e instanceof Lost ? "" : String(e.message);
     return;
   }
   preview.busy = false;
+  window.rseEditor.inFlight -= 1;
   if (preview.dirty) { // superseded while on its way: its edits wait for the next
     preview.since = Math.min(since, preview.since ?? since);
     send();

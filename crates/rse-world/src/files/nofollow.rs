@@ -51,6 +51,18 @@ pub struct FileBytes {
     pub links: u64,
 }
 
+/// A regular file's SHA-256, computed as it was read from the descriptor
+/// that was checked, a buffer at a time (nothing kept).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FileDigest {
+    /// Lowercase hex SHA-256 of the content.
+    pub sha256: String,
+    /// Bytes read.
+    pub size: u64,
+    /// Hard links to the file when it was opened.
+    pub links: u64,
+}
+
 /// Why a file of an [`OpenFolder`] was not read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
@@ -159,6 +171,44 @@ impl OpenFolder {
             });
         }
         Ok(FileBytes { bytes, links })
+    }
+
+    /// The SHA-256 of the regular file at `relative`, opened as
+    /// [`read`](Self::read) opens it and hashed 64 KiB at a time, never
+    /// past `cap + 1` bytes: memory that does not grow with the file.
+    pub fn digest(&self, relative: &str, cap: u64) -> Result<FileDigest, ReadError> {
+        use sha2::{Digest as _, Sha256};
+        if !crate::files::tree::inside(relative) {
+            return Err(ReadError::Missing);
+        }
+        #[cfg(unix)]
+        let (file, links) = unix::open_file(&self.fd, relative)?;
+        #[cfg(not(unix))]
+        let (file, links) = portable::open_file(&self.path, relative)?;
+        let size = file.metadata()?.len();
+        if size > cap {
+            return Err(ReadError::TooLarge { bytes: size, cap });
+        }
+        let mut reader = file.take(cap.saturating_add(1));
+        let mut hasher = Sha256::new();
+        let mut buffer = vec![0u8; 64 << 10];
+        let mut read = 0u64;
+        loop {
+            let n = reader.read(&mut buffer)?;
+            if n == 0 {
+                break;
+            }
+            hasher.update(&buffer[..n]);
+            read += n as u64;
+        }
+        if read > cap {
+            return Err(ReadError::TooLarge { bytes: read, cap });
+        }
+        Ok(FileDigest {
+            sha256: crate::files::digest::hex(&hasher.finalize()),
+            size: read,
+            links,
+        })
     }
 }
 
