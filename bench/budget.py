@@ -31,9 +31,12 @@ def scheme(folder: Path, name: str, text: str) -> str:
 def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
     """(name, rse-gen arguments that write it, the world folder)."""
     many = "# size: 10x10\ntype,height\n" + "random,1\n" * 200_000
-    # Each row builds a table of 65,535 odds, every one an erfc (a wide sigma):
-    # once priced like 4 cells, it ran 100 times its estimate.
-    tables = "# size: 2x2\n# step_height: 0.001\ntype,height,sigma\n" + "gaussian,65535,10000\n" * 400
+    # Each row builds a table of up to 65,535 odds, every one an erfc (a wide
+    # sigma): once priced like 4 cells, it ran 100 times its estimate. Rows
+    # alike share one table, priced once.
+    head = "# size: 2x2\n# step_height: 0.001\ntype,height,sigma\n"
+    tables = head + "".join(f"gaussian,{65535 - i},10000\n" for i in range(400))
+    shared = head + "gaussian,65535,10000\n" * 400
     table = [
         ("six_obstacles 50x50", ["batch", str(REPO / "schemes/six_obstacles.csv"), "--amount", "1", "--target", ALL], "world_0000"),
         ("nist_hill", ["batch", str(REPO / "schemes/nist_hill.csv"), "--amount", "1", "--target", ALL], "world_0000"),
@@ -42,7 +45,8 @@ def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
         ("random,4 300x300 blocks", ["batch", scheme(folder, "r4b", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", ALL, "--mesh", "blocks"], "world_0000"),
         ("hfield k=1158 on 10x10", ["batch", scheme(folder, "hf", "# size: 10x10\ntype,height\nrandom,3\n"), "--amount", "1", "--target", "mujoco", "--mujoco-collider", "hfield", "--oversample", "1158"], "world_0000"),
         ("200k obstacles on 10x10", ["batch", scheme(folder, "many", many), "--amount", "1", "--target", ALL], "world_0000"),
-        ("400 gaussian tables of 65535 on 2x2", ["batch", scheme(folder, "tables", tables), "--amount", "1", "--target", "obj"], "world_0000"),
+        ("400 gaussian tables of ~65535 on 2x2", ["batch", scheme(folder, "tables", tables), "--amount", "1", "--target", "obj"], "world_0000"),
+        ("400 gaussian rows sharing a table", ["batch", scheme(folder, "shared", shared), "--amount", "1", "--target", "obj"], "world_0000"),
         ("atlas flat 2x2 of 500x500, 10^6 patches", ["atlas", scheme(folder, "flat", "# size: 500x500\ntype,height\n"), "--rows", "2", "--cols", "2", "--flat-patches", "1000000", "--target", ALL], "atlas"),
         ("atlas nist_hill 10x10, 10^6 patches", ["atlas", str(REPO / "schemes/nist_hill.csv"), "--rows", "10", "--cols", "10", "--flat-patches", "1000000", "--target", ALL], "atlas"),
     ]

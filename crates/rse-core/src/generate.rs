@@ -64,9 +64,10 @@ pub fn generate_by(
     let mut rng = WorldRng::new(seed, index);
     let mut heightmap = Heightmap::zeros(grid.nx, grid.ny);
     let mut drawn = Vec::with_capacity(scheme.obstacles().len());
+    let mut tables = crate::rng::GaussianTables::default();
     for obstacle in scheme.obstacles() {
         let resolved = draw(obstacle, &mut rng);
-        stamp::apply(&resolved, &mut heightmap, &mut rng, units);
+        stamp::apply(&resolved, &mut heightmap, &mut rng, units, &mut tables);
         drawn.push(resolved);
     }
     if !difficulty.is_full() {

@@ -166,6 +166,64 @@ const ERFC_FLAT: f64 = 8.0;
 /// the editor's budgets.
 pub(crate) const ERFC_VISITS: u64 = 7;
 
+/// How many gaussian tables one generation keeps to share ([`GaussianTables`]).
+pub(crate) const KEPT_TABLES: usize = 8;
+
+/// The key of a gaussian's table: its height (which sets the mean) and the
+/// bits of its spread.
+pub(crate) type TableKey = (u32, u64);
+
+/// The gaussian tables of one world's generation: rows of the same height
+/// and spread share one (4000 alike built 4000). The [`KEPT_TABLES`] used
+/// last are kept, so a world of many different rows holds a few megabytes
+/// at most.
+#[derive(Default)]
+pub(crate) struct GaussianTables {
+    kept: Vec<(TableKey, std::rc::Rc<ClampedRoundedNormal>)>,
+}
+
+impl GaussianTables {
+    /// The table of a gaussian of height `max` and spread `sigma`.
+    pub(crate) fn get(&mut self, max: u32, sigma: f64) -> std::rc::Rc<ClampedRoundedNormal> {
+        let key = (max, sigma.to_bits());
+        if let Some(i) = self.kept.iter().position(|(k, _)| *k == key) {
+            let entry = self.kept.remove(i);
+            self.kept.push(entry);
+        } else {
+            if self.kept.len() == KEPT_TABLES {
+                self.kept.remove(0);
+            }
+            let table = ClampedRoundedNormal::new(f64::from(max) / 2.0, sigma, max);
+            self.kept.push((key, std::rc::Rc::new(table)));
+        }
+        std::rc::Rc::clone(&self.kept.last().expect("just kept").1)
+    }
+}
+
+/// The cell visits of the tables a generation builds for gaussian rows of
+/// `keys` in table order (`(key, height, spread)`; no key: the row draws its
+/// height or spread, and builds its own), through [`GaussianTables`]'s
+/// reuse exactly: what `check` and the editor price.
+pub(crate) fn tables_visits(rows: impl Iterator<Item = (Option<TableKey>, u32, f64)>) -> u64 {
+    let mut kept: Vec<TableKey> = Vec::new();
+    let mut visits = 0u64;
+    for (key, max, sigma) in rows {
+        if let Some(key) = key {
+            if let Some(i) = kept.iter().position(|k| *k == key) {
+                let k = kept.remove(i);
+                kept.push(k);
+                continue;
+            }
+            if kept.len() == KEPT_TABLES {
+                kept.remove(0);
+            }
+            kept.push(key);
+        }
+        visits = visits.saturating_add(table_visits(max, sigma));
+    }
+    visits
+}
+
 /// The cell visits the table of a gaussian of height `max` and spread
 /// `sigma` costs to build: one per entry, and [`ERFC_VISITS`] for each
 /// entry within `ERFC_FLAT` spreads of the mean (those that call `erfc`).

@@ -177,10 +177,31 @@ impl Scheme {
             block_size: self.globals.block_size,
             step_height: self.globals.step_height,
         };
+        // Gaussian rows alike share their table: priced as generation
+        // builds them (`rng::GaussianTables`).
+        let gaussians = self
+            .obstacles
+            .iter()
+            .filter(|o| o.kind() == crate::obstacle::ObstacleKind::Gaussian)
+            .map(|o| {
+                let f = o.fields();
+                let height = f.height.unwrap_or(crate::param::Param::Fixed(0));
+                let sigma = f
+                    .sigma
+                    .unwrap_or(crate::param::Param::Fixed(crate::limits::DEFAULT_SIGMA));
+                let key = match (height, sigma) {
+                    (crate::param::Param::Fixed(h), crate::param::Param::Fixed(s)) => {
+                        Some((h, s.to_bits()))
+                    }
+                    _ => None,
+                };
+                (key, height.hi(), sigma.hi())
+            });
         self.obstacles
             .iter()
             .map(|o| crate::stamp::visits(o, grid, units))
             .fold(grid.cells() as u64, u64::saturating_add)
+            .saturating_add(crate::rng::tables_visits(gaussians))
     }
 
     /// The grid (frame included).

@@ -8,7 +8,7 @@ use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::obstacle::{DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
-use crate::rng::{ClampedRoundedNormal, WorldRng};
+use crate::rng::{GaussianTables, WorldRng};
 
 /// Lengths of the grid, in metres.
 #[derive(Debug, Clone, Copy)]
@@ -27,6 +27,7 @@ pub(crate) fn apply(
     map: &mut Heightmap,
     rng: &mut WorldRng,
     units: Units,
+    tables: &mut GaussianTables,
 ) {
     let height = obstacle.height;
     match obstacle.kind {
@@ -43,7 +44,7 @@ pub(crate) fn apply(
         }
         ObstacleKind::Gaussian => {
             let sigma = obstacle.sigma.expect("a drawn gaussian has its sigma");
-            let normal = ClampedRoundedNormal::new(f64::from(height) / 2.0, sigma, height);
+            let normal = tables.get(height, sigma);
             let (mut words, mut values) = ([0u32; CHUNK], [0u32; CHUNK]);
             for cells in map.cells_mut().chunks_mut(CHUNK) {
                 let (words, values) = (&mut words[..cells.len()], &mut values[..cells.len()]);
@@ -123,19 +124,13 @@ impl Slope {
 
 /// At most how many cells [`apply`] visits for any drawing of `obstacle`
 /// on `grid`: every cell for a random or gaussian field (a gaussian's table
-/// priced in visits too, [`crate::rng::table_visits`]); for a peak, pit,
+/// is priced with the scheme's, shared: `Scheme::generation_visits`); for a peak, pit,
 /// wall or long pit the box around the span of its points widened by the
 /// reach of its steepest-to-gentlest slope (highest height, lowest angle),
 /// kept to the grid. What `check` budgets before it rebuilds a world.
 pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
     let f = obstacle.fields();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
-    if obstacle.kind() == ObstacleKind::Gaussian {
-        // Every cell, and the table of its heights' odds first.
-        let height = f.height.map_or(0, |h| h.hi());
-        let sigma = f.sigma.map_or(crate::limits::DEFAULT_SIGMA, |s| s.hi());
-        return cells.saturating_add(crate::rng::table_visits(height, sigma));
-    }
     let (Some(height), Some(angle), Some(x1), Some(y1)) = (f.height, f.angle, f.x1, f.y1) else {
         return cells; // random
     };

@@ -633,22 +633,25 @@ mod tests {
 
     /// The preview's cap prices what generation builds: 17,000 gaussian rows
     /// (1 MB of request) each built a table of 65,535 erfcs and ran for
-    /// minutes. Refused now, unbuilt; one such row is previewed.
+    /// minutes. Rows alike now share one table (previewed at once); rows
+    /// each of its own height are priced each, and refused unbuilt.
     #[test]
     fn gaussian_tables_count_against_the_preview_cap() {
-        let row = json!({ "type": "gaussian", "height": ["65535", ""], "sigma": ["10000", ""] });
-        let scheme = |rows: usize| {
+        let row = |height: u32| json!({ "type": "gaussian", "height": [height.to_string(), ""], "sigma": ["10000", ""] });
+        let scheme = |rows: Vec<Value>| {
             json!({
-                "scheme": { "globals": { "size": "2x2", "step_height": "0.001" }, "obstacles": vec![row.clone(); rows] },
+                "scheme": { "globals": { "size": "2x2", "step_height": "0.001" }, "obstacles": rows },
             })
         };
-        let refused = preview(scheme(17_000).to_string().as_bytes()).unwrap_err();
+        let distinct = (0..17_000).map(|i| row(65_535 - i)).collect();
+        let refused = preview(scheme(distinct).to_string().as_bytes()).unwrap_err();
         let message = refused["error"]["message"].as_str().unwrap();
         assert!(
             message.contains("more than the editor previews"),
             "{message}"
         );
-        assert!(preview(scheme(1).to_string().as_bytes()).is_ok());
+        let alike = vec![row(65_535); 17_000];
+        assert!(preview(scheme(alike).to_string().as_bytes()).is_ok());
     }
 
     /// A page scheme with `# seed: 9` and `# amount: 2` of `random,3`.
