@@ -29,14 +29,15 @@ def scheme(folder: Path, name: str, text: str) -> str:
 
 
 def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
-    """(name, rse-gen arguments that write it, the world folder)."""
+    """(name, rse-gen arguments that write it, the world folder and any
+    flags of `check` after it)."""
     many = "# size: 10x10\ntype,height\n" + "random,1\n" * 200_000
     # Each row builds a table of up to 65,535 odds, every one an erfc (a wide
     # sigma): once priced like 4 cells, it ran 100 times its estimate. Rows
     # alike share one table, priced once.
     head = "# size: 2x2\n# step_height: 0.001\ntype,height,sigma\n"
     tables = head + "".join(f"gaussian,{65535 - i},10000\n" for i in range(400))
-    shared = head + "gaussian,65535,10000\n" * 400
+    shared = head + "gaussian,65535,10000\n" * 40_000
     table = [
         ("six_obstacles 50x50", ["batch", str(REPO / "schemes/six_obstacles.csv"), "--amount", "1", "--target", ALL], "world_0000"),
         ("nist_hill", ["batch", str(REPO / "schemes/nist_hill.csv"), "--amount", "1", "--target", ALL], "world_0000"),
@@ -46,9 +47,14 @@ def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
         ("hfield k=1158 on 10x10", ["batch", scheme(folder, "hf", "# size: 10x10\ntype,height\nrandom,3\n"), "--amount", "1", "--target", "mujoco", "--mujoco-collider", "hfield", "--oversample", "1158"], "world_0000"),
         ("200k obstacles on 10x10", ["batch", scheme(folder, "many", many), "--amount", "1", "--target", ALL], "world_0000"),
         ("400 gaussian tables of ~65535 on 2x2", ["batch", scheme(folder, "tables", tables), "--amount", "1", "--target", "obj"], "world_0000"),
-        ("400 gaussian rows sharing a table", ["batch", scheme(folder, "shared", shared), "--amount", "1", "--target", "obj"], "world_0000"),
+        ("40000 gaussian rows sharing a table", ["batch", scheme(folder, "shared", shared), "--amount", "1", "--target", "obj"], "world_0000"),
         ("atlas flat 2x2 of 500x500, 10^6 patches", ["atlas", scheme(folder, "flat", "# size: 500x500\ntype,height\n"), "--rows", "2", "--cols", "2", "--flat-patches", "1000000", "--target", ALL], "atlas"),
         ("atlas nist_hill 10x10, 10^6 patches", ["atlas", str(REPO / "schemes/nist_hill.csv"), "--rows", "10", "--cols", "10", "--flat-patches", "1000000", "--target", ALL], "atlas"),
+    ]
+    # The physics smoke test, priced with the rebuild (`check --physics`).
+    table += [
+        ("physics: six_obstacles, mesh and boxes", ["batch", str(REPO / "schemes/six_obstacles.csv"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
+        ("physics: random,4 300x300, mesh and boxes", ["batch", scheme(folder, "r4p", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
     ]
     if not quick:
         table.append(
@@ -57,11 +63,11 @@ def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
     return table
 
 
-def measure(rse_gen: str, world: Path) -> tuple[dict, int, float]:
+def measure(rse_gen: str, world: Path, flags: list[str]) -> tuple[dict, int, float]:
     """The estimate check reports, its peak resident bytes and CPU seconds."""
     timing = world.parent / "time.txt"
     done = subprocess.run(
-        ["/usr/bin/time", "-o", str(timing), "-f", "%M %U %S", rse_gen, "check", str(world), "--json", "--budget", "1000"],
+        ["/usr/bin/time", "-o", str(timing), "-f", "%M %U %S", rse_gen, "check", str(world), "--json", "--budget", "1000", *flags],
         capture_output=True,
         text=True,
     )
@@ -87,8 +93,9 @@ def main() -> None:
             out = Path(tmp) / f"w{i}"
             target = out / "atlas" if command[0] == "atlas" else out
             subprocess.run([args.rse_gen, *command, "-o", str(target)], check=True, capture_output=True)
+            inside, *flags = inside.split()
             world = out / inside
-            estimate, peak, seconds = measure(args.rse_gen, world)
+            estimate, peak, seconds = measure(args.rse_gen, world, flags)
             memory = estimate["bytes"] / peak
             time = estimate["seconds"] / max(seconds, 0.01)
             worst = max(worst, memory, 1 / memory, time, 1 / time)

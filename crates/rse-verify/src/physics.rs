@@ -19,6 +19,45 @@ pub fn physics_unavailable() -> Option<&'static str> {
         .then_some("this build has no physics smoke test (built without the `physics` feature)")
 }
 
+/// The colliders the smoke test drops bodies on for a world of `manifest`:
+/// the mesh where a target collides it, the box set where one collides boxes.
+fn colliders(manifest: &Manifest) -> std::collections::BTreeSet<rse_world::Collider> {
+    manifest
+        .options
+        .targets
+        .iter()
+        .map(|t| {
+            rse_world::Collider::of(t, manifest.options.mesh, manifest.options.mujoco_collider)
+        })
+        .filter(|c| matches!(c, rse_world::Collider::Mesh | rse_world::Collider::Boxes))
+        .collect()
+}
+
+/// What the smoke test of a world of `manifest` with `cells` cells costs,
+/// as `(cell visits, bytes)`, measured by bench/budget.py (20 bodies, 5 s
+/// at 1 kHz): the flat-plane reference once (~30 µs a step), and for each
+/// collider ~110 µs a step plus ~8 µs and ~300 bytes a cell to build the
+/// model. Priced in `check`'s estimate, so the test is held to the budget
+/// like the rebuild; it only ever runs on meshes that match their rebuild.
+pub(crate) fn cost(manifest: &Manifest, cells: u64) -> (u64, u64) {
+    if !PHYSICS {
+        return (0, 0);
+    }
+    let models = colliders(manifest).len() as u64;
+    if models == 0 {
+        return (0, 0);
+    }
+    let visit_ns = rse_world::VISIT_NANOS;
+    let steps = 5_000.0;
+    let seconds = steps * 30e-6 + models as f64 * (steps * 110e-6);
+    let visits = (seconds * 1e9 / visit_ns) as u64;
+    let per_cell_visits = (8_000.0 / visit_ns) as u64;
+    (
+        visits.saturating_add(models.saturating_mul(cells).saturating_mul(per_cell_visits)),
+        (2u64 << 20).saturating_add(models.saturating_mul(cells).saturating_mul(300)),
+    )
+}
+
 #[cfg(feature = "physics")]
 /// The physics smoke test of each exact collider the world's targets load:
 /// each distinct mesh file (`meshes` holds one of each set of copies) where
@@ -31,17 +70,10 @@ pub(crate) fn run(
     terrain: &Terrain,
     faults: &mut Vec<Fault>,
 ) -> Vec<rse_physics::PhysicsReport> {
-    use std::collections::BTreeSet;
-
     use rse_physics::{SmokeTest, TerrainModel, smoke_tests};
     use rse_world::Collider;
 
-    let colliders: BTreeSet<Collider> = manifest
-        .options
-        .targets
-        .iter()
-        .map(|t| Collider::of(t, manifest.options.mesh, manifest.options.mujoco_collider))
-        .collect();
+    let colliders = colliders(manifest);
     let mut runs: Vec<(Option<&str>, TerrainModel)> = Vec::new();
     if colliders.contains(&Collider::Mesh) {
         if meshes.is_empty() {

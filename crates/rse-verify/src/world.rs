@@ -242,7 +242,12 @@ fn generate_within_budget<'m>(
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) -> Option<Generated<'m>> {
-    let mut within = |cost: RebuildCost, report: &mut WorldReport| {
+    let mut within = |mut cost: RebuildCost, report: &mut WorldReport| {
+        if options.physics {
+            let (visits, bytes) = crate::physics::cost(manifest, cost.cells);
+            cost.visits = cost.visits.saturating_add(visits);
+            cost.bytes = cost.bytes.saturating_add(bytes);
+        }
         if let Some(kind) = over_budget(cost, options.budget) {
             faults.push(Fault::of(MANIFEST, kind));
             return false;

@@ -97,6 +97,39 @@ fn gaussian_tables_are_priced_by_what_they_build() {
     assert!(over_budget(&report), "{:#?}", report.faults);
 }
 
+/// The physics smoke test is priced with the rebuild (bench/budget.py
+/// measures it within 2×): asking for it raises the estimate by a second
+/// or so of drops and the colliders' size, and a budget that the rebuild
+/// alone fits but the test does not refuses the world before either runs.
+#[cfg(feature = "physics")]
+#[test]
+fn the_physics_smoke_test_is_priced_in_the_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let plain = check(&world);
+    let physics = CheckOptions {
+        physics: true,
+        ..CheckOptions::default()
+    };
+    let dropped = check_world(&world, &physics);
+    assert!(plain.ok && dropped.ok, "{:#?}", dropped.faults);
+    let (without, with) = (plain.estimate.unwrap(), dropped.estimate.unwrap());
+    assert!(with.seconds > without.seconds + 0.5, "{without:?} {with:?}");
+    // A budget between the two: the rebuild fits, rebuild and drops do not.
+    let between = (without.seconds + 0.1) / 100.0;
+    let tight = CheckOptions {
+        physics: true,
+        budget: rse_verify::Budget::new(between).unwrap(),
+        ..CheckOptions::default()
+    };
+    let refused = check_world(&world, &tight);
+    assert!(
+        over_budget(&refused) && refused.physics.is_empty(),
+        "{:#?}",
+        refused.faults
+    );
+}
+
 /// Item 1: 100,000 peaks that reach the whole of a 1000×1000 map cost
 /// 10¹¹ cell visits (some ten minutes): refused by the work budget.
 #[test]

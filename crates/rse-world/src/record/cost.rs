@@ -79,8 +79,10 @@ const VISITS_PER_SAMPLE: u64 = 4;
 /// An obstacle of the recipe: parsed from `rse.json` and drawn.
 const BYTES_PER_OBSTACLE: u64 = 640;
 /// Parsing, drawing and recording one obstacle (its stamp is counted
-/// apart, by [`Scheme::generation_visits`]).
-const VISITS_PER_OBSTACLE: u64 = 1000;
+/// apart, by [`Scheme::generation_visits`]): bench/budget.py's 200,000
+/// obstacles on 10×10 take ~2.5 µs each, stamp included (1000 visits, 5 µs,
+/// put that row at twice its measure).
+const VISITS_PER_OBSTACLE: u64 = 600;
 
 /// A flat patch of an atlas, as found and as written in `atlas.json`.
 const BYTES_PER_PATCH: u64 = 150;
