@@ -151,33 +151,45 @@ impl OpenFolder {
     /// file, and read from that descriptor, never more than `cap + 1`
     /// bytes.
     pub fn read(&self, relative: &str, cap: u64) -> Result<FileBytes, ReadError> {
-        if !crate::files::tree::inside(relative) {
-            return Err(ReadError::Missing);
-        }
-        #[cfg(unix)]
-        let (file, links) = unix::open_file(&self.fd, relative)?;
-        #[cfg(not(unix))]
-        let (file, links) = portable::open_file(&self.path, relative)?;
-        let size = file.metadata()?.len();
-        if size > cap {
-            return Err(ReadError::TooLarge { bytes: size, cap });
-        }
+        let (mut file, size, links) = self.open_capped(relative, cap)?;
         let mut bytes = Vec::with_capacity(size as usize);
-        file.take(cap.saturating_add(1)).read_to_end(&mut bytes)?;
-        if bytes.len() as u64 > cap {
-            return Err(ReadError::TooLarge {
-                bytes: bytes.len() as u64,
-                cap,
-            });
-        }
+        file.read_to_end(&mut bytes)?;
+        within(bytes.len() as u64, cap)?;
         Ok(FileBytes { bytes, links })
     }
 
     /// The SHA-256 of the regular file at `relative`, opened as
-    /// [`read`](Self::read) opens it and hashed 64 KiB at a time, never
-    /// past `cap + 1` bytes: memory that does not grow with the file.
+    /// [`read`](Self::read) opens it and hashed as it streams, never past
+    /// `cap + 1` bytes: memory that does not grow with the file.
     pub fn digest(&self, relative: &str, cap: u64) -> Result<FileDigest, ReadError> {
         use sha2::{Digest as _, Sha256};
+        let (mut file, _, links) = self.open_capped(relative, cap)?;
+        let (mut hasher, mut buffer, mut size) = (Sha256::new(), vec![0u8; 64 << 10], 0u64);
+        loop {
+            let n = file.read(&mut buffer)?;
+            if n == 0 {
+                break;
+            }
+            hasher.update(&buffer[..n]);
+            size += n as u64;
+        }
+        within(size, cap)?;
+        Ok(FileDigest {
+            sha256: crate::files::digest::hex(&hasher.finalize()),
+            size,
+            links,
+        })
+    }
+
+    /// The regular file at `relative`, opened as [`read`](Self::read)
+    /// describes, refused when its size is past `cap`, and limited to
+    /// `cap + 1` bytes (it may grow after the check): with its size and
+    /// hard links.
+    fn open_capped(
+        &self,
+        relative: &str,
+        cap: u64,
+    ) -> Result<(std::io::Take<std::fs::File>, u64, u64), ReadError> {
         if !crate::files::tree::inside(relative) {
             return Err(ReadError::Missing);
         }
@@ -186,30 +198,17 @@ impl OpenFolder {
         #[cfg(not(unix))]
         let (file, links) = portable::open_file(&self.path, relative)?;
         let size = file.metadata()?.len();
-        if size > cap {
-            return Err(ReadError::TooLarge { bytes: size, cap });
-        }
-        let mut reader = file.take(cap.saturating_add(1));
-        let mut hasher = Sha256::new();
-        let mut buffer = vec![0u8; 64 << 10];
-        let mut read = 0u64;
-        loop {
-            let n = reader.read(&mut buffer)?;
-            if n == 0 {
-                break;
-            }
-            hasher.update(&buffer[..n]);
-            read += n as u64;
-        }
-        if read > cap {
-            return Err(ReadError::TooLarge { bytes: read, cap });
-        }
-        Ok(FileDigest {
-            sha256: crate::files::digest::hex(&hasher.finalize()),
-            size: read,
-            links,
-        })
+        within(size, cap)?;
+        Ok((file.take(cap.saturating_add(1)), size, links))
     }
+}
+
+/// `TooLarge` when `bytes` is past `cap`.
+fn within(bytes: u64, cap: u64) -> Result<(), ReadError> {
+    if bytes > cap {
+        return Err(ReadError::TooLarge { bytes, cap });
+    }
+    Ok(())
 }
 
 /// The error of reading `path` (relative, `""` for the folder itself) in
