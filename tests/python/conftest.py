@@ -48,6 +48,16 @@ def out(tmp_path: Path) -> Path:
     return tmp_path
 
 
+@pytest.fixture
+def page():
+    """A page in Debian's headless Chromium, for the editor's browser tests
+    (Playwright is imported here only: `make test-quick` has no browser)."""
+    from editor_harness import chromium_page
+
+    with chromium_page() as page:
+        yield page
+
+
 def units(scheme: Path) -> dict:
     """The scheme's block_size, step_height and base (metres), with defaults."""
     found = {"block_size": 0.1, "step_height": 0.1, "base": 0.0}

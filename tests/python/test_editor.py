@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
-from editor_harness import cell, chromium_page, edit, preview_round_trips, running_editor, save_as, table
+from editor_harness import cell, edit, preview_round_trips, running_editor, save_as, table
 from PIL import Image
 from playwright.sync_api import Page
 
@@ -33,12 +33,6 @@ def editor(tmp_path: Path):
     # Optimised, as users run it: the preview round trip is measured.
     with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
         yield url, tmp_path
-
-
-@pytest.fixture
-def page():
-    with chromium_page() as page:
-        yield page
 
 
 def previews(page: Page) -> int:

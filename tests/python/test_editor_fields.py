@@ -10,9 +10,8 @@ import re
 from pathlib import Path
 
 import pytest
-import rse
 from conftest import rse_gen_release_path
-from editor_harness import cell, chromium_page, edit, running_editor, wait_ready
+from editor_harness import chromium_page, edit, running_editor, wait_ready
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -27,12 +26,6 @@ def editor(tmp_path: Path):
     scheme.write_text((REPO / "schemes/six_obstacles.csv").read_text())
     with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
         yield url, tmp_path
-
-
-@pytest.fixture
-def page():
-    with chromium_page() as page:
-        yield page
 
 
 def is_stale(page: Page) -> bool:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import cell, chromium_page, edit, running_editor, save_as, status_says, table, wait_ready
+from editor_harness import cell, edit, running_editor, save_as, status_says, table, wait_ready
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -22,12 +22,6 @@ def editor(tmp_path: Path):
     (tmp_path / "start.csv").write_text(START)
     with running_editor(rse_gen_release_path(), tmp_path / "start.csv", tmp_path) as url:
         yield url, tmp_path
-
-
-@pytest.fixture
-def page():
-    with chromium_page() as page:
-        yield page
 
 
 def open_path(page: Page, path: Path) -> None:

@@ -11,19 +11,13 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
-from editor_harness import cell, cell_point, chromium_page, drag_on_map, edit, running_editor, table, wait_ready
+from editor_harness import cell, cell_point, drag_on_map, edit, running_editor, table, wait_ready
 from PIL import Image
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
 
 REPO = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture
-def page():
-    with chromium_page() as page:
-        yield page
 
 
 def map_pixels(page: Page) -> np.ndarray:
