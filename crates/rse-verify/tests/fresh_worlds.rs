@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use rse_core::Scheme;
-use rse_verify::{CheckOptions, check_paths};
+use rse_verify::{CheckOptions, CheckReport, check_paths};
 use rse_world::{BatchConfig, MeshMode, Targets, Templates, WorldConfig, write_batch};
 
 /// A scheme's CSV text: lengths from the smallest allowed to large, heights
@@ -54,6 +54,22 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
     })
 }
 
+/// `amount` worlds of `scheme` written by `batch` with `world`'s options
+/// into a fresh folder, and `check`'s report on them.
+fn written_and_checked(scheme: &Scheme, amount: u64, world: WorldConfig) -> CheckReport {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("worlds");
+    let options = BatchConfig {
+        amount: Some(amount),
+        world,
+        ..BatchConfig::default()
+    }
+    .resolve(scheme, out.clone())
+    .unwrap();
+    write_batch(scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
+    check_paths(&[out], &CheckOptions::default(), &|| {}).unwrap()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 24,
@@ -66,21 +82,11 @@ proptest! {
     fn a_world_batch_writes_passes_check(text in extreme_scheme(), blocks in any::<bool>()) {
         // Past a documented limit the scheme is refused up front: not a world.
         let Ok(scheme) = Scheme::from_csv(&text, None) else { return Ok(()) };
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("worlds");
-        let options = BatchConfig {
-            amount: Some(2),
-            world: WorldConfig {
-                targets: Some(Targets::all()),
-                mesh: Some(if blocks { MeshMode::Blocks } else { MeshMode::Single }),
-                ..WorldConfig::default()
-            },
-            ..BatchConfig::default()
-        }
-        .resolve(&scheme, out.clone())
-        .unwrap();
-        write_batch(&scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
-        let report = check_paths(&[out], &CheckOptions::default(), &|| {}).unwrap();
+        let report = written_and_checked(&scheme, 2, WorldConfig {
+            targets: Some(Targets::all()),
+            mesh: Some(if blocks { MeshMode::Blocks } else { MeshMode::Single }),
+            ..WorldConfig::default()
+        });
         prop_assert!(
             report.first_fault().is_none(),
             "{}\nfirst fault: {}\nscheme:\n{text}",
@@ -100,19 +106,13 @@ fn slender_random_walls_pass() {
         None,
     )
     .unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("worlds");
-    let options = BatchConfig {
-        amount: Some(10),
-        world: WorldConfig {
+    let report = written_and_checked(
+        &scheme,
+        10,
+        WorldConfig {
             targets: Some(Targets::parse("obj").unwrap()),
             ..WorldConfig::default()
         },
-        ..BatchConfig::default()
-    }
-    .resolve(&scheme, out.clone())
-    .unwrap();
-    write_batch(&scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
-    let report = check_paths(&[out], &CheckOptions::default(), &|| {}).unwrap();
+    );
     assert!(report.first_fault().is_none(), "{}", report.verdict());
 }
