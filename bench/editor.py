@@ -33,25 +33,24 @@ BEFORE = {50: (27.2, 55.9, 58_392), 200: (208.1, 271.8, 440_252)}
 EDITS = 60
 
 TYPED_IN_PAGE = """async (count) => {
+  // An index typed (its input event, as a key press makes), then the page's
+  // `counter` waited for; the figure it timed.
+  const pause = (ms) => new Promise((r) => setTimeout(r, ms));
+  const typed = async (index, counter, figure, poll) => {
+    const before = window.rseEditor[counter];
+    const input = document.getElementById('index');
+    input.value = String(index);
+    input.dispatchEvent(new Event('input', { bubbles: true }));
+    while (window.rseEditor[counter] === before) await pause(poll);
+    return window.rseEditor[figure];
+  };
   const times = [], views = [];
   for (let i = 0; i < count; i++) {
-    const before = window.rseEditor.previews;
-    const input = document.getElementById('index');
-    input.value = String(1000 + i);
-    input.dispatchEvent(new Event('input', { bubbles: true }));
-    while (window.rseEditor.previews === before) await new Promise((r) => setTimeout(r, 1));
-    times.push(window.rseEditor.lastRoundTripMs);
-    await new Promise((r) => setTimeout(r, 40));
+    times.push(await typed(1000 + i, 'previews', 'lastRoundTripMs', 1));
+    await pause(40);
   }
   // The 3D view, built once edits pause: a few, each waited for.
-  for (let i = 0; i < 5; i++) {
-    const before = window.rseEditor.views;
-    const input = document.getElementById('index');
-    input.value = String(2000 + i);
-    input.dispatchEvent(new Event('input', { bubbles: true }));
-    while (window.rseEditor.views === before) await new Promise((r) => setTimeout(r, 5));
-    views.push(window.rseEditor.lastViewMs);
-  }
+  for (let i = 0; i < 5; i++) views.push(await typed(2000 + i, 'views', 'lastViewMs', 5));
   return [times, views];
 }"""
 
