@@ -299,13 +299,21 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
         std::io::read_to_string(file)
     };
     let text = read().map_err(|e| control_error("path", &format!("cannot open {shown}: {e}")))?;
-    let name = shown.to_string();
-    let scheme = rse_core::Scheme::from_csv(&text, Some(&name))
+    let scheme = rse_core::Scheme::from_csv(&text, Some(&shown.to_string()))
         .map_err(|e| control_error("path", &e.to_string()))?;
-    let page = PageScheme::from_scheme(&scheme);
-    let answer = json!({ "ok": true, "path": name, "scheme": page });
+    Ok(remember(editor, path, &scheme))
+}
+
+/// Makes `path`, holding `scheme`, the file a reload starts from (after an
+/// open or a save), and the page's answer naming both.
+///
+/// # Panics
+/// If the lock is poisoned (a panic while saving).
+fn remember(editor: &Editor, path: PathBuf, scheme: &rse_core::Scheme) -> Value {
+    let page = PageScheme::from_scheme(scheme);
+    let answer = json!({ "ok": true, "path": path.display().to_string(), "scheme": page });
     *editor.saved.lock().unwrap() = Some((path, page));
-    Ok(answer)
+    answer
 }
 
 #[derive(Deserialize)]
@@ -341,11 +349,7 @@ pub fn save(editor: &Editor, body: &[u8]) -> Answer {
     }
     rse_world::write_atomically(&request.path, scheme.to_csv().as_bytes())
         .map_err(|e| bad(format!("{:#}", anyhow::Error::from(e))))?;
-    let path = request.path.display().to_string();
-    let written = PageScheme::from_scheme(&scheme);
-    let answer = json!({ "ok": true, "path": path, "scheme": written });
-    *editor.saved.lock().unwrap() = Some((request.path, written));
-    Ok(answer)
+    Ok(remember(editor, request.path, &scheme))
 }
 
 #[derive(Deserialize)]
