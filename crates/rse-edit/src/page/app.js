@@ -79,6 +79,7 @@ const file = {
   server: "", // the file the server starts a reload from
   base: null, // the server's scheme for it, as JSON: a draft made from it is still good
   saved: null, // the page's scheme as that file holds it, as JSON (null: not on disk)
+  suggestion: "", // the name of a file picked from this computer, offered by Save as
 };
 
 function draftKey() { return `rse-editor:${file.server || "(unnamed)"}`; }

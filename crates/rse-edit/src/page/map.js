@@ -7,7 +7,7 @@
 // keys and Enter.
 "use strict";
 
-import { FRAME_RGB, legendHeights, palette } from "./colours.js";
+import { FRAME_RGB, isFrame, legendHeights, palette } from "./colours.js";
 
 // Which ends each type has on the map: a point, or a point and a second end.
 const ENDS = { peak: [1], pit: [1], wall: [1, 2], long_pit: [1, 2] };
@@ -75,10 +75,9 @@ export class TopView {
     const period = preview.frame_period, heights = preview.heights, lo = preview.lo;
     const line = new Uint32Array(width), edgeLine = new Uint32Array(width);
     for (let y = 0; y < ny; y++) {
-      const frameRow = period !== null && y % period === 0;
       for (let x = 0; x < nx; x++) {
         let plain, dark;
-        if (frameRow || (period !== null && x % period === 0)) { plain = framePlain; dark = frameDark; }
+        if (isFrame(period, x, y)) { plain = framePlain; dark = frameDark; }
         else { const i = heights[y * nx + x] - lo; plain = plainOf[i]; dark = darkOf[i]; }
         line.fill(plain, x * cp, (x + 1) * cp);
         if (edges) line[(x + 1) * cp - 1] = dark;
@@ -162,7 +161,7 @@ export class TopView {
     const p = this.preview;
     if (!cell || !p) { this.readout.textContent = ""; return; }
     const h = p.heights[cell.y * p.nx + cell.x];
-    const frame = p.frame_period !== null && (cell.x % p.frame_period === 0 || cell.y % p.frame_period === 0);
+    const frame = isFrame(p.frame_period, cell.x, cell.y);
     this.readout.textContent = `column ${cell.x}, row ${cell.y}: height ${h} ${h === 1 ? "step" : "steps"} (${metres(p.base + h * p.step_height)})${frame ? ", pallet frame" : ""}`;
   }
 
