@@ -118,6 +118,7 @@ pub fn schema() -> Value {
         "columns": columns.iter().map(|f| f.name()).collect::<Vec<_>>(),
         "column_docs": Field::ALL.iter().map(column).collect::<Vec<_>>(),
         "mesh_modes": MeshMode::ALL.map(MeshMode::name),
+        "default_mesh": MeshMode::default().name(),
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
         "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),

@@ -536,7 +536,7 @@ $("generate").onclick = async () => {
   try {
     answer = await api("/api/generate", {
       scheme: pageScheme(), out: $("gen-out").value.trim(), amount: $("gen-amount").value,
-      seed: $("seed").value, targets, mesh: $("mesh").value,
+      seed: $("seed").value, targets, mesh: $("mesh").value || null,
     });
   } catch (e) { $("gen-summary").textContent = `not started: ${e.message}`; return; }
   if (!answer.ok) { markError(answer.error); $("gen-summary").textContent = `not started: ${answer.error.message}`; return; }
@@ -634,7 +634,8 @@ function buildFields(schema) {
   const names = { auto: "each target's best (auto)", single: "single mesh", blocks: "blocks (one box each)" };
   for (const m of schema.mesh_modes) {
     const option = document.createElement("option");
-    option.value = m; option.textContent = names[m] ?? m;
+    // The default is sent as not given (null): the library's rule applies.
+    option.value = m === schema.default_mesh ? "" : m; option.textContent = names[m] ?? m;
     $("mesh").append(option);
   }
   const targets = $("gen-targets");
