@@ -105,6 +105,14 @@ def status_says(page: Page, start: str) -> None:
     page.wait_for_function(f"document.getElementById('status').textContent.startsWith({start!r})")
 
 
+def save(page: Page) -> None:
+    """Save, and waits for this save's "saved" (the status is cleared first:
+    an earlier "saved" must not answer for this one)."""
+    page.evaluate("document.getElementById('status').textContent = ''")
+    page.get_by_role("button", name="Save", exact=True).click()
+    status_says(page, "saved")
+
+
 def save_as(page: Page, path: Path | str) -> None:
     """Save as → the path typed into the dialog → OK, and waits for "saved"."""
     page.evaluate("document.getElementById('status').textContent = ''")

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
-from editor_harness import cell, edit, preview_round_trips, running_editor, save_as, table
+from editor_harness import cell, edit, preview_round_trips, running_editor, save, save_as, table
 from PIL import Image
 from playwright.sync_api import Page
 
@@ -368,8 +368,7 @@ def test_a_reload_keeps_unsaved_edits_asks_before_leaving_and_save_makes_them_th
     assert page.locator("#unsaved").is_visible()
     assert "restored" in page.locator("#status").inner_text()
     # Save: the file holds it, nothing is unsaved, a reload starts from it.
-    page.get_by_role("button", name="Save", exact=True).click()
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    save(page)
     assert page.locator("#unsaved").is_hidden()
     assert "random,3" in (folder / "start.csv").read_text()
     page.reload()
@@ -459,6 +458,5 @@ def test_download_csv_is_the_file_save_writes(editor, page: Page) -> None:
     got = folder / "downloaded.csv"
     download.value.save_as(got)
     assert (folder / "start.csv").read_text() == "# size: 20x16\ntype,height\nrandom,1\n", "a download writes no file"
-    page.get_by_role("button", name="Save", exact=True).click()
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
+    save(page)
     assert got.read_text() == (folder / "start.csv").read_text() and "random,2" in got.read_text()

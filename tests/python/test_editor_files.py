@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import cell, edit, running_editor, save_as, status_says, table, wait_ready
+from editor_harness import cell, edit, running_editor, save, save_as, status_says, table, wait_ready
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -41,8 +41,7 @@ def test_open_by_path_then_save_writes_the_opened_file_and_save_as_moves_on(edit
     assert page.locator("#file-name").inner_text() == str(other), "the page shows which file Save writes"
     assert table(page) == [{"type": "peak", "height.lo": "3", "angle.lo": "45", "x1.lo": "4", "y1.lo": "4"}]
     edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("5"))
-    page.get_by_role("button", name="Save", exact=True).click()
-    status_says(page, "saved")
+    save(page)
     assert "peak,5,45,4,4" in other.read_text()
     assert (folder / "start.csv").read_text() == START, "the file the editor started on is untouched"
     # A reload starts from the file opened last, not the one on the command line.
@@ -55,8 +54,7 @@ def test_open_by_path_then_save_writes_the_opened_file_and_save_as_moves_on(edit
     save_as(page, third)
     assert page.locator("#file-name").inner_text() == str(third)
     edit(page, lambda: page.get_by_label("angle of obstacle 1", exact=True).fill("60"))
-    page.get_by_role("button", name="Save", exact=True).click()
-    status_says(page, "saved")
+    save(page)
     assert "peak,5,60,4,4" in third.read_text() and "peak,5,45,4,4" in other.read_text()
 
 
@@ -80,10 +78,10 @@ def test_a_file_from_this_computer_is_edited_and_save_asks_where(editor, page: P
 def test_a_failed_save_or_open_says_why_in_words(editor, page: Page) -> None:
     url, folder = editor
     wait_ready(page, url)
-    save = page.get_by_role("button", name="Save as")
+    save_as_button = page.get_by_role("button", name="Save as")
     for path, words in [(folder / "no/such/folder/x.csv", "not saved: "), (folder / "x.txt", ".csv")]:
         page.evaluate("document.getElementById('status').textContent = ''")
-        save.click()
+        save_as_button.click()
         page.get_by_label("file path").fill(str(path))
         page.get_by_role("button", name="OK").click()
         status_says(page, "not saved")
@@ -144,8 +142,7 @@ def test_a_lost_server_is_said_retried_and_the_edits_kept(tmp_path: Path, page: 
         page.wait_for_function("document.getElementById('connection').hidden", timeout=15_000)
         page.wait_for_function("!document.getElementById('pictures').classList.contains('stale')")
         assert cell(page, 0, "height").input_value() == "2"
-        page.get_by_role("button", name="Save", exact=True).click()
-        status_says(page, "saved")
+        save(page)
         assert "random,2" in scheme.read_text()
     finally:
         if server.poll() is None:
