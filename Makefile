@@ -7,7 +7,7 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks test-cluster wheel
+.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks test-cluster test-gazebo-classic wheel
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
@@ -25,6 +25,10 @@ test-frameworks:
 ## Mass generation on clusters started and stopped by the tests: Slurm, and rse.ray on a two-node Ray cluster (its own venv, .venv-cluster). See docs/guide.md.
 test-cluster:
 	scripts/test-cluster.sh
+
+## Gazebo classic 11 (gzserver, from a Debian bullseye chroot made once under target/: ~3.5 min, 1.4 GB) loading gazebo-classic worlds with no SDF error or warning, and bodies resting on its default collider. Needs root; not in `make test`.
+test-gazebo-classic:
+	scripts/test-gazebo-classic.sh
 
 ## mjlab's Go1 rough task on mjlab's terrain and on rse's (steps/s, a PPO iteration, the height scans), in .venv-frameworks (make test-frameworks makes it). On a GPU: .venv-frameworks/bin/python bench/mjlab_tasks.py --device cuda --num-envs 4096
 bench-frameworks:

@@ -87,11 +87,13 @@ def test_build_a_scheme_by_clicking_save_reload_and_generate(editor, page: Page)
     page.fill("#gen-amount", "3")
     page.fill("#gen-out", str(folder / "worlds"))
     page.check('#gen-targets input[value="mujoco"]')
+    page.get_by_label("gazebo-classic", exact=True).check()
     page.click("#generate")
     page.wait_for_function("document.getElementById('gen-check').textContent !== ''", timeout=60_000)
     assert "3 worlds written" in page.locator("#gen-summary").inner_text()
     assert page.locator("#gen-check").inner_text().startswith("checked 3 worlds: 3 good, 0 failed")
     assert (folder / "worlds/world_0002/mujoco/rse.xml").is_file()
+    assert (folder / "worlds/world_0002/gazebo-classic/rse_terrain/model.sdf").is_file()
 
 
 def test_the_3d_view_draws_blocks(editor, page: Page) -> None:

@@ -76,7 +76,7 @@ def test_the_stubs_literals_are_the_librarys_values() -> None:
         "_MeshMode": rse.MESH_MODES,
         "_MujocoCollider": rse.MUJOCO_COLLIDERS,
     }
-    assert rse.TARGETS == ("obj", "gazebo", "webots", "mujoco", "urdf", "usd")
+    assert rse.TARGETS == ("obj", "gazebo", "gazebo-classic", "webots", "mujoco", "urdf", "usd")
 
 
 def test_the_library_defaults_reach_python_from_one_place() -> None:

@@ -59,8 +59,12 @@ def manifest(world: Path) -> dict:
     return json.loads((world / "rse.json").read_text())
 
 
-def sdf_files(world: Path) -> list[Path]:
-    return [world / "gazebo/rse.world", world / "gazebo/rse_terrain/model.sdf"]
+GAZEBOS = {"gazebo": 1.9, "gazebo-classic": 1.7}
+
+
+def sdf_files(world: Path, gazebos=GAZEBOS) -> list[Path]:
+    """Each Gazebo target's world and model SDF."""
+    return [world / g / f for g in gazebos for f in ("rse.world", "rse_terrain/model.sdf")]
 
 
 # --- the folder itself -------------------------------------------------------
@@ -138,11 +142,18 @@ def test_the_strict_check_fails_on_what_ign_lets_pass(batches, sdf_check: Path, 
     assert done.returncode == 1 and "not found" in done.stderr
 
 
-def test_sdf_version_is_at_most_1_9(batches) -> None:
+def test_sdf_versions_are_what_each_gazebo_reads(batches) -> None:
+    """Gazebo Sim's files are SDF 1.9; Gazebo classic 11's (libsdformat 9)
+    1.7 at most in every file, `model.config`'s `<sdf version>` included:
+    Gazebo 11 refuses to convert anything newer."""
     for world in worlds(batches):
-        for f in sdf_files(world):
-            version = ET.parse(f).getroot().get("version")
-            assert float(version) <= 1.9, f
+        for gazebo, highest in GAZEBOS.items():
+            for f in sdf_files(world, [gazebo]):
+                version = ET.parse(f).getroot().get("version")
+                assert version and float(version) <= highest, f
+            config = ET.parse(world / gazebo / "rse_terrain/model.config").getroot().find("sdf")
+            assert config is not None and float(config.get("version") or "inf") <= highest, world / gazebo
+            assert config.text == "model.sdf"
 
 
 # --- dropping bodies on chosen cells ----------------------------------------

@@ -348,12 +348,13 @@ pub struct WorldArgs {
 /// templates (`batch` and `atlas` alike).
 #[derive(Debug, Args)]
 pub struct WorldFilesArgs {
-    /// Simulators to write, comma-separated: obj, gazebo, webots, mujoco, urdf, usd.
+    /// Simulators to write, comma-separated: obj, gazebo, gazebo-classic, webots, mujoco, urdf, usd.
     #[arg(long, value_name = "LIST", default_value_t = Targets::default(), value_parser = parse_targets)]
     pub target: Targets,
 
-    /// Terrain model in the simulator files: each target's fastest exact one (auto: boxes for
-    /// URDF, the mesh elsewhere), the single mesh everywhere, or boxes everywhere.
+    /// Terrain model in the simulator files: each target's fastest exact one that holds (auto:
+    /// boxes for URDF and Gazebo classic, the mesh elsewhere), the single mesh everywhere, or
+    /// boxes everywhere.
     #[arg(long, value_name = "auto|single|blocks", default_value_t = MeshMode::default(), value_parser = parse_mesh_mode)]
     pub mesh: MeshMode,
 

@@ -447,8 +447,15 @@ fn exported_templates_are_ours() {
         "export",
         exported.to_str().unwrap(),
     ]));
-    assert_eq!(listed.lines().count(), 7, "{listed}");
-    for target in ["gazebo", "mujoco", "urdf", "usd", "webots"] {
+    assert_eq!(listed.lines().count(), 10, "{listed}");
+    for target in [
+        "gazebo",
+        "gazebo-classic",
+        "mujoco",
+        "urdf",
+        "usd",
+        "webots",
+    ] {
         assert_same_tree(
             &exported.join(target),
             &repo().join("templates").join(target),

@@ -73,10 +73,12 @@ fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultK
             reference: excerpt(reference),
         });
     }
+    // Models are looked up on the Gazebo model path: the target folder of
+    // the file naming them (`gazebo/`, `gazebo-classic/`).
+    let models = dir.split('/').next().unwrap_or_default();
     let target = match reference.strip_prefix("model://") {
-        // Models are looked up on the Gazebo resource path: our `gazebo/`.
-        Some(model) if !model.contains('/') => resolve("gazebo", &format!("{model}/model.config")),
-        Some(model) => resolve("gazebo", model),
+        Some(model) if !model.contains('/') => resolve(models, &format!("{model}/model.config")),
+        Some(model) => resolve(models, model),
         None => resolve(dir, reference),
     };
     match target {

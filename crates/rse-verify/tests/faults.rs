@@ -194,6 +194,68 @@ fn missing_a_deleted_mesh() {
     );
 }
 
+/// A Gazebo classic world resolves `model://` in its own folder (Gazebo 11
+/// is run with `GAZEBO_MODEL_PATH` on `gazebo-classic/`): its mesh deleted
+/// is missing there even while `gazebo/` still has its copy; an SDF version
+/// put back to 1.9 (what Gazebo 11 cannot read) differs from the rebuild.
+#[test]
+fn a_tampered_gazebo_classic_world_is_caught() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    assert!(
+        world
+            .join("gazebo/rse_terrain/meshes/terrain.obj")
+            .is_file()
+    );
+    std::fs::remove_file(world.join("gazebo-classic/rse_terrain/meshes/terrain.obj")).unwrap();
+    let sdf = world.join("gazebo-classic/rse_terrain/model.sdf");
+    let text = std::fs::read_to_string(&sdf).unwrap();
+    std::fs::write(
+        &sdf,
+        text.replace("<sdf version=\"1.7\">", "<sdf version=\"1.9\">"),
+    )
+    .unwrap();
+    forge(&world);
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("gazebo-classic/rse_terrain/meshes/terrain.obj"),
+        |k| *k == FaultKind::Missing,
+    );
+    assert_fault(&report, Some("gazebo-classic/rse_terrain/model.sdf"), |k| {
+        matches!(k, FaultKind::Differs { line: Some(2), .. })
+    });
+    assert!(
+        !report
+            .faults
+            .iter()
+            .any(|f| f.file.as_deref().is_some_and(|p| p.starts_with("gazebo/"))),
+        "{:#?}",
+        report.faults
+    );
+}
+
+/// A reference from a Gazebo classic model to the mesh resolves in
+/// `gazebo-classic/`, never in `gazebo/`: a world of the classic target
+/// alone, its mesh deleted and the deletion forged into the manifest, is
+/// caught by the reference check.
+#[test]
+fn missing_reference_a_classic_model_looks_in_its_own_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    std::fs::remove_file(world.join("gazebo-classic/rse_terrain/meshes/terrain.obj")).unwrap();
+    edit_manifest(&world, |m| {
+        m.files
+            .remove("gazebo-classic/rse_terrain/meshes/terrain.obj");
+    });
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("gazebo-classic/rse_terrain/model.sdf"),
+        |k| matches!(k, FaultKind::MissingReference { reference } if reference.contains("terrain.obj")),
+    );
+}
+
 #[test]
 fn unexpected_a_file_added_and_listed() {
     let dir = tempfile::tempdir().unwrap();

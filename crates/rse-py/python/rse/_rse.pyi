@@ -36,7 +36,7 @@ __version__: str
 # World options: the values rse-world takes (a test keeps these equal to
 # TARGETS, MESH_MODES and MUJOCO_COLLIDERS). None, where a keyword takes
 # one, is the library's default: gazebo, auto, boxes, DEFAULT_OVERSAMPLE.
-_Target = Literal["obj", "gazebo", "webots", "mujoco", "urdf", "usd"]
+_Target = Literal["obj", "gazebo", "gazebo-classic", "webots", "mujoco", "urdf", "usd"]
 _Targets = Union[str, Sequence[_Target]]
 _MeshMode = Literal["auto", "single", "blocks"]
 _MujocoCollider = Literal["boxes", "hfield"]

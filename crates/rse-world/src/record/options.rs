@@ -57,8 +57,11 @@ fn is_full(d: &Difficulty) -> bool {
 pub enum Target {
     /// `meshes/terrain.obj` (+ `.mtl`) alone.
     Obj,
-    /// A Gazebo model folder and a `.world` including it.
+    /// A Gazebo (Sim) model folder and a `.world` including it, SDF 1.9.
     Gazebo,
+    /// The same for Gazebo classic 11 (ROS 1): SDF 1.7, ODE's defaults.
+    #[serde(rename = "gazebo-classic")]
+    GazeboClassic,
     /// A Webots `.wbt` world.
     Webots,
     /// A `MuJoCo` MJCF file.
@@ -71,9 +74,10 @@ pub enum Target {
 
 impl Target {
     /// Every target, in the order worlds list them.
-    pub const ALL: [Target; 6] = [
+    pub const ALL: [Target; 7] = [
         Target::Obj,
         Target::Gazebo,
+        Target::GazeboClassic,
         Target::Webots,
         Target::Mujoco,
         Target::Urdf,
@@ -85,6 +89,7 @@ impl Target {
         match self {
             Target::Obj => "obj",
             Target::Gazebo => "gazebo",
+            Target::GazeboClassic => "gazebo-classic",
             Target::Webots => "webots",
             Target::Mujoco => "mujoco",
             Target::Urdf => "urdf",
@@ -183,11 +188,12 @@ impl fmt::Display for Targets {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MeshMode {
-    /// Each target's fastest exact collider, as measured (docs/worlds.md, "Which
-    /// collider each simulator gets"): the box set for URDF (`PyBullet`
-    /// collides boxes faster than a concave mesh), the single mesh for every
-    /// other target (`MuJoCo` collides boxes whatever the mode, and draws the
-    /// mesh).
+    /// Each target's fastest exact collider that holds, as measured
+    /// (docs/worlds.md, "Which collider each simulator gets"): the box set
+    /// for URDF (`PyBullet` collides boxes faster than a concave mesh) and
+    /// for Gazebo classic (ODE rolls bodies off the mesh's interior edges),
+    /// the single mesh for every other target (`MuJoCo` collides boxes
+    /// whatever the mode, and draws the mesh).
     #[default]
     Auto,
     /// The single closed mesh of docs/meshes.md, for every target.
@@ -214,7 +220,7 @@ impl MeshMode {
     #[must_use]
     pub fn for_target(self, target: Target) -> MeshMode {
         match (self, target) {
-            (MeshMode::Auto, Target::Urdf) => MeshMode::Blocks,
+            (MeshMode::Auto, Target::Urdf | Target::GazeboClassic) => MeshMode::Blocks,
             (MeshMode::Auto, _) => MeshMode::Single,
             (mode, _) => mode,
         }
@@ -336,12 +342,13 @@ mod tests {
             Target::ALL
                 .iter()
                 .map(|&t| match t {
-                    Target::Urdf | Target::Mujoco => Collider::Boxes,
+                    Target::Urdf | Target::Mujoco | Target::GazeboClassic => Collider::Boxes,
                     _ => Collider::Mesh,
                 })
                 .collect::<Vec<_>>()
         );
         assert_eq!(of(Target::Gazebo, MeshMode::Blocks), Collider::Boxes);
+        assert_eq!(of(Target::GazeboClassic, MeshMode::Single), Collider::Mesh);
         assert_eq!(of(Target::Urdf, MeshMode::Single), Collider::Mesh);
         assert_eq!(of(Target::Obj, MeshMode::Blocks), Collider::Mesh);
         let hfield = MujocoCollider::Hfield { oversample: 2 };

@@ -38,6 +38,21 @@ const BUILTIN: &[(Target, &str, &str)] = &[
         include_str!("../../../../templates/gazebo/rse_terrain/model.sdf.j2"),
     ),
     (
+        Target::GazeboClassic,
+        "rse.world.j2",
+        include_str!("../../../../templates/gazebo-classic/rse.world.j2"),
+    ),
+    (
+        Target::GazeboClassic,
+        "rse_terrain/model.config.j2",
+        include_str!("../../../../templates/gazebo-classic/rse_terrain/model.config.j2"),
+    ),
+    (
+        Target::GazeboClassic,
+        "rse_terrain/model.sdf.j2",
+        include_str!("../../../../templates/gazebo-classic/rse_terrain/model.sdf.j2"),
+    ),
+    (
         Target::Webots,
         "rse.wbt.j2",
         include_str!("../../../../templates/webots/rse.wbt.j2"),

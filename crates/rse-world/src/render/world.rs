@@ -236,9 +236,18 @@ pub(crate) fn terrain_files(
         || [Target::Webots, Target::Mujoco, Target::Urdf]
             .into_iter()
             .any(meshed);
-    let gazebo_mesh = meshed(Target::Gazebo);
+    // Each Gazebo's model folder holds its own mesh: the folder is what
+    // the model path names, and a model reaches nothing outside it. Gazebo
+    // classic draws the mesh over its box set too: a visual per box floods
+    // gzserver's message queue (and gzclient's draw calls) on large fields.
+    let gazebo_meshes: Vec<Target> = [Target::Gazebo, Target::GazeboClassic]
+        .into_iter()
+        .filter(|&t| {
+            meshed(t) || (t == Target::GazeboClassic && targets.contains(t) && !boxes.is_empty())
+        })
+        .collect();
     let usd_mesh = meshed(Target::Usd);
-    if shared_mesh || gazebo_mesh || usd_mesh {
+    if shared_mesh || !gazebo_meshes.is_empty() || usd_mesh {
         let mesh = terrain.mesh();
         let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
         let mtl_bytes = mtl().into_bytes();
@@ -246,8 +255,8 @@ pub(crate) fn terrain_files(
         if shared_mesh {
             mesh_folders.push("meshes".to_owned());
         }
-        if gazebo_mesh {
-            mesh_folders.push(format!("gazebo/{MODEL}/meshes"));
+        for target in &gazebo_meshes {
+            mesh_folders.push(format!("{target}/{MODEL}/meshes"));
         }
         // The last folder takes the OBJ's bytes themselves, the others a copy.
         if let Some((last, others)) = mesh_folders.split_last() {
@@ -368,6 +377,11 @@ mod tests {
         assert_eq!(
             files(WALL, MeshMode::Single, &Targets::all().to_string()),
             [
+                "gazebo-classic/rse.world",
+                "gazebo-classic/rse_terrain/meshes/terrain.mtl",
+                "gazebo-classic/rse_terrain/meshes/terrain.obj",
+                "gazebo-classic/rse_terrain/model.config",
+                "gazebo-classic/rse_terrain/model.sdf",
                 "gazebo/rse.world",
                 "gazebo/rse_terrain/meshes/terrain.mtl",
                 "gazebo/rse_terrain/meshes/terrain.obj",
@@ -400,10 +414,12 @@ mod tests {
         assert!(with_obj.contains(&"meshes/terrain.obj".to_owned()));
     }
 
-    /// `auto`: URDF collides the box set (faster in `PyBullet`), every other
-    /// target keeps the mesh; a URDF-only world carries no mesh at all.
+    /// `auto`: URDF collides the box set (faster in `PyBullet`), Gazebo
+    /// classic too (ODE rolls bodies off the mesh's interior edges) and draws
+    /// the mesh, every other target keeps the mesh; a URDF-only world carries
+    /// no mesh at all.
     #[test]
-    fn auto_gives_urdf_boxes_and_the_others_the_mesh() {
+    fn auto_gives_urdf_and_gazebo_classic_boxes_and_the_others_the_mesh() {
         let text = |targets: &str, path: &str| {
             let options = WorldOptions {
                 targets: Targets::parse(targets).unwrap(),
@@ -427,6 +443,17 @@ mod tests {
             sdf.contains("terrain.obj") && !sdf.contains("<box>"),
             "{sdf}"
         );
+        // Gazebo classic collides the box set and draws the mesh.
+        let classic = text("gazebo-classic", "gazebo-classic/rse_terrain/model.sdf").unwrap();
+        let (collisions, visual) = classic.split_once("<visual").unwrap();
+        assert!(
+            collisions.contains("<box>") && !collisions.contains("terrain.obj"),
+            "{classic}"
+        );
+        assert!(
+            visual.contains("terrain.obj") && !visual.contains("<box>"),
+            "{classic}"
+        );
         assert!(text("urdf", "meshes/terrain.obj").is_none());
         assert_eq!(
             files(WALL, MeshMode::Auto, &Targets::all().to_string()),
@@ -442,7 +469,7 @@ mod tests {
         assert!(
             !listed
                 .iter()
-                .any(|f| f.starts_with("gazebo/rse_terrain/meshes") || f == "usd/terrain.usda")
+                .any(|f| f.contains("rse_terrain/meshes") || f == "usd/terrain.usda")
         );
     }
 
