@@ -42,6 +42,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--worlds", type=int, default=5, help="worlds of each scheme (indices 0..N-1)")
     parser.add_argument("--spheres", type=int, default=20, help="spheres per world")
+    parser.add_argument("--only", default="", help="the schemes whose label holds this text (e.g. 15x60)")
     parser.add_argument("--rse-gen", default=str(REPO / "target" / "release" / "rse-gen"))
     parser.add_argument("--root", type=Path, default=gz11.DEFAULT_ROOT, help="the Gazebo 11 chroot (made if missing)")
     args = parser.parse_args()
@@ -50,6 +51,8 @@ def main() -> None:
     print(f"{'scheme':<22}{'collider':<7}{'where':<9}{'start':<16}{'slid':>8}{'worst (m)':>11}{'RTF':>7}")
     with tempfile.TemporaryDirectory() as tmp:
         for label, csv in SCHEMES.items():
+            if args.only not in label:
+                continue
             scheme = Path(tmp) / (label.replace(" ", "_") + ".csv")
             scheme.write_text(csv)
             for mesh in ("single", "blocks"):
