@@ -8,14 +8,16 @@ midpoints of the mesh's interior top-face edges that cut across cells (the
 diagonals of its triangulation), where the top is flat for a sphere's width
 around them: once resting exactly (centre one radius above the top) and once
 dropped from 2 cm. The box-set world gets spheres at the very same points.
-After 5 s of simulated time (ODE, 1 kHz, uncapped) a sphere whose centre
-moved more than 1 cm sideways, or sank 1 cm, has slid off its place.
+After 5 s of simulated time (ODE, 1 kHz, uncapped: `--iters 5000`, poses
+read from Gazebo's state log) a sphere whose centre moved more than 1 cm
+sideways, or sank 1 cm, has slid off its place. The control: the same
+spheres on the mesh half a radius beside the diagonal, inside one face.
 
     sudo python3 bench/gazebo_classic_contacts.py [--worlds 5] [--spheres 20]
 
 Prints, per scheme and collider, how many spheres slid and the worst
-displacement, and the real-time factor of each run (sim seconds per wall
-second)."""
+displacement, and the mean real-time factor of the runs (simulated seconds
+per real second, Gazebo's own clocks; the spheres are most of the work)."""
 
 from __future__ import annotations
 
@@ -30,7 +32,7 @@ sys.path.insert(0, str(REPO / "tests" / "gazebo_classic"))
 import gz11  # noqa: E402
 from drops import RADIUS, SECONDS, SLID, Sphere, places, run  # noqa: E402
 
-# The paper's sizes the issue measured, and the benchmark scheme.
+# Sizes of the paper's Table 3 (random blocks), and the benchmark scheme.
 SCHEMES = {
     "random 10x10": "# size: 10x10\n# block_size: 0.1\n# step_height: 0.05\ntype,height\nrandom,4\n",
     "random 15x60": "# size: 15x60\n# block_size: 0.1\n# step_height: 0.05\ntype,height\nrandom,4\n",

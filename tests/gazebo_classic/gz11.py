@@ -13,7 +13,6 @@ import shutil
 import socket
 import subprocess
 import tempfile
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -103,16 +102,16 @@ class Gzserver:
         root: Path,
         world_dir: str,
         world_file: str,
-        paused: bool = False,
         model_path: str | None = None,
         record: bool = False,
         cwd: str | None = None,
+        extra: tuple[str, ...] = (),
     ) -> None:
         self.root = root
         # Gazebo's state log (`-r`): on stop, the world as Gazebo loaded it.
         self.record = f"{world_dir}/.gz11-record" if record else None
         self.port = free_port()
-        self.env = [
+        env = [
             "PATH=/usr/sbin:/usr/bin:/sbin:/bin",
             "HOME=/root",
             f"GAZEBO_MODEL_PATH={world_dir if model_path is None else model_path}",
@@ -122,57 +121,21 @@ class Gzserver:
             "GAZEBO_MODEL_DATABASE_URI=",
         ]
         recording = ["-r", "--record_encoding", "txt", "--record_path", self.record] if self.record else []
-        args = ["gzserver", "--verbose", *(["-u"] if paused else []), *recording, world_file]
+        args = ["gzserver", "--verbose", *recording, *extra, world_file]
+        # To a file, not a pipe: nobody reads a pipe while it runs, and a
+        # full one would stop gzserver mid-write.
+        self.output = tempfile.TemporaryFile(mode="w+")
         self.process = subprocess.Popen(
-            ["chroot", str(root), "env", "-i", *self.env, "sh", "-c", 'cd "$0" && exec "$@"', cwd or world_dir, *args],
-            stdout=subprocess.PIPE,
+            ["chroot", str(root), "env", "-i", *env, "sh", "-c", 'cd "$0" && exec "$@"', cwd or world_dir, *args],
+            stdout=self.output,
             stderr=subprocess.STDOUT,
             text=True,
         )
         self.log = ""
 
-    def gz(self, *args: str, timeout: float = 30, tries: int = 3) -> str:
-        """A `gz` tool command against this server; its output. Tried again
-        when it hangs: the tool now and then waits for ever on a reply its
-        transport missed."""
-        for _ in range(tries - 1):
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                return self._gz(args, timeout)
-        return self._gz(args, timeout)
-
-    def _gz(self, args: tuple[str, ...], timeout: float) -> str:
-        return subprocess.run(
-            ["chroot", str(self.root), "env", "-i", *self.env, "gz", *args],
-            capture_output=True,
-            text=True,
-            timeout=timeout,
-        ).stdout
-
-    def wait_loaded(self, timeout: float = 90) -> None:
-        """Until the world publishes its statistics (it has loaded every model)."""
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                raise RuntimeError(f"gzserver exited with {self.process.returncode}:\n{self.stop()}")
-            if self.sim_time() is not None:
-                return
-            time.sleep(0.5)
-        raise TimeoutError(f"gzserver did not answer within {timeout} s:\n{self.stop()}")
-
-    def sim_time(self) -> float | None:
-        """The world's simulated seconds, from its statistics topic (`gz
-        stats` prints nothing while the world is paused); `None` before the
-        world has loaded."""
-        topics = [t for t in self.gz("topic", "-l", timeout=10).split() if t.endswith("/world_stats")]
-        if not topics:
-            return None
-        message = self.gz("topic", "-e", topics[0], "-d", "1", timeout=10)
-        found = re.search(r"sim_time \{\s*sec: (\d+)\s*nsec: (\d+)", message)
-        return int(found[1]) + int(found[2]) * 1e-9 if found else None
-
     def stop(self) -> str:
         """Stops the server (SIGINT, as Ctrl+C); its whole output, colours off."""
-        if self.process.stdout is None or self.process.stdout.closed:
+        if self.output.closed:
             return self.log
         if self.process.poll() is None:
             self.process.send_signal(2)
@@ -180,8 +143,10 @@ class Gzserver:
                 self.process.wait(timeout=20)
             except subprocess.TimeoutExpired:
                 self.process.kill()
-        out, _ = self.process.communicate()
-        self.log = ANSI.sub("", out or "")
+                self.process.wait()
+        self.output.seek(0)
+        self.log = ANSI.sub("", self.output.read())
+        self.output.close()
         return self.log
 
     def recorded(self) -> str:
