@@ -26,7 +26,7 @@ test-frameworks:
 test-cluster:
 	scripts/test-cluster.sh
 
-## Gazebo classic 11 (gzserver, from a Debian bullseye chroot made once under target/: ~3.5 min, 1.4 GB) loading gazebo-classic worlds with no SDF error or warning, and bodies resting on its default collider. Needs root; not in `make test`.
+## Gazebo classic 11 (gzserver, from a Debian bullseye chroot made once under target/: about 2 min, 1.3 GB here) loading gazebo-classic worlds with no SDF error or warning, and bodies resting on its default collider. Needs root; not in `make test`.
 test-gazebo-classic:
 	scripts/test-gazebo-classic.sh
 

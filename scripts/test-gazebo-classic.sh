@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Gazebo classic 11 loading our `gazebo-classic` worlds, for real: a Debian
 # bullseye chroot (the last Debian release with Gazebo 11) made once under
-# target/gazebo11-root by debootstrap and apt (~3.5 minutes, 1.4 GB), then
+# target/gazebo11-root by debootstrap and apt (about 2 minutes and 1.3 GB here), then
 # gzserver --verbose on sample worlds, failing on any SDF error or warning,
 # and spheres dropped on the default collider. Needs root (chroot, and
 # debootstrap from Debian's packages). Not part of `make test`.

@@ -17,7 +17,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-# Kept under target/ (ignored, shared by every run on this clone): ~1.4 GB.
+# Kept under target/ (ignored, shared by every run on this clone): ~1.3 GB.
 DEFAULT_ROOT = REPO / "target" / "gazebo11-root"
 MIRROR = "http://deb.debian.org/debian"
 SUITE = "bullseye"
@@ -40,8 +40,8 @@ ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
 def ensure_root(root: Path = DEFAULT_ROOT) -> Path:
     """A bullseye chroot with Gazebo 11 at `root`, made if it is not there
-    (debootstrap --variant=minbase, then apt-get install gazebo: ~3.5
-    minutes, 1.4 GB). A half-made one is made again."""
+    (debootstrap --variant=minbase, then apt-get install gazebo: about 2
+    minutes and 1.3 GB here). A half-made one is made again."""
     done = root / ".rse-gazebo11-ready"
     if done.exists():
         return root
