@@ -36,14 +36,14 @@ def root() -> Path:
     return gz11.ensure_root()
 
 
-def batch(tmp: Path, scheme: str, mesh: str, targets: str = "gazebo-classic", amount: int = 1) -> Path:
+def batch(tmp: Path, scheme: str, mesh: str, targets: str = "gazebo-classic") -> Path:
     """`rse-gen batch` of a sample scheme (or the empty one) into `tmp`; its first world."""
     source = tmp / "empty.csv" if scheme == "empty" else SCHEMES / f"{scheme}.csv"
     if scheme == "empty":
         source.write_text(EMPTY)
     out = tmp / f"{scheme}-{mesh}"
     subprocess.run(
-        [str(RSE_GEN), "batch", str(source), "-o", str(out), "--amount", str(amount), "--target", targets, "--mesh", mesh],
+        [str(RSE_GEN), "batch", str(source), "-o", str(out), "--amount", "1", "--target", targets, "--mesh", mesh],
         check=True,
         capture_output=True,
     )

@@ -236,9 +236,9 @@ fn a_tampered_gazebo_classic_world_is_caught() {
 }
 
 /// A reference from a Gazebo classic model to the mesh resolves in
-/// `gazebo-classic/`, never in `gazebo/`: a world of the classic target
-/// alone, its mesh deleted and the deletion forged into the manifest, is
-/// caught by the reference check.
+/// `gazebo-classic/`, never in `gazebo/`: with `gazebo/`'s copy of the
+/// mesh still there, the classic one deleted and the deletion forged into
+/// the manifest is caught by the reference check.
 #[test]
 fn missing_reference_a_classic_model_looks_in_its_own_folder() {
     let dir = tempfile::tempdir().unwrap();
