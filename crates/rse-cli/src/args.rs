@@ -64,6 +64,10 @@ pub enum Command {
     /// largest step, steepest slope and distinct worlds over many draws; exit 1 on a dead or non-rising level.
     #[command(name = "check-curriculum", after_help = examples::CHECK_CURRICULUM)]
     CheckCurriculum(CheckCurriculumArgs),
+    /// Draw the terrains of N parallel envs in one PNG, as `rse.EnvTerrains.contact_sheet` does: one
+    /// tile per env, labelled with its env id (and scheme), episode and difficulty, on one colour scale.
+    #[command(name = "contact-sheet", after_help = examples::CONTACT_SHEET)]
+    ContactSheet(ContactSheetArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
     #[command(after_help = examples::EDIT)]
     Edit(EditArgs),
@@ -155,6 +159,65 @@ pub struct CheckCurriculumArgs {
     /// Print the report as JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+
+    #[command(flatten)]
+    pub overrides: SchemeOverrides,
+}
+
+#[derive(Debug, Args)]
+pub struct ContactSheetArgs {
+    /// Scheme CSV files: with several, each env draws its scheme by `--proportions` from its env id and
+    /// the seed (as a mix of schemes in the RL adapters), and its tile names the scheme.
+    #[arg(required = true, value_name = "SCHEME")]
+    pub schemes: Vec<PathBuf>,
+
+    /// The PNG file to write.
+    #[arg(short, long, value_name = "PNG")]
+    pub output: PathBuf,
+
+    /// Environments drawn (env ids 0 to N-1).
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    pub envs: u32,
+
+    /// Every env at difficulty D, 0 ≤ D ≤ 1 [default: 1, the schemes as written].
+    #[arg(
+        long,
+        value_name = "D",
+        conflicts_with = "levels",
+        allow_negative_numbers = true
+    )]
+    pub difficulty: Option<Difficulty>,
+
+    /// Spread the envs over L difficulty levels, the easiest first: env e at level ⌊e·L/N⌋, difficulty
+    /// level / (L − 1) (mjlab's terrain levels: 10).
+    #[arg(long, value_name = "L", value_parser = clap::value_parser!(u32).range(2..=1000))]
+    pub levels: Option<u32>,
+
+    /// Each scheme's share of the envs, comma-separated, in the order of the schemes [default: equal].
+    #[arg(
+        long,
+        value_name = "P,P,…",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub proportions: Option<Vec<f64>>,
+
+    /// Base seed of every env's terrains and of the mix [default: each scheme's `seed`; the mix: the first
+    /// scheme's].
+    #[arg(long, value_name = "B")]
+    pub seed: Option<u64>,
+
+    /// The envs' episode: their terrains after so many resets.
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub episode: u32,
+
+    /// Tiles per row [default: about square].
+    #[arg(long, value_name = "C", value_parser = clap::value_parser!(u32).range(1..))]
+    pub cols: Option<u32>,
+
+    /// Pixels per cell [default: tiles about 120 pixels wide].
+    #[arg(long, value_name = "P", value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub cell_pixels: Option<u32>,
 
     #[command(flatten)]
     pub overrides: SchemeOverrides,

@@ -69,6 +69,14 @@ Examples:
   # More draws, another seed, as JSON
   rse-gen check-curriculum schemes/random.csv --draws 200 --seed 7 --json";
 
+pub const CONTACT_SHEET: &str = "\
+Examples:
+  # 16 envs' first terrains, as a training run starts them at difficulty 1
+  rse-gen contact-sheet schemes/six_obstacles.csv -o sheet.png
+
+  # 40 envs over mjlab's 10 levels, two schemes mixed 3:1, each tile naming its scheme
+  rse-gen contact-sheet schemes/mix_stairs.csv schemes/mix_walls.csv --proportions 3,1 --envs 40 --levels 10 -o mix.png";
+
 pub const EDIT: &str = "\
 Examples:
   # Edit a scheme in the browser (Ctrl-C stops the editor)

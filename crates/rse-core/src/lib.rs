@@ -64,7 +64,8 @@ pub use curriculum::{
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
-    LayoutKind, SheetOptions, contact_sheet, env_pool_bytes, env_world,
+    LayoutKind, SchemeMix, SheetOptions, SheetTile, contact_sheet, env_pool_bytes, env_world,
+    tiles_sheet,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at, generate_by};

@@ -13,6 +13,7 @@ mod atlas;
 mod batch;
 pub mod check;
 mod check_curriculum;
+mod contact_sheet;
 pub mod edit;
 mod heightmap;
 mod hfield;
@@ -41,6 +42,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitStatus> {
             check::run(&args)
         }
         Command::CheckCurriculum(args) => check_curriculum::run(&args, &args.overrides.or(outer)),
+        Command::ContactSheet(args) => contact_sheet::run(&args, &args.overrides.or(outer)),
         Command::Edit(args) => edit::run(&args, &args.overrides.or(outer)),
         Command::Templates(args) => {
             if let Some(flag) = cli.overrides.first_set() {

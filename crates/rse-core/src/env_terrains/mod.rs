@@ -19,6 +19,7 @@ use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
 mod layout;
+mod mix;
 mod options;
 mod request;
 mod sheet;
@@ -27,9 +28,10 @@ use layout::chunks_at;
 use options::bad;
 
 pub use layout::env_pool_bytes;
+pub use mix::SchemeMix;
 pub use options::{EnvError, EnvLayout, EnvOptions};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
-pub use sheet::{SheetOptions, contact_sheet};
+pub use sheet::{SheetOptions, SheetTile, contact_sheet, tiles_sheet};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
 /// world index of env `g` at episode `k` is `k·2^32 + g` ([`env_world`]).

@@ -5,6 +5,7 @@
 use font8x8::legacy::BASIC_LEGACY;
 
 use super::EnvTerrains;
+use crate::Terrain;
 use crate::error::Error;
 use crate::preview::{MAX_PIXELS, Preview, height_span, palette, render_span};
 
@@ -30,6 +31,17 @@ pub struct SheetOptions {
     pub cell_pixels: Option<u32>,
 }
 
+/// One tile of a contact sheet: a terrain and the two lines above it.
+#[derive(Debug, Clone, Copy)]
+pub struct SheetTile<'a> {
+    /// The terrain drawn.
+    pub terrain: &'a Terrain,
+    /// The label's first line (e.g. `env 3`).
+    pub title: &'a str,
+    /// Its second line (e.g. `ep 2 D 0.500`).
+    pub caption: &'a str,
+}
+
 /// The contact sheet of envs `envs` of `pool` (every env when empty), in
 /// the order given. Refused past [`MAX_PIXELS`] before anything is drawn.
 pub fn contact_sheet(
@@ -44,8 +56,36 @@ pub fn contact_sheet(
     } else {
         envs
     };
-    let grid = pool.terrain(0).grid();
-    let n = envs.len() as u64;
+    let labels: Vec<(String, String)> = envs
+        .iter()
+        .map(|&e| {
+            let difficulty = pool.terrain(e).difficulty().get();
+            (
+                format!("env {e}"),
+                format!("ep {} D {difficulty:.3}", pool.episode(e)),
+            )
+        })
+        .collect();
+    let tiles: Vec<SheetTile<'_>> = envs
+        .iter()
+        .zip(&labels)
+        .map(|(&e, (title, caption))| SheetTile {
+            terrain: pool.terrain(e),
+            title,
+            caption,
+        })
+        .collect();
+    tiles_sheet(&tiles, options)
+}
+
+/// A contact sheet of any terrains, each with its label, in the order
+/// given, on one colour scale: from 0 to the highest cell shown, in metres
+/// (each terrain's steps mapped onto it). Terrains of other grids are drawn
+/// at the same pixels per cell, in tiles as large as the largest. Refused
+/// past [`MAX_PIXELS`] before anything is drawn.
+pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Preview, Error> {
+    let n = tiles.len() as u64;
+    let widest = tiles.iter().map(|t| t.terrain.grid().nx).max().unwrap_or(1);
     let cols = u64::from(options.cols.unwrap_or(0));
     let cols = if cols == 0 {
         n.isqrt() + u64::from(n.isqrt().pow(2) < n)
@@ -56,12 +96,15 @@ pub fn contact_sheet(
     let rows = n.div_ceil(cols).max(1);
     let cp = options
         .cell_pixels
-        .unwrap_or_else(|| MIN_TILE.div_ceil(grid.nx.max(1)).clamp(1, 16))
+        .unwrap_or_else(|| MIN_TILE.div_ceil(widest.max(1)).clamp(1, 16))
         .max(1);
-    let (tile_w, tile_h) = (
-        u64::from(grid.nx) * u64::from(cp),
-        u64::from(grid.ny) * u64::from(cp),
-    );
+    let (tile_w, tile_h) = tiles.iter().fold((0u64, 0u64), |(w, h), t| {
+        let grid = t.terrain.grid();
+        (
+            w.max(u64::from(grid.nx) * u64::from(cp)),
+            h.max(u64::from(grid.ny) * u64::from(cp)),
+        )
+    });
     let label_h = u64::from(2 * LINE);
     let (cell_w, cell_h) = (tile_w.max(u64::from(MIN_TILE)), tile_h + label_h);
     let gap = u64::from(GAP);
@@ -76,35 +119,47 @@ pub fn contact_sheet(
     }
     // Within MAX_PIXELS (2²⁸), so every coordinate fits a u32.
     let mut sheet = Canvas::new(width as u32, height as u32);
-    // One scale for every tile: 0 to the highest cell shown.
-    let hi = envs
-        .iter()
-        .map(|&e| height_span(pool.terrain(e)).1)
-        .max()
-        .unwrap_or(0);
-    for (i, &e) in envs.iter().enumerate() {
+    // One scale for every tile: 0 to the highest cell shown, in metres.
+    let step = |t: &SheetTile<'_>| t.terrain.step_height();
+    let top = |t: &SheetTile<'_>| f64::from(height_span(t.terrain).1) * step(t);
+    let hi_m = tiles.iter().map(top).fold(0.0, f64::max);
+    let one_step = tiles
+        .first()
+        .map(step)
+        .filter(|&s| tiles.iter().all(|t| step(t) == s));
+    let glyphs = (cell_w / u64::from(GLYPH)) as usize;
+    for (i, tile) in tiles.iter().enumerate() {
         let (col, row) = (i as u64 % cols, i as u64 / cols);
         let x0 = (gap + col * (cell_w + gap)) as u32;
         let y0 = (gap + row * (cell_h + gap)) as u32;
-        let terrain = pool.terrain(e);
-        sheet.text(x0, y0, &format!("env {e}"));
-        let difficulty = terrain.difficulty().get();
-        sheet.text(
-            x0,
-            y0 + LINE,
-            &format!("ep {} D {difficulty:.3}", pool.episode(e)),
-        );
-        sheet.blit(x0, y0 + 2 * LINE, &render_span(terrain, cp, (0, hi)));
+        sheet.text(x0, y0, &clip(tile.title, glyphs));
+        sheet.text(x0, y0 + LINE, &clip(tile.caption, glyphs));
+        // This terrain's steps that reach the scale's top (rounded).
+        let hi = steps_to(hi_m, step(tile));
+        sheet.blit(x0, y0 + 2 * LINE, &render_span(tile.terrain, cp, (0, hi)));
     }
-    let step = grid_step_mm(pool);
     let legend_y = (gap + rows * (cell_h + gap)) as u32;
-    sheet.legend(GAP, legend_y, hi, step);
+    sheet.legend(GAP, legend_y, hi_m, one_step);
     Ok(sheet.into_preview())
 }
 
-/// The step height of the pool's scheme, millimetres.
-fn grid_step_mm(pool: &EnvTerrains) -> f64 {
-    pool.scheme().globals().step_height * 1000.0
+/// `metres` in steps of `step` metres, rounded, within `u16`.
+fn steps_to(metres: f64, step: f64) -> u16 {
+    if step > 0.0 {
+        (metres / step).round().clamp(0.0, f64::from(u16::MAX)) as u16
+    } else {
+        0
+    }
+}
+
+/// `text` cut to `glyphs` characters, its end marked with `~` when cut.
+fn clip(text: &str, glyphs: usize) -> String {
+    if text.chars().count() <= glyphs {
+        return text.to_owned();
+    }
+    let mut cut: String = text.chars().take(glyphs.saturating_sub(1)).collect();
+    cut.push('~');
+    cut
 }
 
 /// An RGB image being drawn.
@@ -161,10 +216,14 @@ impl Canvas {
         }
     }
 
-    /// The colour scale from 0 to `hi` steps, as a bar and its ends in
-    /// steps and millimetres.
-    fn legend(&mut self, x0: u32, y0: u32, hi: u16, step_mm: f64) {
+    /// The colour scale from 0 to `hi_m` metres, as a bar and its ends
+    /// (in steps too where every terrain has the same step height, `step`).
+    fn legend(&mut self, x0: u32, y0: u32, hi_m: f64, step: Option<f64>) {
         let bar = 120;
+        // The bar's colours in steps of the scale: the common step, else
+        // millimetres.
+        let unit = step.unwrap_or(0.001);
+        let hi = steps_to(hi_m, unit);
         for x in 0..bar {
             // Equal lengths of bar for the heights 0 … hi.
             let h = ((u32::from(hi) + 1) * x / bar).min(u32::from(hi)) as u16;
@@ -172,12 +231,12 @@ impl Canvas {
                 self.put(x0 + x, y0 + 1 + y, palette(h, 0, hi));
             }
         }
-        let top = f64::from(hi) * step_mm;
-        self.text(
-            x0 + bar + GLYPH,
-            y0,
-            &format!("0 .. {hi} steps (0 .. {top:.0} mm)"),
-        );
+        let mm = hi_m * 1000.0;
+        let text = match step {
+            Some(_) => format!("0 .. {hi} steps (0 .. {mm:.0} mm)"),
+            None => format!("0 .. {mm:.0} mm"),
+        };
+        self.text(x0 + bar + GLYPH, y0, &text);
     }
 
     fn into_preview(self) -> Preview {

@@ -1,0 +1,155 @@
+//! A mix of schemes by proportion, as mjlab and Isaac Lab mix sub-terrains:
+//! which scheme each environment draws, from the seed and its global id
+//! alone, so every process of a run and every tool (`rse-gen
+//! contact-sheet`, the framework adapters) agrees on it.
+
+use rand_chacha::ChaCha8Rng;
+use rand_chacha::rand_core::{Rng, SeedableRng};
+
+use super::options::{EnvError, bad};
+
+/// Bytes 8‥16 of the `ChaCha8` key of the mix's draws ("rse mix\0"): the
+/// worlds' keys have zeros there, so a mix draw never shares a stream with
+/// any world of any seed.
+const MIX_DOMAIN: u64 = u64::from_le_bytes(*b"rse mix\0");
+
+/// The proportions of a mix of schemes, normalised.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SchemeMix {
+    /// Upper ends of each scheme's share of `[0, 1)`, the last exactly 1.
+    cumulative: Vec<f64>,
+}
+
+impl SchemeMix {
+    /// A mix of `proportions.len()` schemes. Each proportion is finite and
+    /// 0 or more, at least one above 0; they need not sum to 1 (mjlab's
+    /// `proportion`s do not either: each is its share of their sum).
+    pub fn new(proportions: &[f64]) -> Result<Self, EnvError> {
+        if proportions.is_empty() {
+            return Err(bad("proportions", "no scheme to mix"));
+        }
+        if let Some((i, p)) = proportions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.is_finite() || **p < 0.0)
+        {
+            return Err(bad(
+                "proportions",
+                format!(
+                    "scheme {}'s proportion is {p}; expected a number 0 or more",
+                    i + 1
+                ),
+            ));
+        }
+        let total: f64 = proportions.iter().sum();
+        if !(total > 0.0 && total.is_finite()) {
+            return Err(bad(
+                "proportions",
+                "every proportion is 0; give at least one scheme a share above 0",
+            ));
+        }
+        let mut sum = 0.0;
+        let mut cumulative: Vec<f64> = proportions
+            .iter()
+            .map(|p| {
+                sum += p;
+                sum / total
+            })
+            .collect();
+        // Rounding may leave the last end a hair below 1.
+        if let Some(last) = cumulative.iter().rposition(|_| true) {
+            cumulative[last] = 1.0;
+        }
+        Ok(SchemeMix { cumulative })
+    }
+
+    /// How many schemes are mixed.
+    pub fn len(&self) -> usize {
+        self.cumulative.len()
+    }
+
+    /// Whether the mix has no scheme (never: [`SchemeMix::new`] refuses it).
+    pub fn is_empty(&self) -> bool {
+        self.cumulative.is_empty()
+    }
+
+    /// The scheme (its index in the proportions) that global environment
+    /// `env` of base seed `seed` draws: `u`, the top 53 bits of the first
+    /// word of `ChaCha8` keyed with `seed` and [`MIX_DOMAIN`] on stream
+    /// `env`, as a fraction of 1, falls in that scheme's share. A scheme of
+    /// proportion 0 is never drawn.
+    pub fn scheme_of(&self, seed: u64, env: u64) -> usize {
+        let mut key = [0u8; 32];
+        key[..8].copy_from_slice(&seed.to_le_bytes());
+        key[8..16].copy_from_slice(&MIX_DOMAIN.to_le_bytes());
+        let mut rng = ChaCha8Rng::from_seed(key);
+        rng.set_stream(env);
+        let u = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        // The first share whose upper end is past u; a zero share's end
+        // equals the one before it, so it is skipped.
+        self.cumulative
+            .iter()
+            .position(|&end| u < end)
+            .unwrap_or(self.cumulative.len() - 1)
+    }
+
+    /// The schemes of global environments `env_offset ‥ env_offset + n`.
+    pub fn schemes_of(&self, seed: u64, env_offset: u64, n: usize) -> Vec<usize> {
+        (0..n as u64)
+            .map(|e| self.scheme_of(seed, env_offset + e))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shares_follow_the_proportions() {
+        let mix = SchemeMix::new(&[3.0, 1.0, 0.0, 4.0]).unwrap();
+        let drawn = mix.schemes_of(7, 0, 80_000);
+        let count = |s: usize| drawn.iter().filter(|&&d| d == s).count() as f64 / 80_000.0;
+        assert!((count(0) - 0.375).abs() < 0.01, "{}", count(0));
+        assert!((count(1) - 0.125).abs() < 0.01, "{}", count(1));
+        assert_eq!(count(2), 0.0);
+        assert!((count(3) - 0.5).abs() < 0.01, "{}", count(3));
+    }
+
+    #[test]
+    fn an_envs_scheme_depends_on_its_global_id_and_the_seed_alone() {
+        let mix = SchemeMix::new(&[1.0, 1.0]).unwrap();
+        let whole = mix.schemes_of(3, 0, 64);
+        // Two processes of 32 envs each draw what one of 64 draws.
+        let split = [mix.schemes_of(3, 0, 32), mix.schemes_of(3, 32, 32)].concat();
+        assert_eq!(whole, split);
+        assert_ne!(
+            whole,
+            mix.schemes_of(4, 0, 64),
+            "another seed, another draw"
+        );
+        // Pinned: a change of the rule changes every mixed run.
+        assert_eq!(&whole[..12], &[0, 0, 0, 0, 1, 0, 1, 1, 0, 0, 1, 1]);
+    }
+
+    #[test]
+    fn bad_proportions_are_refused_naming_them() {
+        for bad in [
+            &[][..],
+            &[0.0, 0.0],
+            &[1.0, -1.0],
+            &[f64::NAN],
+            &[f64::INFINITY, 1.0],
+            &[f64::MAX, f64::MAX],
+        ] {
+            let err = SchemeMix::new(bad).unwrap_err();
+            assert!(err.to_string().starts_with("proportions: "), "{err}");
+        }
+    }
+
+    #[test]
+    fn one_scheme_is_every_env() {
+        let mix = SchemeMix::new(&[0.2]).unwrap();
+        assert!(mix.schemes_of(0, 0, 100).iter().all(|&s| s == 0));
+    }
+}
