@@ -228,7 +228,8 @@ def test_the_registered_task_starts_spread_over_the_easy_levels_as_mjlabs_does()
     assert (mjlab_terrain.max_init_terrain_level, mjlab_terrain.terrain_generator.num_rows) == (5, 10)
     cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1")
     cfg.scene.num_envs = 24
-    assert cfg.curriculum["rse_terrain_difficulty"].params["step"] == pytest.approx(1 / 9)
+    # One level a step: the step follows the scene's terrain_levels when run.
+    assert cfg.scene.terrain.terrain_levels == 10 and "step" not in cfg.curriculum["rse_terrain_difficulty"].params
     env = ManagerBasedRlEnv(cfg, device="cpu")
     try:
         d = env_terrains(env).difficulty
@@ -294,6 +295,25 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
     params = logged[0].read_text()
     assert "rse_terrain_difficulty" in params and "num_envs: 3" in params
     assert str(scheme) in params and "difficulty: 0.3" in params and "seed: 7" in params
+    # The run says what it trained on: the scheme's text in env.yaml and
+    # beside it, its SHA-256, the seed, rule, levels and rse's version; no
+    # stale copy of the registered scheme.
+    import hashlib
+
+    import yaml
+
+    env_yaml = yaml.unsafe_load(logged[0].read_text())
+    terrain = env_yaml["scene"]["terrain"]
+    sha = hashlib.sha256(scheme.read_bytes()).hexdigest()
+    assert terrain["scheme_csv"] == scheme.read_text() and terrain["scheme_sha256"] == sha
+    assert "random 5 cm steps" not in params and "two stepped" not in params, "a stale copy of STEPFIELD"
+    run = logged[0].parent
+    assert (run / "rse_scheme.csv").read_bytes() == scheme.read_bytes()
+    record = json.loads((run / "rse_terrain.json").read_text())
+    assert record["scheme_sha256"] == sha and record["seed"] == 7 and record["difficulty"] == 0.3
+    assert record["rse_version"] == rse.__version__ and record["difficulty_rule"] == rse.DIFFICULTY_RULE
+    assert record["scheme_file"] == str(scheme) and record["env_offset"] == 0
+    assert (record["max_init_terrain_level"], record["terrain_levels"]) == (5, 10)
 
     # The one-iteration checkpoint, evaluated on a fixed set of stepfields:
     # the same report twice, and for mjlab's own task (rse's terrain in
@@ -310,9 +330,12 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
         )
         assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
         assert "level  difficulty  distance mean (min)  falls  crossed  time to cross" in done.stdout, done.stdout[-2000:]
+        assert f"scheme from the run folder: {run / 'rse_scheme.csv'}" in done.stderr, done.stderr[-2000:]
         reports.append(json.loads(out.read_text()))
     first = reports[0]
-    assert first["seed"] == 5 and first["levels"] == 3 and first["scheme"] == STEPFIELD
+    # Evaluated on the scheme the checkpoint trained on, found in its run.
+    assert first["seed"] == 5 and first["levels"] == 3 and first["scheme"] == scheme.read_text()
+    assert first["scheme_source"] == "the run folder" and first["scheme_sha256"] == sha
     assert [r["difficulty"] for r in first["per_level_results"]] == [0.0, 0.5, 1.0]
     assert [e["difficulty"] for e in first["episodes"]] == [0.0, 0.0, 0.5, 0.5, 1.0, 1.0]
     assert all(r["episodes"] == 2 and 0 <= r["falls"] <= 2 for r in first["per_level_results"])

@@ -17,6 +17,7 @@ mod curriculum;
 mod envs;
 mod errors;
 mod memory;
+mod mix;
 mod options;
 mod scheme;
 mod terrain;
@@ -44,6 +45,9 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The library's defaults, for Python code that must name one (a
     // dataclass field, a docstring); a keyword left `None` gets the same.
     m.add("DEFAULT_OVERSAMPLE", rse_core::DEFAULT_OVERSAMPLE)?;
+    // The rule that scales heights by difficulty in every terrain made
+    // today (`rse.json`'s `difficulty_rule`), for a run's record.
+    m.add("DIFFICULTY_RULE", rse_core::DifficultyRule::CURRENT.name())?;
     m.add("DEFAULT_ENV_OVERSAMPLE", rse_core::DEFAULT_ENV_OVERSAMPLE)?;
     m.add(
         "DEFAULT_SPAWN_RADIUS",
@@ -69,5 +73,6 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;
     m.add_function(wrap_pyfunction!(curriculum::_check_curriculum, m)?)?;
+    m.add_function(wrap_pyfunction!(mix::scheme_mix, m)?)?;
     Ok(())
 }

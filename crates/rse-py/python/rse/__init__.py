@@ -16,6 +16,7 @@ from rse._rse import (
     DEFAULT_OVERSAMPLE,
     DEFAULT_PATCH_RADIUS,
     DEFAULT_SPAWN_RADIUS,
+    DIFFICULTY_RULE,
     MESH_MODES,
     MUJOCO_COLLIDERS,
     TARGETS,
@@ -28,6 +29,7 @@ from rse._rse import (
     Terrain,
     __version__,
     generate_batch,
+    scheme_mix,
     write_world,
     write_worlds,
 )
@@ -37,6 +39,7 @@ __all__ = [
     "DEFAULT_OVERSAMPLE",
     "DEFAULT_PATCH_RADIUS",
     "DEFAULT_SPAWN_RADIUS",
+    "DIFFICULTY_RULE",
     "MESH_MODES",
     "MUJOCO_COLLIDERS",
     "TARGETS",
@@ -56,6 +59,7 @@ __all__ = [
     "check",
     "check_curriculum",
     "generate_batch",
+    "scheme_mix",
     "write_world",
     "write_worlds",
 ]

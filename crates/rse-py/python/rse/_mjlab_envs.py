@@ -49,6 +49,13 @@ RAY_BYTES_PER_SAMPLE = 116
 and its BVH (SAH, ``RAY_LEAF`` triangles a leaf), measured with Warp 1.19
 on a 160 × 160 field (2.94 MB)."""
 
+GROUND_DROP = 0.05
+"""Metres the ground plane lies below the terrain's lowest top (0): it
+catches a robot that walks off its slot, and no foot standing on the
+terrain reaches it. Level with the terrain (as it was), every foot on a
+top at height 0 touched both the field and the plane at one point: twice
+the contacts, and the solver took twice the time (bench/mjlab_tasks.py)."""
+
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
 difficulty curriculum term is ``TERM + "_difficulty"``)."""
@@ -97,6 +104,7 @@ def add_pool(
     exact = add_env_geom(spec, probe, f"{name}0", name=GEOM, group=GEOM_GROUP, body=body)
     if ground is None:
         ground = body.add_geom(name=f"{name}_ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 0.05], rgba=[0.5, 0.5, 0.5, 1], group=GEOM_GROUP)
+    ground.pos = [ground.pos[0], ground.pos[1], ground.pos[2] - GROUND_DROP]
     if apart:
         view = spec.worldbody.add_body(name=BODY + VIEW, mocap=True)
         shown = add_env_geom(spec, probe, f"{name}0", name=GEOM + VIEW, group=VIEW_GROUP, body=view)
@@ -147,6 +155,7 @@ class EnvTerrainsEvent:
         self.name = p.get("name", POOL)
         scheme = scheme_of(p["scheme"])
         offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
+        self.env_offset = int(offset)
         spread = _spread(p) if p.get("difficulty") is None else None
         self.envs = EnvTerrains(
             scheme,
@@ -443,7 +452,7 @@ def terrain_difficulty(
     env_ids: Any,
     term: str = TERM,
     asset_name: str = "robot",
-    step: float = 0.1,
+    step: Optional[float] = None,
     command_name: Optional[str] = None,
 ) -> dict[str, float]:
     """mjlab curriculum term: mjlab's terrain-levels rule (as its velocity
@@ -454,10 +463,15 @@ def terrain_difficulty(
     ``step`` less, clamped to [0, 1]; ``EnvTerrainsEvent``, which runs
     after the curriculum at a reset, then draws their new terrains at it.
     Frozen on the first reset, before any step (the robots stand at their
-    spawn points). Returns the mean and max difficulty for mjlab's log."""
+    spawn points). ``step`` None: one level of the scene's
+    ``EnvTerrainCfg.terrain_levels`` (``1 / (levels - 1)``), else 0.1.
+    Returns the mean and max difficulty for mjlab's log."""
     import torch
 
     envs = env_terrains(env, term)
+    if step is None:
+        levels = _terrain_settings(env.cfg.scene.terrain).get("terrain_levels")
+        step = 1.0 / (levels - 1) if levels else 0.1
     ids = _ids(env, env_ids)
     if env.common_step_counter > 0 and ids:
         index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
@@ -539,46 +553,66 @@ def scheme_setting(scheme: SchemeLike) -> str:
 
 def _terrain_settings(terrain: Any) -> dict[str, Any]:
     """The fields of an ``EnvTerrainCfg`` scene terrain as event params;
-    nothing for another terrain (or none)."""
+    nothing for another terrain (or none). The scheme is the text the
+    config read and recorded (``scheme_csv``), not its path read again."""
     if type(terrain).__name__ != "EnvTerrainCfg":
         return {}
-    settings = {k: getattr(terrain, k) for k in ("scheme", "seed", "difficulty", "oversample", "spawn_radius", "apart")}
-    settings["max_init_terrain_level"] = terrain.max_init_terrain_level
+    keys = ("scheme", "seed", "difficulty", "oversample", "spawn_radius", "apart", "max_init_terrain_level", "terrain_levels")
+    settings = {k: getattr(terrain, k) for k in keys}
+    settings["scheme"] = terrain.scheme_csv or terrain.scheme
     return settings
 
 
 def _spread(params: dict[str, Any]) -> Optional[tuple[int, int]]:
-    """The envs' starting levels from the event's params: ``initial_levels``,
-    its first number replaced by ``max_init_terrain_level`` where the scene's
-    terrain sets one (clamped to the levels, as mjlab clamps it)."""
-    spread = params.get("initial_levels")
+    """The envs' starting levels, ``(max_init_terrain_level,
+    terrain_levels)``: the scene's ``EnvTerrainCfg`` fields where it has
+    them (clamped to the levels, as mjlab clamps it), else the event's
+    ``initial_levels`` param; None without levels."""
+    given = params.get("initial_levels")
+    levels = params.get("terrain_levels")
     max_init = params.get("max_init_terrain_level")
-    if spread is None or max_init is None:
-        return spread
+    if levels is None and given is not None:
+        levels = given[1]
+    if max_init is None and given is not None:
+        max_init = given[0]
+    if levels is None or max_init is None:
+        return None
     if max_init < 0:
         raise ValueError(f"env.scene.terrain.max_init_terrain_level: {max_init}; expected 0 or more")
-    return (min(int(max_init), spread[1] - 1), spread[1])
+    return (min(int(max_init), int(levels) - 1), int(levels))
 
 
 class _PoolSpec:
     """The scene's ``spec_fn``: the earlier one, then rse's pool, one field
-    per env of the scene being built. Its env count is read from the
-    ``Scene`` mjlab is building (the caller of ``spec_fn``), not from the
-    config this was made for: mjlab's ``train`` and ``play`` rebuild the
-    config from the registered one with the command line's overrides
-    (``--env.scene.num-envs 4096``), and a config deep-copied keeps this
-    object but gets a new scene."""
+    per env of the scene being built. Everything is read from the ``Scene``
+    mjlab is building (the caller of ``spec_fn``): its env count and its
+    ``EnvTerrainCfg``, as mjlab's ``train`` and ``play`` rebuilt it from the
+    registered config with the command line's overrides
+    (``--env.scene.num-envs 4096``, ``--env.scene.terrain.scheme``). It
+    holds no settings of its own, so a run's logged config (``env.yaml``)
+    has the scheme once, where it was set."""
 
-    def __init__(self, scene: Any, earlier: Any, scheme: SchemeLike, oversample: Optional[int]) -> None:
-        self.scene, self.earlier, self.scheme, self.oversample = scene, earlier, scheme, oversample
+    def __init__(self, earlier: Any) -> None:
+        self.earlier = earlier
 
     def __call__(self, spec: Any) -> None:
         if self.earlier is not None:
             self.earlier(spec)
-        scene, device = _scene_being_built(self.scene)
+        scene, device = _scene_being_built()
+        if type(scene.terrain).__name__ != "EnvTerrainCfg":
+            raise ValueError(
+                "env_cfg.scene.terrain: rse's pool needs the EnvTerrainCfg use_env_terrains set; "
+                f"the scene's terrain is a {type(scene.terrain).__name__}"
+            )
+        from rse._mjlab_scene import check
+
+        # Fields set by assignment after the config was made were not
+        # checked: checked (and recorded) now, before anything is built.
+        check(scene.terrain)
+        _play_the_runs_scheme(scene.terrain)
         settings = _terrain_settings(scene.terrain)
-        scheme = scheme_of(settings.get("scheme", self.scheme))
-        oversample = settings.get("oversample", self.oversample)
+        scheme = scheme_of(settings["scheme"])
+        oversample = settings["oversample"]
         n = int(scene.num_envs)
         host, on_device = pool_memory(_probe(scheme, oversample), n, device)
         print(
@@ -623,9 +657,41 @@ def _available_memory() -> Optional[int]:
     return None
 
 
-def _scene_being_built(fallback: Any) -> tuple[Any, str]:
+def _play_the_runs_scheme(terrain: Any) -> None:
+    """In mjlab's ``play`` of a checkpoint whose run recorded its terrains
+    (``rse._mjlab_run``), the terrain's scheme and seed become the run's,
+    and it says so: ``play`` takes no terrain flags, and would show the
+    task's registered scheme. Found as ``run_play``'s ``resume_path`` on
+    the call stack (``play`` builds the env inside it); elsewhere nothing
+    changes."""
+    import inspect
+
+    from rse._mjlab_run import read_record, scheme_of_run
+    from rse._mjlab_scene import check
+
+    frame = inspect.currentframe()
+    try:
+        while frame is not None:
+            if frame.f_code.co_name == "run_play" and frame.f_globals.get("__name__", "").startswith("mjlab."):
+                resume = frame.f_locals.get("resume_path")
+                break
+            frame = frame.f_back
+        else:
+            return
+    finally:
+        del frame
+    recorded = scheme_of_run(str(resume)) if resume is not None else None
+    if recorded is None:
+        return
+    terrain.scheme = str(recorded)
+    terrain.seed = read_record(recorded.parent).get("seed", terrain.seed)
+    check(terrain)
+    print(f"[INFO] rse: playing on the scheme the run trained on: {recorded} (seed {terrain.seed}, SHA-256 {terrain.scheme_sha256[:16]}…)")
+
+
+def _scene_being_built() -> tuple[Any, str]:
     """The ``SceneCfg`` and device of the mjlab ``Scene`` whose construction
-    called this (through ``spec_fn``), else ``fallback`` on the CPU."""
+    called this (through ``spec_fn``)."""
     import inspect
 
     from mjlab.scene import Scene
@@ -640,7 +706,7 @@ def _scene_being_built(fallback: Any) -> tuple[Any, str]:
             frame = frame.f_back
     finally:
         del frame
-    return fallback, "cpu"
+    raise ValueError("env_cfg.scene.spec_fn: rse's pool is added while mjlab's Scene builds the scene (ManagerBasedRlEnv)")
 
 
 def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:
@@ -679,6 +745,25 @@ def _initial_levels(terrain: Any, max_init: Optional[int], levels: Optional[int]
     if max_init >= levels:
         raise ValueError(f"max_init_terrain_level: {max_init}; expected 0 … {levels - 1} (terrain_levels - 1)")
     return (max_init, levels)
+
+
+NCON_HEADROOM = 5
+"""Broadphase pairs per world beyond the field's, in ``terrain_nconmax``:
+the plane's with a foot off the slot, the robot's own."""
+
+
+def terrain_nconmax(nconmax: int, colliders: int) -> int:
+    """The ``sim.nconmax`` (per world, shared by all: MuJoCo Warp sizes its
+    broadphase pairs and its contacts by ``nconmax · num_envs``) of a task
+    whose ``colliders`` geoms can touch the terrain, given the task's own
+    ``nconmax``. Each such geom is a broadphase pair with its env's field,
+    which spans the slot, every step; the plane, below the terrain
+    (``GROUND_DROP``), pairs only with what leaves the slot. So the task's
+    own figure where it covers those pairs and ``NCON_HEADROOM`` more, else
+    just that: on the CPU every solver iteration of MuJoCo Warp (its
+    elliptic cones' ``JTCJ``) runs over the whole ``nconmax · num_envs``,
+    so each unused slot costs time (``bench/mjlab_tasks.py``)."""
+    return max(int(nconmax), colliders + NCON_HEADROOM)
 
 
 def _terrain_colliders(scene: Any) -> int:
@@ -791,9 +876,7 @@ def use_env_terrains(
     EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
     spread = _initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
     if env_cfg.sim.nconmax is not None:
-        # Each geom that can touch the terrain is a broadphase pair with its
-        # env's field (which spans the slot) and with the ground plane.
-        env_cfg.sim.nconmax += 2 * _terrain_colliders(scene)
+        env_cfg.sim.nconmax = terrain_nconmax(env_cfg.sim.nconmax, _terrain_colliders(scene))
     from rse._mjlab_scene import EnvTerrainCfg
 
     spacing = getattr(scene.terrain, "env_spacing", None)
@@ -801,6 +884,7 @@ def use_env_terrains(
         terrain_type="plane",
         env_spacing=2.0 if spacing is None else spacing,
         max_init_terrain_level=None if spread is None else spread[0],
+        terrain_levels=None if spread is None else spread[1],
         scheme=scheme_setting(scheme),
         seed=seed,
         difficulty=difficulty,
@@ -809,8 +893,10 @@ def use_env_terrains(
         apart=apart,
     )
     earlier = scene.spec_fn
-    scene.spec_fn = _PoolSpec(scene, earlier, scheme, oversample)
-    params = dict(env_offset=env_offset, initial_levels=spread)
+    scene.spec_fn = _PoolSpec(earlier)
+    # The scheme, seed and levels are the scene's EnvTerrainCfg's (which the
+    # command line sets): none is copied here, where it would go stale.
+    params = dict(env_offset=env_offset)
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
     env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
     levels = {k: c for k, c in env_cfg.curriculum.items() if _func_name(c) == "terrain_levels_vel"}
@@ -820,9 +906,9 @@ def use_env_terrains(
         curriculum = bool(levels)
     if curriculum:
         command = next((c.params.get("command_name") for c in levels.values()), None)
-        step = 0.1 if spread is None else 1.0 / max(spread[1] - 1, 1)
+        # The step, one level, follows the scene's terrain_levels when run.
         env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(
-            func=terrain_difficulty, params={"term": term, "command_name": command, "step": step}
+            func=terrain_difficulty, params={"term": term, "command_name": command}
         )
     for k, t in list(env_cfg.terminations.items()):
         if _func_name(t) == "out_of_terrain_bounds":

@@ -16,6 +16,7 @@ __all__ = [
     "DEFAULT_ENV_OVERSAMPLE",
     "DEFAULT_SPAWN_RADIUS",
     "DEFAULT_PATCH_RADIUS",
+    "DIFFICULTY_RULE",
     "SchemeError",
     "ShardBusyError",
     "Obstacle",
@@ -24,6 +25,7 @@ __all__ = [
     "Atlas",
     "EnvTerrains",
     "generate_batch",
+    "scheme_mix",
     "write_world",
     "write_worlds",
     "_time_generate",
@@ -49,6 +51,8 @@ DEFAULT_OVERSAMPLE: int
 DEFAULT_ENV_OVERSAMPLE: int
 DEFAULT_SPAWN_RADIUS: float
 DEFAULT_PATCH_RADIUS: float
+# The difficulty rule of every terrain made today (rse.json's difficulty_rule).
+DIFFICULTY_RULE: str
 
 # A value, or an inclusive (lo, hi) range drawn per world; numpy scalars
 # and length-2 arrays are taken too.
@@ -284,6 +288,7 @@ class EnvTerrains:
     ) -> npt.NDArray[np.float64]: ...
     def write(self, out: Any, env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None) -> None: ...
 
+def scheme_mix(proportions: Sequence[float], num_envs: int, seed: int, env_offset: int = 0) -> npt.NDArray[np.int64]: ...
 def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: Optional[float] = None
 ) -> list[Terrain]: ...

@@ -32,6 +32,7 @@ The env is the task's play config (no observation noise) seeded with
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -60,6 +61,13 @@ class LevelResult:
     """Seconds, over the episodes that crossed; None when none did."""
 
 
+def _scheme_name(terrain: Any) -> str:
+    """The scheme as a person reads it: its file, or its first line."""
+    if "\n" not in terrain.scheme:
+        return terrain.scheme
+    return "CSV text: " + terrain.scheme.strip().splitlines()[0][:60]
+
+
 def evaluate(
     checkpoint: str,
     task: str,
@@ -81,6 +89,7 @@ def evaluate(
     from mjlab.tasks.registry import load_env_cfg, load_rl_cfg, load_runner_cls
 
     from rse._mjlab_envs import _event, use_env_terrains
+    from rse._mjlab_run import scheme_of_run
     from rse.mjlab_tasks import STEPFIELD
 
     if levels < 1 or per_level < 1:
@@ -93,12 +102,24 @@ def evaluate(
     cfg.seed = seed
     n = levels * per_level
     cfg.scene.num_envs = n
+    source = "given"
+    if scheme is None:
+        # The scheme the checkpoint's run trained on, where it recorded one.
+        recorded = scheme_of_run(checkpoint)
+        if recorded is not None:
+            scheme, source = str(recorded), "the run folder"
     if type(cfg.scene.terrain).__name__ != "EnvTerrainCfg":
         use_env_terrains(cfg, scheme or STEPFIELD, seed=seed, difficulty=0.0)
-    terrain = cfg.scene.terrain
-    terrain.seed, terrain.difficulty, terrain.apart = seed, 0.0, False
+        source = source if scheme else "rse.mjlab_tasks.STEPFIELD"
+    elif scheme is None:
+        source = f"the task's ({task})"
+    # Made anew, so that every field is checked and recorded again.
+    changes: dict[str, Any] = {"seed": seed, "difficulty": 0.0, "apart": False}
     if scheme is not None:
-        terrain.scheme = scheme
+        changes["scheme"] = scheme
+    cfg.scene.terrain = dataclasses.replace(cfg.scene.terrain, **changes)
+    terrain = cfg.scene.terrain
+    print(f"rse.mjlab_eval: scheme from {source}: {_scheme_name(terrain)} (SHA-256 {terrain.scheme_sha256[:16]}…)", file=sys.stderr)
     _fix_for_evaluation(cfg, seconds, speed)
     env = ManagerBasedRlEnv(cfg, device=device)
     try:
@@ -141,7 +162,9 @@ def evaluate(
         "checkpoint": checkpoint,
         "task": task,
         "seed": seed,
-        "scheme": terrain.scheme,
+        "scheme": terrain.scheme_csv,
+        "scheme_source": source,
+        "scheme_sha256": terrain.scheme_sha256,
         "levels": levels,
         "per_level": per_level,
         "seconds": seconds,
@@ -255,7 +278,9 @@ def main(argv: Optional[list[str]] = None) -> int:
     parser.add_argument("--levels", type=int, default=10, help="difficulty levels, from 0 to 1 (default 10)")
     parser.add_argument("--per-level", type=int, default=8, help="stepfields (episodes) per level (default 8)")
     parser.add_argument("--seed", type=int, default=0, help="the set's seed (default 0)")
-    parser.add_argument("--scheme", help="a scheme CSV (default: the task's, or rse.mjlab_tasks.STEPFIELD)")
+    parser.add_argument(
+        "--scheme", help="a scheme CSV (default: the one the checkpoint's run trained on, from its params/, else the task's)"
+    )
     parser.add_argument("--seconds", type=float, default=10.0, help="episode length (default 10)")
     parser.add_argument("--speed", type=float, default=1.0, help="forward command, m/s (default 1)")
     parser.add_argument("--device", default="cpu", help="cpu or cuda:N (default cpu)")

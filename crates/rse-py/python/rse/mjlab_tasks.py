@@ -57,7 +57,10 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
     import mjlab.tasks  # noqa: F401  (mjlab's own tasks first)
     from mjlab.tasks import registry
 
+    from mjlab.rl import MjlabOnPolicyRunner
+
     from rse._mjlab_envs import scheme_of, use_env_terrains
+    from rse._mjlab_run import recording_runner
 
     scheme_of(scheme)  # a bad scheme fails here, naming its line
     made = []
@@ -80,7 +83,8 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
             env_cfg=env_cfg,
             play_env_cfg=play_cfg,
             rl_cfg=rl_cfg,
-            runner_cls=registry.load_runner_cls(task_id),
+            # mjlab's runner, which also records the terrains in the run folder.
+            runner_cls=recording_runner(registry.load_runner_cls(task_id) or MjlabOnPolicyRunner),
         )
         made.append(new_id)
     return made
