@@ -69,7 +69,8 @@ def test_help_lists_only_terrain_flags_that_work(tmp_path) -> None:
                   "--env.scene.terrain.terrain-levels", "--env.scene.terrain.max-init-terrain-level"):
         assert works in done.stdout, works
     for fixed in ("--env.scene.terrain.terrain-type", "--env.scene.terrain.terrain-generator",
-                  "--env.scene.terrain.env-spacing", "--env.scene.terrain.num-envs", "--env.scene.terrain.scheme-csv"):
+                  "--env.scene.terrain.env-spacing", "--env.scene.terrain.num-envs", "--env.scene.terrain.scheme-csv",
+                  "--env.scene.terrain.init-state", "--env.scene.terrain.geoms", "--env.scene.terrain.debug-vis"):
         assert fixed not in done.stdout, fixed
     # Once rse's terrain fixes it, mjlab's generator cannot be asked for.
     assert train(tmp_path, "--env.scene.terrain.terrain-type", "generator").returncode == 2

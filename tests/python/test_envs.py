@@ -296,3 +296,88 @@ def test_a_contact_sheet_shows_every_env_on_one_scale_with_its_label(tmp_path) -
         envs.contact_sheet(cols=0)
     with pytest.raises(ValueError, match="pixel preview is more than"):
         envs.contact_sheet(cell_pixels=100_000)
+
+
+def test_rse_gen_contact_sheet_draws_the_picture_envterrains_draws(tmp_path) -> None:
+    """From the shell, the same PNG byte for byte as
+    ``EnvTerrains.contact_sheet`` of the same envs, seed and difficulty; a
+    mix of schemes draws each env's scheme from ``rse.scheme_mix``, env
+    ``e`` being the r-th env of its scheme (docs/envs.md)."""
+    import subprocess
+
+    from conftest import rse_gen_path
+
+    out = tmp_path / "sheet.png"
+    scheme = SCHEMES / "six_obstacles.csv"
+    done = subprocess.run([str(rse_gen_path()), "contact-sheet", str(scheme), "--envs", "7", "--difficulty", "0.5",
+                           "--seed", "4", "-o", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    envs = rse.EnvTerrains(rse.Scheme.load(scheme), 7, seed=4, difficulty=0.5)
+    assert out.read_bytes() == envs.contact_sheet()
+
+    mix = [SCHEMES / "mix_stairs.csv", SCHEMES / "mix_rough.csv"]
+    drawn = rse.scheme_mix([3, 1], 12, seed=9)
+    assert set(drawn) == {0, 1}
+    done = subprocess.run([str(rse_gen_path()), "contact-sheet", *map(str, mix), "--proportions", "3,1", "--envs", "12",
+                           "--seed", "9", "--cols", "1", "-o", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    # Each tile is its scheme's r-th env: drawn alone with its label cut,
+    # it is the same tile (one column, so tiles stack at fixed offsets).
+    from PIL import Image
+
+    sheet = np.asarray(Image.open(out).convert("RGB"))
+    pools = [rse.EnvTerrains(rse.Scheme.load(p), int((drawn == j).sum()), seed=9) for j, p in enumerate(mix)]
+    rank = [int((drawn[:e] == drawn[e]).sum()) for e in range(12)]
+    gap, line, cp = 6, 11, 2
+    tile_h = 80 * cp + 2 * line
+    for e in range(12):
+        terrain = pools[drawn[e]].terrain(rank[e])
+        y0 = gap + e * (tile_h + gap) + 2 * line
+        # The tile's lowest cell (blue end of the scale) is where the
+        # terrain's lowest cell is, and its highest steps are warmest.
+        tile = sheet[y0 : y0 + 80 * cp, gap : gap + 80 * cp].astype(int)
+        heights = np.flipud(terrain.heights)
+        hot = tile[cp // 2 :: cp, cp // 2 :: cp, 0] - tile[cp // 2 :: cp, cp // 2 :: cp, 2]
+        if heights.max() > heights.min():
+            assert np.corrcoef(hot.ravel(), heights.ravel())[0, 1] > 0.9, e
+
+
+def test_a_mix_draws_each_envs_scheme_by_proportion_from_its_global_id() -> None:
+    """Several schemes in one pool, as mjlab mixes sub-terrains: env ``e``
+    draws scheme ``rse.scheme_mix(...)[e]`` (its global id and the seed
+    alone, so two processes draw what one draws), and its terrain is world
+    ``episode·2³² + g`` of that scheme; one field scale for all."""
+    stairs, rough = (rse.Scheme.load(SCHEMES / f"mix_{n}.csv") for n in ("stairs", "rough"))
+    envs = rse.EnvTerrains([stairs, rough], 12, seed=5, difficulty=0.5, proportions=[3, 1])
+    drawn = rse.scheme_mix([3, 1], 12, seed=5)
+    np.testing.assert_array_equal(envs.scheme_ids, drawn)
+    assert set(drawn) == {0, 1} and [s.to_csv() for s in envs.schemes] == [stairs.to_csv(), rough.to_csv()]
+    for e in range(12):
+        mine = (stairs, rough)[drawn[e]]
+        np.testing.assert_array_equal(envs.terrain(e).heights, mine.generate(seed=5, index=e, difficulty=0.5).heights)
+    # The same draw for the second half of a split over two processes.
+    half = rse.EnvTerrains([stairs, rough], 6, seed=5, difficulty=0.5, proportions=[3, 1], env_offset=6)
+    np.testing.assert_array_equal(half.scheme_ids, drawn[6:])
+    np.testing.assert_array_equal(half.terrain(0).heights, envs.terrain(6).heights)
+    # One scale: the highest top either scheme can have.
+    assert envs.hfield_size[2] == pytest.approx(max(stairs.max_top, rough.max_top))
+    envs.reset([0, 1])
+    assert list(envs.scheme_ids) == list(drawn), "an env keeps its scheme across episodes"
+    # A mix's tiles name their scheme.
+    assert envs.contact_sheet(names=["stairs", "rough"]) != envs.contact_sheet()
+
+
+def test_a_mix_refuses_schemes_of_other_grids_and_bad_proportions() -> None:
+    a = rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,2\n")
+    with pytest.raises(ValueError, match="schemes: scheme 2 has 30x20 cells"):
+        rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 30x20\ntype,height\nrandom,2\n")], 2)
+    with pytest.raises(ValueError, match="schemes: scheme 2 has .* steps of 0.05 m"):
+        rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 20x20\n# step_height: 0.05\ntype,height\nrandom,2\n")], 2)
+    with pytest.raises(ValueError, match="proportions: 1 given for 2 schemes"):
+        rse.EnvTerrains([a, a], 2, proportions=[1])
+    with pytest.raises(ValueError, match="proportions: every proportion is 0"):
+        rse.EnvTerrains([a, a], 2, proportions=[0, 0])
+    with pytest.raises(ValueError, match="proportions: scheme 2's proportion is -1"):
+        rse.scheme_mix([1, -1], 4, seed=0)
+    with pytest.raises(TypeError, match="scheme: expected an rse.Scheme"):
+        rse.EnvTerrains(["not a scheme"], 2)  # type: ignore[list-item]

@@ -141,8 +141,9 @@ pub struct CheckArgs {
 
 #[derive(Debug, Args)]
 pub struct CheckCurriculumArgs {
-    /// The scheme CSV file.
-    pub scheme: PathBuf,
+    /// Scheme CSV files (the schemes of a mix: each is checked in turn; JSON: a list of reports).
+    #[arg(required = true, value_name = "SCHEME")]
+    pub schemes: Vec<PathBuf>,
 
     /// Difficulty levels from 0 to 1, evenly spaced (mjlab's terrain levels: 10).
     #[arg(long, value_name = "N", default_value_t = rse_core::DEFAULT_LEVELS)]
@@ -202,8 +203,8 @@ pub struct ContactSheetArgs {
     )]
     pub proportions: Option<Vec<f64>>,
 
-    /// Base seed of every env's terrains and of the mix [default: each scheme's `seed`; the mix: the first
-    /// scheme's].
+    /// Base seed of every env's terrains and of the mix's draw [default: the first scheme's `seed`, else
+    /// 0].
     #[arg(long, value_name = "B")]
     pub seed: Option<u64>,
 

@@ -67,7 +67,10 @@ Examples:
   rse-gen check-curriculum schemes/curriculum.csv
 
   # More draws, another seed, as JSON
-  rse-gen check-curriculum schemes/random.csv --draws 200 --seed 7 --json";
+  rse-gen check-curriculum schemes/random.csv --draws 200 --seed 7 --json
+
+  # Every scheme of a mix
+  rse-gen check-curriculum schemes/mix_stairs.csv schemes/mix_walls.csv schemes/mix_rough.csv";
 
 pub const CONTACT_SHEET: &str = "\
 Examples:

@@ -9,6 +9,7 @@ use sha2::{Digest, Sha256};
 mod atlas;
 mod batch;
 mod check;
+mod contact_sheet;
 mod difficulty;
 mod help;
 mod messages;

@@ -164,6 +164,41 @@ fn check_curriculum_passes_every_sample_scheme_and_fails_a_flat_one() {
 }
 
 #[test]
+fn check_curriculum_checks_every_scheme_of_a_mix_and_fails_if_any_fails() {
+    let mix = [
+        "schemes/mix_stairs.csv",
+        "schemes/mix_walls.csv",
+        "schemes/mix_rough.csv",
+    ];
+    let mut args = vec!["check-curriculum", "--draws", "20"];
+    args.extend(mix);
+    let table = stdout(&rse_gen(&args));
+    for scheme in mix {
+        assert!(table.contains(&format!("{scheme}: 10 levels")), "{table}");
+    }
+    assert_eq!(table.matches("ok: no dead level").count(), 3, "{table}");
+    let dir = tempfile::tempdir().unwrap();
+    let flat = dir.path().join("flat.csv");
+    std::fs::write(&flat, "# size: 5x5\ntype,height\n").unwrap();
+    let out = rse_gen(&[
+        "check-curriculum",
+        "schemes/mix_rough.csv",
+        flat.to_str().unwrap(),
+        "--json",
+        "--draws",
+        "20",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "one scheme of the mix fails");
+    let reports: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let reports = reports.as_array().expect("several schemes: a list");
+    assert_eq!(
+        (reports[0]["ok"].as_bool(), reports[1]["ok"].as_bool()),
+        (Some(true), Some(false))
+    );
+    assert_eq!(reports[1]["scheme"], flat.to_str().unwrap());
+}
+
+#[test]
 fn check_curriculum_refuses_bad_counts_and_names_the_scheme_line() {
     let out = rse_gen(&["check-curriculum", "schemes/random.csv", "--levels", "1"]);
     assert_eq!(out.status.code(), Some(2));

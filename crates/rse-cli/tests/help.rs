@@ -8,7 +8,7 @@ use std::process::Command;
 use super::repo;
 
 /// Every help page: the top level, each subcommand, `templates export`.
-const PAGES: [&[&str]; 12] = [
+const PAGES: [&[&str]; 13] = [
     &[],
     &["heightmap"],
     &["preview"],
@@ -18,6 +18,7 @@ const PAGES: [&[&str]; 12] = [
     &["atlas"],
     &["check"],
     &["check-curriculum"],
+    &["contact-sheet"],
     &["edit"],
     &["templates"],
     &["templates", "export"],

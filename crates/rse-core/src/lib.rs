@@ -64,8 +64,8 @@ pub use curriculum::{
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
-    LayoutKind, SchemeMix, SheetOptions, SheetTile, contact_sheet, env_pool_bytes, env_world,
-    tiles_sheet,
+    LayoutKind, SchemeMix, SheetOptions, SheetTile, check_mixable, contact_sheet,
+    contact_sheet_named, env_pool_bytes, env_world, tiles_sheet,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at, generate_by};

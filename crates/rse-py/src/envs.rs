@@ -14,7 +14,7 @@ use numpy::{
     Element, PyArray, PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn,
     PyArrayMethods, PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::world_error;
@@ -29,7 +29,10 @@ pub struct EnvTerrains {
     inner: RwLock<rse_core::EnvTerrains>,
     /// What never changes after construction, read without the lock.
     fixed: Fixed,
-    scheme: Arc<rse_core::Scheme>,
+    /// Every scheme (one, or a mix's in order), as the terrains name them.
+    schemes: Vec<Arc<rse_core::Scheme>>,
+    /// Each env's scheme: an index into `schemes`.
+    scheme_ids: Vec<usize>,
     samples: Py<PyArray3<f32>>,
     episode: Py<PyArray1<i64>>,
     difficulty: Py<PyArray1<f64>>,
@@ -211,11 +214,11 @@ impl EnvTerrains {
 #[pymethods]
 impl EnvTerrains {
     #[new]
-    #[pyo3(signature = (scheme, num_envs, oversample=None, seed=None, difficulty=None, layout=None, *, cols=None, border=None, env_offset=None, spawn_radius=None))]
+    #[pyo3(signature = (scheme, num_envs, oversample=None, seed=None, difficulty=None, layout=None, *, cols=None, border=None, env_offset=None, spawn_radius=None, proportions=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        scheme: &Bound<'_, Scheme>,
+        scheme: &Bound<'_, PyAny>,
         num_envs: usize,
         oversample: Option<u32>,
         seed: Option<u64>,
@@ -225,8 +228,31 @@ impl EnvTerrains {
         border: Option<u32>,
         env_offset: Option<u64>,
         spawn_radius: Option<f64>,
+        proportions: Option<Vec<f64>>,
     ) -> PyResult<Self> {
-        let scheme = Arc::clone(&scheme.get().inner);
+        // One scheme, or several mixed by proportion (equal by default).
+        let schemes: Vec<Arc<rse_core::Scheme>> = match scheme.cast::<Scheme>() {
+            Ok(one) => vec![Arc::clone(&one.get().inner)],
+            Err(_) => scheme
+                .try_iter()
+                .and_then(|items| {
+                    items
+                        .map(|item| Ok(Arc::clone(&item?.cast::<Scheme>()?.get().inner)))
+                        .collect::<PyResult<Vec<_>>>()
+                })
+                .map_err(|_| {
+                    PyTypeError::new_err(
+                        "scheme: expected an rse.Scheme, or a sequence of them to mix",
+                    )
+                })?,
+        };
+        if schemes.is_empty() {
+            return Err(PyValueError::new_err(
+                "scheme: no scheme to draw terrains from",
+            ));
+        }
+        let proportions = proportions.unwrap_or_else(|| vec![1.0; schemes.len()]);
+        let scheme = Arc::clone(&schemes[0]);
         // What the user gave, `None` for the rest: rse-core resolves it.
         let request = rse_core::EnvRequest {
             num_envs,
@@ -250,10 +276,11 @@ impl EnvTerrains {
                 options.oversample
             ),
         )?;
-        let owned = (*scheme).clone();
+        let owned: Vec<rse_core::Scheme> = schemes.iter().map(|s| (**s).clone()).collect();
         let inner = py
-            .detach(|| rse_core::EnvTerrains::new(owned, options))
+            .detach(|| rse_core::EnvTerrains::mixed(owned, &proportions, options))
             .map_err(value_error)?;
+        let scheme_ids = (0..num_envs).map(|e| inner.scheme_index(e)).collect();
         let (n, rows, cols) = inner.buffer_shape();
         // Allocated by numpy, not Rust: numpy asks the kernel for huge
         // pages for large arrays, which makes the writes of a reset ~10%
@@ -282,7 +309,8 @@ impl EnvTerrains {
             origins: PyArray2::zeros(py, [num_envs, 3], false).unbind(),
             inner: RwLock::new(inner),
             fixed,
-            scheme,
+            schemes,
+            scheme_ids,
         };
         let all: Vec<usize> = (0..num_envs).collect();
         {
@@ -291,6 +319,25 @@ impl EnvTerrains {
             envs.publish(py, &inner, &all)?;
         }
         Ok(envs)
+    }
+
+    /// Each env's scheme: its index in `schemes` (all 0 for one scheme),
+    /// drawn from the proportions by its global id and the seed
+    /// (`rse.scheme_mix`).
+    #[getter]
+    fn scheme_ids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        PyArray1::from_vec(py, self.scheme_ids.iter().map(|&s| s as i64).collect())
+    }
+
+    /// Every scheme of the pool: the one, or a mix's in their order.
+    #[getter]
+    fn schemes(&self) -> Vec<Scheme> {
+        self.schemes
+            .iter()
+            .map(|inner| Scheme {
+                inner: Arc::clone(inner),
+            })
+            .collect()
     }
 
     /// How many environments (ids `0..num_envs` in this process).
@@ -443,7 +490,7 @@ impl EnvTerrains {
         }
         Ok(Terrain {
             inner: self.reading()?.terrain(env).clone(),
-            scheme: Some(Arc::clone(&self.scheme)),
+            scheme: Some(Arc::clone(&self.schemes[self.scheme_ids[env]])),
         })
     }
 
@@ -452,8 +499,10 @@ impl EnvTerrains {
     /// all on one colour scale, each labelled with its env id, episode and
     /// difficulty, a legend of the scale below; written to `path` too when
     /// given. `cols` tiles per row (default about square), `cell_pixels`
-    /// pixels per cell (default: tiles about 120 pixels wide).
-    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None))]
+    /// pixels per cell (default: tiles about 120 pixels wide). A mix's
+    /// tiles name their scheme: `names[j]` for scheme `j` (default
+    /// `scheme j+1`).
+    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None, names=None))]
     fn contact_sheet<'py>(
         &self,
         py: Python<'py>,
@@ -461,6 +510,7 @@ impl EnvTerrains {
         env_ids: Option<&Bound<'py, PyAny>>,
         cols: Option<u32>,
         cell_pixels: Option<u32>,
+        names: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
         let envs = match env_ids {
             Some(ids) => self::env_ids(ids, self.fixed.num_envs)?,
@@ -479,8 +529,13 @@ impl EnvTerrains {
         let inner: &rse_core::EnvTerrains = &guard;
         let png = py
             .detach(|| {
-                rse_core::contact_sheet(inner, &envs, options)
-                    .and_then(|sheet| rse_core::preview::encode_png(&sheet))
+                rse_core::contact_sheet_named(
+                    inner,
+                    &envs,
+                    options,
+                    names.as_deref().unwrap_or(&[]),
+                )
+                .and_then(|sheet| rse_core::preview::encode_png(&sheet))
             })
             .map_err(value_error)?;
         drop(guard);

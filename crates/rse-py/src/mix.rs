@@ -19,9 +19,12 @@ pub fn scheme_mix<'py>(
     seed: u64,
     env_offset: u64,
 ) -> PyResult<Bound<'py, PyArray1<i64>>> {
-    let mix = rse_core::SchemeMix::new(&proportions).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let mix =
+        rse_core::SchemeMix::new(&proportions).map_err(|e| PyValueError::new_err(e.to_string()))?;
     if env_offset.checked_add(num_envs as u64).is_none() {
-        return Err(PyValueError::new_err("env_offset: past the last global env id"));
+        return Err(PyValueError::new_err(
+            "env_offset: past the last global env id",
+        ));
     }
     let drawn: Vec<i64> = mix
         .schemes_of(seed, env_offset, num_envs)

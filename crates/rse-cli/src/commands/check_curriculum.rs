@@ -1,5 +1,6 @@
 //! `rse-gen check-curriculum`: a scheme's per-level statistics as a table
-//! (or JSON), exit 1 when a level is dead or no higher than the one below.
+//! (or JSON), exit 1 when a level is dead or no higher than the one below;
+//! several schemes (a mix) each in turn, exit 1 when any fails.
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -12,25 +13,41 @@ use crate::ExitStatus;
 use crate::args::{CheckCurriculumArgs, SchemeOverrides};
 
 pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    let scheme = super::load_scheme(&args.scheme, overrides)?;
-    let options = CurriculumOptions {
-        levels: args.levels,
-        draws: args.draws,
-        seed: args.seed.unwrap_or(scheme.globals().seed),
-    };
-    let report = check_curriculum(&scheme, options).context("check-curriculum")?;
-    let text = if args.json {
-        format!(
-            "{:#}\n",
-            report_json(&report, &args.scheme.display().to_string())
-        )
-    } else {
-        table(&report, &args.scheme.display().to_string())
+    // Every scheme read first: a bad one fails before any is checked.
+    let schemes = args
+        .schemes
+        .iter()
+        .map(|path| super::load_scheme(path, overrides))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let mut tables = Vec::new();
+    let mut reports = Vec::new();
+    let mut ok = true;
+    for (scheme, path) in schemes.iter().zip(&args.schemes) {
+        let options = CurriculumOptions {
+            levels: args.levels,
+            draws: args.draws,
+            seed: args.seed.unwrap_or(scheme.globals().seed),
+        };
+        let name = path.display().to_string();
+        let report = check_curriculum(scheme, options)
+            .with_context(|| format!("check-curriculum {name}"))?;
+        ok &= report.problems.is_empty();
+        if args.json {
+            reports.push(report_json(&report, &name));
+        } else {
+            tables.push(table(&report, &name));
+        }
+    }
+    // One scheme: its object, as before; several: a list of them.
+    let text = match (args.json, &reports[..]) {
+        (true, [one]) => format!("{one:#}\n"),
+        (true, many) => format!("{:#}\n", serde_json::Value::Array(many.to_vec())),
+        (false, _) => tables.join("\n"),
     };
     let mut stdout = std::io::stdout().lock();
     stdout.write_all(text.as_bytes())?;
     stdout.flush()?;
-    Ok(if report.problems.is_empty() {
+    Ok(if ok {
         ExitStatus::Success
     } else {
         ExitStatus::Failure

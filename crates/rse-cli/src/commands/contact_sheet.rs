@@ -23,6 +23,7 @@ pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Resu
         None => vec![1.0; schemes.len()],
     };
     let mix = SchemeMix::new(&proportions).map_err(|e| anyhow::anyhow!("--{e}"))?;
+    rse_core::check_mixable(&schemes).map_err(|e| anyhow::anyhow!("SCHEME…: {e}"))?;
     let n = args.envs as usize;
     let mix_seed = args.seed.unwrap_or(schemes[0].globals().seed);
     let drawn = mix.schemes_of(mix_seed, 0, n);
@@ -36,9 +37,8 @@ pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Resu
             )
         })
         .collect();
-    // Env e is the r-th env of its scheme, and its terrain that scheme's
-    // env r (docs/envs.md: a mix's pools), as the adapters draw it.
-    let mut rank = vec![0u64; schemes.len()];
+    // Env e's terrain is world (episode, e) of its own scheme, as
+    // `EnvTerrains` draws it (docs/envs.md).
     let mut terrains = Vec::with_capacity(n);
     let mut labels = Vec::with_capacity(n);
     for (e, &s) in drawn.iter().enumerate() {
@@ -52,10 +52,10 @@ pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Resu
             (None, None) => Difficulty::FULL,
         };
         let scheme = &schemes[s];
-        let seed = args.seed.unwrap_or(scheme.globals().seed);
+        // One base seed for every scheme, as a pool has: the first's.
+        let seed = mix_seed;
         let world =
-            env_world(rank[s], u64::from(args.episode)).expect("ids and episodes below 2^32");
-        rank[s] += 1;
+            env_world(e as u64, u64::from(args.episode)).expect("ids and episodes below 2^32");
         terrains.push(generate_at(scheme, seed, world, difficulty));
         let title = if schemes.len() > 1 {
             format!("env {e} {}", names[s])

@@ -7,6 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{Rng, SeedableRng};
 
 use super::options::{EnvError, bad};
+use crate::scheme::Scheme;
 
 /// Bytes 8‥16 of the `ChaCha8` key of the mix's draws ("rse mix\0"): the
 /// worlds' keys have zeros there, so a mix draw never shares a stream with
@@ -98,6 +99,42 @@ impl SchemeMix {
         (0..n as u64)
             .map(|e| self.scheme_of(seed, env_offset + e))
             .collect()
+    }
+}
+
+/// Whether `schemes` can be mixed in one pool: at least one, all sharing
+/// the first's grid (size, block size, pallets), step height and base, as
+/// one height field per slot needs. Refused naming the first that differs.
+pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
+    let Some(first) = schemes.first() else {
+        return Err(bad("schemes", "no scheme to draw terrains from"));
+    };
+    let key = |s: &Scheme| {
+        let g = s.globals();
+        (s.grid(), g.block_size, g.step_height, g.base)
+    };
+    let describe = |s: &Scheme| {
+        let g = s.globals();
+        format!(
+            "{}x{} cells of {} m, steps of {} m, base {} m",
+            s.grid().nx,
+            s.grid().ny,
+            g.block_size,
+            g.step_height,
+            g.base
+        )
+    };
+    match schemes.iter().position(|s| key(s) != key(first)) {
+        None => Ok(()),
+        Some(i) => Err(bad(
+            "schemes",
+            format!(
+                "scheme {} has {}, scheme 1 {}: the schemes of a mix share their grid, step height and base",
+                i + 1,
+                describe(&schemes[i]),
+                describe(first)
+            ),
+        )),
     }
 }
 

@@ -25,13 +25,14 @@ mod request;
 mod sheet;
 
 use layout::chunks_at;
+
 use options::bad;
 
 pub use layout::env_pool_bytes;
-pub use mix::SchemeMix;
+pub use mix::{SchemeMix, check_mixable};
 pub use options::{EnvError, EnvLayout, EnvOptions};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
-pub use sheet::{SheetOptions, SheetTile, contact_sheet, tiles_sheet};
+pub use sheet::{SheetOptions, SheetTile, contact_sheet, contact_sheet_named, tiles_sheet};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
 /// world index of env `g` at episode `k` is `k·2^32 + g` ([`env_world`]).
@@ -49,7 +50,13 @@ pub fn env_world(env: u64, episode: u64) -> Option<u64> {
 /// The terrains of many environments and their height-field samples.
 #[derive(Debug, Clone)]
 pub struct EnvTerrains {
+    /// The first scheme (one a pool of a single scheme): the grid, step
+    /// height and base every scheme of a mix shares.
     scheme: Scheme,
+    /// Every scheme of a mix (the first is `scheme`); empty for one.
+    mix: Vec<Scheme>,
+    /// Each environment's scheme, an index into the mix (all 0 for one).
+    drawn: Vec<usize>,
     options: EnvOptions,
     terrains: Vec<Terrain>,
     /// Each environment's spawn point, computed with its terrain.
@@ -68,7 +75,35 @@ impl EnvTerrains {
     /// gives a field MuJoCo cannot take, a buffer of more than
     /// [`MAX_HFIELD_SAMPLES`](crate::MAX_HFIELD_SAMPLES) per field or 2³² in all, tiles with no column.
     pub fn new(scheme: Scheme, options: EnvOptions) -> Result<Self, EnvError> {
+        Self::mixed(vec![scheme], &[1.0], options)
+    }
+
+    /// The terrains of episode 0 of every environment, each environment
+    /// drawing its scheme from `schemes` by `proportions` ([`SchemeMix`],
+    /// from its global id and the seed). The schemes share their grid
+    /// (size, block size, pallets), step height and base: a slot is one
+    /// height field; their obstacles differ. Refused as [`new`](Self::new)
+    /// refuses, and for a mix whose schemes differ there or whose
+    /// proportions are not one per scheme, each 0 or more.
+    pub fn mixed(
+        schemes: Vec<Scheme>,
+        proportions: &[f64],
+        options: EnvOptions,
+    ) -> Result<Self, EnvError> {
         let n = options.num_envs;
+        if schemes.len() != proportions.len() {
+            return Err(bad(
+                "proportions",
+                format!(
+                    "{} given for {} schemes; give one per scheme",
+                    proportions.len(),
+                    schemes.len()
+                ),
+            ));
+        }
+        mix::check_mixable(&schemes)?;
+        let first = &schemes[0];
+        let mix = SchemeMix::new(proportions)?;
         if n == 0 {
             return Err(bad("num_envs", "expected 1 or more environments"));
         }
@@ -85,10 +120,26 @@ impl EnvTerrains {
         if let Err(why) = crate::spawn::check_radius(options.spawn_radius) {
             return Err(bad("spawn_radius", why));
         }
-        let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(scheme.grid(), options)?;
+        let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(first.grid(), options)?;
+        // One scale for every scheme: the highest top any can have.
+        let elevation = schemes.iter().map(Scheme::max_top).fold(0.0, f64::max);
+        let drawn = if schemes.len() > 1 {
+            mix.schemes_of(options.seed, options.env_offset, n)
+        } else {
+            vec![0; n]
+        };
+        let mut schemes = schemes;
+        let scheme = schemes.remove(0);
+        let mix = if schemes.is_empty() {
+            Vec::new()
+        } else {
+            std::iter::once(scheme.clone()).chain(schemes).collect()
+        };
         let mut envs = EnvTerrains {
-            elevation: scheme.max_top(),
+            elevation,
             scheme,
+            mix,
+            drawn,
             options,
             terrains: Vec::new(),
             origins: Vec::new(),
@@ -122,7 +173,7 @@ impl EnvTerrains {
     ) -> Made {
         let world = env_world(self.options.env_offset + e as u64, episode)
             .expect("ids and episodes checked below 2^32");
-        let terrain = generate_at(&self.scheme, self.options.seed, world, difficulty);
+        let terrain = generate_at(self.scheme_of(e), self.options.seed, world, difficulty);
         let [x, y, z] = terrain.spawn_origin(terrain.region(), self.options.spawn_radius);
         let (x0, y0) = self.tile_origin(e);
         let s = terrain.block_size();
@@ -143,9 +194,29 @@ impl EnvTerrains {
         &self.options
     }
 
-    /// The scheme every environment draws its terrains from.
+    /// The scheme every environment draws its terrains from; the first of
+    /// a mix (whose grid, step height and base they all share).
     pub fn scheme(&self) -> &Scheme {
         &self.scheme
+    }
+
+    /// Every scheme of the pool: the one, or a mix's in their order.
+    pub fn schemes(&self) -> &[Scheme] {
+        if self.mix.is_empty() {
+            std::slice::from_ref(&self.scheme)
+        } else {
+            &self.mix
+        }
+    }
+
+    /// Environment `e`'s scheme: its index in [`schemes`](Self::schemes).
+    pub fn scheme_index(&self, e: usize) -> usize {
+        self.drawn[e]
+    }
+
+    /// Environment `e`'s scheme.
+    pub fn scheme_of(&self, e: usize) -> &Scheme {
+        &self.schemes()[self.drawn[e]]
     }
 
     /// How many environments (ids `0..num_envs` in this process).

@@ -49,6 +49,18 @@ pub fn contact_sheet(
     envs: &[usize],
     options: SheetOptions,
 ) -> Result<Preview, Error> {
+    contact_sheet_named(pool, envs, options, &[])
+}
+
+/// [`contact_sheet`], each tile of a mix of schemes titled with its
+/// scheme's name from `names` (in the mix's order; `scheme N`, from 1,
+/// where a name is missing). A pool of one scheme shows no scheme.
+pub fn contact_sheet_named(
+    pool: &EnvTerrains,
+    envs: &[usize],
+    options: SheetOptions,
+    names: &[String],
+) -> Result<Preview, Error> {
     let all: Vec<usize>;
     let envs = if envs.is_empty() {
         all = (0..pool.num_envs()).collect();
@@ -60,10 +72,16 @@ pub fn contact_sheet(
         .iter()
         .map(|&e| {
             let difficulty = pool.terrain(e).difficulty().get();
-            (
-                format!("env {e}"),
-                format!("ep {} D {difficulty:.3}", pool.episode(e)),
-            )
+            let title = if pool.schemes().len() > 1 {
+                let j = pool.scheme_index(e);
+                match names.get(j) {
+                    Some(name) => format!("env {e} {name}"),
+                    None => format!("env {e} scheme {}", j + 1),
+                }
+            } else {
+                format!("env {e}")
+            };
+            (title, format!("ep {} D {difficulty:.3}", pool.episode(e)))
         })
         .collect();
     let tiles: Vec<SheetTile<'_>> = envs

@@ -7,7 +7,7 @@ them beside its sub-terrain config."""
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -60,10 +60,21 @@ TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
 difficulty curriculum term is ``TERM + "_difficulty"``)."""
 
+def make_envs(scheme: Any, num_envs: int, **options: Any) -> EnvTerrains:
+    """``rse.EnvTerrains`` of ``num_envs`` envs of a scheme (anything
+    ``scheme_of`` reads) or a mix (``rse._mjlab_scene.Mix``)."""
+    from rse._mjlab_scene import Mix
+
+    scheme = scheme_of(scheme)
+    if isinstance(scheme, Mix):
+        return EnvTerrains(scheme.schemes, num_envs, proportions=scheme.proportions, **options)
+    return EnvTerrains(scheme, num_envs, **options)
+
+
 def _probe(scheme: SchemeLike, oversample: Optional[int]) -> EnvTerrains:
-    """One env of ``scheme``: the slot's shape and size, which do not
-    depend on the number of envs."""
-    return EnvTerrains(scheme_of(scheme), 1, oversample=oversample)
+    """One env of ``scheme`` (or a mix): the slot's shape and size, which
+    do not depend on the number of envs."""
+    return make_envs(scheme, 1, oversample=oversample)
 
 
 def add_pool(
@@ -157,7 +168,9 @@ class EnvTerrainsEvent:
         offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
         self.env_offset = int(offset)
         spread = _spread(p) if p.get("difficulty") is None else None
-        self.envs = EnvTerrains(
+        self.names: list[str] = list(getattr(scheme, "names", []))
+        """A mix's scheme names, in order (empty for one scheme)."""
+        self.envs = make_envs(
             scheme,
             env.num_envs,
             oversample=p.get("oversample"),
@@ -168,7 +181,7 @@ class EnvTerrainsEvent:
         )
         if spread is not None:
             # Every env's first terrain at its own starting level.
-            seed = scheme.seed if p.get("seed") is None else p["seed"]
+            seed = self.envs.schemes[0].seed if p.get("seed") is None else p["seed"]
             self.envs.reset(list(range(env.num_envs)), difficulty=initial_difficulty(spread, env.num_envs, offset, seed))
         self._env = env
         self._rays_of: Any = None
@@ -439,6 +452,15 @@ def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
     return _event(env, term).envs
 
 
+def contact_sheet(env: Any, path: Optional[str] = None, term: str = TERM, **options: Any) -> bytes:
+    """The contact sheet of a running mjlab ``env``'s terrains
+    (``EnvTerrains.contact_sheet``: ``env_ids``, ``cols``,
+    ``cell_pixels``), written to ``path`` when given; a mix's tiles name
+    their scheme."""
+    event = _event(env, term)
+    return event.envs.contact_sheet(path, names=event.names or None, **options)
+
+
 def _event(env: Any, term: str) -> EnvTerrainsEvent:
     """The ``EnvTerrainsEvent`` of ``env``'s event term ``term``."""
     func = env.event_manager.get_term_cfg(term).func
@@ -487,7 +509,16 @@ def terrain_difficulty(
         moves = (up.int() - (down & ~up).int()).cpu().numpy()
         d = envs.difficulty
         d[ids] = np.clip(d[ids] + step * moves, 0.0, 1.0)
-    return {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
+    logged = {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
+    # A mix: each scheme's mean, as mjlab logs each sub-terrain's level.
+    names = _event(env, term).names
+    if names:
+        drawn = envs.scheme_ids
+        for j, name in enumerate(names):
+            mine = drawn == j
+            if mine.any():
+                logged[name] = float(envs.difficulty[mine].mean())
+    return logged
 
 
 def exact_height_scan(
@@ -532,9 +563,13 @@ def exact_height_scan(
 
 def scheme_of(scheme: Any) -> Any:
     """``scheme`` as an ``rse.Scheme``: one already, CSV text (a string
-    with a line break), or a CSV file's path."""
+    with a line break), or a CSV file's path; a mix
+    (``rse._mjlab_scene.Mix``) as it is."""
+    from rse._mjlab_scene import Mix
     from rse._rse import Scheme
 
+    if isinstance(scheme, Mix):
+        return scheme
     if isinstance(scheme, str) and "\n" in scheme:
         return Scheme.from_csv(scheme, "env.scene.terrain.scheme")
     return load(scheme)
@@ -560,6 +595,14 @@ def _terrain_settings(terrain: Any) -> dict[str, Any]:
     keys = ("scheme", "seed", "difficulty", "oversample", "spawn_radius", "apart", "max_init_terrain_level", "terrain_levels")
     settings = {k: getattr(terrain, k) for k in keys}
     settings["scheme"] = terrain.scheme_csv or terrain.scheme
+    if terrain.schemes:
+        from rse._mjlab_scene import Mix
+        from rse._rse import Scheme
+
+        # A mix, from the texts the config read.
+        names = list(terrain.schemes_csv)
+        schemes = [Scheme.from_csv(terrain.schemes_csv[n], n) for n in names]
+        settings["scheme"] = Mix(names, schemes, [float(p) for p in terrain.schemes.values()])
     return settings
 
 
@@ -666,7 +709,7 @@ def _play_the_runs_scheme(terrain: Any) -> None:
     changes."""
     import inspect
 
-    from rse._mjlab_run import read_record, scheme_of_run
+    from rse._mjlab_run import run_terrain
     from rse._mjlab_scene import check
 
     frame = inspect.currentframe()
@@ -680,13 +723,16 @@ def _play_the_runs_scheme(terrain: Any) -> None:
             return
     finally:
         del frame
-    recorded = scheme_of_run(str(resume)) if resume is not None else None
+    recorded = run_terrain(str(resume)) if resume is not None else None
     if recorded is None:
         return
-    terrain.scheme = str(recorded)
-    terrain.seed = read_record(recorded.parent).get("seed", terrain.seed)
+    for name, value in recorded.items():
+        setattr(terrain, name, value)
+    if "scheme" in recorded:
+        terrain.schemes = {}
     check(terrain)
-    print(f"[INFO] rse: playing on the scheme the run trained on: {recorded} (seed {terrain.seed}, SHA-256 {terrain.scheme_sha256[:16]}…)")
+    shown = recorded.get("scheme") or ", ".join(recorded.get("schemes", {}))
+    print(f"[INFO] rse: playing on what the run trained on: {shown} (seed {terrain.seed})")
 
 
 def _scene_being_built() -> tuple[Any, str]:
@@ -799,7 +845,7 @@ def _func_name(term: Any) -> str:
 
 def use_env_terrains(
     env_cfg: Any,
-    scheme: SchemeLike,
+    scheme: Union[SchemeLike, dict[str, float]],
     *,
     oversample: Optional[int] = None,
     seed: Optional[int] = None,
@@ -834,7 +880,13 @@ def use_env_terrains(
       env's terrain);
 
     and adds ``EnvTerrainsEvent`` as the first reset event ``term``. Every
-    other term is kept. A config rse cannot serve is refused with a
+    other term is kept.
+
+    ``scheme`` is one scheme (an ``rse.Scheme``, a CSV file's path or its
+    text) or a mix, ``{scheme: proportion}`` (paths or CSV text), as
+    mjlab's ``sub_terrains``: each env draws one by its global id and the
+    seed, for the whole run, and the curriculum is logged per scheme
+    (``Curriculum/rse_terrain_difficulty/<name>``, by file name). A config rse cannot serve is refused with a
     ``ValueError`` naming the field.
 
     Without a ``difficulty``, the envs start as mjlab's do: each at a level
@@ -873,7 +925,10 @@ def use_env_terrains(
         spawn_radius = _spawn_radius_of(env_cfg)
     # Bad arguments fail here, not when the env is built: the same
     # arguments on one env.
-    EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    # A dict is a mix, {scheme: proportion}, checked by EnvTerrainCfg below.
+    mix = {str(k): float(v) for k, v in scheme.items()} if isinstance(scheme, dict) else {}
+    if not mix:
+        EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
     spread = _initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
     if env_cfg.sim.nconmax is not None:
         env_cfg.sim.nconmax = terrain_nconmax(env_cfg.sim.nconmax, _terrain_colliders(scene))
@@ -885,7 +940,8 @@ def use_env_terrains(
         env_spacing=2.0 if spacing is None else spacing,
         max_init_terrain_level=None if spread is None else spread[0],
         terrain_levels=None if spread is None else spread[1],
-        scheme=scheme_setting(scheme),
+        scheme="" if mix else scheme_setting(scheme),
+        schemes=mix,
         seed=seed,
         difficulty=difficulty,
         oversample=oversample,

@@ -1,7 +1,8 @@
 """What an mjlab run records of the terrains it trains on, and reading it
 back: the rse tasks' runner writes, beside mjlab's ``params/env.yaml``,
 ``params/rse_scheme.csv`` (the scheme's whole text, byte for byte as it
-was given) and ``params/rse_terrain.json`` (its SHA-256, the seed, the
+was given; a mix: ``params/rse_schemes/NAME.csv`` each) and
+``params/rse_terrain.json`` (SHA-256s, proportions, the seed, the
 difficulty rule, the starting levels actually used, rse's version);
 ``rse.mjlab_eval`` and ``play`` find the scheme there from a checkpoint's
 path."""
@@ -16,6 +17,9 @@ from typing import Any, Optional
 SCHEME_FILE = "rse_scheme.csv"
 """The scheme's text in a run folder's ``params/``."""
 
+MIX_FOLDER = "rse_schemes"
+"""A mix's schemes' texts in a run folder's ``params/``, ``NAME.csv`` each."""
+
 RECORD_FILE = "rse_terrain.json"
 """The rest of the record in a run folder's ``params/``."""
 
@@ -25,41 +29,70 @@ def record(terrain: Any, env_offset: int = 0) -> dict[str, Any]:
     every value resolved (the seed the scheme gives where none was set)."""
     from rse._rse import Scheme
 
-    scheme = Scheme.from_csv(terrain.scheme_csv, "env.scene.terrain.scheme")
-    given = terrain.scheme if "\n" not in terrain.scheme else None
-    return {
-        "rse_version": terrain.rse_version,
-        "scheme_file": os.path.abspath(given) if given else None,
-        "scheme_sha256": terrain.scheme_sha256,
-        "seed": scheme.seed if terrain.seed is None else int(terrain.seed),
-        "difficulty_rule": terrain.difficulty_rule,
-        "difficulty": terrain.difficulty,
-        "max_init_terrain_level": terrain.max_init_terrain_level,
-        "terrain_levels": terrain.terrain_levels,
-        "oversample": terrain.oversample,
-        "spawn_radius": terrain.spawn_radius,
-        "env_offset": env_offset,
-    }
+    def file_of(key: str) -> Optional[str]:
+        return os.path.abspath(key) if "\n" not in key else None
+
+    out: dict[str, Any] = {"rse_version": terrain.rse_version}
+    if terrain.schemes:
+        first = Scheme.from_csv(next(iter(terrain.schemes_csv.values())), "env.scene.terrain.schemes")
+        out["schemes"] = {
+            name: {"file": file_of(key), "sha256": terrain.schemes_sha256[name], "proportion": float(p)}
+            for name, (key, p) in zip(terrain.schemes_csv, terrain.schemes.items())
+        }
+    else:
+        first = Scheme.from_csv(terrain.scheme_csv, "env.scene.terrain.scheme")
+        out["scheme_file"] = file_of(terrain.scheme)
+        out["scheme_sha256"] = terrain.scheme_sha256
+    out.update(
+        seed=first.seed if terrain.seed is None else int(terrain.seed),
+        difficulty_rule=terrain.difficulty_rule,
+        difficulty=terrain.difficulty,
+        max_init_terrain_level=terrain.max_init_terrain_level,
+        terrain_levels=terrain.terrain_levels,
+        oversample=terrain.oversample,
+        spawn_radius=terrain.spawn_radius,
+        env_offset=env_offset,
+    )
+    return out
+
+
+def _write_whole(path: Path, content: str) -> None:
+    """``content`` into ``path``, whole or not at all, bytes as given (the
+    copy's SHA-256 is the record's)."""
+    partial = path.with_name(path.name + ".partial")
+    partial.write_bytes(content.encode("utf-8"))
+    os.replace(partial, path)
 
 
 def write(run_dir: Path, terrain: Any, env_offset: int = 0) -> None:
-    """Writes the record of ``terrain`` into ``run_dir/params/``, each file
-    whole or not at all."""
+    """Writes the record of ``terrain`` into ``run_dir/params/``."""
     params = Path(run_dir) / "params"
     params.mkdir(parents=True, exist_ok=True)
-    text = json.dumps(record(terrain, env_offset), indent=1) + "\n"
-    for name, content in ((SCHEME_FILE, terrain.scheme_csv), (RECORD_FILE, text)):
-        partial = params / f"{name}.partial"
-        # Bytes as given: the copy's SHA-256 is the record's.
-        partial.write_bytes(content.encode("utf-8"))
-        os.replace(partial, params / name)
+    if terrain.schemes:
+        (params / MIX_FOLDER).mkdir(exist_ok=True)
+        for name, text in terrain.schemes_csv.items():
+            _write_whole(params / MIX_FOLDER / f"{name}.csv", text)
+    else:
+        _write_whole(params / SCHEME_FILE, terrain.scheme_csv)
+    _write_whole(params / RECORD_FILE, json.dumps(record(terrain, env_offset), indent=1) + "\n")
 
 
-def scheme_of_run(checkpoint: str) -> Optional[Path]:
-    """The scheme a checkpoint's run trained on (``params/rse_scheme.csv``
-    in the checkpoint's folder), or None where the run has no record."""
-    path = Path(checkpoint).resolve().parent / "params" / SCHEME_FILE
-    return path if path.is_file() else None
+def run_terrain(checkpoint: str) -> Optional[dict[str, Any]]:
+    """What a checkpoint's run trained on, as ``EnvTerrainCfg`` fields —
+    ``scheme`` (its copy's path) or ``schemes`` (copies and proportions),
+    and ``seed`` — or None where the run recorded nothing."""
+    params = Path(checkpoint).resolve().parent / "params"
+    saved = read_record(params)
+    if not saved:
+        return None
+    fields: dict[str, Any] = {"seed": saved.get("seed")}
+    if "schemes" in saved:
+        fields["schemes"] = {str(params / MIX_FOLDER / f"{n}.csv"): m["proportion"] for n, m in saved["schemes"].items()}
+    elif (params / SCHEME_FILE).is_file():
+        fields["scheme"] = str(params / SCHEME_FILE)
+    else:
+        return None
+    return fields
 
 
 def read_record(params: Path) -> dict[str, Any]:

@@ -21,9 +21,11 @@ imports this module only where mjlab is in use."""
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
+import os
 from dataclasses import dataclass, field
-from typing import Any, Literal, Optional
+from typing import Any, Literal, NamedTuple, Optional
 
 from mjlab.terrains import TerrainEntityCfg
 from tyro.conf import Suppress
@@ -37,21 +39,47 @@ def flag(name: str) -> str:
     return FLAG + name.replace("_", "-")
 
 
+def _inherited(name: str) -> Any:
+    """A field of ``TerrainEntityCfg`` as it is (its default), to be
+    declared again with another annotation."""
+    base = TerrainEntityCfg.__dataclass_fields__[name]
+    if base.default_factory is not dataclasses.MISSING:
+        return field(default_factory=base.default_factory)
+    return field(default=base.default)
+
+
 @dataclass(kw_only=True)
 class EnvTerrainCfg(TerrainEntityCfg):
     """Every env its own rse terrain, new every episode; mjlab's terrain
     fields keep their meaning (``max_init_terrain_level``: envs start at
     levels 0 … it)."""
 
-    # mjlab's fields that rse's terrain fixes: kept off the command line,
-    # where they could only fail or do nothing.
+    # mjlab's fields that rse's terrain fixes, or that would move or
+    # change its geoms behind rse's back (its pose, geoms, collisions):
+    # kept off the command line, where they could only fail or do nothing.
+    # The plane's looks (textures, materials, lights) and cameras stay.
     terrain_type: Suppress[Literal["plane"]] = "plane"  # type: ignore[assignment]
     terrain_generator: Suppress[Optional[Any]] = None
     env_spacing: Suppress[Optional[float]] = 2.0  # the scene's own wins
     num_envs: Suppress[int] = 1  # the scene's own wins
+    init_state: Suppress[Any] = _inherited("init_state")
+    spec_fn: Suppress[Any] = _inherited("spec_fn")
+    articulation: Suppress[Any] = _inherited("articulation")
+    sort_actuators: Suppress[bool] = _inherited("sort_actuators")
+    meshes: Suppress[Any] = _inherited("meshes")
+    geoms: Suppress[Any] = _inherited("geoms")
+    collisions: Suppress[Any] = _inherited("collisions")
+    debug_vis: Suppress[bool] = False  # mjlab's origins, not rse's spawn points
 
     scheme: str = ""
     """The scheme: a CSV file's path, or the CSV text itself."""
+    schemes: dict[str, float] = field(default_factory=dict)
+    """A mix of schemes, as mjlab's ``sub_terrains``: each scheme (a CSV
+    file's path, or its text) and its proportion (its share of their sum).
+    Each env draws its scheme by its global id and the seed, for the whole
+    run (``rse.scheme_mix``); the curriculum is logged per scheme, by file
+    name. Given, it replaces ``scheme``. The schemes share their grid,
+    step height and base (a slot is one height field)."""
     seed: Optional[int] = None
     """The base seed of every env's terrains; None: the scheme's ``# seed:``."""
     difficulty: Optional[float] = None
@@ -73,32 +101,77 @@ class EnvTerrainCfg(TerrainEntityCfg):
 
     # The record of what a run trains on, filled from the fields above
     # (not settable: tyro leaves ``init=False`` fields out).
-    scheme_csv: str = field(init=False, default="")
+    scheme_csv: Suppress[str] = field(init=False, default="")
     """The scheme's whole text, as read."""
-    scheme_sha256: str = field(init=False, default="")
+    scheme_sha256: Suppress[str] = field(init=False, default="")
     """SHA-256 of ``scheme_csv`` (UTF-8), as ``sha256sum`` prints it for the file."""
-    rse_version: str = field(init=False, default="")
-    difficulty_rule: str = field(init=False, default="")
+    schemes_csv: Suppress[dict[str, str]] = field(init=False, default_factory=dict)
+    """A mix's schemes' texts by name (their file names)."""
+    schemes_sha256: Suppress[dict[str, str]] = field(init=False, default_factory=dict)
+    rse_version: Suppress[str] = field(init=False, default="")
+    difficulty_rule: Suppress[str] = field(init=False, default="")
     """How difficulty scales heights (``rse.json``'s ``difficulty_rule``)."""
 
     def __post_init__(self) -> None:
         check(self)
 
 
-def scheme_text(scheme: str) -> str:
-    """The text of ``EnvTerrainCfg.scheme``: itself when it is CSV text (it
-    has a line break), else the file it names. Refused naming the flag."""
+class Mix(NamedTuple):
+    """The schemes of ``EnvTerrainCfg.schemes``, read: names (file names,
+    else ``scheme1`` …), ``rse.Scheme``s and proportions, in order."""
+
+    names: list[str]
+    schemes: list[Any]
+    proportions: list[float]
+
+
+def mix_names(keys: list[str]) -> list[str]:
+    """Each scheme's name in the logs and on the contact sheet: its file's
+    name without ``.csv`` (CSV text: ``scheme1`` …), made unique."""
+    names: list[str] = []
+    for i, key in enumerate(keys):
+        name = f"scheme{i + 1}" if "\n" in key else os.path.splitext(os.path.basename(key))[0] or f"scheme{i + 1}"
+        names.append(name if name not in names else f"{name}{i + 1}")
+    return names
+
+
+def scheme_text(scheme: str, field_name: str = "scheme") -> str:
+    """The text of a scheme setting: itself when it is CSV text (it has a
+    line break), else the file it names. Refused naming the flag of
+    ``field_name``."""
     if "\n" in scheme:
         return scheme
     if not scheme:
-        raise ValueError(f"{flag('scheme')}: no scheme given; a scheme CSV file's path, or its text")
+        raise ValueError(f"{flag(field_name)}: no scheme given; a scheme CSV file's path, or its text")
     try:
         with open(scheme, encoding="utf-8") as f:
             return f.read()
     except OSError as e:
-        raise ValueError(f"{flag('scheme')} {scheme}: cannot read it ({e.strerror or e})") from None
+        raise ValueError(f"{flag(field_name)} {scheme}: cannot read it ({e.strerror or e})") from None
     except UnicodeDecodeError:
-        raise ValueError(f"{flag('scheme')} {scheme}: not a text file (a scheme is a CSV file)") from None
+        raise ValueError(f"{flag(field_name)} {scheme}: not a text file (a scheme is a CSV file)") from None
+
+
+def read_mix(schemes: dict[str, float]) -> Mix:
+    """``EnvTerrainCfg.schemes`` read, each scheme checked; refused naming
+    the flag (and the file, line and field of a bad row)."""
+    from rse._rse import Scheme
+
+    keys = list(schemes)
+    read = []
+    for i, key in enumerate(keys):
+        origin = key if "\n" not in key else f"env.scene.terrain.schemes (scheme {i + 1})"
+        try:
+            read.append(Scheme.from_csv(scheme_text(key, "schemes"), origin))
+        except ValueError as e:
+            raise ValueError(f"{flag('schemes')}: {e}") from None
+    proportions = []
+    for key, p in schemes.items():
+        try:
+            proportions.append(float(p))
+        except (TypeError, ValueError):
+            raise ValueError(f"{flag('schemes')}: {key}'s proportion {p!r} is not a number") from None
+    return Mix(mix_names(keys), read, proportions)
 
 
 def check(cfg: EnvTerrainCfg) -> None:
@@ -108,13 +181,15 @@ def check(cfg: EnvTerrainCfg) -> None:
     import rse
     from rse._rse import EnvTerrains, Scheme
 
-    text = scheme_text(cfg.scheme)
-    origin = cfg.scheme if "\n" not in cfg.scheme else "env.scene.terrain.scheme"
-    try:
-        scheme = Scheme.from_csv(text, origin)
-    except ValueError as e:
-        # rse's own words name the file, line and field.
-        raise ValueError(f"{flag('scheme')}: {e}") from None
+    mix = read_mix(cfg.schemes) if cfg.schemes else None
+    text = "" if mix else scheme_text(cfg.scheme)
+    if mix is None:
+        origin = cfg.scheme if "\n" not in cfg.scheme else "env.scene.terrain.scheme"
+        try:
+            scheme: Any = Scheme.from_csv(text, origin)
+        except ValueError as e:
+            # rse's own words name the file, line and field.
+            raise ValueError(f"{flag('scheme')}: {e}") from None
     if cfg.terrain_levels is not None and cfg.terrain_levels < 2:
         raise ValueError(f"{flag('terrain_levels')} {cfg.terrain_levels}: expected 2 or more levels")
     if cfg.max_init_terrain_level is not None:
@@ -127,14 +202,28 @@ def check(cfg: EnvTerrainCfg) -> None:
     if cfg.seed is not None and not 0 <= cfg.seed < 2**64:
         raise ValueError(f"{flag('seed')} {cfg.seed}: expected a whole number from 0 to 2^64 - 1")
     try:
-        EnvTerrains(scheme, 1, oversample=cfg.oversample, seed=cfg.seed, difficulty=cfg.difficulty, spawn_radius=cfg.spawn_radius)
+        if mix is None:
+            EnvTerrains(scheme, 1, oversample=cfg.oversample, seed=cfg.seed, difficulty=cfg.difficulty, spawn_radius=cfg.spawn_radius)
+        else:
+            EnvTerrains(mix.schemes, 1, oversample=cfg.oversample, seed=cfg.seed, difficulty=cfg.difficulty,
+                        spawn_radius=cfg.spawn_radius, proportions=mix.proportions)
     except (ValueError, OverflowError, TypeError) as e:
-        # rse names the argument first ("difficulty: ..."): the same names.
-        name, _, reason = str(e).partition(": ")
+        # rse names the argument first ("difficulty: …", "oversample 0: …"):
+        # the same names as the fields.
+        name = str(e).split(" ", 1)[0].rstrip(":")
+        reason = str(e).rpartition(": ")[2]
         if name in ("difficulty", "oversample", "seed", "spawn_radius"):
             raise ValueError(f"{flag(name)} {getattr(cfg, name)}: {reason}") from None
+        if name in ("schemes", "proportions"):
+            raise ValueError(f"{flag('schemes')}: {reason}") from None
         raise ValueError(f"{FLAG[:-1]}: {e}") from None
     cfg.scheme_csv = text
-    cfg.scheme_sha256 = hashlib.sha256(text.encode("utf-8")).hexdigest()
+    cfg.scheme_sha256 = hashlib.sha256(text.encode("utf-8")).hexdigest() if text else ""
+    cfg.schemes_csv = {}
+    cfg.schemes_sha256 = {}
+    if mix is not None:
+        for name, key in zip(mix.names, cfg.schemes):
+            cfg.schemes_csv[name] = scheme_text(key, "schemes")
+            cfg.schemes_sha256[name] = hashlib.sha256(cfg.schemes_csv[name].encode("utf-8")).hexdigest()
     cfg.rse_version = rse.__version__
     cfg.difficulty_rule = rse.DIFFICULTY_RULE

@@ -238,7 +238,7 @@ class Atlas:
 class EnvTerrains:
     def __new__(
         cls,
-        scheme: Scheme,
+        scheme: Union[Scheme, Sequence[Scheme]],
         num_envs: int,
         oversample: Optional[int] = None,
         seed: Optional[int] = None,
@@ -249,7 +249,12 @@ class EnvTerrains:
         border: Optional[int] = None,
         env_offset: Optional[int] = None,
         spawn_radius: Optional[float] = None,
+        proportions: Optional[Sequence[float]] = None,
     ) -> EnvTerrains: ...
+    @property
+    def scheme_ids(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def schemes(self) -> list[Scheme]: ...
     @property
     def num_envs(self) -> int: ...
     @property
@@ -282,6 +287,7 @@ class EnvTerrains:
         env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None,
         cols: Optional[int] = None,
         cell_pixels: Optional[int] = None,
+        names: Optional[Sequence[str]] = None,
     ) -> bytes: ...
     def heights_at(
         self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike

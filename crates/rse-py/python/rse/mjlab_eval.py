@@ -62,7 +62,10 @@ class LevelResult:
 
 
 def _scheme_name(terrain: Any) -> str:
-    """The scheme as a person reads it: its file, or its first line."""
+    """The scheme as a person reads it: its file, its first line, or a
+    mix's files and proportions."""
+    if terrain.schemes:
+        return "a mix of " + ", ".join(f"{k} ({p:g})" for k, p in terrain.schemes.items() if "\n" not in k)
     if "\n" not in terrain.scheme:
         return terrain.scheme
     return "CSV text: " + terrain.scheme.strip().splitlines()[0][:60]
@@ -89,7 +92,7 @@ def evaluate(
     from mjlab.tasks.registry import load_env_cfg, load_rl_cfg, load_runner_cls
 
     from rse._mjlab_envs import _event, use_env_terrains
-    from rse._mjlab_run import scheme_of_run
+    from rse._mjlab_run import run_terrain
     from rse.mjlab_tasks import STEPFIELD
 
     if levels < 1 or per_level < 1:
@@ -103,23 +106,26 @@ def evaluate(
     n = levels * per_level
     cfg.scene.num_envs = n
     source = "given"
-    if scheme is None:
-        # The scheme the checkpoint's run trained on, where it recorded one.
-        recorded = scheme_of_run(checkpoint)
-        if recorded is not None:
-            scheme, source = str(recorded), "the run folder"
-    if type(cfg.scene.terrain).__name__ != "EnvTerrainCfg":
-        use_env_terrains(cfg, scheme or STEPFIELD, seed=seed, difficulty=0.0)
-        source = source if scheme else "rse.mjlab_tasks.STEPFIELD"
-    elif scheme is None:
-        source = f"the task's ({task})"
-    # Made anew, so that every field is checked and recorded again.
+    # Made anew below, so that every field is checked and recorded again.
     changes: dict[str, Any] = {"seed": seed, "difficulty": 0.0, "apart": False}
     if scheme is not None:
-        changes["scheme"] = scheme
+        changes.update(scheme=scheme, schemes={})
+    else:
+        # The scheme (or mix) the checkpoint's run trained on, where it
+        # recorded one; the set's own seed stays.
+        recorded = run_terrain(checkpoint)
+        if recorded is not None:
+            changes.update({k: v for k, v in recorded.items() if k != "seed"})
+            source = "the run folder"
+    if type(cfg.scene.terrain).__name__ != "EnvTerrainCfg":
+        use_env_terrains(cfg, STEPFIELD, seed=seed, difficulty=0.0)
+        source = source if "scheme" in changes or "schemes" in changes else "rse.mjlab_tasks.STEPFIELD"
+    elif source == "given" and scheme is None:
+        source = f"the task's ({task})"
     cfg.scene.terrain = dataclasses.replace(cfg.scene.terrain, **changes)
     terrain = cfg.scene.terrain
-    print(f"rse.mjlab_eval: scheme from {source}: {_scheme_name(terrain)} (SHA-256 {terrain.scheme_sha256[:16]}…)", file=sys.stderr)
+    digest = f" (SHA-256 {terrain.scheme_sha256[:16]}…)" if terrain.scheme_sha256 else ""
+    print(f"rse.mjlab_eval: scheme from {source}: {_scheme_name(terrain)}{digest}", file=sys.stderr)
     _fix_for_evaluation(cfg, seconds, speed)
     env = ManagerBasedRlEnv(cfg, device=device)
     try:
@@ -163,6 +169,7 @@ def evaluate(
         "task": task,
         "seed": seed,
         "scheme": terrain.scheme_csv,
+        "schemes": {name: {"csv": text, "proportion": float(p)} for (name, text), p in zip(terrain.schemes_csv.items(), terrain.schemes.values())},
         "scheme_source": source,
         "scheme_sha256": terrain.scheme_sha256,
         "levels": levels,

@@ -1,0 +1,95 @@
+"""A mix of schemes in mjlab's rough task, as mjlab mixes sub-terrains by
+proportion: each env draws its scheme from the proportions by its global
+env id and seed, keeps it for the run, and the curriculum is logged per
+scheme; set in Python (``use_env_terrains(cfg, {path: proportion})``) or
+from ``train``'s command line (``--env.scene.terrain.schemes``), which
+records every scheme in the run folder."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import mjlab.tasks  # noqa: F401  (registers the tasks)
+import numpy as np
+import rse
+from mjlab.envs import ManagerBasedRlEnv
+from mjlab.tasks.registry import load_env_cfg
+from rse.mjlab import contact_sheet, env_terrains, terrain_difficulty, use_env_terrains
+
+REPO = Path(__file__).resolve().parents[2]
+STAIRS, WALLS = REPO / "schemes" / "mix_stairs.csv", REPO / "schemes" / "mix_walls.csv"
+
+
+def test_each_env_draws_its_scheme_by_proportion_and_the_curriculum_is_logged_per_scheme() -> None:
+    cfg = load_env_cfg("Mjlab-Velocity-Rough-Unitree-Go1")
+    cfg.scene.num_envs = 8
+    use_env_terrains(cfg, {str(STAIRS): 3.0, str(WALLS): 1.0}, seed=4, difficulty=0.5)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        envs = env_terrains(env)
+        drawn = rse.scheme_mix([3.0, 1.0], 8, seed=4)
+        np.testing.assert_array_equal(envs.scheme_ids, drawn)
+        assert set(drawn) == {0, 1}, "both schemes among the 8 envs of seed 4"
+        want = rse.EnvTerrains([rse.Scheme.load(STAIRS), rse.Scheme.load(WALLS)], 8, seed=4, difficulty=0.5, proportions=[3, 1])
+        for e in range(8):
+            np.testing.assert_array_equal(envs.terrain(e).heights, want.terrain(e).heights)
+        logged = terrain_difficulty(env, None)
+        assert set(logged) == {"mean", "max", "mix_stairs", "mix_walls"}
+        assert logged["mix_stairs"] == 0.5
+        # The sheet names each tile's scheme.
+        assert contact_sheet(env) == envs.contact_sheet(names=["mix_stairs", "mix_walls"])
+    finally:
+        env.close()
+
+
+def test_a_mix_from_trains_command_line_runs_logs_per_scheme_and_records_every_scheme(tmp_path) -> None:
+    train = Path(sys.executable).parent / "train"
+    done = subprocess.run(
+        [str(train), "Rse-Velocity-Rough-Unitree-Go1", "--env.scene.num-envs", "6", "--env.episode-length-s", "0.1",
+         # mjlab's tyro reads collections in Python's syntax.
+         "--env.scene.terrain.schemes", f'{{"{STAIRS}": 3, "{WALLS}": 1}}', "--env.scene.terrain.seed", "4",
+         "--agent.max-iterations", "1", "--agent.num-steps-per-env", "12", "--agent.logger", "tensorboard"],
+        cwd=tmp_path, capture_output=True, text=True, timeout=1200,
+        env={**os.environ, "CUDA_VISIBLE_DEVICES": ""},
+    )
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    assert "Curriculum/rse_terrain_difficulty/mix_stairs" in done.stdout, done.stdout[-3000:]
+    assert "Curriculum/rse_terrain_difficulty/mix_walls" in done.stdout, done.stdout[-3000:]
+    params = next(tmp_path.glob("logs/rsl_rl/rse_go1_velocity/*/params"))
+    for path in (STAIRS, WALLS):
+        assert (params / "rse_schemes" / path.name).read_bytes() == path.read_bytes()
+    record = json.loads((params / "rse_terrain.json").read_text())
+    assert record["schemes"] == {
+        p.stem: {"file": str(p), "sha256": hashlib.sha256(p.read_bytes()).hexdigest(), "proportion": w}
+        for p, w in ((STAIRS, 3.0), (WALLS, 1.0))
+    }
+    assert record["seed"] == 4 and not (params / "rse_scheme.csv").exists()
+    # Evaluated on the same mix, found in the run.
+    checkpoint = next(params.parent.glob("model_*.pt"))
+    done = subprocess.run(
+        [sys.executable, "-m", "rse.mjlab_eval", str(checkpoint), "--levels", "2", "--per-level", "2", "--seconds", "0.2"],
+        cwd=tmp_path, capture_output=True, text=True, timeout=1200, env={**os.environ, "CUDA_VISIBLE_DEVICES": ""},
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert "scheme from the run folder: a mix of" in done.stderr and "mix_stairs.csv (3)" in done.stderr, done.stderr[-2000:]
+
+
+def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_path) -> None:
+    other = tmp_path / "small.csv"
+    other.write_text("# size: 20x20\ntype,height\nrandom,2\n")
+    train = Path(sys.executable).parent / "train"
+    for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has 20x20 cells"),
+                       (f'{{"{STAIRS}": -1}}', "proportion is -1"),
+                       (f'{{"{STAIRS}": 1, "missing.csv": 1}}', "missing.csv: cannot read it")):
+        done = subprocess.run([str(train), "Rse-Velocity-Rough-Unitree-Go1", "--env.scene.terrain.schemes", mix],
+                              cwd=tmp_path, capture_output=True, text=True, timeout=600,
+                              env={**os.environ, "CUDA_VISIBLE_DEVICES": "", "COLUMNS": "300"})
+        text = " ".join((done.stdout + done.stderr).replace("│", " ").split())
+        assert done.returncode == 2 and "Traceback" not in text, text[-2000:]
+        assert "--env.scene.terrain.schemes" in text and words in text, text[-2000:]
+        assert "Base Environment" not in text
