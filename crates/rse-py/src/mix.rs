@@ -12,13 +12,13 @@ use pyo3::prelude::*;
 /// depends on its global id and the seed alone (docs/envs.md).
 #[pyfunction]
 #[pyo3(signature = (proportions, num_envs, seed, env_offset=0))]
-pub fn scheme_mix<'py>(
-    py: Python<'py>,
+pub fn scheme_mix(
+    py: Python<'_>,
     proportions: Vec<f64>,
     num_envs: usize,
     seed: u64,
     env_offset: u64,
-) -> PyResult<Bound<'py, PyArray1<i64>>> {
+) -> PyResult<Bound<'_, PyArray1<i64>>> {
     let mix =
         rse_core::SchemeMix::new(&proportions).map_err(|e| PyValueError::new_err(e.to_string()))?;
     if env_offset.checked_add(num_envs as u64).is_none() {

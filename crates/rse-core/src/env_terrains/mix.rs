@@ -76,7 +76,7 @@ impl SchemeMix {
 
     /// The scheme (its index in the proportions) that global environment
     /// `env` of base seed `seed` draws: `u`, the top 53 bits of the first
-    /// word of `ChaCha8` keyed with `seed` and [`MIX_DOMAIN`] on stream
+    /// word of `ChaCha8` keyed with `seed` and "rse mix\0" (bytes 8 to 16) on stream
     /// `env`, as a fraction of 1, falls in that scheme's share. A scheme of
     /// proportion 0 is never drawn.
     pub fn scheme_of(&self, seed: u64, env: u64) -> usize {
@@ -109,9 +109,15 @@ pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
     let Some(first) = schemes.first() else {
         return Err(bad("schemes", "no scheme to draw terrains from"));
     };
+    // Bit for bit: one height field holds the same lattice for all.
     let key = |s: &Scheme| {
         let g = s.globals();
-        (s.grid(), g.block_size, g.step_height, g.base)
+        (
+            s.grid(),
+            g.block_size.to_bits(),
+            g.step_height.to_bits(),
+            g.base.to_bits(),
+        )
     };
     let describe = |s: &Scheme| {
         let g = s.globals();
@@ -149,7 +155,7 @@ mod tests {
         let count = |s: usize| drawn.iter().filter(|&&d| d == s).count() as f64 / 80_000.0;
         assert!((count(0) - 0.375).abs() < 0.01, "{}", count(0));
         assert!((count(1) - 0.125).abs() < 0.01, "{}", count(1));
-        assert_eq!(count(2), 0.0);
+        assert!(drawn.iter().all(|&d| d != 2), "a share of 0 is never drawn");
         assert!((count(3) - 0.5).abs() < 0.01, "{}", count(3));
     }
 

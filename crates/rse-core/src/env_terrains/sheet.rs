@@ -144,7 +144,7 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
     let one_step = tiles
         .first()
         .map(step)
-        .filter(|&s| tiles.iter().all(|t| step(t) == s));
+        .filter(|&s| tiles.iter().all(|t| step(t).to_bits() == s.to_bits()));
     let glyphs = (cell_w / u64::from(GLYPH)) as usize;
     for (i, tile) in tiles.iter().enumerate() {
         let (col, row) = (i as u64 % cols, i as u64 / cols);

@@ -940,7 +940,7 @@ def use_env_terrains(
         env_spacing=2.0 if spacing is None else spacing,
         max_init_terrain_level=None if spread is None else spread[0],
         terrain_levels=None if spread is None else spread[1],
-        scheme="" if mix else scheme_setting(scheme),
+        scheme="" if isinstance(scheme, dict) else scheme_setting(scheme),
         schemes=mix,
         seed=seed,
         difficulty=difficulty,

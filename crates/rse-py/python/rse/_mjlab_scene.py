@@ -215,7 +215,7 @@ def check(cfg: EnvTerrainCfg) -> None:
         if name in ("difficulty", "oversample", "seed", "spawn_radius"):
             raise ValueError(f"{flag(name)} {getattr(cfg, name)}: {reason}") from None
         if name in ("schemes", "proportions"):
-            raise ValueError(f"{flag('schemes')}: {reason}") from None
+            raise ValueError(f"{flag('schemes')}: {str(e).partition(': ')[2]}") from None
         raise ValueError(f"{FLAG[:-1]}: {e}") from None
     cfg.scheme_csv = text
     cfg.scheme_sha256 = hashlib.sha256(text.encode("utf-8")).hexdigest() if text else ""

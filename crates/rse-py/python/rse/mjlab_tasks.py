@@ -55,9 +55,8 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
     ``scheme`` (play configs too); returns their ids. A task registered
     already (this module imported twice) is kept."""
     import mjlab.tasks  # noqa: F401  (mjlab's own tasks first)
-    from mjlab.tasks import registry
-
     from mjlab.rl import MjlabOnPolicyRunner
+    from mjlab.tasks import registry
 
     from rse._mjlab_envs import scheme_of, use_env_terrains
     from rse._mjlab_run import recording_runner
