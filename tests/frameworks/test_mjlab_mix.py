@@ -93,3 +93,31 @@ def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_pat
         assert done.returncode == 2 and "Traceback" not in text, text[-2000:]
         assert "--env.scene.terrain.schemes" in text and words in text, text[-2000:]
         assert "Base Environment" not in text
+
+
+def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_path, capsys) -> None:
+    """mjlab's ``play`` takes no terrain flags and builds its env inside
+    ``run_play`` with the checkpoint's path in ``resume_path``: rse finds
+    the run's record there and plays on what the run trained on."""
+    import dataclasses
+
+    from rse import _mjlab_run
+
+    mine = tmp_path / "mine.csv"
+    mine.write_text("# size: 30x20\ntype,height\nrandom,3\n")
+    run = tmp_path / "logs" / "run"
+    cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1", play=True)
+    _mjlab_run.write(run, dataclasses.replace(cfg.scene.terrain, scheme=str(mine), seed=7))
+    cfg.scene.num_envs = 2
+    # A stand-in for mjlab.scripts.play.run_play: the same name, module and local.
+    play = {"__name__": "mjlab.scripts.play", "ManagerBasedRlEnv": ManagerBasedRlEnv}
+    exec("def run_play(resume_path, env_cfg):\n    return ManagerBasedRlEnv(env_cfg, device='cpu')\n", play)
+    env = play["run_play"](run / "model_3.pt", cfg)
+    try:
+        envs = env_terrains(env)
+        want = rse.EnvTerrains(rse.Scheme.load(mine), 1, seed=7)
+        assert envs.terrain(0).heights.shape == (20, 30)
+        assert envs.terrain(0).seed == 7 and want.terrain(0).seed == 7
+    finally:
+        env.close()
+    assert f"playing on what the run trained on: {run / 'params' / 'rse_scheme.csv'} (seed 7)" in capsys.readouterr().out
