@@ -9,6 +9,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 say() { printf '\n== %s\n' "$*"; }
 
+# Debian's OSMesa: rse.mjlab_video renders offscreen on the CPU (MUJOCO_GL=osmesa).
+if ! ldconfig -p | grep -q libOSMesa; then
+    sudo=""
+    [ "$(id -u)" = 0 ] || sudo="sudo"
+    say "installing libosmesa6 (Debian)"
+    $sudo apt-get install -y -q libosmesa6 >/dev/null 2>&1 \
+        || { $sudo apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q libosmesa6 >/dev/null; }
+fi
+
 # Every framework's venv, kept outside the clone and keyed by its pins
 # (scripts/venvs.sh), made in parallel where missing; CI starts this at its
 # beginning, beside make test.

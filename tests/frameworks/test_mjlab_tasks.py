@@ -349,6 +349,22 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
                           capture_output=True, text=True, timeout=600, env={**os.environ, "CUDA_VISIBLE_DEVICES": ""})
     assert done.returncode == 2 and "levels and per_level: 0" in done.stderr, done.stderr[-2000:]
 
+    # A video of the checkpoint on its run's terrains, written, then done
+    # (mjlab's play --video keeps its viewer open): OSMesa renders on the CPU.
+    done = subprocess.run(
+        [sys.executable, "-m", "rse.mjlab_video", str(checkpoint), "--steps", "10", "--num-envs", "2"],
+        cwd=tmp_path, capture_output=True, text=True, timeout=1200,
+        env={**os.environ, "CUDA_VISIBLE_DEVICES": "", "MUJOCO_GL": "osmesa"},
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    video = Path(done.stdout.strip().splitlines()[-1])
+    assert video.parent == run.parent / "videos" / "rse" and video.suffix == ".mp4"
+    import imageio.v3 as iio
+
+    frames = iio.imread(video)
+    assert frames.shape[0] == 10 and frames.std() > 5, "ten frames of something"
+    assert "the terrains the run trained on (seed 7)" in done.stderr
+
 
 def test_the_scene_terrains_fields_set_the_pool(tmp_path) -> None:
     """What ``train`` sets on the command line lands in the envs: the

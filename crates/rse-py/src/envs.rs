@@ -23,6 +23,10 @@ use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
 
 /// The terrains of `num_envs` environments, each new at every reset.
+///
+/// `scheme` is one `rse.Scheme`, or a sequence of them to mix: each env
+/// then draws its scheme by `proportions` (default equal) from its global
+/// id and the seed, and keeps it (docs/envs.md, "A mix of schemes").
 #[pyclass(module = "rse", frozen)]
 pub struct EnvTerrains {
     /// The state; `reset` takes it whole (see the module's note on threads).
