@@ -43,12 +43,12 @@ def record(
         importlib.import_module("tensordict")
     except ImportError:
         pass
+    import mjlab.tasks  # noqa: F401  (registers the tasks)
     from mjlab.envs import ManagerBasedRlEnv
     from mjlab.rl import MjlabOnPolicyRunner, RslRlVecEnvWrapper
     from mjlab.tasks.registry import load_env_cfg, load_rl_cfg, load_runner_cls
     from mjlab.utils.wrappers import VideoRecorder
 
-    import mjlab.tasks  # noqa: F401  (registers the tasks)
     from rse._mjlab_run import run_terrain
 
     if steps < 1 or num_envs < 1:
