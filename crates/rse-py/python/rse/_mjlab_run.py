@@ -56,7 +56,7 @@ def record(terrain: Any, env_offset: int = 0) -> dict[str, Any]:
     return out
 
 
-def _write_whole(path: Path, content: str) -> None:
+def write_whole(path: Path, content: str) -> None:
     """``content`` into ``path``, whole or not at all, bytes as given (the
     copy's SHA-256 is the record's)."""
     partial = path.with_name(path.name + ".partial")
@@ -71,10 +71,10 @@ def write(run_dir: Path, terrain: Any, env_offset: int = 0) -> None:
     if terrain.schemes:
         (params / MIX_FOLDER).mkdir(exist_ok=True)
         for name, text in terrain.schemes_csv.items():
-            _write_whole(params / MIX_FOLDER / f"{name}.csv", text)
+            write_whole(params / MIX_FOLDER / f"{name}.csv", text)
     else:
-        _write_whole(params / SCHEME_FILE, terrain.scheme_csv)
-    _write_whole(params / RECORD_FILE, json.dumps(record(terrain, env_offset), indent=1) + "\n")
+        write_whole(params / SCHEME_FILE, terrain.scheme_csv)
+    write_whole(params / RECORD_FILE, json.dumps(record(terrain, env_offset), indent=1) + "\n")
 
 
 def run_terrain(checkpoint: str) -> Optional[dict[str, Any]]:

@@ -18,7 +18,10 @@ the same terrains on every machine, whatever ran before. Every
 robot starts at its terrain's origin facing +x, commanded ``speed`` m/s
 forward (no sideways or turning command); an episode lasts ``seconds``.
 The env is the task's play config (no observation noise) seeded with
-``seed`` (its randomized events too): a rerun gives the same figures.
+``seed`` (its randomized events too): a rerun gives the same figures. The
+terrains are the scheme (or mix) the checkpoint's run recorded in its
+``params/`` (``rse._mjlab_run``), else the task's; ``--scheme`` gives
+another. It says which.
 
 - **distance made good**: how far the robot got along +x from its start,
   metres, when its episode ended (at a fall: the last control step before
@@ -35,9 +38,9 @@ import argparse
 import dataclasses
 import json
 import math
-import os
 import sys
 from dataclasses import asdict, dataclass
+from pathlib import Path
 from typing import Any, Optional
 
 import numpy as np
@@ -310,12 +313,10 @@ def main(argv: Optional[list[str]] = None) -> int:
         return 2
     sys.stdout.write(table(report))
     if args.json:
+        from rse._mjlab_run import write_whole
+
         # Whole or not at all: beside it, then renamed over it.
-        partial = f"{args.json}.partial"
-        with open(partial, "w") as out:
-            json.dump(report, out, indent=1)
-            out.write("\n")
-        os.replace(partial, args.json)
+        write_whole(Path(args.json), json.dumps(report, indent=1) + "\n")
     return 0
 
 
