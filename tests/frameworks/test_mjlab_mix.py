@@ -19,6 +19,7 @@ import numpy as np
 import rse
 from mjlab.envs import ManagerBasedRlEnv
 from mjlab.tasks.registry import load_env_cfg
+from mjlab_cli import train_main
 from rse.mjlab import contact_sheet, env_terrains, terrain_difficulty, use_env_terrains
 
 REPO = Path(__file__).resolve().parents[2]
@@ -79,20 +80,19 @@ def test_a_mix_from_trains_command_line_runs_logs_per_scheme_and_records_every_s
     assert "scheme from the run folder: a mix of" in done.stderr and "mix_stairs.csv (3)" in done.stderr, done.stderr[-2000:]
 
 
-def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_path) -> None:
+def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("COLUMNS", "300")
     other = tmp_path / "small.csv"
     other.write_text("# size: 20x20\ntype,height\nrandom,2\n")
-    train = Path(sys.executable).parent / "train"
     for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has 20x20 cells"),
                        (f'{{"{STAIRS}": -1}}', "proportion is -1"),
                        (f'{{"{STAIRS}": 1, "missing.csv": 1}}', "missing.csv: cannot read it")):
-        done = subprocess.run([str(train), "Rse-Velocity-Rough-Unitree-Go1", "--env.scene.terrain.schemes", mix],
-                              cwd=tmp_path, capture_output=True, text=True, timeout=600,
-                              env={**os.environ, "CUDA_VISIBLE_DEVICES": "", "COLUMNS": "300"})
+        done = train_main(capsys, "--env.scene.terrain.schemes", mix)
         text = " ".join((done.stdout + done.stderr).replace("│", " ").split())
         assert done.returncode == 2 and "Traceback" not in text, text[-2000:]
         assert "--env.scene.terrain.schemes" in text and words in text, text[-2000:]
-        assert "Base Environment" not in text
+        assert "Base Environment" not in text and not (tmp_path / "logs").exists()
 
 
 def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_path, capsys) -> None:
