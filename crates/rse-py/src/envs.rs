@@ -35,8 +35,6 @@ pub struct EnvTerrains {
     fixed: Fixed,
     /// Every scheme (one, or a mix's in order), as the terrains name them.
     schemes: Vec<Arc<rse_core::Scheme>>,
-    /// Each env's scheme: an index into `schemes`.
-    scheme_ids: Vec<usize>,
     samples: Py<PyArray3<f32>>,
     episode: Py<PyArray1<i64>>,
     difficulty: Py<PyArray1<f64>>,
@@ -284,7 +282,6 @@ impl EnvTerrains {
         let inner = py
             .detach(|| rse_core::EnvTerrains::mixed(owned, &proportions, options))
             .map_err(value_error)?;
-        let scheme_ids = (0..num_envs).map(|e| inner.scheme_index(e)).collect();
         let (n, rows, cols) = inner.buffer_shape();
         // Allocated by numpy, not Rust: numpy asks the kernel for huge
         // pages for large arrays, which makes the writes of a reset ~10%
@@ -314,7 +311,6 @@ impl EnvTerrains {
             inner: RwLock::new(inner),
             fixed,
             schemes,
-            scheme_ids,
         };
         let all: Vec<usize> = (0..num_envs).collect();
         {
@@ -329,8 +325,12 @@ impl EnvTerrains {
     /// drawn from the proportions by its global id and the seed
     /// (`rse.scheme_mix`).
     #[getter]
-    fn scheme_ids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        PyArray1::from_vec(py, self.scheme_ids.iter().map(|&s| s as i64).collect())
+    fn scheme_ids<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        let inner = self.reading()?;
+        let ids = (0..self.fixed.num_envs)
+            .map(|e| inner.scheme_index(e) as i64)
+            .collect();
+        Ok(PyArray1::from_vec(py, ids))
     }
 
     /// Every scheme of the pool: the one, or a mix's in their order.
@@ -492,9 +492,10 @@ impl EnvTerrains {
                 self.fixed.num_envs - 1
             )));
         }
+        let inner = self.reading()?;
         Ok(Terrain {
-            inner: self.reading()?.terrain(env).clone(),
-            scheme: Some(Arc::clone(&self.schemes[self.scheme_ids[env]])),
+            inner: inner.terrain(env).clone(),
+            scheme: Some(Arc::clone(&self.schemes[inner.scheme_index(env)])),
         })
     }
 

@@ -13,12 +13,7 @@ use crate::ExitStatus;
 use crate::args::{CheckCurriculumArgs, SchemeOverrides};
 
 pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    // Every scheme read first: a bad one fails before any is checked.
-    let schemes = args
-        .schemes
-        .iter()
-        .map(|path| super::load_scheme(path, overrides))
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let schemes = super::load_schemes(&args.schemes, overrides)?;
     let mut tables = Vec::new();
     let mut reports = Vec::new();
     let mut ok = true;

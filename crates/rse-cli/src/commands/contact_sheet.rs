@@ -8,11 +8,7 @@ use crate::ExitStatus;
 use crate::args::{ContactSheetArgs, SchemeOverrides};
 
 pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
-    let schemes = args
-        .schemes
-        .iter()
-        .map(|path| super::load_scheme(path, overrides))
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let schemes = super::load_schemes(&args.schemes, overrides)?;
     let proportions = match &args.proportions {
         Some(p) if p.len() != schemes.len() => anyhow::bail!(
             "--proportions: {} given for {} schemes; give one per scheme, in their order",

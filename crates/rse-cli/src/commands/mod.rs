@@ -73,6 +73,18 @@ pub fn world_of(scheme: &Scheme, world: &WorldArgs) -> Terrain {
     .generate(scheme)
 }
 
+/// Reads every scheme of `paths` with the overrides, in order: a bad one
+/// fails before any is used.
+pub fn load_schemes(
+    paths: &[std::path::PathBuf],
+    overrides: &SchemeOverrides,
+) -> anyhow::Result<Vec<Scheme>> {
+    paths
+        .iter()
+        .map(|path| load_scheme(path, overrides))
+        .collect()
+}
+
 /// Reads the scheme at `path` and applies the command-line overrides.
 pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
     let scheme = Scheme::load(path)?;

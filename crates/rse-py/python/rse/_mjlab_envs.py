@@ -168,6 +168,8 @@ class EnvTerrainsEvent:
         offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
         self.env_offset = int(offset)
         spread = _spread(p) if p.get("difficulty") is None else None
+        self.terrain_levels: Optional[int] = p.get("terrain_levels")
+        """The curriculum's levels (the scene's ``EnvTerrainCfg``), if any."""
         self.names: list[str] = list(getattr(scheme, "names", []))
         """A mix's scheme names, in order (empty for one scheme)."""
         self.envs = make_envs(
@@ -490,10 +492,10 @@ def terrain_difficulty(
     Returns the mean and max difficulty for mjlab's log."""
     import torch
 
-    envs = env_terrains(env, term)
+    event = _event(env, term)
+    envs = event.envs
     if step is None:
-        levels = _terrain_settings(env.cfg.scene.terrain).get("terrain_levels")
-        step = 1.0 / (levels - 1) if levels else 0.1
+        step = 1.0 / (event.terrain_levels - 1) if event.terrain_levels else 0.1
     ids = _ids(env, env_ids)
     if env.common_step_counter > 0 and ids:
         index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
@@ -511,10 +513,9 @@ def terrain_difficulty(
         d[ids] = np.clip(d[ids] + step * moves, 0.0, 1.0)
     logged = {"mean": float(envs.difficulty.mean()), "max": float(envs.difficulty.max())}
     # A mix: each scheme's mean, as mjlab logs each sub-terrain's level.
-    names = _event(env, term).names
-    if names:
+    if event.names:
         drawn = envs.scheme_ids
-        for j, name in enumerate(names):
+        for j, name in enumerate(event.names):
             mine = drawn == j
             if mine.any():
                 logged[name] = float(envs.difficulty[mine].mean())
@@ -600,9 +601,9 @@ def _terrain_settings(terrain: Any) -> dict[str, Any]:
         from rse._rse import Scheme
 
         # A mix, from the texts the config read.
-        names = list(terrain.schemes_csv)
-        schemes = [Scheme.from_csv(terrain.schemes_csv[n], n) for n in names]
-        settings["scheme"] = Mix(names, schemes, [float(p) for p in terrain.schemes.values()])
+        names, texts = list(terrain.schemes_csv), list(terrain.schemes_csv.values())
+        schemes = [Scheme.from_csv(t, n) for n, t in zip(names, texts)]
+        settings["scheme"] = Mix(names, schemes, [float(p) for p in terrain.schemes.values()], texts)
     return settings
 
 
@@ -649,10 +650,11 @@ class _PoolSpec:
             )
         from rse._mjlab_scene import check
 
-        # Fields set by assignment after the config was made were not
-        # checked: checked (and recorded) now, before anything is built.
-        check(scene.terrain)
         _play_the_runs_scheme(scene.terrain)
+        # Fields set by assignment after the config was made (and the
+        # run's, in play) were not checked: checked and recorded now, once,
+        # before anything is built.
+        check(scene.terrain)
         settings = _terrain_settings(scene.terrain)
         scheme = scheme_of(settings["scheme"])
         oversample = settings["oversample"]
@@ -707,52 +709,55 @@ def _play_the_runs_scheme(terrain: Any) -> None:
     task's registered scheme. Found as ``run_play``'s ``resume_path`` on
     the call stack (``play`` builds the env inside it); elsewhere nothing
     changes."""
-    import inspect
-
     from rse._mjlab_run import run_terrain
-    from rse._mjlab_scene import check
 
-    frame = inspect.currentframe()
-    try:
-        while frame is not None:
-            if frame.f_code.co_name == "run_play" and frame.f_globals.get("__name__", "").startswith("mjlab."):
-                resume = frame.f_locals.get("resume_path")
-                break
-            frame = frame.f_back
-        else:
-            return
-    finally:
-        del frame
+    def resume_path(frame: Any) -> Any:
+        if frame.f_code.co_name == "run_play" and frame.f_globals.get("__name__", "").startswith("mjlab."):
+            return frame.f_locals.get("resume_path")
+        return None
+
+    resume = _on_the_stack(resume_path)
     recorded = run_terrain(str(resume)) if resume is not None else None
     if recorded is None:
         return
     for name, value in recorded.items():
         setattr(terrain, name, value)
-    if "scheme" in recorded:
-        terrain.schemes = {}
-    check(terrain)
-    shown = recorded.get("scheme") or ", ".join(recorded.get("schemes", {}))
+    shown = recorded["scheme"] or ", ".join(recorded["schemes"])
     print(f"[INFO] rse: playing on what the run trained on: {shown} (seed {terrain.seed})")
+
+
+def _on_the_stack(pick: Any) -> Any:
+    """The first value ``pick(frame)`` gives that is not None, walking up
+    the call stack from the caller; None if none does."""
+    import inspect
+
+    frame = inspect.currentframe()
+    try:
+        while frame is not None:
+            found = pick(frame)
+            if found is not None:
+                return found
+            frame = frame.f_back
+    finally:
+        del frame
+    return None
 
 
 def _scene_being_built() -> tuple[Any, str]:
     """The ``SceneCfg`` and device of the mjlab ``Scene`` whose construction
     called this (through ``spec_fn``)."""
-    import inspect
-
     from mjlab.scene import Scene
 
-    frame = inspect.currentframe()
-    try:
-        while frame is not None:
-            owner = frame.f_locals.get("self")
-            if isinstance(owner, Scene):
-                cfg = private.getattr_checked(owner, "_cfg", "mjlab")
-                return cfg, str(owner.device)
-            frame = frame.f_back
-    finally:
-        del frame
-    raise ValueError("env_cfg.scene.spec_fn: rse's pool is added while mjlab's Scene builds the scene (ManagerBasedRlEnv)")
+    def scene(frame: Any) -> Any:
+        owner = frame.f_locals.get("self")
+        if isinstance(owner, Scene):
+            return private.getattr_checked(owner, "_cfg", "mjlab"), str(owner.device)
+        return None
+
+    found = _on_the_stack(scene)
+    if found is None:
+        raise ValueError("env_cfg.scene.spec_fn: rse's pool is added while mjlab's Scene builds the scene (ManagerBasedRlEnv)")
+    return found
 
 
 def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: float = 0.3) -> Any:

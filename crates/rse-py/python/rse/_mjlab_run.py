@@ -9,6 +9,7 @@ path."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 from pathlib import Path
@@ -78,21 +79,34 @@ def write(run_dir: Path, terrain: Any, env_offset: int = 0) -> None:
 
 
 def run_terrain(checkpoint: str) -> Optional[dict[str, Any]]:
-    """What a checkpoint's run trained on, as ``EnvTerrainCfg`` fields —
-    ``scheme`` (its copy's path) or ``schemes`` (copies and proportions),
-    and ``seed`` — or None where the run recorded nothing."""
+    """What a checkpoint's run trained on, as the ``EnvTerrainCfg`` fields
+    that say it, each given — ``scheme`` (its copy's path, ``""`` for a
+    mix), ``schemes`` (a mix's copies and proportions, ``{}`` for one
+    scheme) and ``seed`` — or None where the run recorded nothing."""
     params = Path(checkpoint).resolve().parent / "params"
     saved = read_record(params)
     if not saved:
         return None
-    fields: dict[str, Any] = {"seed": saved.get("seed")}
     if "schemes" in saved:
-        fields["schemes"] = {str(params / MIX_FOLDER / f"{n}.csv"): m["proportion"] for n, m in saved["schemes"].items()}
-    elif (params / SCHEME_FILE).is_file():
-        fields["scheme"] = str(params / SCHEME_FILE)
-    else:
-        return None
-    return fields
+        mix = {str(params / MIX_FOLDER / f"{n}.csv"): m["proportion"] for n, m in saved["schemes"].items()}
+        return {"scheme": "", "schemes": mix, "seed": saved.get("seed")}
+    if (params / SCHEME_FILE).is_file():
+        return {"scheme": str(params / SCHEME_FILE), "schemes": {}, "seed": saved.get("seed")}
+    return None
+
+
+def load_policy(task: str, env: Any, checkpoint: str, device: str) -> tuple[Any, Any]:
+    """``env`` wrapped for rsl-rl and the inference policy of
+    ``checkpoint`` (its actor), loaded by ``task``'s runner as mjlab's
+    ``play`` loads it."""
+    from mjlab.rl import MjlabOnPolicyRunner, RslRlVecEnvWrapper
+    from mjlab.tasks.registry import load_rl_cfg, load_runner_cls
+
+    agent_cfg = load_rl_cfg(task)
+    wrapped = RslRlVecEnvWrapper(env, clip_actions=agent_cfg.clip_actions)
+    runner = (load_runner_cls(task) or MjlabOnPolicyRunner)(wrapped, dataclasses.asdict(agent_cfg), device=device)
+    runner.load(checkpoint, load_cfg={"actor": True}, strict=True, map_location=device)
+    return wrapped, runner.get_inference_policy(device=device)
 
 
 def read_record(params: Path) -> dict[str, Any]:

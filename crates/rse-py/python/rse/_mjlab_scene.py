@@ -118,11 +118,13 @@ class EnvTerrainCfg(TerrainEntityCfg):
 
 class Mix(NamedTuple):
     """The schemes of ``EnvTerrainCfg.schemes``, read: names (file names,
-    else ``scheme1`` …), ``rse.Scheme``s and proportions, in order."""
+    else ``scheme1`` …), ``rse.Scheme``s, proportions and the texts they
+    were read from, in order."""
 
     names: list[str]
     schemes: list[Any]
     proportions: list[float]
+    texts: list[str]
 
 
 def mix_names(keys: list[str]) -> list[str]:
@@ -152,17 +154,23 @@ def scheme_text(scheme: str, field_name: str = "scheme") -> str:
         raise ValueError(f"{flag(field_name)} {scheme}: not a text file (a scheme is a CSV file)") from None
 
 
+def sha256(text: str) -> str:
+    """SHA-256 of ``text``'s UTF-8 bytes, as ``sha256sum`` prints it."""
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
 def read_mix(schemes: dict[str, float]) -> Mix:
     """``EnvTerrainCfg.schemes`` read, each scheme checked; refused naming
     the flag (and the file, line and field of a bad row)."""
     from rse._rse import Scheme
 
     keys = list(schemes)
-    read = []
+    read, texts = [], []
     for i, key in enumerate(keys):
         origin = key if "\n" not in key else f"env.scene.terrain.schemes (scheme {i + 1})"
+        texts.append(scheme_text(key, "schemes"))
         try:
-            read.append(Scheme.from_csv(scheme_text(key, "schemes"), origin))
+            read.append(Scheme.from_csv(texts[-1], origin))
         except ValueError as e:
             raise ValueError(f"{flag('schemes')}: {e}") from None
     proportions = []
@@ -171,7 +179,7 @@ def read_mix(schemes: dict[str, float]) -> Mix:
             proportions.append(float(p))
         except (TypeError, ValueError):
             raise ValueError(f"{flag('schemes')}: {key}'s proportion {p!r} is not a number") from None
-    return Mix(mix_names(keys), read, proportions)
+    return Mix(mix_names(keys), read, proportions, texts)
 
 
 def check(cfg: EnvTerrainCfg) -> None:
@@ -218,12 +226,9 @@ def check(cfg: EnvTerrainCfg) -> None:
             raise ValueError(f"{flag('schemes')}: {str(e).partition(': ')[2]}") from None
         raise ValueError(f"{FLAG[:-1]}: {e}") from None
     cfg.scheme_csv = text
-    cfg.scheme_sha256 = hashlib.sha256(text.encode("utf-8")).hexdigest() if text else ""
-    cfg.schemes_csv = {}
-    cfg.schemes_sha256 = {}
-    if mix is not None:
-        for name, key in zip(mix.names, cfg.schemes):
-            cfg.schemes_csv[name] = scheme_text(key, "schemes")
-            cfg.schemes_sha256[name] = hashlib.sha256(cfg.schemes_csv[name].encode("utf-8")).hexdigest()
+    cfg.scheme_sha256 = sha256(text) if text else ""
+    # A mix's texts as read_mix read them: each file once.
+    cfg.schemes_csv = dict(zip(mix.names, mix.texts)) if mix else {}
+    cfg.schemes_sha256 = {name: sha256(t) for name, t in cfg.schemes_csv.items()}
     cfg.rse_version = rse.__version__
     cfg.difficulty_rule = rse.DIFFICULTY_RULE

@@ -91,11 +91,10 @@ def evaluate(
     per-episode figures."""
     import mjlab.tasks  # noqa: F401  (registers the tasks)
     from mjlab.envs import ManagerBasedRlEnv
-    from mjlab.rl import MjlabOnPolicyRunner, RslRlVecEnvWrapper
-    from mjlab.tasks.registry import load_env_cfg, load_rl_cfg, load_runner_cls
+    from mjlab.tasks.registry import load_env_cfg
 
     from rse._mjlab_envs import _event, use_env_terrains
-    from rse._mjlab_run import run_terrain
+    from rse._mjlab_run import load_policy, run_terrain
     from rse.mjlab_tasks import STEPFIELD
 
     if levels < 1 or per_level < 1:
@@ -136,12 +135,7 @@ def evaluate(
         level_of = np.arange(n) // per_level
         difficulty = level_of / max(levels - 1, 1)
         event.envs.difficulty[:] = difficulty
-        agent_cfg = load_rl_cfg(task)
-        wrapped = RslRlVecEnvWrapper(env, clip_actions=agent_cfg.clip_actions)
-        runner_cls = load_runner_cls(task) or MjlabOnPolicyRunner
-        runner = runner_cls(wrapped, asdict(agent_cfg), device=device)
-        runner.load(checkpoint, load_cfg={"actor": True}, strict=True, map_location=device)
-        policy = runner.get_inference_policy(device=device)
+        wrapped, policy = load_policy(task, env, checkpoint, device)
         # Every env's evaluated terrain: its next episode, at its level.
         wrapped.reset()
         # Half a terrain ahead: its far edge, from its centre.

@@ -45,11 +45,10 @@ def record(
         pass
     import mjlab.tasks  # noqa: F401  (registers the tasks)
     from mjlab.envs import ManagerBasedRlEnv
-    from mjlab.rl import MjlabOnPolicyRunner, RslRlVecEnvWrapper
-    from mjlab.tasks.registry import load_env_cfg, load_rl_cfg, load_runner_cls
+    from mjlab.tasks.registry import load_env_cfg
     from mjlab.utils.wrappers import VideoRecorder
 
-    from rse._mjlab_run import run_terrain
+    from rse._mjlab_run import load_policy, run_terrain
 
     if steps < 1 or num_envs < 1:
         raise ValueError(f"steps and num_envs: {steps}, {num_envs}; expected 1 or more")
@@ -59,26 +58,20 @@ def record(
     cfg.scene.num_envs = num_envs
     recorded = run_terrain(checkpoint)
     if recorded is not None and type(cfg.scene.terrain).__name__ == "EnvTerrainCfg":
-        if "scheme" in recorded:
-            recorded["schemes"] = {}
         cfg.scene.terrain = dataclasses.replace(cfg.scene.terrain, **recorded)
         print(f"rse.mjlab_video: the terrains the run trained on (seed {recorded['seed']})", file=sys.stderr)
     out = Path(folder) if folder is not None else Path(checkpoint).resolve().parent / "videos" / "rse"
     env: Any = ManagerBasedRlEnv(cfg, device=device, render_mode="rgb_array")
     env = VideoRecorder(env, video_folder=out, step_trigger=lambda step: step == 0, video_length=steps, disable_logger=True)
-    agent_cfg = load_rl_cfg(task)
-    wrapped = RslRlVecEnvWrapper(env, clip_actions=agent_cfg.clip_actions)
     try:
-        runner = (load_runner_cls(task) or MjlabOnPolicyRunner)(wrapped, dataclasses.asdict(agent_cfg), device=device)
-        runner.load(checkpoint, load_cfg={"actor": True}, strict=True, map_location=device)
-        policy = runner.get_inference_policy(device=device)
+        wrapped, policy = load_policy(task, env, checkpoint, device)
         obs = wrapped.get_observations()
         for _ in range(steps):
             with torch.inference_mode():
                 obs, *_ = wrapped.step(policy(obs))
     finally:
         # Closing the recorder writes the video out.
-        wrapped.close()
+        env.close()
     videos = sorted(out.glob("*.mp4"), key=lambda p: p.stat().st_mtime)
     if not videos:
         raise RuntimeError(f"no video was written into {out}")
