@@ -21,10 +21,6 @@ pub const MAX_XML_DEPTH: usize = 256;
 /// of the line. Ours have one.
 pub const MAX_OBJ_OBJECTS: usize = 1024;
 
-/// Relative tolerance of lengths and volumes read back from a mesh file:
-/// OBJ coordinates are printed from `f32`, about 7 significant digits.
-pub const MESH_RELATIVE_TOLERANCE: f64 = 1e-5;
-
 /// The cell visits one world's rebuild may cost under `check`'s default
 /// budget ([`rse_world::RebuildCost`], [`rse_world::VISIT_NANOS`] each):
 /// some 100 s on one core of the development machine, room for any

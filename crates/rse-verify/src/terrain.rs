@@ -2,11 +2,12 @@
 //! manifest: the heightmap cell by cell, and every OBJ re-read against
 //! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
-use rse_core::mesh::invariants::{bounding_box, lattice_faults, volume};
+use rse_core::mesh::LatticeVolume;
+use rse_core::mesh::invariants::lattice_faults;
 use rse_core::{Heightmap, HeightmapCsvError, Terrain};
 
 use crate::fault::FaultKind;
-use crate::limits::{MAX_OBJ_OBJECTS, MESH_RELATIVE_TOLERANCE};
+use crate::limits::MAX_OBJ_OBJECTS;
 
 /// Why `heightmap.csv` (its `bytes`) is not `terrain`'s heightmap; `None`
 /// when it is, or when it differs only in format (the byte comparison
@@ -147,16 +148,17 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
 }
 
 /// Faults of `mesh` as the mesh of `terrain`: docs/meshes.md first; then, for a
-/// sound mesh, volume, bounding box and top heights.
+/// sound mesh, volume, bounding box and top heights. Every vertex of the
+/// terrain's mesh is a lattice point rounded to `f32`: mapped back, each
+/// of these is decided exactly, in whole numbers (a true corner a few
+/// microns off a long, thin wall triangle's edge is a corner, not a
+/// T-junction as an `f32` tolerance took it to be; a volume summed from
+/// `f32` vertices drifted past its tolerance on a 1×1,000,000 strip).
 pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> {
-    // Every vertex of the terrain's mesh is a lattice point rounded to f32:
-    // mapped back, the invariants are decided exactly (a true corner a few
-    // microns off a long, thin wall triangle's edge is a corner, not a
-    // T-junction as an f32 tolerance took it to be).
     let units = terrain.mesh_units();
-    let mut points = Vec::with_capacity(mesh.vertices.len());
+    let mut levels = Vec::with_capacity(mesh.vertices.len());
     for (i, &v) in mesh.vertices.iter().enumerate() {
-        let Some(point) = units.snap(v) else {
+        let Some(level) = units.snap_level(v) else {
             return vec![FaultKind::BadMesh {
                 faults: 1,
                 first: format!(
@@ -168,8 +170,9 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
                 ),
             }];
         };
-        points.push(point);
+        levels.push(level);
     }
+    let points: Vec<[i128; 3]> = levels.iter().map(|&p| units.lattice_point(p)).collect();
     let positions: Vec<[f64; 3]> = points.iter().map(|&p| units.position(p)).collect();
     let broken = lattice_faults(&points, &positions, &mesh.triangles);
     if let Some(first) = broken.first() {
@@ -180,23 +183,24 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
     }
     let mut faults = Vec::new();
     let map = terrain.heightmap();
-    let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
-    let top = |x: u32, y: u32| base + f64::from(map.get(x, y)) * step;
+    let top = |x: u32, y: u32| units.top_level(map.get(x, y));
     let solid: Vec<(u32, u32)> = (0..map.ny())
         .flat_map(|y| (0..map.nx()).map(move |x| (x, y)))
-        .filter(|&(x, y)| top(x, y) > 0.0)
+        .filter(|&(x, y)| top(x, y) > 0)
         .collect();
-    let expected: f64 = solid.iter().map(|&(x, y)| s * s * top(x, y)).sum();
-    let measured = volume(&mesh.vertices, &mesh.triangles);
-    if (measured - expected).abs() > MESH_RELATIVE_TOLERANCE * expected.max(1e-3) {
-        faults.push(FaultKind::VolumeDiffers { measured, expected });
+    let steps: u64 = solid.iter().map(|&(x, y)| u64::from(map.get(x, y))).sum();
+    let expected = LatticeVolume::of_solid(solid.len() as u64, steps);
+    let measured = LatticeVolume::of(&levels, &mesh.triangles);
+    if !measured.same_as(expected, units) {
+        faults.push(FaultKind::VolumeDiffers {
+            measured: measured.cubic_metres(units),
+            expected: expected.cubic_metres(units),
+        });
     }
-    let close = |a: f64, b: f64| (a - b).abs() <= MESH_RELATIVE_TOLERANCE * b.abs().max(1.0);
     let want = solid
         .iter()
-        .fold(None, |acc: Option<[[f64; 3]; 2]>, &(x, y)| {
-            let lo = [f64::from(x) * s, f64::from(y) * s, 0.0];
-            let hi = [f64::from(x + 1) * s, f64::from(y + 1) * s, top(x, y)];
+        .fold(None, |acc: Option<[[u32; 3]; 2]>, &(x, y)| {
+            let (lo, hi) = ([x, y, 0], [x + 1, y + 1, top(x, y)]);
             Some(match acc {
                 None => [lo, hi],
                 Some([a, b]) => [
@@ -205,36 +209,55 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
                 ],
             })
         });
-    let got = bounding_box(&mesh.vertices).map(|(lo, hi)| [lo, hi]);
-    let same = match (got, want) {
-        (None, None) => true,
-        (Some([lo, hi]), Some([a, b])) => (0..3).all(|i| close(lo[i], a[i]) && close(hi[i], b[i])),
-        _ => false,
-    };
-    if !same {
+    let got = levels.iter().fold(None, |acc: Option<[[u32; 3]; 2]>, &p| {
+        Some(match acc {
+            None => [p, p],
+            Some([a, b]) => [
+                std::array::from_fn(|i| a[i].min(p[i])),
+                std::array::from_fn(|i| b[i].max(p[i])),
+            ],
+        })
+    });
+    if got != want {
+        let metres = |b: Option<[[u32; 3]; 2]>| {
+            b.map(|corners| {
+                corners.map(|[x, y, level]| {
+                    [
+                        f64::from(x) * units.block_size,
+                        f64::from(y) * units.block_size,
+                        units.z(level),
+                    ]
+                })
+            })
+        };
         faults.push(FaultKind::BoundsDiffer {
-            measured: got,
-            expected: want,
+            measured: metres(got),
+            expected: metres(want),
         });
         return faults; // tops beyond the grid would be looked up off the map
     }
-    // Every upward face lies on the top of the cells under it.
+    // Every upward face lies on the top of the cells under it: a level
+    // above the ground, seen counter-clockwise from above, over the cell
+    // of its centroid (corners are whole cells: the centroid's cell is
+    // their sum divided by 3, rounded down).
     for t in &mesh.triangles {
-        let [p, q, r] = t.map(|i| mesh.vertices[i as usize].map(f64::from));
-        let nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
-        if nz <= 0.0 || !(close(p[2], q[2]) && close(q[2], r[2])) || p[2] == 0.0 {
+        let [p, q, r] = t.map(|i| levels[i as usize].map(i64::from));
+        let up = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+        if up <= 0 || p[2] != q[2] || q[2] != r[2] || p[2] == 0 {
             continue;
         }
-        let (cx, cy) = ((p[0] + q[0] + r[0]) / 3.0, (p[1] + q[1] + r[1]) / 3.0);
-        let (x, y) = ((cx / s).floor(), (cy / s).floor());
-        let on_map = x >= 0.0 && y >= 0.0 && x < f64::from(map.nx()) && y < f64::from(map.ny());
-        let (x, y) = (x as u32, y as u32);
-        if !on_map || !close(p[2], top(x, y)) {
+        let (x, y) = (
+            ((p[0] + q[0] + r[0]) / 3) as u32,
+            ((p[1] + q[1] + r[1]) / 3) as u32,
+        );
+        // Within the bounding box just checked: on the map.
+        let (x, y) = (x.min(map.nx() - 1), y.min(map.ny() - 1));
+        if p[2] != i64::from(top(x, y)) {
             faults.push(FaultKind::TopMisplaced {
                 x,
                 y,
-                z: p[2],
-                top: if on_map { top(x, y) } else { 0.0 },
+                z: units.z(p[2] as u32),
+                top: units.z(top(x, y)),
             });
             break;
         }

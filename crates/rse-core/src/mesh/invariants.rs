@@ -3,6 +3,9 @@
 //! its volume and bounding box. Works on any mesh, ours or one read from disk.
 
 use std::collections::HashMap;
+use std::ops::ControlFlow;
+
+use super::segment_buckets;
 
 /// A way in which a mesh breaks the invariants.
 #[derive(Debug, Clone, PartialEq)]
@@ -136,7 +139,7 @@ pub fn faults(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Vec<MeshFault> {
         let off = sub(w, d.map(|c| c * t));
         t > 1e-9 && t < 1.0 - 1e-9 && length(off) < tolerance
     };
-    checked(&positions, triangles, &degenerate, &on_edge)
+    checked(&positions, triangles, tolerance, &degenerate, &on_edge)
 }
 
 /// Every fault of a mesh whose vertices are points of a lattice, exactly:
@@ -175,14 +178,16 @@ pub fn lattice_faults(
             && (0..3).all(|i| p[i].min(q[i]) <= w[i] && w[i] <= p[i].max(q[i]))
             && collinear(p, q, w)
     };
-    checked(positions, triangles, &degenerate, &on_edge)
+    checked(positions, triangles, 0.0, &degenerate, &on_edge)
 }
 
 /// The checks of [`faults`] and [`lattice_faults`], with their two tests:
-/// is a triangle degenerate, does vertex `v` lie inside edge `a–b`.
+/// is a triangle degenerate, does vertex `v` lie inside edge `a–b` (at
+/// most `margin` off it).
 fn checked(
     positions: &[[f64; 3]],
     triangles: &[[u32; 3]],
+    margin: f64,
     degenerate: &dyn Fn([u32; 3]) -> bool,
     on_edge: &dyn Fn(u32, u32, u32) -> bool,
 ) -> Vec<MeshFault> {
@@ -241,7 +246,7 @@ fn checked(
             faults.push(MeshFault::Degenerate { triangle: i });
         }
     }
-    faults.extend(t_junctions(positions, &edges, on_edge));
+    faults.extend(t_junctions(positions, margin, &edges, on_edge));
     faults
 }
 
@@ -302,9 +307,12 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 }
 
 /// Vertices lying strictly inside an edge (`on_edge`), found through a grid
-/// of buckets over `positions`.
+/// of buckets over `positions`: each edge tests the vertices of the buckets
+/// within `margin` of it (the farthest off an edge `on_edge` still calls on
+/// it).
 fn t_junctions(
     positions: &[[f64; 3]],
+    margin: f64,
     edges: &[Edge],
     on_edge: &dyn Fn(u32, u32, u32) -> bool,
 ) -> Vec<MeshFault> {
@@ -326,22 +334,18 @@ fn t_junctions(
         .saturating_mul((undirected.len() + positions.len()) as u64)
         .saturating_add(MIN_SEARCH_STEPS);
     // Buckets as small as the shortest edge keep few vertices in each; but
-    // an edge thousands of times longer (a 65,535-step tower) would walk
-    // thousands of them. Double the bucket until the walk fits half the
-    // budget. The walk's length is counted before it starts (casts
-    // saturate, spans are summed in u128): bounded, whatever the
-    // coordinates.
-    let bucket_of = |size: f64| move |p: [f64; 3]| p.map(|c| (c / size).floor() as i64);
+    // an edge thousands of times longer (a 65,535-step tower) walks
+    // thousands of them. Double the bucket until the walks fit half the
+    // budget. Each edge walks the buckets along it (`segment_buckets`), so
+    // the walks grow with the edges' lengths, not their boxes' volumes (a
+    // long diagonal across a tall wall once walked ~10⁵ buckets of its
+    // box). The walks' length is counted before they start (saturating):
+    // bounded, whatever the coordinates.
     let visits = |size: f64| {
-        let bucket = bucket_of(size);
         undirected
             .iter()
             .map(|&(a, b)| {
-                let (p, q) = (positions[a as usize], positions[b as usize]);
-                let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
-                (0..3).fold(1u128, |n, i| {
-                    n.saturating_mul((i128::from(hi[i]) - i128::from(lo[i])) as u128 + 1)
-                })
+                segment_buckets::count(positions[a as usize], positions[b as usize], size)
             })
             .fold(0u128, u128::saturating_add)
     };
@@ -349,7 +353,7 @@ fn t_junctions(
     while visits(size) > u128::from(budget / 2) && (size * 2.0).is_finite() {
         size *= 2.0;
     }
-    let bucket = bucket_of(size);
+    let bucket = |p: [f64; 3]| p.map(|c| (c / size).floor() as i64);
     let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
     for (v, &p) in positions.iter().enumerate() {
         buckets.entry(bucket(p)).or_default().push(v as u32);
@@ -358,32 +362,28 @@ fn t_junctions(
     // Every bucket visited and every vertex tested is a step; past the
     // budget the mesh is reported instead of searched.
     let mut steps = 0u64;
-    let too_irregular = |steps: u64| {
-        vec![MeshFault::TooIrregular {
-            search_steps: steps,
-        }]
-    };
     for &(a, b) in &undirected {
         let (p, q) = (positions[a as usize], positions[b as usize]);
-        let (lo, hi) = (bucket(min3(p, q)), bucket(max3(p, q)));
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    let inside = buckets.get(&[x, y, z]).map_or(&[][..], Vec::as_slice);
-                    steps = steps.saturating_add(1 + inside.len() as u64);
-                    if steps > budget {
-                        return too_irregular(steps);
-                    }
-                    for &v in inside {
-                        if v != a && v != b && on_edge(v, a, b) {
-                            found.push(MeshFault::TJunction {
-                                vertex: v,
-                                edge: [a, b],
-                            });
-                        }
-                    }
+        let walked = segment_buckets::walk(p, q, size, margin, |at| {
+            let inside = buckets.get(&at).map_or(&[][..], Vec::as_slice);
+            steps = steps.saturating_add(1 + inside.len() as u64);
+            if steps > budget {
+                return ControlFlow::Break(());
+            }
+            for &v in inside {
+                if v != a && v != b && on_edge(v, a, b) {
+                    found.push(MeshFault::TJunction {
+                        vertex: v,
+                        edge: [a, b],
+                    });
                 }
             }
+            ControlFlow::Continue(())
+        });
+        if walked.is_break() {
+            return vec![MeshFault::TooIrregular {
+                search_steps: steps,
+            }];
         }
     }
     found.sort_by_key(|f| match f {
@@ -402,6 +402,87 @@ pub fn volume(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> f64 {
             dot(p, cross(q, r)) / 6.0
         })
         .sum()
+}
+
+/// The volume a mesh of lattice points encloses, in whole numbers: `6·V`
+/// is `base·slab + step·steps` cell areas (the divergence theorem with the
+/// field `(0, 0, z)`: each triangle adds its signed area seen from above
+/// times its mean height, and a height is `base + (level − 1)·step`). The
+/// solid of a terrain is `6·(cells·base + Σh·step)`: compared term by term,
+/// exactly, however long the grid (an `f32` sum drifted 1e-5 on a
+/// 1×1,000,000 strip).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LatticeVolume {
+    /// Six times the cell areas of slab (`base`) enclosed.
+    pub slab: i128,
+    /// Six times the cell areas of steps (`step_height`) enclosed.
+    pub steps: i128,
+}
+
+impl LatticeVolume {
+    /// The volume of the mesh `triangles` over `levels` (`[x, y, level]`
+    /// per vertex, level 0 the ground, `L > 0` at `base + (L − 1)·step`).
+    /// Sums stay far inside `i128`: a term is below 2^85, and a mesh has
+    /// fewer than 2^32 triangles.
+    ///
+    /// # Panics
+    /// If a triangle names a vertex `levels` does not have.
+    pub fn of(levels: &[[u32; 3]], triangles: &[[u32; 3]]) -> Self {
+        let mut volume = LatticeVolume { slab: 0, steps: 0 };
+        for t in triangles {
+            let [p, q, r] = t.map(|v| levels[v as usize].map(i128::from));
+            let area2 = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+            let raised = [p, q, r].iter().filter(|c| c[2] > 0).count() as i128;
+            let steps: i128 = [p, q, r].iter().map(|c| (c[2] - 1).max(0)).sum();
+            volume.slab += area2 * raised;
+            volume.steps += area2 * steps;
+        }
+        volume
+    }
+
+    /// The volume of the solid of `cells` raised cells whose heights sum
+    /// to `steps` steps.
+    pub fn of_solid(cells: u64, steps: u64) -> Self {
+        LatticeVolume {
+            slab: 6 * i128::from(cells),
+            steps: 6 * i128::from(steps),
+        }
+    }
+
+    /// Whether the two volumes are the same number of cubic metres for
+    /// `units`, exactly: `base·Δslab + step·Δsteps = 0` with `base` and
+    /// `step` as whole multiples of their binary unit, reduced by their
+    /// greatest common divisor so nothing overflows.
+    pub fn same_as(self, other: LatticeVolume, units: super::MeshUnits) -> bool {
+        let (_, base, step) = units.height_unit();
+        let (d_slab, d_steps) = (self.slab - other.slab, self.steps - other.steps);
+        let g = gcd(base, step).max(1);
+        let (base, step) = (base / g, step / g);
+        // base·Δslab = −step·Δsteps with base, step coprime: Δslab = m·step
+        // and Δsteps = −m·base for a whole m.
+        if step == 0 {
+            return d_slab == 0;
+        }
+        if d_slab % step != 0 {
+            return false;
+        }
+        let m = d_slab / step;
+        m.checked_mul(base).and_then(i128::checked_neg) == Some(d_steps)
+    }
+
+    /// In cubic metres, for cells of side `block_size`.
+    pub fn cubic_metres(self, units: super::MeshUnits) -> f64 {
+        let s = units.block_size;
+        s * s * (units.base * self.slab as f64 + units.step_height * self.steps as f64) / 6.0
+    }
+}
+
+/// The greatest common divisor of two whole numbers ≥ 0 (0 for two 0s).
+fn gcd(mut a: i128, mut b: i128) -> i128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.abs()
 }
 
 /// `(min, max)` corners of the vertices' bounding box (`None` when empty).

@@ -5,12 +5,14 @@ mod cover;
 mod faces;
 pub mod invariants;
 pub mod naive;
+mod segment_buckets;
 mod staircase;
 mod stitch;
 mod weld;
 
 pub use boxes::{Block, boxes};
 pub use faces::Normal;
+pub use invariants::LatticeVolume;
 
 use faces::LatticePoint;
 
@@ -94,7 +96,7 @@ pub struct MeshUnits {
 impl MeshUnits {
     /// The height in metres of a lattice level: 0 is the ground, `h + 1`
     /// the top of a cell of `h` steps.
-    pub(crate) fn z(self, level: u32) -> f64 {
+    pub fn z(self, level: u32) -> f64 {
         if level == 0 {
             0.0
         } else {
@@ -144,6 +146,13 @@ impl MeshUnits {
     /// coordinates are not the rounding of a cell corner, the ground or a
     /// cell's top).
     pub fn snap(self, v: [f32; 3]) -> Option<[i128; 3]> {
+        self.snap_level(v).map(|p| self.lattice_point(p))
+    }
+
+    /// The lattice point `[x, y, level]` (cell corners, and the level code
+    /// of [`MeshUnits::z`]: 0 the ground, `h + 1` a top of `h` steps) whose
+    /// vertex the mesher writes as `v`, or `None` as for [`MeshUnits::snap`].
+    pub fn snap_level(self, v: [f32; 3]) -> Option<[u32; 3]> {
         let s = self.block_size;
         let corner = |c: f32| {
             let i = (f64::from(c) / s).round();
@@ -160,7 +169,17 @@ impl MeshUnits {
             let level = (k as u32) + 1;
             (ok && (self.z(level) as f32).to_bits() == v[2].to_bits()).then_some(level)?
         };
-        Some(self.lattice_point([x, y, level]))
+        Some([x, y, level])
+    }
+
+    /// The level code of the top of a cell of `h` steps: `h + 1`, or 0 (the
+    /// ground) for a cell of 0 steps with no slab under the grid.
+    pub fn top_level(self, h: u16) -> u32 {
+        if h == 0 && self.base <= 0.0 {
+            0
+        } else {
+            u32::from(h) + 1
+        }
     }
 }
 
