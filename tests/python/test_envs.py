@@ -113,6 +113,35 @@ def test_bad_arguments_name_themselves() -> None:
     assert envs.episode.tolist() == [0, 0, 0, 0], "nothing changed"
 
 
+def test_every_buffer_of_bytes_is_refused_as_ids_and_bools_as_difficulties() -> None:
+    """Fifth hardening round: a memoryview of b"\\x00\\x03" was read as envs
+    0 and 3 (bytes were refused), and difficulty=[True, False] as 1.0 and
+    0.0. One rule for every buffer; a bool is never a difficulty."""
+    from rse._adapters.ids import env_ids
+
+    envs = rse.EnvTerrains(SMALL, 4)
+    for raw in (b"\x00\x03", bytearray(b"\x00\x03"), memoryview(b"\x00\x03"), memoryview(bytearray(b"\x03"))):
+        with pytest.raises(ValueError, match="^env_ids: expected a sequence of environment numbers"):
+            envs.reset(raw)
+        with pytest.raises(ValueError, match="^env_ids: expected a sequence of environment numbers"):
+            env_ids(4, raw)
+    for flags in ([True, False], np.array([True, False]), True, np.bool_(False)):
+        with pytest.raises(TypeError, match="^difficulty: expected a number from 0 to 1"):
+            envs.reset([0, 1], difficulty=flags)
+    with pytest.raises(TypeError, match="^difficulty"):
+        envs.difficulty = [True] * 4
+    with pytest.raises(TypeError, match="^difficulty"):
+        rse.EnvTerrains(SMALL, 2, difficulty=True)
+    with pytest.raises(TypeError, match="^difficulty"):
+        SMALL.generate(difficulty=False)
+    assert envs.episode.tolist() == [0, 0, 0, 0], "nothing changed"
+    # Numbers, one or one per id, numpy's too, are still difficulties.
+    envs.reset([0, 1], difficulty=np.array([0.25, 1]))
+    envs.reset([2], difficulty=np.float32(0.5))
+    envs.reset([3], difficulty=0)
+    assert envs.difficulty.tolist() == [0.25, 1.0, 0.5, 0.0]
+
+
 class DLPackOnly:
     """An array that offers DLPack alone (as a torch CPU tensor would)."""
 

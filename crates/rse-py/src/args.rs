@@ -45,6 +45,27 @@ fn real(obj: &Bound<'_, PyAny>) -> Option<f64> {
     obj.extract::<f64>().ok()
 }
 
+/// `True`/`False`, as Python's `bool` or numpy's.
+pub(crate) fn is_bool(obj: &Bound<'_, PyAny>) -> bool {
+    if obj.is_instance_of::<PyBool>() {
+        return true;
+    }
+    let ty = obj.get_type();
+    let module = ty.module().map(|m| m.to_string()).unwrap_or_default();
+    let name = ty.name().map(|n| n.to_string()).unwrap_or_default();
+    module == "numpy" && (name == "bool" || name == "bool_")
+}
+
+/// Raw bytes: `bytes`, `bytearray`, or a `memoryview` (of bytes, or of
+/// any buffer: its items are read as bytes unless it says otherwise, and
+/// a view of `b"\x00\x03"` is not envs 0 and 3). One rule for every
+/// buffer Python hands over as bytes.
+pub(crate) fn is_raw_bytes(obj: &Bound<'_, PyAny>) -> bool {
+    obj.is_instance_of::<PyBytes>()
+        || obj.is_instance_of::<pyo3::types::PyByteArray>()
+        || obj.is_instance_of::<pyo3::types::PyMemoryView>()
+}
+
 fn is_text(obj: &Bound<'_, PyAny>) -> bool {
     obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>()
 }

@@ -9,7 +9,7 @@ use rse_world::{BatchConfig, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
 use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_config, world_options};
-use crate::scheme::{Scheme, difficulty_arg};
+use crate::scheme::{PyDifficulty, Scheme};
 use crate::terrain::Terrain;
 
 /// A rayon pool of `jobs` threads (`None`: one per core).
@@ -28,7 +28,7 @@ pub fn generate_batch(
     amount: u64,
     seed: Option<u64>,
     jobs: Option<usize>,
-    difficulty: Option<f64>,
+    difficulty: Option<PyDifficulty>,
 ) -> PyResult<Vec<Terrain>> {
     let pool = pool(py, jobs)?;
     let scheme = &scheme.inner;
@@ -42,7 +42,7 @@ pub fn generate_batch(
     } = rse_core::WorldRequest {
         seed,
         index: None,
-        difficulty: difficulty.map(difficulty_arg).transpose()?,
+        difficulty: difficulty.map(|d| d.0),
     }
     .resolve(scheme);
     Ok(py.detach(|| {
@@ -72,7 +72,7 @@ pub fn write_worlds<'py>(
     shard: Option<&str>,
     template: Option<std::path::PathBuf>,
     force: bool,
-    difficulty: Option<f64>,
+    difficulty: Option<PyDifficulty>,
     mujoco_collider: Option<PyColliderName>,
     oversample: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -82,7 +82,7 @@ pub fn write_worlds<'py>(
         world: world_config(
             targets,
             mesh,
-            difficulty.map(difficulty_arg).transpose()?,
+            difficulty.map(|d| d.0),
             mujoco_collider,
             oversample,
         ),

@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 
 use crate::errors::world_error;
 use crate::options::PyLayout;
-use crate::scheme::{Scheme, difficulty_arg};
+use crate::scheme::{PyDifficulty, Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
 
 /// The terrains of `num_envs` environments, each new at every reset.
@@ -93,11 +93,9 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 /// the rule of `rse._adapters.ids.env_ids`, which every adapter uses.
 fn env_ids(ids: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<usize>> {
     // Bytes are a sequence of small integers to Python: `b"\x01\x02"` would
-    // read as envs 1 and 2. Text and bytes are never environment numbers.
-    if ids.is_instance_of::<pyo3::types::PyBytes>()
-        || ids.is_instance_of::<pyo3::types::PyByteArray>()
-        || ids.is_instance_of::<pyo3::types::PyString>()
-    {
+    // read as envs 1 and 2. Text and raw bytes (bytes, bytearray, a
+    // memoryview of either) are never environment numbers.
+    if crate::args::is_raw_bytes(ids) || ids.is_instance_of::<pyo3::types::PyString>() {
         return Err(PyValueError::new_err(
             "env_ids: expected a sequence of environment numbers, not bytes or text",
         ));
@@ -224,7 +222,7 @@ impl EnvTerrains {
         num_envs: usize,
         oversample: Option<u32>,
         seed: Option<u64>,
-        difficulty: Option<f64>,
+        difficulty: Option<PyDifficulty>,
         layout: Option<PyLayout>,
         cols: Option<u32>,
         border: Option<u32>,
@@ -261,7 +259,7 @@ impl EnvTerrains {
             oversample,
             seed,
             env_offset,
-            difficulty,
+            difficulty: difficulty.map(|d| d.0.get()),
             layout: layout.map(|l| l.0),
             cols,
             border,
@@ -372,7 +370,7 @@ impl EnvTerrains {
     }
 
     #[setter(difficulty)]
-    fn set_difficulty(&self, py: Python<'_>, values: Vec<f64>) -> PyResult<()> {
+    fn set_difficulty(&self, py: Python<'_>, values: Vec<PyDifficulty>) -> PyResult<()> {
         if values.len() != self.fixed.num_envs {
             return Err(PyValueError::new_err(format!(
                 "difficulty: {} values for {} environments",
@@ -380,9 +378,7 @@ impl EnvTerrains {
                 self.fixed.num_envs
             )));
         }
-        for &d in &values {
-            difficulty_arg(d)?;
-        }
+        let values: Vec<f64> = values.iter().map(|d| d.0.get()).collect();
         let array = self.difficulty.bind(py);
         intact(array, "difficulty", self.fixed.num_envs)?;
         let mut view = array.try_readwrite().map_err(value_error)?;
@@ -445,11 +441,17 @@ impl EnvTerrains {
         self.arrays_intact(py)?;
         let array = self.difficulty.bind(py).clone();
         if let Some(given) = difficulty {
-            let values: Vec<f64> = match given.extract::<f64>() {
-                Ok(one) => vec![one; envs.len()],
-                Err(_) => given.extract().map_err(|_| {
-                    PyValueError::new_err("difficulty: expected a number or one per env id")
-                })?,
+            let values: Vec<f64> = match given.extract::<PyDifficulty>() {
+                Ok(one) => vec![one.0.get(); envs.len()],
+                // A bool, text, or a number out of range: its own error.
+                Err(e) if given.try_iter().is_err() || crate::args::is_bool(given) => {
+                    return Err(e);
+                }
+                Err(_) => given
+                    .extract::<Vec<PyDifficulty>>()?
+                    .iter()
+                    .map(|d| d.0.get())
+                    .collect(),
             };
             if values.len() != envs.len() {
                 return Err(PyValueError::new_err(format!(
@@ -457,9 +459,6 @@ impl EnvTerrains {
                     values.len(),
                     envs.len()
                 )));
-            }
-            for &d in &values {
-                difficulty_arg(d)?;
             }
             let mut view = array.try_readwrite().map_err(value_error)?;
             let slice = view.as_slice_mut().map_err(value_error)?;

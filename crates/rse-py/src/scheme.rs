@@ -407,12 +407,12 @@ impl Scheme {
         py: Python<'_>,
         seed: Option<u64>,
         index: u64,
-        difficulty: Option<f64>,
+        difficulty: Option<PyDifficulty>,
     ) -> PyResult<Terrain> {
         let request = rse_core::WorldRequest {
             seed,
             index: Some(index),
-            difficulty: difficulty.map(difficulty_arg).transpose()?,
+            difficulty: difficulty.map(|d| d.0),
         };
         let scheme = &self.inner;
         let at = request.resolve(scheme);
@@ -458,4 +458,30 @@ impl Scheme {
 /// A `difficulty=` argument, refused with `ValueError` unless `0 ≤ d ≤ 1`.
 pub fn difficulty_arg(d: f64) -> PyResult<rse_core::Difficulty> {
     rse_core::Difficulty::new(d).map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+}
+
+/// A difficulty as Python passes it: a number in [0, 1] (an `int`, a
+/// `float`, a numpy scalar), never `True`/`False` — to Python they are 1
+/// and 0, but `difficulty=[True, False]` is a mask given in the wrong
+/// place, not two difficulties. Every `difficulty` argument reads it.
+pub struct PyDifficulty(pub rse_core::Difficulty);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for PyDifficulty {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if crate::args::is_bool(&obj) {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "difficulty: expected a number from 0 to 1, got {}",
+                crate::args::describe(&obj)
+            )));
+        }
+        let d: f64 = obj.extract().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "difficulty: expected a number from 0 to 1, got {}",
+                crate::args::describe(&obj)
+            ))
+        })?;
+        difficulty_arg(d).map(PyDifficulty)
+    }
 }

@@ -207,6 +207,15 @@ pub enum FaultKind {
         /// The reference as written.
         reference: String,
     },
+    /// A world file names a URI of a scheme its simulator does not resolve
+    /// inside the world (`file:`, `http:`, …): only `model://` (Gazebo) and
+    /// `package://` (URDF) name files a world carries.
+    ForeignUri {
+        /// The URI's scheme, as written.
+        scheme: String,
+        /// The reference as written.
+        reference: String,
+    },
     /// An OBJ file that does not parse, or holds a non-triangle or a
     /// non-finite coordinate.
     BadObj {
@@ -341,6 +350,11 @@ impl std::fmt::Display for FaultKind {
             FaultKind::AbsoluteReference { reference } => write!(
                 f,
                 "names the absolute path {reference} (worlds must be movable)"
+            ),
+            FaultKind::ForeignUri { scheme, reference } => write!(
+                f,
+                "names {reference}, a `{scheme}:` URI (a world names its own files: relative \
+                 paths, model:// in Gazebo files, package:// in URDF)"
             ),
             FaultKind::BadObj { reason } => write!(f, "cannot be read as OBJ: {reason}"),
             FaultKind::BadMesh { faults, first } => write!(

@@ -58,20 +58,40 @@ pub fn check(path: &str, bytes: &[u8], folder: &Folder) -> Vec<Fault> {
     let dir = path.rsplit_once('/').map_or("", |(dir, _)| dir);
     references
         .into_iter()
-        .filter_map(|reference| check_reference(folder, dir, &reference))
+        .filter_map(|reference| check_reference(folder, path, dir, &reference))
         .map(|kind| Fault::of(path, kind))
         .collect()
 }
 
-/// `None` if `reference` (named by a file in `dir`) is in the world.
-fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultKind> {
-    if reference.contains("://") && !reference.starts_with("model://") {
-        return None; // a web address or a package the simulator resolves
-    }
-    if reference.starts_with('/') || reference.contains(":\\") {
+/// `None` if `reference` (named by the file `path`, in `dir`) is in the
+/// world.
+fn check_reference(folder: &Folder, path: &str, dir: &str, reference: &str) -> Option<FaultKind> {
+    if is_absolute(reference) {
         return Some(FaultKind::AbsoluteReference {
             reference: excerpt(reference),
         });
+    }
+    let scheme = uri_scheme(reference);
+    match scheme {
+        None => {}
+        Some(scheme) if own_scheme(path) != Some(scheme) => {
+            return Some(FaultKind::ForeignUri {
+                scheme: excerpt(scheme),
+                reference: excerpt(reference),
+            });
+        }
+        Some("model") => {}
+        // A ROS package the simulator resolves on its own path: nothing of
+        // the world to look for, as long as it cannot climb out of its
+        // package.
+        Some(_) => {
+            return reference
+                .split(['/', '\\'])
+                .any(|part| part == "..")
+                .then(|| FaultKind::OutsideWorld {
+                    path: excerpt(reference),
+                });
+        }
     }
     // Models are looked up on the Gazebo model path: the target folder of
     // the file naming them (`gazebo/`, `gazebo-classic/`).
@@ -89,6 +109,37 @@ fn check_reference(folder: &Folder, dir: &str, reference: &str) -> Option<FaultK
         Some(_) => Some(FaultKind::MissingReference {
             reference: excerpt(reference),
         }),
+    }
+}
+
+/// `true` for a path that names a place whatever folder the world is in:
+/// rooted (`/`, `\\`, `\\\\server`), a drive (`C:\\`, `C:/`, `C:x`), or a
+/// home (`~`).
+fn is_absolute(reference: &str) -> bool {
+    let bytes = reference.as_bytes();
+    let drive = bytes.len() >= 2 && bytes[0].is_ascii_alphabetic() && bytes[1] == b':';
+    reference.starts_with(['/', '\\', '~']) || drive
+}
+
+/// The scheme of a URI (`scheme:` at the start, RFC 3986: a letter, then
+/// letters, digits, `+`, `-`, `.`), or `None` for a path.
+fn uri_scheme(reference: &str) -> Option<&str> {
+    let (scheme, _) = reference.split_once(':')?;
+    let mut chars = scheme.chars();
+    let first = chars.next()?;
+    (first.is_ascii_alphabetic()
+        && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.')))
+    .then_some(scheme)
+}
+
+/// The URI scheme the simulator reading `path` resolves to files of the
+/// world, if any: `model` for Gazebo's SDF files and `model.config`,
+/// `package` for URDF.
+fn own_scheme(path: &str) -> Option<&'static str> {
+    match std::path::Path::new(path).extension()?.to_str()? {
+        "world" | "sdf" | "config" => Some("model"),
+        "urdf" => Some("package"),
+        _ => None,
     }
 }
 
@@ -209,6 +260,52 @@ mod tests {
             usd_asset_paths("references = @./terrain.usda@\n"),
             ["./terrain.usda"]
         );
+    }
+
+    /// Hole 10 of the fifth round: `file:///etc/passwd` passed as a web
+    /// address. Only a target's own scheme names a file; an absolute path
+    /// in any form is a fault.
+    #[test]
+    fn only_a_targets_own_uri_scheme_and_relative_paths_pass() {
+        let dir = tempfile::tempdir().unwrap();
+        let (folder, _) = Folder::list(dir.path());
+        let verdict = |path: &str, reference: &str| {
+            let dir = path.rsplit_once('/').map_or("", |(d, _)| d);
+            match check_reference(&folder, path, dir, reference) {
+                None => "ok",
+                Some(FaultKind::AbsoluteReference { .. }) => "absolute",
+                Some(FaultKind::ForeignUri { .. }) => "foreign",
+                Some(FaultKind::OutsideWorld { .. }) => "outside",
+                Some(FaultKind::MissingReference { .. }) => "missing",
+                Some(other) => panic!("{other:?}"),
+            }
+        };
+        for (path, reference, want) in [
+            ("gazebo/world.sdf", "file:///etc/passwd", "foreign"),
+            ("gazebo/world.sdf", "file:/etc/passwd", "foreign"),
+            ("gazebo/world.sdf", "FILE:terrain.obj", "foreign"),
+            (
+                "gazebo/world.sdf",
+                "https://fuel.gazebosim.org/x",
+                "foreign",
+            ),
+            ("gazebo/world.sdf", "package://p/terrain.obj", "foreign"),
+            ("mujoco/world.xml", "model://rse_terrain", "foreign"),
+            ("webots/world.wbt", "webots://projects/x.png", "foreign"),
+            ("urdf/rse.urdf", "package://p/meshes/terrain.obj", "ok"),
+            ("urdf/rse.urdf", "package://p/../../etc/passwd", "outside"),
+            ("gazebo/world.sdf", "model://rse_terrain", "missing"),
+            ("urdf/rse.urdf", "/etc/passwd", "absolute"),
+            ("urdf/rse.urdf", "\\\\server\\share\\x.obj", "absolute"),
+            ("urdf/rse.urdf", "C:\\x.obj", "absolute"),
+            ("urdf/rse.urdf", "C:/x.obj", "absolute"),
+            ("urdf/rse.urdf", "c:x.obj", "absolute"),
+            ("urdf/rse.urdf", "~/x.obj", "absolute"),
+            ("urdf/rse.urdf", "../meshes/terrain.obj", "missing"),
+            ("urdf/rse.urdf", "../../x.obj", "outside"),
+        ] {
+            assert_eq!(verdict(path, reference), want, "{path}: {reference}");
+        }
     }
 
     #[test]

@@ -17,6 +17,11 @@ def env_ids(num_envs: int, given: Any, argument: str = "env_ids") -> list[int]:
     ``argument`` for an id out of range or a mask of another length."""
     if given is None:
         return list(range(num_envs))
+    # Raw bytes read as small integers (a memoryview of b"\x00\x03" would be
+    # envs 0 and 3), text as nothing: never env ids, whatever buffer holds
+    # them (the rule of rse.EnvTerrains.reset).
+    if isinstance(given, (bytes, bytearray, memoryview, str)):
+        raise ValueError(f"{argument}: expected a sequence of environment numbers, not bytes or text")
     if isinstance(given, slice):
         return list(range(num_envs)[given])
     if hasattr(given, "detach"):  # a torch tensor, maybe on a GPU
