@@ -52,6 +52,7 @@ mod request;
 mod rng;
 mod scheme;
 mod scheme_csv;
+mod scheme_file;
 pub mod spawn;
 mod stamp;
 mod terrain;
@@ -82,6 +83,7 @@ pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind,
 pub use param::{Param, range_parts, range_text};
 pub use request::{WorldAt, WorldRequest};
 pub use scheme::Scheme;
+pub use scheme_file::{MAX_SCHEME_BYTES, read_scheme_file};
 pub use terrain::Terrain;
 
 /// The generator's version, written into every world's manifest.

@@ -113,11 +113,13 @@ impl Scheme {
         })
     }
 
-    /// Reads a scheme CSV file (docs/schemes.md). Errors name the path as given.
+    /// Reads a scheme CSV file (docs/schemes.md): a regular file of at most
+    /// [`MAX_SCHEME_BYTES`](crate::MAX_SCHEME_BYTES) ([`read_scheme_file`](crate::read_scheme_file)).
+    /// Errors name the path as given.
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Error> {
         let path = path.as_ref();
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        let bytes = crate::read_scheme_file(path).map_err(|source| Error::Io {
             path: name.clone(),
             source,
         })?;

@@ -269,11 +269,6 @@ struct OpenRequest {
     path: PathBuf,
 }
 
-/// The largest scheme file the editor opens (16 MiB): far above any table
-/// a person edits, and a stray path to a huge file is refused before it is
-/// read whole.
-pub const MAX_OPEN_BYTES: u64 = 16 << 20;
-
 /// `POST /api/open`: reads the scheme file at `path` (a `.csv`), and makes
 /// it the file Save writes and a reload starts from.
 ///
@@ -289,18 +284,11 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
             &format!("{shown}: a scheme file ends in .csv"),
         ));
     }
-    let read = || -> std::io::Result<String> {
-        let file = std::fs::File::open(&path)?;
-        let size = file.metadata()?.len();
-        if size > MAX_OPEN_BYTES {
-            return Err(std::io::Error::other(format!(
-                "{size} bytes, more than a scheme the editor opens ({MAX_OPEN_BYTES})"
-            )));
-        }
-        std::io::read_to_string(file)
-    };
-    let text = read().map_err(|e| control_error("path", &format!("cannot open {shown}: {e}")))?;
-    let scheme = rse_core::Scheme::from_csv(&text, Some(&shown.to_string()))
+    // A regular file only, its size counted as it is read: a FIFO held a
+    // worker thread for good, a link to /dev/zero (size 0) ran the memory out.
+    let bytes = rse_core::read_scheme_file(&path)
+        .map_err(|e| control_error("path", &format!("cannot open {shown}: {e}")))?;
+    let scheme = rse_core::Scheme::from_csv_bytes(&bytes, Some(&shown.to_string()))
         .map_err(|e| control_error("path", &e.to_string()))?;
     Ok(remember(editor, path, &scheme))
 }
@@ -634,6 +622,35 @@ mod tests {
             path.display().to_string(),
             "a refusal changes nothing"
         );
+    }
+
+    /// Fifth hardening round: a FIFO named `x.csv` blocked a worker thread
+    /// for good (four opens and the page stopped answering), and a link to
+    /// `/dev/zero` (size 0) passed the size cap and was read until memory
+    /// ran out. Open reads regular files only, its cap counted as it reads.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn open_refuses_a_fifo_and_a_device_at_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("fifo.csv");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.unwrap().success(), "mkfifo");
+        let zero = dir.path().join("zero.csv");
+        std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+        let big = dir.path().join("big.csv");
+        std::fs::write(&big, vec![b'#'; (rse_core::MAX_SCHEME_BYTES + 1) as usize]).unwrap();
+        let editor = Editor::default();
+        for (path, said) in [
+            (&fifo, "not a regular file"),
+            (&zero, "not a regular file"),
+            (&big, "larger than any scheme"),
+        ] {
+            let refusal =
+                open(&editor, json!({ "path": path }).to_string().as_bytes()).unwrap_err();
+            let message = refusal["error"]["message"].as_str().unwrap();
+            assert!(message.contains(said), "{}: {message}", path.display());
+        }
+        assert_eq!(state(&editor)["path"], Value::Null, "nothing opened");
     }
 
     /// The preview's cap prices what generation builds: 17,000 gaussian rows
