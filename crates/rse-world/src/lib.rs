@@ -50,7 +50,9 @@ pub use memory::{WORLD_BYTES_PER_CELL, available_bytes};
 pub use record::atlas_record::{AtlasRecord, NamedScheme, PatchRecord, SchemeRecord};
 pub use record::cost::{RebuildCost, VISIT_NANOS};
 pub use record::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, TemplateSet, what_differs};
-pub use record::options::{Collider, MeshMode, MujocoCollider, Target, Targets, WorldOptions};
+pub use record::options::{
+    Collider, MeshFiles, MeshMode, MujocoCollider, Target, Targets, WorldOptions,
+};
 pub use record::rebuild::{Generated, RebuildError, Rebuilt, Recipe};
 pub use render::templates::{
     FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX, MAX_TEMPLATE_BYTES,

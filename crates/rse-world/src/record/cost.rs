@@ -144,7 +144,7 @@ pub(crate) fn before_generating(size: &RecipeSize, options: &WorldOptions) -> Re
     // here at their most per cell, so that step is bounded too.
     let colliders = colliders(options);
     let (mut bytes, mut visits) = (0u64, 0u64);
-    if colliders.contains(&Collider::Mesh) {
+    if options.mesh_files().any() {
         let triangles = size.cells.saturating_mul(MAX_TRIANGLES_PER_CELL);
         bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
         visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
@@ -199,7 +199,11 @@ pub(crate) fn after_generating(
 ) -> RebuildCost {
     let recipe_cost = recipe_part(size, options);
     let colliders = colliders(options);
-    let triangles = if colliders.contains(&Collider::Mesh) {
+    // The mesh is built, written and checked wherever a file holds it: a
+    // target colliding it, and MuJoCo and Gazebo classic drawing it over
+    // their box sets (once unpriced: 23x under on a 300x300 field).
+    let mesh_files = options.mesh_files();
+    let triangles = if mesh_files.any() {
         terrain.mesh().triangles().len() as u64
     } else {
         0
@@ -209,23 +213,25 @@ pub(crate) fn after_generating(
     } else {
         0
     };
-    let (mut file_bytes, mut visits) = (0u64, 0u64);
-    for collider in &colliders {
-        let (bytes, work) = match collider {
-            Collider::Mesh => (
-                triangles.saturating_mul(MESH_FILE_BYTES_PER_TRIANGLE),
-                triangles.saturating_mul(MESH_FILE_VISITS_PER_TRIANGLE),
-            ),
-            Collider::Boxes => (
-                boxes.saturating_mul(BOX_FILE_BYTES_PER_BOX),
-                boxes.saturating_mul(BOX_FILE_VISITS_PER_BOX),
-            ),
-            // Priced from the recipe (its samples).
-            Collider::Hfield => (0, 0),
-        };
-        file_bytes = file_bytes.saturating_add(bytes);
-        visits = visits.saturating_add(work);
-    }
+    // Each mesh file (every OBJ copy, the USD), and each box list.
+    let meshes = mesh_files.objs() + u64::from(mesh_files.usd);
+    let box_lists = colliders.iter().filter(|c| **c == Collider::Boxes).count() as u64;
+    let file_bytes = triangles
+        .saturating_mul(MESH_FILE_BYTES_PER_TRIANGLE)
+        .saturating_mul(meshes)
+        .saturating_add(
+            boxes
+                .saturating_mul(BOX_FILE_BYTES_PER_BOX)
+                .saturating_mul(box_lists),
+        );
+    let visits = triangles
+        .saturating_mul(MESH_FILE_VISITS_PER_TRIANGLE)
+        .saturating_mul(meshes)
+        .saturating_add(
+            boxes
+                .saturating_mul(BOX_FILE_VISITS_PER_BOX)
+                .saturating_mul(box_lists),
+        );
     // Copies of one mesh are checked once.
     let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
         + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(terrain)).log2();

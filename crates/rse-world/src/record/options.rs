@@ -37,6 +37,31 @@ pub struct WorldOptions {
 }
 
 impl WorldOptions {
+    /// The files of the single mesh a world of these options writes (for a
+    /// terrain that is not empty): `meshes/terrain.obj` when `obj` is a
+    /// target or Webots, `MuJoCo` or URDF use the mesh (`MuJoCo` draws it
+    /// over its box set or height field), a copy in each Gazebo model that
+    /// uses it (Gazebo classic draws it over its box set, always), and
+    /// `usd/terrain.usda`. The one rule the writer and `check`'s cost model
+    /// read.
+    pub fn mesh_files(&self) -> MeshFiles {
+        let targets = &self.targets;
+        let meshed = |t: Target| targets.contains(t) && self.mesh.for_target(t) == MeshMode::Single;
+        let shared = targets.contains(Target::Obj)
+            || [Target::Webots, Target::Mujoco, Target::Urdf]
+                .into_iter()
+                .any(meshed);
+        let gazebo = [Target::Gazebo, Target::GazeboClassic]
+            .into_iter()
+            .filter(|&t| meshed(t) || (t == Target::GazeboClassic && targets.contains(t)))
+            .collect();
+        MeshFiles {
+            shared,
+            gazebo,
+            usd: meshed(Target::Usd),
+        }
+    }
+
     /// The rule the heights are rounded by: the recorded one, else
     /// [`DifficultyRule::Nearest`] (worlds from before the record, and
     /// options built without [`WorldConfig`](crate::WorldConfig)).
@@ -244,6 +269,29 @@ impl FromStr for MeshMode {
                 option: "mesh",
                 message: format!("unknown mesh mode {s:?}: expected auto, single or blocks"),
             })
+    }
+}
+
+/// The single mesh's files in a world ([`WorldOptions::mesh_files`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MeshFiles {
+    /// `meshes/terrain.obj`.
+    pub shared: bool,
+    /// The Gazebo targets whose model folder holds a copy of the OBJ.
+    pub gazebo: Vec<Target>,
+    /// `usd/terrain.usda`.
+    pub usd: bool,
+}
+
+impl MeshFiles {
+    /// How many OBJ files (each a copy of one mesh).
+    pub fn objs(&self) -> u64 {
+        u64::from(self.shared) + self.gazebo.len() as u64
+    }
+
+    /// `true` when the world writes the mesh at all (it is built).
+    pub fn any(&self) -> bool {
+        self.objs() > 0 || self.usd
     }
 }
 

@@ -227,26 +227,18 @@ pub(crate) fn terrain_files(
     files.insert("preview.png".to_owned(), preview::png(terrain, None)?);
 
     let boxes = terrain.boxes();
-    let targets = &options.targets;
-    // The targets whose files use the single mesh (per target under `auto`).
-    let meshed = |t: Target| {
-        !boxes.is_empty() && targets.contains(t) && options.mesh.for_target(t) == MeshMode::Single
-    };
-    let shared_mesh = targets.contains(Target::Obj)
-        || [Target::Webots, Target::Mujoco, Target::Urdf]
-            .into_iter()
-            .any(meshed);
     // Each Gazebo's model folder holds its own mesh: the folder is what
     // the model path names, and a model reaches nothing outside it. Gazebo
     // classic draws the mesh over its box set too: a visual per box floods
     // gzserver's message queue (and gzclient's draw calls) on large fields.
-    let gazebo_meshes: Vec<Target> = [Target::Gazebo, Target::GazeboClassic]
-        .into_iter()
-        .filter(|&t| {
-            meshed(t) || (t == Target::GazeboClassic && targets.contains(t) && !boxes.is_empty())
-        })
-        .collect();
-    let usd_mesh = meshed(Target::Usd);
+    let targets = &options.targets;
+    let written = options.mesh_files();
+    let (shared_mesh, gazebo_meshes, usd_mesh) = if boxes.is_empty() {
+        // An empty terrain: no mesh (the targets stand on the floor).
+        (false, Vec::new(), false)
+    } else {
+        (written.shared, written.gazebo, written.usd)
+    };
     if shared_mesh || !gazebo_meshes.is_empty() || usd_mesh {
         let mesh = terrain.mesh();
         let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
