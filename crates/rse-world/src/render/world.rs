@@ -234,8 +234,9 @@ pub(crate) fn terrain_files(
     let targets = &options.targets;
     let written = options.mesh_files();
     let (shared_mesh, gazebo_meshes, usd_mesh) = if boxes.is_empty() {
-        // An empty terrain: no mesh (the targets stand on the floor).
-        (false, Vec::new(), false)
+        // An empty terrain: no mesh (the targets stand on the floor), but
+        // the `obj` target's own (an empty OBJ).
+        (targets.contains(Target::Obj), Vec::new(), false)
     } else {
         (written.shared, written.gazebo, written.usd)
     };
