@@ -207,6 +207,21 @@ pub enum FaultKind {
         /// The reference as written.
         reference: String,
     },
+    /// A world file names more files than any world holds.
+    TooManyReferences {
+        /// The most a file may name.
+        cap: usize,
+    },
+    /// The world's report stops here: this many more faults were found.
+    MoreFaults {
+        /// Faults not listed.
+        more: usize,
+    },
+    /// A world's folder or `rse.json` holds more files than any world.
+    TooManyFiles {
+        /// The most a world may hold.
+        cap: usize,
+    },
     /// A world file names a URI of a scheme its simulator does not resolve
     /// inside the world (`file:`, `http:`, …): only `model://` (Gazebo) and
     /// `package://` (URDF) name files a world carries.
@@ -350,6 +365,15 @@ impl std::fmt::Display for FaultKind {
             FaultKind::AbsoluteReference { reference } => write!(
                 f,
                 "names the absolute path {reference} (worlds must be movable)"
+            ),
+            FaultKind::TooManyReferences { cap } => write!(
+                f,
+                "names more than {cap} files (ours name a handful): not checked further"
+            ),
+            FaultKind::MoreFaults { more } => write!(f, "and {more} more faults, not listed"),
+            FaultKind::TooManyFiles { cap } => write!(
+                f,
+                "holds more than {cap} files (a world holds a few dozen): not checked further"
             ),
             FaultKind::ForeignUri { scheme, reference } => write!(
                 f,

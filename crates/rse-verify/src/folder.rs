@@ -39,8 +39,17 @@ impl Folder {
                 );
             }
         };
+        let listing = open.list();
+        if listing.len() > rse_world::MAX_ENTRIES {
+            // More than any world holds: one fault, nothing read.
+            let cap = rse_world::MAX_ENTRIES;
+            return (
+                folder,
+                vec![Fault::new(None, FaultKind::TooManyFiles { cap })],
+            );
+        }
         let mut faults = Vec::new();
-        for (path, listed) in open.list() {
+        for (path, listed) in listing {
             let at = (!path.is_empty()).then_some(path.as_str());
             match listed {
                 Listed::File { size, .. } => {
@@ -61,6 +70,11 @@ impl Folder {
     /// The listed files' paths, sorted.
     pub fn paths(&self) -> impl Iterator<Item = &str> {
         self.sizes.keys().map(String::as_str)
+    }
+
+    /// The size of the listed regular file `path` when it was listed.
+    pub fn size(&self, path: &str) -> Option<u64> {
+        self.sizes.get(path).copied()
     }
 
     /// `true` when `path` is one of the listed regular files.

@@ -16,6 +16,20 @@ pub use rse_world::{FILE_BYTES_PER_CELL, FIXED_FILE_BYTES};
 /// do) could be overrun by a file nesting thousands.
 pub const MAX_XML_DEPTH: usize = 256;
 
+/// A world's report lists at most this many faults, then how many more
+/// there were: a folder of 100,000 stray files once made a 421 MB report.
+pub const MAX_FAULTS: usize = 100;
+
+/// A world file naming more files than this is a fault, not read further:
+/// ours name a handful, and the references are held while they are
+/// checked (3.1 million in a 60 MiB file once took 1.3 GiB).
+pub const MAX_REFERENCES: usize = 65_536;
+
+/// The most files a world's `rse.json` may list: as many as a world folder
+/// is listed to ([`rse_world::MAX_ENTRIES`]). Each listed file `check`
+/// cannot rebuild is hashed, and 16 MiB of manifest holds ~180,000 names.
+pub use rse_world::MAX_ENTRIES as MAX_MANIFEST_FILES;
+
 /// An OBJ file with more `o` and `g` statements than this is a fault,
 /// not parsed: the reader makes a model of each, tens of times the bytes
 /// of the line. Ours have one.

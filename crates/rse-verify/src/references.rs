@@ -8,7 +8,7 @@ use quick_xml::events::Event;
 
 use crate::fault::{Fault, FaultKind, excerpt, line_of};
 use crate::folder::{Folder, resolve};
-use crate::limits::MAX_XML_DEPTH;
+use crate::limits::{MAX_REFERENCES, MAX_XML_DEPTH};
 
 /// The kinds of world file that name other files.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -55,6 +55,14 @@ pub fn check(path: &str, bytes: &[u8], folder: &Folder) -> Vec<Fault> {
         FileKind::Webots => wbt_urls(text),
         FileKind::Usd => usd_asset_paths(text),
     };
+    if references.len() > MAX_REFERENCES {
+        return vec![Fault::of(
+            path,
+            FaultKind::TooManyReferences {
+                cap: MAX_REFERENCES,
+            },
+        )];
+    }
     let dir = path.rsplit_once('/').map_or("", |(dir, _)| dir);
     references
         .into_iter()
@@ -191,6 +199,9 @@ fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
                                 fault("an attribute value is not well-formed".to_owned())
                             })?;
                         found.push(value.into_owned());
+                        if found.len() > MAX_REFERENCES {
+                            return Ok(found); // refused by the caller
+                        }
                     }
                 }
             }
@@ -198,6 +209,9 @@ fn xml_references(text: &str) -> Result<Vec<String>, (usize, String)> {
                 let value = t.xml10_content();
                 if !value.trim().is_empty() {
                     found.push(value.trim().to_owned());
+                    if found.len() > MAX_REFERENCES {
+                        return Ok(found); // refused by the caller
+                    }
                 }
             }
             Event::End(_) => {
@@ -226,6 +240,9 @@ fn wbt_urls(text: &str) -> Vec<String> {
         };
         let end = list.find(']').unwrap_or(list.len());
         found.extend(list[..end].split('"').skip(1).step_by(2).map(str::to_owned));
+        if found.len() > MAX_REFERENCES {
+            break; // refused by the caller
+        }
         rest = &list[end..];
     }
     found
@@ -236,6 +253,7 @@ fn usd_asset_paths(text: &str) -> Vec<String> {
     text.split('@')
         .skip(1)
         .step_by(2)
+        .take(MAX_REFERENCES + 1) // more: refused by the caller
         .map(str::to_owned)
         .collect()
 }

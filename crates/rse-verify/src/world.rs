@@ -19,7 +19,9 @@ use serde::Serialize;
 use crate::budget::Budget;
 use crate::fault::{Fault, FaultKind, excerpt, line_of};
 use crate::folder::{Folder, inside};
-use crate::limits::{MAX_MANIFEST_BYTES, REBUILD_VISITS, file_cap, rebuild_bytes};
+use crate::limits::{
+    MAX_FAULTS, MAX_MANIFEST_BYTES, MAX_MANIFEST_FILES, REBUILD_VISITS, file_cap, rebuild_bytes,
+};
 use crate::{references, terrain};
 
 /// What to check beyond the static checks, and with what.
@@ -117,6 +119,13 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
         #[cfg(feature = "physics")]
         physics: Vec::new(),
     };
+    if faults
+        .iter()
+        .any(|f| matches!(f.kind, FaultKind::TooManyFiles { .. }))
+    {
+        report.faults = faults;
+        return report;
+    }
     match read_manifest(&folder) {
         Err(kind) => {
             faults.push(Fault::of(MANIFEST, kind));
@@ -158,6 +167,13 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
     // One fault per file and kind: a mesh named twice is missing once.
     let mut seen = BTreeSet::new();
     faults.retain(|f| seen.insert((f.file.clone(), f.message.clone())));
+    // The first faults, then how many more: the report stays small,
+    // however many files a hostile folder holds.
+    if faults.len() > MAX_FAULTS {
+        let more = faults.len() - MAX_FAULTS;
+        faults.truncate(MAX_FAULTS);
+        faults.push(Fault::new(None, FaultKind::MoreFaults { more }));
+    }
     report.ok = faults.is_empty();
     report.faults = faults;
     report
@@ -205,6 +221,16 @@ fn json_reason(e: &serde_json::Error) -> String {
 /// The checks of a manifest before its recipe is read: the paths it
 /// names, the world's name. `false`: do not rebuild.
 fn fit_to_rebuild(manifest: &Manifest, faults: &mut Vec<Fault>) -> bool {
+    // Each file listed is read or hashed: no more than a world can hold.
+    if manifest.files.len() > MAX_MANIFEST_FILES {
+        faults.push(Fault::of(
+            MANIFEST,
+            FaultKind::TooManyFiles {
+                cap: MAX_MANIFEST_FILES,
+            },
+        ));
+        return false;
+    }
     // Paths the manifest names are checked as names before anything is read.
     let outside: Vec<&String> = manifest.files.keys().filter(|p| !inside(p)).collect();
     for path in &outside {
@@ -333,6 +359,25 @@ fn check_against_manifest(
             .budget
             .scale(rebuild_bytes(rayon::current_num_threads())),
     );
+    // What hashing them and reading the references of those that name
+    // files costs, from their listed sizes, held to the budget with the
+    // rebuild before a byte is hashed (8 sparse files of 4 GB once hashed
+    // for 175 s against an estimate of half a second).
+    let hashed = HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap);
+    if let Some(estimate) = &mut report.estimate {
+        estimate.visits = estimate.visits.saturating_add(hashed.visits);
+        estimate.bytes = estimate.bytes.max(hashed.bytes);
+        estimate.seconds = estimate.visits as f64 * rse_world::VISIT_NANOS * 1e-9;
+        let cost = RebuildCost {
+            cells,
+            bytes: estimate.bytes,
+            visits: estimate.visits,
+        };
+        if let Some(kind) = over_budget(cost, options.budget) {
+            faults.push(Fault::of(MANIFEST, kind));
+            return;
+        }
+    }
     let mut referenced = Vec::new();
     for path in &hashed_only {
         let Some(digest) = manifest.files.get(path) else {
@@ -439,6 +484,42 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
         line: text.then(|| line_of(want, byte)),
         byte,
     })
+}
+
+/// What `check` pays for the files it can only hash: reading and hashing
+/// every byte, and parsing those that name other files for their
+/// references.
+struct HashedCost {
+    visits: u64,
+    bytes: u64,
+}
+
+/// Hashing a byte (SHA-256 as it streams, measured ~5 ns a byte: one visit).
+const HASH_VISITS_PER_BYTE: u64 = 1;
+/// Parsing a byte of a world file for its references (XML as a stream,
+/// the references checked): measured by bench/budget.py.
+const REFERENCE_VISITS_PER_BYTE: u64 = 4;
+/// Memory per byte of a file read for its references: the text, and the
+/// references held while they are checked.
+const REFERENCE_BYTES_PER_BYTE: u64 = 3;
+
+impl HashedCost {
+    /// The cost of the files `hashed` of `folder`, each hashed up to
+    /// `cap` bytes and, if it names files, read up to `text_cap`.
+    fn of(hashed: &BTreeSet<String>, folder: &Folder, cap: u64, text_cap: u64) -> Self {
+        let (mut visits, mut bytes) = (0u64, 0u64);
+        for path in hashed {
+            let size = folder.size(path).unwrap_or(0);
+            visits = visits.saturating_add(size.min(cap).saturating_mul(HASH_VISITS_PER_BYTE));
+            if references::names_files(path) {
+                let read = size.min(text_cap);
+                visits = visits.saturating_add(read.saturating_mul(REFERENCE_VISITS_PER_BYTE));
+                // One file at a time: the largest is the peak.
+                bytes = bytes.max(read.saturating_mul(REFERENCE_BYTES_PER_BYTE));
+            }
+        }
+        HashedCost { visits, bytes }
+    }
 }
 
 /// The fault of a world whose rebuild would cost more than `scale` times

@@ -59,3 +59,136 @@ fn a_long_strip_has_its_volume_to_the_cell() {
     let faults = mesh_faults_against(&obj, &terrain);
     assert!(faults.is_empty(), "{faults:?}");
 }
+
+mod common;
+
+use common::*;
+use rse_verify::{Budget, CheckOptions, FaultKind, check_world};
+
+/// Hole 8: files `check` can only hash were unpriced — 8 sparse files of
+/// 4 GB hashed for 175 s against an estimate of 0.5 s. Their listed sizes
+/// are priced with the rebuild now: a budget the world alone fits refuses
+/// the world with them, before a byte is hashed.
+#[test]
+fn hashed_only_files_are_priced_by_their_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let small = CheckOptions {
+        budget: Budget::new(0.05).unwrap(),
+        ..CheckOptions::default()
+    };
+    hashed_only(&world);
+    assert!(
+        check_world(&world, &small).ok,
+        "the world alone fits the budget"
+    );
+    std::fs::create_dir_all(world.join("extra")).unwrap();
+    edit_manifest(&world, |m| {
+        for i in 0..40 {
+            let path = format!("extra/f{i}.bin");
+            let file = std::fs::File::create(world.join(&path)).unwrap();
+            file.set_len(60 << 20).unwrap(); // sparse: nothing on disk
+            m.files.insert(path, "0".repeat(64));
+        }
+    });
+    let report = check_world(&world, &small);
+    assert_fault(&report, Some("rse.json"), |k| {
+        matches!(k, FaultKind::OverBudget { .. })
+    });
+    assert!(
+        report
+            .faults
+            .iter()
+            .all(|f| !matches!(f.kind, FaultKind::HashMismatch)),
+        "nothing was hashed: {:?}",
+        report.faults
+    );
+}
+
+/// Hole 6: 100,000 files with long names deep in a world cost `check`
+/// 1.5 GiB and a 421 MB report. The listing stops past `MAX_ENTRIES`: the
+/// world is one fault. Below it, the report stops at `MAX_FAULTS`, then
+/// says how many more.
+#[test]
+fn a_folder_of_many_files_is_listed_and_reported_within_caps() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let deep = world.join(["a".repeat(200), "b".repeat(200), "c".repeat(200)].join("/"));
+    std::fs::create_dir_all(&deep).unwrap();
+    for i in 0..5000 {
+        std::fs::write(deep.join(format!("{i:0>200}")), b"").unwrap();
+    }
+    let report = check(&world);
+    assert!(!report.ok);
+    assert_fault(&report, None, |k| {
+        matches!(k, FaultKind::TooManyFiles { .. })
+    });
+    assert_eq!(report.faults.len(), 1, "{:?}", report.faults.first());
+    for i in 1000..5000 {
+        std::fs::remove_file(deep.join(format!("{i:0>200}"))).unwrap();
+    }
+    let report = check(&world);
+    assert_eq!(report.faults.len(), rse_verify::limits::MAX_FAULTS + 1);
+    assert_fault(
+        &report,
+        None,
+        |k| matches!(k, FaultKind::MoreFaults { more } if *more > 0),
+    );
+    let said = serde_json::to_string(&report).unwrap();
+    assert!(said.len() < 200_000, "{} bytes of report", said.len());
+}
+
+/// Hole 7: a hashed-only `mujoco/extra.xml` of 3.1 million `<a file=…/>`
+/// took 1.3 GiB and made a 600 MB report. A file naming more than
+/// `MAX_REFERENCES` files is one fault, its references not held.
+#[test]
+fn a_file_naming_millions_of_files_is_one_fault() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let many = format!(
+        "<mujoco>{}</mujoco>",
+        "<a file=\"x.obj\"/>".repeat(rse_verify::limits::MAX_REFERENCES + 10)
+    );
+    std::fs::write(world.join("mujoco/extra.xml"), many).unwrap();
+    hashed_only(&world);
+    edit_manifest(&world, |m| {
+        m.files.insert("mujoco/extra.xml".into(), String::new());
+    });
+    forge(&world);
+    let report = check(&world);
+    let faults: Vec<_> = report
+        .faults
+        .iter()
+        .filter(|f| f.file.as_deref() == Some("mujoco/extra.xml"))
+        .collect();
+    assert_eq!(faults.len(), 1, "{faults:?}");
+    assert!(
+        matches!(faults[0].kind, FaultKind::TooManyReferences { .. }),
+        "{faults:?}"
+    );
+}
+
+/// Hole 10: a template's `<uri>file:///etc/passwd</uri>` passed as a web
+/// address. Any URI scheme but a target's own is a fault.
+#[test]
+fn a_file_uri_in_a_world_file_is_a_fault() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let sdf = world.join("gazebo/rse.world");
+    let text = std::fs::read_to_string(&sdf).unwrap();
+    let at = text.find("</world>").expect("a world element");
+    let forged = format!(
+        "{}<include><uri>file:///etc/passwd</uri></include>{}",
+        &text[..at],
+        &text[at..]
+    );
+    std::fs::write(&sdf, forged).unwrap();
+    hashed_only(&world);
+    forge(&world);
+    let report = check(&world);
+    assert_fault(
+        &report,
+        Some("gazebo/rse.world"),
+        |k| matches!(k, FaultKind::ForeignUri { scheme, .. } if scheme == "file"),
+    );
+}

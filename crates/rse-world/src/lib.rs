@@ -42,7 +42,7 @@ pub use error::Error;
 pub use files::digest::sha256_hex;
 pub use files::folder::{place_folder, write_world_at};
 pub use files::names::{MAX_WORLD_NAME, world_name_problem};
-pub use files::nofollow::{FileBytes, FileDigest, Listed, OpenFolder, ReadError};
+pub use files::nofollow::{FileBytes, FileDigest, Listed, MAX_ENTRIES, OpenFolder, ReadError};
 pub use files::place::{Leftover, Outcome, place_world};
 pub use files::tree::{inside, list_files};
 pub use files::write::{mesh_format, write_atomically, write_mesh};
