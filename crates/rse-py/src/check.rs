@@ -41,6 +41,9 @@ pub fn _check_json(
         .map_err(|e| match e {
             DiscoverError::NotAFolder(_) => PyNotADirectoryError::new_err(e.to_string()),
             DiscoverError::Unreadable { .. } => PyOSError::new_err(e.to_string()),
+            DiscoverError::PhysicsRefused { world, reason } => {
+                PyValueError::new_err(format!("physics=True: {}: {reason}", world.display()))
+            }
             _ => PyValueError::new_err(e.to_string()),
         })?;
     serde_json::to_string(&report).map_err(|e| PyValueError::new_err(e.to_string()))

@@ -85,6 +85,14 @@ pub enum DiscoverError {
         /// The system's reason.
         reason: String,
     },
+    /// `--physics` was asked of a world the smoke test cannot judge.
+    #[error("--physics: {}: {reason}", world.display())]
+    PhysicsRefused {
+        /// The world.
+        world: PathBuf,
+        /// Why (its block size, and what to do).
+        reason: String,
+    },
     /// Neither the folder nor any of its sub-folders holds `rse.json`.
     #[error("{} holds no world (no rse.json in it or in its sub-folders)", .0.display())]
     NoWorld(PathBuf),
@@ -218,6 +226,18 @@ pub fn check_paths(
             report
         })
         .collect();
+    // A world physics cannot judge refuses the command, by name: checked
+    // without physics it would pass, with it no verdict would be honest.
+    if let Some((world, report)) = worlds
+        .iter()
+        .zip(&reports)
+        .find(|(_, r)| r.physics_refused.is_some())
+    {
+        return Err(DiscoverError::PhysicsRefused {
+            world: world.clone(),
+            reason: report.physics_refused.clone().unwrap_or_default(),
+        });
+    }
     batch_faults.extend(duplicates(&worlds, &reports));
     batch_faults.extend(mixed_recipes(&worlds, &reports));
     let failed = reports.iter().filter(|r| !r.ok).count();

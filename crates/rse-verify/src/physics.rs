@@ -33,23 +33,52 @@ fn colliders(manifest: &Manifest) -> std::collections::BTreeSet<rse_world::Colli
         .collect()
 }
 
-/// What the smoke test of a world of `manifest` with `cells` cells costs,
-/// as `(cell visits, bytes)`, measured by bench/budget.py (20 bodies, 5 s
-/// at 1 kHz): the flat-plane reference once (~30 µs a step), and for each
-/// collider ~110 µs a step plus ~8 µs and ~300 bytes a cell to build the
+/// The smallest block the smoke test judges, metres. Its bodies are robot
+/// parts of 5 to 16 cm: on smaller blocks each touches hundreds of boxes
+/// or triangles, rapier's contacts stop conserving energy (every fresh
+/// world of 5 mm blocks "gained" energy) and a step costs up to 100 ms.
+/// `check --physics` refuses such worlds up front, by name.
+pub const MIN_PHYSICS_BLOCK: f64 = 0.01;
+
+/// Why the smoke test cannot judge a world of `block_size` blocks, if it
+/// cannot.
+pub fn physics_refusal(block_size: f64) -> Option<String> {
+    (block_size < MIN_PHYSICS_BLOCK).then(|| {
+        format!(
+            "its blocks of {block_size} m are smaller than the physics smoke test judges \
+             ({MIN_PHYSICS_BLOCK} m and up: robot parts of 5-16 cm on smaller blocks touch \
+             hundreds of boxes each); check it without the smoke test"
+        )
+    })
+}
+
+/// The stepping time of the smoke test, microseconds a step, measured by
+/// bench/budget.py (20 bodies, 5 s at 1 kHz, 60×60 cells of random steps):
+/// the flat-plane reference ~40 µs, and per collider ~70 µs plus ~5 µs for
+/// each block a body's reach (~10 cm) spans — `(0.1 / s)²` for blocks of
+/// side `s`, no more than the cells there are: 75 µs at 10 cm, 90 at
+/// 5 cm, 220 at 2 cm, 575 at 1 cm.
+fn step_micros(models: u64, cells: u64, block_size: f64) -> f64 {
+    let spanned = (0.1 / block_size.max(1e-6)).powi(2).min(cells as f64);
+    40.0 + models as f64 * (70.0 + 5.0 * spanned)
+}
+
+/// What the smoke test of a world of `manifest` with `cells` cells of side
+/// `block_size` costs, as `(cell visits, bytes)`: 5000 steps of
+/// [`step_micros`], and ~8 µs and ~300 bytes a cell for each collider's
 /// model. Priced in `check`'s estimate, so the test is held to the budget
 /// like the rebuild; it only ever runs on meshes that match their rebuild.
-pub(crate) fn cost(manifest: &Manifest, cells: u64) -> (u64, u64) {
+pub(crate) fn cost(manifest: &Manifest, cells: u64, block_size: f64) -> (u64, u64) {
     if !PHYSICS {
         return (0, 0);
     }
     let models = colliders(manifest).len() as u64;
-    if models == 0 {
+    if models == 0 || physics_refusal(block_size).is_some() {
         return (0, 0);
     }
     let visit_ns = rse_world::VISIT_NANOS;
     let steps = 5_000.0;
-    let seconds = steps * 30e-6 + models as f64 * (steps * 110e-6);
+    let seconds = steps * step_micros(models, cells, block_size) * 1e-6;
     let visits = (seconds * 1e9 / visit_ns) as u64;
     let per_cell_visits = (8_000.0 / visit_ns) as u64;
     (

@@ -77,6 +77,11 @@ pub struct WorldReport {
     /// the budget), when it was estimated in full.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimate: Option<Estimate>,
+    /// Why the physics smoke test asked for cannot judge this world (its
+    /// blocks are too small): nothing of it was checked, and
+    /// [`check_paths`](crate::check_paths) refuses the command naming it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physics_refused: Option<String>,
     /// The world's index in its batch, when `rse.json` could be read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub index: Option<u64>,
@@ -114,6 +119,7 @@ pub fn check_world(path: &Path, options: &CheckOptions) -> WorldReport {
         hashed_only: Vec::new(),
         seed: None,
         estimate: None,
+        physics_refused: None,
         index: None,
         manifest: None,
         #[cfg(feature = "physics")]
@@ -268,9 +274,24 @@ fn generate_within_budget<'m>(
     report: &mut WorldReport,
     faults: &mut Vec<Fault>,
 ) -> Option<Generated<'m>> {
+    let recipe = match Recipe::of(manifest) {
+        Ok(recipe) => recipe,
+        Err(e) => {
+            faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
+            return None;
+        }
+    };
+    let block_size = recipe.block_size();
+    if options.physics
+        && let Some(reason) = crate::physics::physics_refusal(block_size)
+    {
+        // Refused before anything is built: the command refuses the check.
+        report.physics_refused = Some(reason);
+        return None;
+    }
     let mut within = |mut cost: RebuildCost, report: &mut WorldReport| {
         if options.physics {
-            let (visits, bytes) = crate::physics::cost(manifest, cost.cells);
+            let (visits, bytes) = crate::physics::cost(manifest, cost.cells, block_size);
             cost.visits = cost.visits.saturating_add(visits);
             cost.bytes = cost.bytes.saturating_add(bytes);
         }
@@ -285,16 +306,11 @@ fn generate_within_budget<'m>(
         });
         true
     };
-    let generated = Recipe::of(manifest).and_then(|recipe| {
-        if within(recipe.cost(), report) {
-            recipe.generate().map(Some)
-        } else {
-            Ok(None)
-        }
-    });
-    match generated {
-        Ok(Some(generated)) => within(generated.cost(), report).then_some(generated),
-        Ok(None) => None,
+    if !within(recipe.cost(), report) {
+        return None;
+    }
+    match recipe.generate() {
+        Ok(generated) => within(generated.cost(), report).then_some(generated),
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
             None

@@ -192,3 +192,54 @@ fn a_file_uri_in_a_world_file_is_a_fault() {
         |k| matches!(k, FaultKind::ForeignUri { scheme, .. } if scheme == "file"),
     );
 }
+
+/// Hole 3: physics was priced at ~110 µs a step whatever the block size
+/// (1.35 s estimated, 6.85 s measured for 60×60 cells of 1 cm), and every
+/// fresh world of blocks of 5 mm or less failed it. It is priced by the
+/// blocks a body spans now, and worlds of blocks under 1 cm are refused
+/// up front, by name, for `--physics` only.
+#[test]
+fn physics_is_priced_by_block_size_and_refused_below_a_centimetre() {
+    let dir = tempfile::tempdir().unwrap();
+    let physics = CheckOptions {
+        physics: true,
+        ..CheckOptions::default()
+    };
+    let estimate = |block: &str| {
+        let csv = format!("# size: 20x20\n# block_size: {block}\ntype,height\nrandom,1\n");
+        let world = write_world(
+            dir.path(),
+            &format!("w{block}"),
+            &csv,
+            &rse_world::Templates::builtin(),
+        );
+        // Priced, not run: a budget of nothing refuses it with its cost.
+        let tiny = CheckOptions {
+            budget: Budget::new(1e-9).unwrap(),
+            ..physics.clone()
+        };
+        let report = check_world(&world, &tiny);
+        let visits = report.faults.iter().find_map(|f| match f.kind {
+            FaultKind::OverBudget { visits, .. } => Some(visits),
+            _ => None,
+        });
+        (world, visits)
+    };
+    let (_, coarse) = estimate("0.1");
+    let (_, fine) = estimate("0.01");
+    let (coarse, fine) = (coarse.unwrap(), fine.unwrap());
+    assert!(
+        fine > 4 * coarse,
+        "1 cm blocks {fine} visits, 10 cm {coarse}"
+    );
+    let (small, priced) = estimate("0.005");
+    assert_eq!(priced, None, "refused before it is priced");
+    let refused = rse_verify::check_paths(&[small.clone()], &physics, &|| {}).unwrap_err();
+    let said = refused.to_string();
+    assert!(
+        said.contains("0.005 m") && said.contains(&small.display().to_string()),
+        "{said}"
+    );
+    // Without physics the same world passes.
+    assert!(check(&small).ok);
+}

@@ -113,6 +113,19 @@ impl<'m> Recipe<'m> {
         })
     }
 
+    /// The side of the world's cells, metres (an atlas's first scheme's:
+    /// its tiles share one block size).
+    pub fn block_size(&self) -> f64 {
+        match &self.source {
+            Source::World(scheme) => scheme.globals().block_size,
+            Source::Atlas { schemes, .. } => schemes
+                .first()
+                .map_or(rse_core::Globals::default().block_size, |s| {
+                    s.scheme.globals().block_size
+                }),
+        }
+    }
+
     /// What rebuilding this world would cost, from the recipe alone: to be
     /// held to a budget before [`Self::generate`].
     pub fn cost(&self) -> RebuildCost {
