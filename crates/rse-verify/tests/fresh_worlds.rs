@@ -116,3 +116,96 @@ fn slender_random_walls_pass() {
     );
     assert!(report.first_fault().is_none(), "{}", report.verdict());
 }
+
+/// The fifth round's shapes: tall walls along long thin grids (their fan
+/// edges once made the T-junction search give up), 1-cell strips (the
+/// volume once drifted past its tolerance), 1 mm blocks; the physics
+/// smoke test on the small ones it judges (blocks of 1 cm and up), and
+/// its refusal, by name, below that.
+fn fifth_round_scheme() -> impl Strategy<Value = (String, bool)> {
+    prop_oneof![
+        // A tall wall along a long thin grid.
+        (
+            1u32..=9,
+            200u32..=1000,
+            1u32..=1000,
+            prop::sample::select(vec![45.0, 80.0, 90.0])
+        )
+            .prop_map(|(nx, ny, h, angle)| {
+                let x = nx / 2;
+                (
+                    format!(
+                        "# size: {nx}x{ny}\ntype,height,angle,x1,y1,x2,y2\nrandom,1,,,,,\n\
+                         wall,{h},{angle},{x},0,{x},{}\n",
+                        ny - 1
+                    ),
+                    false,
+                )
+            }),
+        // A 1-cell strip.
+        (1u32..=5_000, 1u32..=65_535).prop_map(|(n, h)| {
+            (
+                format!("# size: 1x{n}\n# step_height: 0.001\ntype,height\nrandom,{h}\n"),
+                false,
+            )
+        }),
+        // Millimetre blocks.
+        (1u32..=60, 1u32..=60, 1u32..=1000).prop_map(|(nx, ny, h)| {
+            (
+                format!(
+                    "# size: {nx}x{ny}\n# block_size: 0.001\n# step_height: 0.001\n\
+                     type,height\nrandom,{h}\n"
+                ),
+                false,
+            )
+        }),
+        // Small worlds the physics smoke test judges.
+        (
+            1u32..=12,
+            1u32..=12,
+            prop::sample::select(vec![0.01, 0.02, 0.1, 0.3]),
+            1u32..=8
+        )
+            .prop_map(|(nx, ny, block, h)| {
+                (
+                    format!("# size: {nx}x{ny}\n# block_size: {block}\ntype,height\nrandom,{h}\n"),
+                    true,
+                )
+            }),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 12,
+        rng_seed: RngSeed::Fixed(50),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn a_world_of_the_fifth_rounds_shapes_passes_check((text, physics) in fifth_round_scheme()) {
+        let Ok(scheme) = Scheme::from_csv(&text, None) else { return Ok(()) };
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("worlds");
+        let options = BatchConfig {
+            amount: Some(2),
+            world: WorldConfig {
+                targets: Some(Targets::parse(if physics { "obj,urdf" } else { "obj" }).unwrap()),
+                ..WorldConfig::default()
+            },
+            ..BatchConfig::default()
+        }
+        .resolve(&scheme, out.clone())
+        .unwrap();
+        write_batch(&scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
+        let check = CheckOptions { physics, ..CheckOptions::default() };
+        let report = check_paths(&[out], &check, &|| {}).unwrap();
+        prop_assert!(
+            report.first_fault().is_none(),
+            "{}\nfirst fault: {}\nscheme:\n{text}",
+            report.verdict(),
+            report.first_fault().unwrap_or_default()
+        );
+    }
+}
