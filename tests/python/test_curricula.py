@@ -205,3 +205,31 @@ def test_check_curriculum_finds_a_flat_scheme_and_refuses_bad_counts() -> None:
         rse.check_curriculum(flat, levels=1)
     with pytest.raises(ValueError, match="draws 0"):
         rse.check_curriculum(flat, draws=0)
+
+
+def test_check_curriculum_is_priced_and_stops_on_ctrl_c() -> None:
+    """Fifth hardening round: 1000 levels x 100,000 draws of 300x300 (~72 h)
+    were accepted with no estimate, and Ctrl-C was ignored to the end. A
+    check priced over its budget is refused before a world is made; one
+    running stops between worlds on Ctrl-C."""
+    import os
+    import signal
+    import threading
+    import time
+
+    big = rse.Scheme.from_csv("# size: 300x300\ntype,height\nrandom,4\n")
+    started = time.monotonic()
+    with pytest.raises(ValueError, match="over the budget"):
+        rse.check_curriculum(big, levels=1000, draws=100_000)
+    assert time.monotonic() - started < 5, "refused before a world is made"
+    with pytest.raises(ValueError, match="budget"):
+        rse.check_curriculum(big, budget=0)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    started = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rse.check_curriculum(big, levels=1000, draws=1000, budget=1000)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 30, "stopped between worlds, not at the end"

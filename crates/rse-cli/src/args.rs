@@ -157,6 +157,11 @@ pub struct CheckCurriculumArgs {
     #[arg(long, value_name = "B")]
     pub seed: Option<u64>,
 
+    /// Allow F times the default budget (2·10¹⁰ cell visits, some 100 s on one core): a check priced over it
+    /// is refused before a world is generated [default: 1].
+    #[arg(long, value_name = "F", allow_negative_numbers = true)]
+    pub budget: Option<rse_verify::Budget>,
+
     /// Print the report as JSON instead of a table.
     #[arg(long)]
     pub json: bool,

@@ -38,7 +38,7 @@ pub struct CurriculumOptions {
 }
 
 /// Options out of range, named as the command line and Python name them.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CurriculumOptionsError {
     /// Fewer than 2 levels or more than [`MAX_LEVELS`].
     #[error("levels {0}: expected 2 to {MAX_LEVELS}")]
@@ -46,7 +46,42 @@ pub enum CurriculumOptionsError {
     /// No draws or more than [`MAX_DRAWS`].
     #[error("draws {0}: expected 1 to {MAX_DRAWS}")]
     Draws(u32),
+    /// The check would cost more than its budget (priced before a world
+    /// is generated: 1000 levels × 100,000 draws of 300×300 were ~72 h).
+    #[error(
+        "{levels} levels x {draws} worlds would take some {seconds:.0} s on one core, \
+         over the budget of {budget_seconds:.0} s: check fewer levels or draws, or allow more \
+         (a budget of {factor:.1}x would do)"
+    )]
+    OverBudget {
+        /// Levels asked for.
+        levels: u32,
+        /// Worlds a level.
+        draws: u32,
+        /// The estimate, seconds on one core.
+        seconds: f64,
+        /// The budget, seconds on one core.
+        budget_seconds: f64,
+        /// The budget factor that would let it run.
+        factor: f64,
+    },
+    /// Stopped before the end (Ctrl-C).
+    #[error("interrupted")]
+    Interrupted,
 }
+
+/// The work a curriculum check may cost under its default budget, in cell
+/// visits ([`VISIT_NANOS`] each on one core): some 100 s, as `check`'s
+/// rebuild. A budget factor allows that many times as much.
+pub const CURRICULUM_VISITS: u64 = 20_000_000_000;
+
+/// One cell visit, nanoseconds on one core of the development machine
+/// (the unit of [`Scheme::generation_visits`]).
+pub const VISIT_NANOS: f64 = 5.0;
+
+/// Measuring a generated world (heights, steps, slopes, its digest), per
+/// cell.
+const STATS_VISITS_PER_CELL: u64 = 4;
 
 impl CurriculumOptions {
     /// The options, refused out of range.
@@ -58,6 +93,17 @@ impl CurriculumOptions {
             return Err(CurriculumOptionsError::Draws(self.draws));
         }
         Ok(self)
+    }
+
+    /// The work of checking `scheme` so, in cell visits: every draw of
+    /// every level generated ([`Scheme::generation_visits`]) and measured.
+    pub fn visits(&self, scheme: &Scheme) -> u64 {
+        let per_world = scheme
+            .generation_visits()
+            .saturating_add((scheme.grid().cells() as u64).saturating_mul(STATS_VISITS_PER_CELL));
+        u64::from(self.levels)
+            .saturating_mul(u64::from(self.draws))
+            .saturating_mul(per_world)
     }
 
     /// The difficulty of `level`.
@@ -120,19 +166,45 @@ pub struct CurriculumReport {
     pub problems: Vec<CurriculumProblem>,
 }
 
-/// Checks `scheme` as a curriculum (see [`CurriculumOptions`]). The same
-/// report on any number of threads.
+/// Checks `scheme` as a curriculum (see [`CurriculumOptions`]) under the
+/// default budget, to the end. The same report on any number of threads.
 pub fn check_curriculum(
     scheme: &Scheme,
     options: CurriculumOptions,
 ) -> Result<CurriculumReport, CurriculumOptionsError> {
+    check_curriculum_within(scheme, options, 1.0, &|| false)
+}
+
+/// [`check_curriculum`] held to `budget` times [`CURRICULUM_VISITS`]
+/// (refused before a world is generated when the price is over it), and
+/// stopped between worlds once `stop` says so. Memory stays one world a
+/// thread: each is measured and dropped.
+pub fn check_curriculum_within(
+    scheme: &Scheme,
+    options: CurriculumOptions,
+    budget: f64,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<CurriculumReport, CurriculumOptionsError> {
     let options = options.validate()?;
-    let levels: Vec<LevelStats> = (0..options.levels)
-        .map(|level| {
-            let difficulty = options.difficulty(level);
-            let worlds: Vec<WorldStats> = (0..options.draws)
-                .into_par_iter()
-                .map(|index| {
+    let visits = options.visits(scheme);
+    let allowed = (CURRICULUM_VISITS as f64 * budget).min(u64::MAX as f64);
+    if visits as f64 > allowed {
+        let seconds = |v: f64| v * VISIT_NANOS * 1e-9;
+        return Err(CurriculumOptionsError::OverBudget {
+            levels: options.levels,
+            draws: options.draws,
+            seconds: seconds(visits as f64),
+            budget_seconds: seconds(allowed),
+            factor: (visits as f64 / CURRICULUM_VISITS as f64 * 10.0).ceil() / 10.0,
+        });
+    }
+    let mut levels = Vec::with_capacity(options.levels as usize);
+    for level in 0..options.levels {
+        let difficulty = options.difficulty(level);
+        let worlds: Option<Vec<WorldStats>> = (0..options.draws)
+            .into_par_iter()
+            .map(|index| {
+                (!stop()).then(|| {
                     WorldStats::of(&generate_at(
                         scheme,
                         options.seed,
@@ -140,10 +212,11 @@ pub fn check_curriculum(
                         difficulty,
                     ))
                 })
-                .collect();
-            LevelStats::of(level, difficulty, &worlds, scheme.globals())
-        })
-        .collect();
+            })
+            .collect();
+        let worlds = worlds.ok_or(CurriculumOptionsError::Interrupted)?;
+        levels.push(LevelStats::of(level, difficulty, &worlds, scheme.globals()));
+    }
     let mut problems = Vec::new();
     if levels.last().is_some_and(|top| top.flat_share >= 1.0) {
         problems.push(CurriculumProblem::FlatScheme);

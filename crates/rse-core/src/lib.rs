@@ -59,8 +59,9 @@ mod terrain;
 
 pub use atlas::{Atlas, AtlasConfig, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
 pub use curriculum::{
-    CurriculumOptions, CurriculumOptionsError, CurriculumProblem, CurriculumReport, DEFAULT_DRAWS,
-    DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS, check_curriculum,
+    CURRICULUM_VISITS, CurriculumOptions, CurriculumOptionsError, CurriculumProblem,
+    CurriculumReport, DEFAULT_DRAWS, DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS,
+    VISIT_NANOS, check_curriculum, check_curriculum_within,
 };
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{

@@ -408,7 +408,7 @@ impl Scheme {
         seed: Option<u64>,
         index: u64,
         difficulty: Option<PyDifficulty>,
-    ) -> PyResult<Terrain> {
+    ) -> Terrain {
         let request = rse_core::WorldRequest {
             seed,
             index: Some(index),
@@ -416,7 +416,7 @@ impl Scheme {
         };
         let scheme = &self.inner;
         let at = request.resolve(scheme);
-        Ok(py.detach(|| Terrain::generate(scheme, at.seed, at.index, at.difficulty)))
+        py.detach(|| Terrain::generate(scheme, at.seed, at.index, at.difficulty))
     }
 
     fn __eq__(&self, other: &Scheme) -> bool {

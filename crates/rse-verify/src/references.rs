@@ -79,16 +79,14 @@ fn check_reference(folder: &Folder, path: &str, dir: &str, reference: &str) -> O
             reference: excerpt(reference),
         });
     }
-    let scheme = uri_scheme(reference);
-    match scheme {
-        None => {}
+    match uri_scheme(reference) {
         Some(scheme) if own_scheme(path) != Some(scheme) => {
             return Some(FaultKind::ForeignUri {
                 scheme: excerpt(scheme),
                 reference: excerpt(reference),
             });
         }
-        Some("model") => {}
+        None | Some("model") => {}
         // A ROS package the simulator resolves on its own path: nothing of
         // the world to look for, as long as it cannot climb out of its
         // package.

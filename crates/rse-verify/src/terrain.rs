@@ -2,8 +2,8 @@
 //! manifest: the heightmap cell by cell, and every OBJ re-read against
 //! docs/meshes.md and the heightmap (closed, exact, volume, bounding box, tops).
 
-use rse_core::mesh::LatticeVolume;
 use rse_core::mesh::invariants::lattice_faults;
+use rse_core::mesh::{LatticeVolume, MeshUnits};
 use rse_core::{Heightmap, HeightmapCsvError, Terrain};
 
 use crate::fault::FaultKind;
@@ -197,43 +197,8 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
             expected: expected.cubic_metres(units),
         });
     }
-    let want = solid
-        .iter()
-        .fold(None, |acc: Option<[[u32; 3]; 2]>, &(x, y)| {
-            let (lo, hi) = ([x, y, 0], [x + 1, y + 1, top(x, y)]);
-            Some(match acc {
-                None => [lo, hi],
-                Some([a, b]) => [
-                    std::array::from_fn(|i| a[i].min(lo[i])),
-                    std::array::from_fn(|i| b[i].max(hi[i])),
-                ],
-            })
-        });
-    let got = levels.iter().fold(None, |acc: Option<[[u32; 3]; 2]>, &p| {
-        Some(match acc {
-            None => [p, p],
-            Some([a, b]) => [
-                std::array::from_fn(|i| a[i].min(p[i])),
-                std::array::from_fn(|i| b[i].max(p[i])),
-            ],
-        })
-    });
-    if got != want {
-        let metres = |b: Option<[[u32; 3]; 2]>| {
-            b.map(|corners| {
-                corners.map(|[x, y, level]| {
-                    [
-                        f64::from(x) * units.block_size,
-                        f64::from(y) * units.block_size,
-                        units.z(level),
-                    ]
-                })
-            })
-        };
-        faults.push(FaultKind::BoundsDiffer {
-            measured: metres(got),
-            expected: metres(want),
-        });
+    if let Some(fault) = bounds_fault(&levels, &solid, &top, units) {
+        faults.push(fault);
         return faults; // tops beyond the grid would be looked up off the map
     }
     // Every upward face lies on the top of the cells under it: a level
@@ -263,4 +228,46 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
         }
     }
     faults
+}
+
+/// The fault of a mesh (`levels`, one per vertex) whose bounding box is not
+/// that of the `solid` cells (their tops by `top`), decided in lattice
+/// units; `None` when they agree.
+fn bounds_fault(
+    levels: &[[u32; 3]],
+    solid: &[(u32, u32)],
+    top: &dyn Fn(u32, u32) -> u32,
+    units: MeshUnits,
+) -> Option<FaultKind> {
+    let grow = |acc: Option<[[u32; 3]; 2]>, lo: [u32; 3], hi: [u32; 3]| {
+        Some(match acc {
+            None => [lo, hi],
+            Some([a, b]) => [
+                std::array::from_fn(|i| a[i].min(lo[i])),
+                std::array::from_fn(|i| b[i].max(hi[i])),
+            ],
+        })
+    };
+    let want = solid.iter().fold(None, |acc, &(x, y)| {
+        grow(acc, [x, y, 0], [x + 1, y + 1, top(x, y)])
+    });
+    let got = levels.iter().fold(None, |acc, &p| grow(acc, p, p));
+    if got == want {
+        return None;
+    }
+    let metres = |b: Option<[[u32; 3]; 2]>| {
+        b.map(|corners| {
+            corners.map(|[x, y, level]| {
+                [
+                    f64::from(x) * units.block_size,
+                    f64::from(y) * units.block_size,
+                    units.z(level),
+                ]
+            })
+        })
+    };
+    Some(FaultKind::BoundsDiffer {
+        measured: metres(got),
+        expected: metres(want),
+    })
 }

@@ -375,24 +375,9 @@ fn check_against_manifest(
             .budget
             .scale(rebuild_bytes(rayon::current_num_threads())),
     );
-    // What hashing them and reading the references of those that name
-    // files costs, from their listed sizes, held to the budget with the
-    // rebuild before a byte is hashed (8 sparse files of 4 GB once hashed
-    // for 175 s against an estimate of half a second).
     let hashed = HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap);
-    if let Some(estimate) = &mut report.estimate {
-        estimate.visits = estimate.visits.saturating_add(hashed.visits);
-        estimate.bytes = estimate.bytes.max(hashed.bytes);
-        estimate.seconds = estimate.visits as f64 * rse_world::VISIT_NANOS * 1e-9;
-        let cost = RebuildCost {
-            cells,
-            bytes: estimate.bytes,
-            visits: estimate.visits,
-        };
-        if let Some(kind) = over_budget(cost, options.budget) {
-            faults.push(Fault::of(MANIFEST, kind));
-            return;
-        }
+    if !hashed.within_budget(cells, options.budget, report, faults) {
+        return;
     }
     let mut referenced = Vec::new();
     for path in &hashed_only {
@@ -520,6 +505,37 @@ const REFERENCE_VISITS_PER_BYTE: u64 = 4;
 const REFERENCE_BYTES_PER_BYTE: u64 = 3;
 
 impl HashedCost {
+    /// Adds this to the world's estimate and holds the whole to `budget`
+    /// before a byte is hashed (8 sparse files of 4 GB once hashed for
+    /// 175 s against an estimate of half a second); `false`, with the
+    /// fault pushed, when it is over.
+    fn within_budget(
+        &self,
+        cells: u64,
+        budget: Budget,
+        report: &mut WorldReport,
+        faults: &mut Vec<Fault>,
+    ) -> bool {
+        let Some(estimate) = &mut report.estimate else {
+            return true;
+        };
+        estimate.visits = estimate.visits.saturating_add(self.visits);
+        estimate.bytes = estimate.bytes.max(self.bytes);
+        estimate.seconds = estimate.visits as f64 * rse_world::VISIT_NANOS * 1e-9;
+        let cost = RebuildCost {
+            cells,
+            bytes: estimate.bytes,
+            visits: estimate.visits,
+        };
+        match over_budget(cost, budget) {
+            Some(kind) => {
+                faults.push(Fault::of(MANIFEST, kind));
+                false
+            }
+            None => true,
+        }
+    }
+
     /// The cost of the files `hashed` of `folder`, each hashed up to
     /// `cap` bytes and, if it names files, read up to `text_cap`.
     fn of(hashed: &BTreeSet<String>, folder: &Folder, cap: u64, text_cap: u64) -> Self {

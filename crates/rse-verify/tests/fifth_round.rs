@@ -234,7 +234,8 @@ fn physics_is_priced_by_block_size_and_refused_below_a_centimetre() {
     );
     let (small, priced) = estimate("0.005");
     assert_eq!(priced, None, "refused before it is priced");
-    let refused = rse_verify::check_paths(&[small.clone()], &physics, &|| {}).unwrap_err();
+    let refused =
+        rse_verify::check_paths(std::slice::from_ref(&small), &physics, &|| {}).unwrap_err();
     let said = refused.to_string();
     assert!(
         said.contains("0.005 m") && said.contains(&small.display().to_string()),

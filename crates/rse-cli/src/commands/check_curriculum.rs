@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 
 use anyhow::Context as _;
-use rse_core::{CurriculumOptions, CurriculumReport, check_curriculum};
+use rse_core::{CurriculumOptions, CurriculumReport, check_curriculum_within};
 use serde_json::json;
 
 use crate::ExitStatus;
@@ -24,7 +24,9 @@ pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::R
             seed: args.seed.unwrap_or(scheme.globals().seed),
         };
         let name = path.display().to_string();
-        let report = check_curriculum(scheme, options)
+        let budget = args.budget.unwrap_or_default().factor();
+        // Ctrl-C ends the process as ever: nothing is written until the end.
+        let report = check_curriculum_within(scheme, options, budget, &|| false)
             .with_context(|| format!("check-curriculum {name}"))?;
         ok &= report.problems.is_empty();
         if args.json {

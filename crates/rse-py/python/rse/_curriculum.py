@@ -51,12 +51,16 @@ class CurriculumReport:
         return self.ok
 
 
-def check_curriculum(scheme: SchemeLike, levels: int = 10, draws: int = 50, seed: Optional[int] = None) -> CurriculumReport:
+def check_curriculum(
+    scheme: SchemeLike, levels: int = 10, draws: int = 50, seed: Optional[int] = None, budget: Optional[float] = None
+) -> CurriculumReport:
     """Check ``scheme`` (a ``Scheme`` or a CSV path) as a curriculum:
     ``levels`` difficulties evenly spaced from 0 to 1 (level ``l`` is
     ``l / (levels - 1)``, as mjlab spaces its terrain levels), each over
     worlds ``0..draws`` of ``seed`` (default: the scheme's ``# seed:``) —
     the same draws at every level. ``ValueError`` for ``levels`` outside
-    2–1000 or ``draws`` outside 1–100000."""
-    rows, problems, used_seed = _check_curriculum(load(scheme), levels, draws, seed)
+    2–1000 or ``draws`` outside 1–100000, or a check priced over ``budget``
+    times the default (some 100 s on one core), before a world is made.
+    Ctrl-C stops it between worlds (``KeyboardInterrupt``)."""
+    rows, problems, used_seed = _check_curriculum(load(scheme), levels, draws, seed, budget)
     return CurriculumReport(levels=[LevelStats(*row) for row in rows], problems=problems, draws=draws, seed=used_seed)

@@ -335,5 +335,5 @@ def _check_json(
     budget: Optional[float] = None,
 ) -> str: ...
 def _check_curriculum(
-    scheme: Scheme, levels: int, draws: int, seed: Optional[int] = None
+    scheme: Scheme, levels: int, draws: int, seed: Optional[int] = None, budget: Optional[float] = None
 ) -> tuple[list[tuple[int, float, float, float, float, float, float, int]], list[str], int]: ...

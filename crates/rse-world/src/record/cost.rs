@@ -31,8 +31,9 @@ impl RebuildCost {
 }
 
 /// One cell visit of the generator, nanoseconds on one core of the
-/// development machine: the unit every other cost is counted in.
-pub const VISIT_NANOS: f64 = 5.0;
+/// development machine: the unit every other cost is counted in (rse-core
+/// prices generation in it).
+pub use rse_core::VISIT_NANOS;
 
 /// The process and its fixed buffers, bytes.
 const BASE_BYTES: u64 = 8 << 20;
