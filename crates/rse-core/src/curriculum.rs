@@ -71,13 +71,9 @@ pub enum CurriculumOptionsError {
 }
 
 /// The work a curriculum check may cost under its default budget, in cell
-/// visits ([`VISIT_NANOS`] each on one core): some 100 s, as `check`'s
+/// visits ([`VISIT_NANOS`](crate::VISIT_NANOS) each on one core): some 100 s, as `check`'s
 /// rebuild. A budget factor allows that many times as much.
 pub const CURRICULUM_VISITS: u64 = 20_000_000_000;
-
-/// One cell visit, nanoseconds on one core of the development machine
-/// (the unit of [`Scheme::generation_visits`]).
-pub const VISIT_NANOS: f64 = 5.0;
 
 /// Measuring a generated world (heights, steps, slopes, its digest), per
 /// cell.
@@ -189,7 +185,7 @@ pub fn check_curriculum_within(
     let visits = options.visits(scheme);
     let allowed = (CURRICULUM_VISITS as f64 * budget).min(u64::MAX as f64);
     if visits as f64 > allowed {
-        let seconds = |v: f64| v * VISIT_NANOS * 1e-9;
+        let seconds = |v: f64| v * crate::VISIT_NANOS * 1e-9;
         return Err(CurriculumOptionsError::OverBudget {
             levels: options.levels,
             draws: options.draws,

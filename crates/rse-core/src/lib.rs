@@ -61,7 +61,7 @@ pub use atlas::{Atlas, AtlasConfig, AtlasError, AtlasOptions, PatchOptions, Tile
 pub use curriculum::{
     CURRICULUM_VISITS, CurriculumOptions, CurriculumOptionsError, CurriculumProblem,
     CurriculumReport, DEFAULT_DRAWS, DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS,
-    VISIT_NANOS, check_curriculum, check_curriculum_within,
+    check_curriculum, check_curriculum_within,
 };
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
@@ -83,7 +83,7 @@ pub use limits::{
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};
 pub use request::{WorldAt, WorldRequest};
-pub use scheme::Scheme;
+pub use scheme::{Scheme, VISIT_NANOS};
 pub use scheme_file::{MAX_SCHEME_BYTES, read_scheme_file};
 pub use terrain::Terrain;
 

@@ -83,6 +83,11 @@ impl PartialEq for Scheme {
     }
 }
 
+/// One cell visit, nanoseconds on one core of the development machine:
+/// the unit of [`Scheme::generation_visits`], and of every cost `check`
+/// and `check-curriculum` price in cell visits.
+pub const VISIT_NANOS: f64 = 5.0;
+
 impl Scheme {
     /// Checks `globals` and that every obstacle's points lie inside the grid.
     pub fn new(globals: Globals, obstacles: Vec<Obstacle>) -> Result<Self, SchemeError> {
@@ -166,7 +171,8 @@ impl Scheme {
         self.globals.top(highest)
     }
 
-    /// At most how many cells generating one world of this scheme visits,
+    /// At most how many cells generating one world of this scheme visits
+    /// ([`VISIT_NANOS`] each),
     /// whatever its ranges draw: each obstacle's reach on the grid (every
     /// cell for a random or gaussian field; a peak or wall only the cells
     /// within its slope's reach of its points), plus the grid once for the

@@ -37,16 +37,16 @@ fn integer<'py>(obj: &Bound<'py, PyAny>) -> Option<Bound<'py, PyInt>> {
 }
 
 /// A real number from anything with `__float__` (floats, ints, numpy
-/// scalars, 0-d arrays) but text and `bool`.
-fn real(obj: &Bound<'_, PyAny>) -> Option<f64> {
-    if obj.is_instance_of::<PyBool>() || is_text(obj) {
+/// scalars, 0-d arrays) but text and `bool` (Python's or numpy's).
+pub(crate) fn real(obj: &Bound<'_, PyAny>) -> Option<f64> {
+    if is_bool(obj) || is_text(obj) {
         return None;
     }
     obj.extract::<f64>().ok()
 }
 
 /// `True`/`False`, as Python's `bool` or numpy's.
-pub(crate) fn is_bool(obj: &Bound<'_, PyAny>) -> bool {
+fn is_bool(obj: &Bound<'_, PyAny>) -> bool {
     if obj.is_instance_of::<PyBool>() {
         return true;
     }

@@ -443,8 +443,12 @@ impl EnvTerrains {
         if let Some(given) = difficulty {
             let values: Vec<f64> = match given.extract::<PyDifficulty>() {
                 Ok(one) => vec![one.0.get(); envs.len()],
-                // A bool, text, or a number out of range: its own error.
-                Err(e) if given.try_iter().is_err() || crate::args::is_bool(given) => {
+                // One value that is no difficulty (a bool, text, a number
+                // out of range): its own error.
+                Err(e)
+                    if given.try_iter().is_err()
+                        || given.is_instance_of::<pyo3::types::PyString>() =>
+                {
                     return Err(e);
                 }
                 Err(_) => given

@@ -470,13 +470,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for PyDifficulty {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        if crate::args::is_bool(&obj) {
-            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                "difficulty: expected a number from 0 to 1, got {}",
-                crate::args::describe(&obj)
-            )));
-        }
-        let d: f64 = obj.extract().map_err(|_| {
+        let d = crate::args::real(&obj).ok_or_else(|| {
             pyo3::exceptions::PyTypeError::new_err(format!(
                 "difficulty: expected a number from 0 to 1, got {}",
                 crate::args::describe(&obj)

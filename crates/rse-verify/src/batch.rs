@@ -228,14 +228,14 @@ pub fn check_paths(
         .collect();
     // A world physics cannot judge refuses the command, by name: checked
     // without physics it would pass, with it no verdict would be honest.
-    if let Some((world, report)) = worlds
+    if let Some((world, reason)) = worlds
         .iter()
         .zip(&reports)
-        .find(|(_, r)| r.physics_refused.is_some())
+        .find_map(|(world, r)| Some((world, r.physics_refused.as_ref()?)))
     {
         return Err(DiscoverError::PhysicsRefused {
             world: world.clone(),
-            reason: report.physics_refused.clone().unwrap_or_default(),
+            reason: reason.clone(),
         });
     }
     batch_faults.extend(duplicates(&worlds, &reports));

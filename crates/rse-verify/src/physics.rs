@@ -73,7 +73,7 @@ pub(crate) fn cost(manifest: &Manifest, cells: u64, block_size: f64) -> (u64, u6
         return (0, 0);
     }
     let models = colliders(manifest).len() as u64;
-    if models == 0 || physics_refusal(block_size).is_some() {
+    if models == 0 {
         return (0, 0);
     }
     let visit_ns = rse_world::VISIT_NANOS;

@@ -519,14 +519,13 @@ impl HashedCost {
         let Some(estimate) = &mut report.estimate else {
             return true;
         };
-        estimate.visits = estimate.visits.saturating_add(self.visits);
-        estimate.bytes = estimate.bytes.max(self.bytes);
-        estimate.seconds = estimate.visits as f64 * rse_world::VISIT_NANOS * 1e-9;
         let cost = RebuildCost {
             cells,
-            bytes: estimate.bytes,
-            visits: estimate.visits,
+            bytes: estimate.bytes.max(self.bytes),
+            visits: estimate.visits.saturating_add(self.visits),
         };
+        (estimate.bytes, estimate.visits, estimate.seconds) =
+            (cost.bytes, cost.visits, cost.seconds());
         match over_budget(cost, budget) {
             Some(kind) => {
                 faults.push(Fault::of(MANIFEST, kind));

@@ -23,9 +23,15 @@ pub const MAX_DEPTH: usize = 16;
 /// names once cost `check` 1.5 GiB and a 421 MB report.
 pub const MAX_ENTRIES: usize = 4096;
 
-/// The reason given for a folder listed no further than [`MAX_ENTRIES`].
-fn too_many() -> String {
-    format!("more than {MAX_ENTRIES} entries: the rest not listed")
+/// `true` once `out` holds [`MAX_ENTRIES`]: the walk stops, and the
+/// folder where it stopped (`here`) is listed once more, unreadable, to
+/// say so.
+fn listing_full(out: &mut Vec<(String, Listed)>, here: impl FnOnce() -> String) -> bool {
+    if out.len() == MAX_ENTRIES {
+        let reason = format!("more than {MAX_ENTRIES} entries: the rest not listed");
+        out.push((here(), Listed::Unreadable(reason)));
+    }
+    out.len() > MAX_ENTRIES
 }
 
 /// The reason given for a folder deeper than [`MAX_DEPTH`].
@@ -311,11 +317,7 @@ mod unix {
             Err(e) => return out.push((here(), Listed::Unreadable(e.to_string()))),
         };
         for entry in entries {
-            if out.len() >= super::MAX_ENTRIES {
-                // Said once, by the folder where the listing stopped.
-                if out.len() == super::MAX_ENTRIES {
-                    out.push((here(), Listed::Unreadable(super::too_many())));
-                }
+            if super::listing_full(out, here) {
                 return;
             }
             let entry = match entry {
@@ -400,10 +402,7 @@ mod portable {
             Err(e) => return out.push((here(), Listed::Unreadable(e.to_string()))),
         };
         for entry in entries {
-            if out.len() >= super::MAX_ENTRIES {
-                if out.len() == super::MAX_ENTRIES {
-                    out.push((here(), Listed::Unreadable(super::too_many())));
-                }
+            if super::listing_full(out, here) {
                 return;
             }
             let Ok(entry) = entry else { continue };
