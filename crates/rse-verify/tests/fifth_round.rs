@@ -1,10 +1,14 @@
-//! The fifth hardening round (issue 50): fresh worlds that `check` failed
+//! The fifth hardening round: fresh worlds that `check` failed
 //! (a T-junction search that gave up on our own mesh, a volume summed from
-//! `f32` vertices), each built here as the red team built it.
+//! `f32` vertices), and the costs it paid unpriced or without a cap, each
+//! built here as the red team built it.
 
+mod common;
+
+use common::*;
 use rse_core::mesh::invariants::volume;
 use rse_core::{Scheme, generate};
-use rse_verify::{ObjMesh, mesh_faults_against};
+use rse_verify::{Budget, CheckOptions, FaultKind, ObjMesh, check_world, mesh_faults_against};
 
 /// The terrain of world `index` of `csv` and its mesh as an OBJ reads back
 /// (the writer prints each `f32` exactly, so the reader gets its bits).
@@ -59,11 +63,6 @@ fn a_long_strip_has_its_volume_to_the_cell() {
     let faults = mesh_faults_against(&obj, &terrain);
     assert!(faults.is_empty(), "{faults:?}");
 }
-
-mod common;
-
-use common::*;
-use rse_verify::{Budget, CheckOptions, FaultKind, check_world};
 
 /// Hole 8: files `check` can only hash were unpriced — 8 sparse files of
 /// 4 GB hashed for 175 s against an estimate of 0.5 s. Their listed sizes
