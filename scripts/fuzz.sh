@@ -52,7 +52,8 @@ coverage="$coverage -Cllvm-args=-simplifycfg-branch-fold-threshold=0"
 [[ "$triple" == *-linux-* ]] && coverage="$coverage -Cllvm-args=-sanitizer-coverage-stack-depth"
 RUSTFLAGS="$coverage --cfg fuzzing" cargo build --manifest-path fuzz/Cargo.toml --locked \
     --release --target "$triple" --bins --quiet
-bin=fuzz/target/$triple/release
+# Where cargo put them: fuzz/target, or a shared CARGO_TARGET_DIR.
+bin=${CARGO_TARGET_DIR:-fuzz/target}/$triple/release
 # Targets run side by side, one per core (libFuzzer is single-threaded).
 jobs=${FUZZ_JOBS:-$(nproc)}
 logs=$(mktemp -d)
@@ -96,7 +97,9 @@ for target in $targets; do
     if [ "$status" -ne 0 ]; then
         findings=$((findings + 1))
         echo "fuzz $target: FOUND a failure after ${runs:-?} runs (input kept in fuzz/regressions/$target/):" >&2
-        grep -E "panicked|ERROR|SUMMARY|Test unit written" "$log" | head -20 >&2
+        # libFuzzer's words, or the end of the log when it has none (a
+        # binary that did not start): never nothing.
+        { grep -E "panicked|ERROR|SUMMARY|Test unit written" "$log" || tail -5 "$log"; } | head -20 >&2
     else
         echo "fuzz $target: ${runs:-0} runs, no failure" >&2
     fi
