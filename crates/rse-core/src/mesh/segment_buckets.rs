@@ -12,8 +12,9 @@ use std::ops::ControlFlow;
 /// slab the other two coordinates move at most one bucket, so a segment of
 /// `n` buckets along that axis visits at most `9n` (`4n` but where it grazes
 /// bucket borders). Rounding cannot skip a bucket: each slab's range is
-/// widened by `margin` plus a hair, and clamped to the buckets of the
-/// segment's ends, which hold every point between them.
+/// widened by `margin` plus a hair (none along an axis the segment does
+/// not move on: there it is the vertex's own coordinate), and clamped to the buckets of the segment's ends, which
+/// hold every point between them.
 pub(crate) fn walk(
     p: [f64; 3],
     q: [f64; 3],
@@ -32,8 +33,22 @@ pub(crate) fn walk(
             bucket(p[i].max(q[i]) + margin),
         )
     };
+    // An axis the segment does not move on has one range for every slab,
+    // its coordinate `p[i]` itself (a vertex on the segment has the very
+    // same value, so no hair is added): worked out once. Most terrain
+    // edges run along an axis; widened and recomputed slab by slab, such
+    // an edge on a bucket border walked four buckets a slab instead of one
+    // and checking a tall random field took twice as long.
+    let fixed = |i: usize| (d[i] == 0.0).then(|| ends(i));
+    let fixed = [fixed(0), fixed(1), fixed(2)];
     let (first, last) = ends(long);
+    if (0..3).all(|i| i == long || fixed[i].is_some()) {
+        // Along one axis (or a point): its box is its path.
+        let range = std::array::from_fn(|i| fixed[i].unwrap_or((first, last)));
+        return visit_box(range, &mut visit);
+    }
     for slab in first..=last {
+        let mut range = [(slab, slab); 3];
         // The stretch of the segment whose long coordinate is in this slab.
         let (t0, t1) = if d[long] == 0.0 {
             (0.0, 1.0)
@@ -42,8 +57,11 @@ pub(crate) fn walk(
             let b = ((slab + 1) as f64 * size + margin - p[long]) / d[long];
             (a.min(b).clamp(0.0, 1.0), a.max(b).clamp(0.0, 1.0))
         };
-        let mut range = [(slab, slab); 3];
         for (i, r) in range.iter_mut().enumerate().filter(|&(i, _)| i != long) {
+            if let Some(same) = fixed[i] {
+                *r = same;
+                continue;
+            }
             let (a, b) = (p[i] + t0 * d[i], p[i] + t1 * d[i]);
             let hair = 1e-9 * (a.abs() + b.abs() + size);
             let (lo, hi) = ends(i);
@@ -52,11 +70,20 @@ pub(crate) fn walk(
                 bucket(a.max(b) + margin + hair).clamp(lo, hi),
             );
         }
-        for x in range[0].0..=range[0].1 {
-            for y in range[1].0..=range[1].1 {
-                for z in range[2].0..=range[2].1 {
-                    visit([x, y, z])?;
-                }
+        visit_box(range, &mut visit)?;
+    }
+    ControlFlow::Continue(())
+}
+
+/// Gives `visit` every bucket of the box `[(lo, hi); 3]`, x slowest.
+fn visit_box(
+    [(x0, x1), (y0, y1), (z0, z1)]: [(i64, i64); 3],
+    visit: &mut impl FnMut([i64; 3]) -> ControlFlow<()>,
+) -> ControlFlow<()> {
+    for x in x0..=x1 {
+        for y in y0..=y1 {
+            for z in z0..=z1 {
+                visit([x, y, z])?;
             }
         }
     }
