@@ -73,7 +73,7 @@ fn hashed_only_files_are_priced_by_their_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let world = good_world(dir.path());
     let small = CheckOptions {
-        budget: Budget::new(0.05).unwrap(),
+        budget: Budget::new(0.02).unwrap(),
         ..CheckOptions::default()
     };
     hashed_only(&world);
