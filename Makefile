@@ -48,6 +48,7 @@ lint:
 bench:
 	cargo bench -p rse-core --bench generate
 	cargo bench -p rse-core --bench mesh
+	cargo bench -p rse-core --bench boxes
 	cargo bench -p rse-core --bench atlas
 	cargo bench -p rse-core --bench env_terrains
 	cargo bench -p rse-physics --bench physics

@@ -37,6 +37,20 @@ pub struct CurriculumOptions {
     pub seed: u64,
 }
 
+/// Seconds to two significant digits below 10 (a small check's estimate is
+/// not "0 s"), whole above.
+fn seconds_text(seconds: f64) -> String {
+    if seconds >= 10.0 {
+        format!("{seconds:.0}")
+    } else {
+        format!(
+            "{:.*}",
+            (1 - seconds.log10().floor() as i32).clamp(1, 6) as usize,
+            seconds
+        )
+    }
+}
+
 /// Options out of range, named as the command line and Python name them.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CurriculumOptionsError {
@@ -49,9 +63,11 @@ pub enum CurriculumOptionsError {
     /// The check would cost more than its budget (priced before a world
     /// is generated: 1000 levels × 100,000 draws of 300×300 were ~72 h).
     #[error(
-        "{levels} levels x {draws} worlds would take some {seconds:.0} s on one core, \
-         over the budget of {budget_seconds:.0} s: check fewer levels or draws, or allow more \
-         (a budget of {factor:.1}x would do)"
+        "{levels} levels x {draws} worlds would take some {} s on one core, \
+         over the budget of {} s: check fewer levels or draws, or allow more \
+         (a budget of {factor:.1}x would do)",
+        seconds_text(*.seconds),
+        seconds_text(*.budget_seconds)
     )]
     OverBudget {
         /// Levels asked for.

@@ -306,16 +306,25 @@ fn generate_within_budget<'m>(
         });
         true
     };
-    if !within(recipe.cost(), report) {
+    let templates = templates_of(options);
+    if !within(recipe.cost(templates), report) {
         return None;
     }
     match recipe.generate() {
-        Ok(generated) => within(generated.cost(), report).then_some(generated),
+        Ok(generated) => within(generated.cost(templates), report).then_some(generated),
         Err(e) => {
             faults.push(Fault::of(MANIFEST, rebuild_fault(e)));
             None
         }
     }
+}
+
+/// The templates worlds are rebuilt with: the user's, or ours.
+fn templates_of(options: &CheckOptions) -> &Templates {
+    options
+        .templates
+        .as_deref()
+        .unwrap_or_else(|| Templates::builtin_shared())
 }
 
 /// Every check that needs the manifest.
@@ -332,10 +341,7 @@ fn check_against_manifest(
     let Some(generated) = generate_within_budget(manifest, options, report, faults) else {
         return;
     };
-    let templates = options
-        .templates
-        .as_deref()
-        .unwrap_or_else(|| Templates::builtin_shared());
+    let templates = templates_of(options);
     let Rebuilt {
         terrain,
         files: expected,

@@ -9,6 +9,7 @@ use common::*;
 use rse_core::mesh::invariants::volume;
 use rse_core::{Scheme, generate};
 use rse_verify::{Budget, CheckOptions, FaultKind, ObjMesh, check_world, mesh_faults_against};
+use rse_world::Templates;
 
 /// The terrain of world `index` of `csv` and its mesh as an OBJ reads back
 /// (the writer prints each `f32` exactly, so the reader gets its bits).
@@ -242,4 +243,50 @@ fn physics_is_priced_by_block_size_and_refused_below_a_centimetre() {
     );
     // Without physics the same world passes.
     assert!(check(&small).ok);
+}
+
+/// Hole 9: `check --template` rendered a user's templates unpriced — one
+/// looping 3000 times a box (within its fuel) took 43.6 s against an
+/// estimate of 6.75 s. A user's template is priced at its fuel now, before
+/// anything is rendered: the estimate holds that template's fuel, and a
+/// budget the world fits without it (its files then only hashed) refuses
+/// it up front.
+#[test]
+fn a_users_templates_are_priced_at_their_fuel() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("mine");
+    std::fs::create_dir_all(folder.join("urdf")).unwrap();
+    std::fs::write(
+        folder.join("urdf/extra.txt.j2"),
+        "{% for b in boxes %}{% for i in range(200) %}{% endfor %}{% endfor %}done\n",
+    )
+    .unwrap();
+    let theirs = std::sync::Arc::new(Templates::with_overrides(&folder).unwrap());
+    let world = write_world(dir.path(), "world_0001", SCHEME, &theirs);
+    let with = |templates: Option<std::sync::Arc<Templates>>, budget: f64| CheckOptions {
+        templates,
+        budget: Budget::new(budget).unwrap(),
+        ..CheckOptions::default()
+    };
+    let roomy = check_world(&world, &with(Some(theirs.clone()), 100.0));
+    assert!(roomy.ok, "{:?}", roomy.faults);
+    let ours = check_world(&world, &with(None, 100.0));
+    let (priced, plain) = (roomy.estimate.unwrap(), ours.estimate.unwrap());
+    let boxes = rse_core::generate(&Scheme::from_csv(SCHEME, None).unwrap(), 3, 1)
+        .boxes()
+        .len() as u64;
+    let fuel = rse_world::FIXED_FUEL + boxes * rse_world::FUEL_PER_BOX;
+    assert!(
+        priced.visits >= fuel * rse_world::VISITS_PER_FUEL && priced.visits > plain.visits,
+        "{priced:?} against {plain:?}, {boxes} boxes"
+    );
+    // A budget between the two: ours fit, the user's loop is refused
+    // before it runs.
+    let visits = u64::midpoint(plain.visits, priced.visits);
+    let between = visits as f64 / rse_verify::limits::REBUILD_VISITS as f64;
+    assert!(check_world(&world, &with(None, between)).estimate.is_some());
+    let refused = check_world(&world, &with(Some(theirs), between));
+    assert_fault(&refused, Some("rse.json"), |k| {
+        matches!(k, FaultKind::OverBudget { .. })
+    });
 }

@@ -3,7 +3,7 @@
 //! (`MuJoCo`, `PyBullet`, Gazebo and Webots in block mode).
 
 use super::MeshUnits;
-use super::cover::level_cover;
+use super::cover::{Cover, level_cover};
 use super::faces;
 use crate::heightmap::Heightmap;
 
@@ -24,11 +24,16 @@ pub struct Block {
 /// and every cell has a box of its own height over it (so the volume is
 /// not the sum of the boxes'). Cells with nothing on them get no box.
 pub fn boxes(heights: &Heightmap, units: MeshUnits) -> Vec<Block> {
+    boxes_of(heights, units, level_cover)
+}
+
+/// The boxes of the rectangles `cover` emits (one per rectangle).
+pub(crate) fn boxes_of(heights: &Heightmap, units: MeshUnits, cover: Cover) -> Vec<Block> {
     let mut out = Vec::new();
     let s = units.block_size;
-    level_cover(
+    cover(
         &faces::Levels::new(heights, units.base > 0.0),
-        |cells, level| {
+        &mut |cells, level| {
             let [x0, y0, x1, y1] = cells;
             let top = units.z(level);
             out.push(Block {

@@ -130,6 +130,11 @@ impl Levels {
         self.ny
     }
 
+    /// Every cell's level, row by row.
+    pub(crate) fn cells(&self) -> &[u32] {
+        &self.cells
+    }
+
     /// The level of cell `(x, y)`, which is inside the grid.
     pub(crate) fn get(&self, x: u32, y: u32) -> u32 {
         self.cells[y as usize * self.nx as usize + x as usize]

@@ -1,8 +1,24 @@
 //! The naive terrain mesh our mesher is measured against: one closed box
 //! per cell with solid, concatenated, as the RL terrain generators build
-//! their grids. For benchmarks and comparisons, not for simulators.
+//! their grids; and the block model's cover as first written, walking the
+//! area of every rectangle it tries. For benchmarks and comparisons, not
+//! for simulators.
 
+use super::Block;
+use super::boxes::boxes_of;
+use super::cover::reference;
 use crate::terrain::Terrain;
+
+/// The block model of `terrain` by the first greedy cover, which walks
+/// every cell of every rectangle it tries: the same boxes as
+/// [`Terrain::boxes`], in time growing with the rectangles' areas.
+pub fn area_walk_boxes(terrain: &Terrain) -> Vec<Block> {
+    boxes_of(
+        terrain.heightmap(),
+        terrain.mesh_units(),
+        reference::level_cover,
+    )
+}
 
 /// The 12 triangles of a closed box whose corner `i` is
 /// `(i & 1, i >> 1 & 1, i >> 2 & 1)`, counter-clockwise from outside.

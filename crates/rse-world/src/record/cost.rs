@@ -67,8 +67,6 @@ const MESH_CHECK_VISITS_PER_WALL_DOUBLING: f64 = 120.0;
 const MAX_TRIANGLES_PER_CELL: u64 = 12;
 /// Building the mesh, per triangle (measured 0.8 µs).
 const MESH_BUILD_VISITS_PER_TRIANGLE: u64 = 160;
-/// A box of the box set in memory.
-const BOX_BYTES: u64 = 32;
 /// Building and comparing one more mesh file, per triangle.
 const MESH_FILE_VISITS_PER_TRIANGLE: u64 = 24;
 /// Building, comparing and checking the references of one box list, per box.
@@ -96,16 +94,26 @@ const VISITS_PER_PATCH: u64 = 800;
 #[derive(Debug)]
 pub(crate) struct RecipeSize {
     cells: u64,
+    /// What building the block model holds (every world builds it, for
+    /// its box lists or to know the terrain is empty).
+    boxes_bytes: u64,
     generation: u64,
     obstacles: u64,
     patches: u64,
 }
 
 impl RecipeSize {
+    /// Cells of the world's grid (an atlas's whole map).
+    pub(crate) fn cells(&self) -> u64 {
+        self.cells
+    }
+
     /// A world of `scheme`.
     pub(crate) fn of_scheme(scheme: &Scheme) -> Self {
+        let grid = scheme.grid();
         RecipeSize {
-            cells: scheme.grid().cells() as u64,
+            cells: grid.cells() as u64,
+            boxes_bytes: rse_core::mesh::boxes_bytes(grid.nx, grid.ny),
             generation: scheme.generation_visits(),
             obstacles: scheme.obstacles().len() as u64,
             patches: 0,
@@ -117,6 +125,7 @@ impl RecipeSize {
         let Some(first) = schemes.first() else {
             return RecipeSize {
                 cells: 0,
+                boxes_bytes: 0,
                 generation: 0,
                 obstacles: 0,
                 patches: 0,
@@ -127,6 +136,10 @@ impl RecipeSize {
         let obstacles = schemes.iter().map(|s| s.obstacles().len() as u64).max();
         RecipeSize {
             cells: nx.saturating_mul(ny),
+            boxes_bytes: u32::try_from(nx)
+                .ok()
+                .zip(u32::try_from(ny).ok())
+                .map_or(u64::MAX, |(nx, ny)| rse_core::mesh::boxes_bytes(nx, ny)),
             generation: options.visits(schemes),
             obstacles: obstacles.unwrap_or(0).saturating_mul(tiles),
             patches: patches(options, first).saturating_mul(tiles),
@@ -142,16 +155,13 @@ impl RecipeSize {
 pub(crate) fn before_generating(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
     let recipe = recipe_part(size, options);
     // Counting the mesh and boxes (`after_generating`) builds them: priced
-    // here at their most per cell, so that step is bounded too.
-    let colliders = colliders(options);
+    // here at their most per cell, so that step is bounded too (the boxes
+    // are in the recipe's part: every world builds them).
     let (mut bytes, mut visits) = (0u64, 0u64);
     if options.mesh_files().any() {
         let triangles = size.cells.saturating_mul(MAX_TRIANGLES_PER_CELL);
         bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
         visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
-    }
-    if colliders.contains(&Collider::Boxes) {
-        bytes = bytes.saturating_add(size.cells.saturating_mul(BOX_BYTES));
     }
     RebuildCost {
         cells: size.cells,
@@ -169,12 +179,15 @@ fn colliders(options: &WorldOptions) -> Vec<Collider> {
         .collect()
 }
 
-/// The recipe's part of the cost, nothing of the files.
+/// The recipe's part of the cost, nothing of the files: with the block
+/// model, which every world builds (a cone's cover was once unpriced and
+/// took 155 s on 1000×1000).
 fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
     let samples = hfield_samples(options, size.cells);
     RebuildCost {
         cells: size.cells,
         bytes: BASE_BYTES
+            .saturating_add(size.boxes_bytes)
             .saturating_add(size.cells.saturating_mul(BYTES_PER_CELL))
             .saturating_add(samples.saturating_mul(BYTES_PER_SAMPLE))
             .saturating_add(size.obstacles.saturating_mul(BYTES_PER_OBSTACLE))
@@ -182,6 +195,10 @@ fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
         visits: size
             .generation
             .saturating_add(size.cells.saturating_mul(VISITS_PER_CELL))
+            .saturating_add(
+                size.cells
+                    .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL),
+            )
             .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
             .saturating_add(size.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
             .saturating_add(size.patches.saturating_mul(VISITS_PER_PATCH)),
@@ -295,12 +312,16 @@ mod tests {
 
     /// The cost from the recipe alone.
     fn before(manifest: &Manifest) -> RebuildCost {
-        Recipe::of(manifest).unwrap().cost()
+        Recipe::of(manifest).unwrap().cost(&Templates::builtin())
     }
 
     /// The cost once the terrain is generated.
     fn after(manifest: &Manifest) -> RebuildCost {
-        Recipe::of(manifest).unwrap().generate().unwrap().cost()
+        Recipe::of(manifest)
+            .unwrap()
+            .generate()
+            .unwrap()
+            .cost(&Templates::builtin())
     }
 
     /// The manifest of world 0 of `csv` with every target.
@@ -424,6 +445,33 @@ mod tests {
             "{none:?} {all:?}"
         );
         assert!(all.visits >= none.visits + 4 * 900 * VISITS_PER_PATCH);
+    }
+
+    /// Every world builds its block model (its box lists, or only to know
+    /// whether the terrain is empty), yet an OBJ-only world priced none of
+    /// it: a cone of radius 500 took 155 s against an estimate of 7.7 s.
+    /// The cover's indexes and boxes are priced from the grid, for every
+    /// target.
+    #[test]
+    fn the_block_model_is_priced_for_every_target() {
+        let csv = "# size: 60x40\ntype,height,angle,x1,y1\npeak,20,45,30,20\n";
+        for target in ["obj", "urdf", "mujoco", "usd"] {
+            let options = WorldOptions {
+                targets: Targets::parse(target).unwrap(),
+                ..WorldOptions::default()
+            };
+            let manifest = manifest_of(csv, &options);
+            for cost in [before(&manifest), after(&manifest)] {
+                assert!(
+                    cost.visits >= 2400 * (VISITS_PER_CELL + rse_core::mesh::BOXES_VISITS_PER_CELL),
+                    "{target}: {cost:?}"
+                );
+                assert!(
+                    cost.bytes >= BASE_BYTES + rse_core::mesh::boxes_bytes(60, 40),
+                    "{target}: {cost:?}"
+                );
+            }
+        }
     }
 
     /// `batch --oversample` had the same blind spot: a batch's memory

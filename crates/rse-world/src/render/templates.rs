@@ -282,7 +282,7 @@ impl Templates {
         // Fuel per file, for this world's box count: a user's template's
         // loops cannot run on without bound (three nested `range(100000)`).
         // Ours loop over the boxes only and need a hundredth of it
-        // (`our_templates_need_a_hundredth_of_the_fuel`): they run without
+        // (`our_templates_need_a_tenth_of_the_fuel`): they run without
         // the count, which cost a fifth of their time. Cloning an
         // environment shares its compiled templates.
         let counted = |file: &TemplateFile| fueled == Fueled::All || !file.ours;
@@ -337,15 +337,39 @@ enum Fueled {
 }
 
 /// The instructions one template may run for a world of `boxes` boxes:
-/// our templates take under 100 a box (`our_templates_need_a_hundredth_of_the_fuel`);
-/// a user's gets a hundred times that, and a fixed part for loops of
-/// their own (some seconds of work).
-pub const FUEL_PER_BOX: u64 = 10_000;
+/// our templates take under 100 a box (`our_templates_need_a_tenth_of_the_fuel`);
+/// a user's gets ten times that, and a fixed part for loops of their own
+/// (a third of a second). `check --template` prices a user's template at
+/// this bound (it cannot know less before rendering), so the bound is kept
+/// near what templates need: at a hundred times ours a 300×300 field
+/// priced 14 s a file.
+pub const FUEL_PER_BOX: u64 = 1_000;
 /// See [`FUEL_PER_BOX`].
 pub const FIXED_FUEL: u64 = 10_000_000;
 
 fn render_fuel(boxes: usize) -> u64 {
     FIXED_FUEL.saturating_add((boxes as u64).saturating_mul(FUEL_PER_BOX))
+}
+
+/// One instruction of minijinja's, in cell visits ([`crate::VISIT_NANOS`]
+/// each): a loop that spends a world's whole fuel took 2.0 s for 5.5·10⁷
+/// instructions, ~36 ns each.
+pub const VISITS_PER_FUEL: u64 = 7;
+
+impl Templates {
+    /// The most work rendering the files of `targets` for a world of
+    /// `boxes` boxes may take, in cell visits: a user's templates at their
+    /// fuel (ours are priced with the files they write).
+    pub fn render_visits(&self, targets: &crate::Targets, boxes: u64) -> u64 {
+        let users = targets
+            .iter()
+            .filter_map(|target| self.files.get(&target))
+            .flatten()
+            .filter(|file| !file.ours && file.path.ends_with(TEMPLATE_SUFFIX))
+            .count() as u64;
+        let fuel = FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX));
+        users.saturating_mul(fuel).saturating_mul(VISITS_PER_FUEL)
+    }
 }
 
 /// The most bytes one rendered file of a world may hold: what `check`
@@ -589,10 +613,10 @@ mod tests {
         );
     }
 
-    /// Our templates render a world of many boxes on a hundredth of the
-    /// fuel a user's template gets: the per-box fuel is no tight fit.
+    /// Our templates render a world of many boxes on a tenth of the fuel a
+    /// user's template gets: the per-box fuel is no tight fit.
     #[test]
-    fn our_templates_need_a_hundredth_of_the_fuel() {
+    fn our_templates_need_a_tenth_of_the_fuel() {
         let scheme =
             rse_core::Scheme::from_csv("# size: 40x40\ntype,height\nrandom,4\n", None).unwrap();
         let terrain = rse_core::generate(&scheme, 1, 0);
@@ -600,7 +624,7 @@ mod tests {
         assert!(boxes.len() > 500, "{}", boxes.len());
         let context = WorldContext::new("w".to_owned(), &terrain, MeshMode::Blocks, &boxes);
         let templates = Templates::builtin();
-        let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 100;
+        let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 10;
         for target in Target::ALL {
             templates
                 .render_with_fuel(target, &context, fuel, Fueled::All)

@@ -1,21 +1,15 @@
-//! The rectangles of the block model: for each level, rectangles of cells
-//! at least that high which together hold every cell of exactly that level.
-//!
-//! A box from the ground to level `l` is exact wherever every cell under it
-//! is at least `l` high: the part over a higher cell is inside that cell's
-//! own column. So boxes may overlap inside the solid and run under higher
-//! neighbours, and a cover needs far fewer of them than a partition into
-//! rectangles of equal height: a cell of level 1 beside a tower no longer
-//! splits the rectangle around it. The union stays the solid exactly: over
-//! each cell the highest box is that cell's own level.
+//! The greedy cover as first written, walking every cell of every
+//! rectangle it tries: the reference the indexed search must match
+//! rectangle for rectangle (the world files' bytes depend on them), and the
+//! baseline `bench/` measures it against.
 
-use super::faces::Levels;
+use crate::mesh::faces::Levels;
 
 /// Emits `([x0, y0, x1, y1], level)` (`x1`, `y1` exclusive) such that every
 /// cell in a rectangle is at least `level` high and every cell of level
 /// `l > 0` lies in a rectangle of level `l`. Deterministic: levels in
 /// increasing order, start cells in row-major order within a level.
-pub(crate) fn level_cover(levels: &Levels, mut emit: impl FnMut([u32; 4], u32)) {
+pub(crate) fn level_cover(levels: &Levels, emit: super::Emit) {
     let (nx, ny) = (levels.nx(), levels.ny());
     let width = nx as usize;
     let mut starts: Vec<(u32, u32)> = (0..ny)
@@ -131,51 +125,4 @@ fn run(at: u32, both_ways: bool, limit: u32, ok: impl Fn(u32) -> bool) -> (u32, 
         end += 1;
     }
     (start, end)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::level_cover;
-    use crate::heightmap::Heightmap;
-    use crate::mesh::faces::Levels;
-    use proptest::prelude::*;
-
-    proptest! {
-        /// The union of the rectangles, each raised to its level, is the
-        /// heightmap: no rectangle over a lower cell, and over every cell
-        /// one of its own level.
-        #[test]
-        fn cover_is_exact(
-            (nx, ny, cells, base) in (1u32..10, 1u32..10).prop_flat_map(|(nx, ny)| {
-                (
-                    Just(nx),
-                    Just(ny),
-                    proptest::collection::vec(0u16..5, (nx * ny) as usize),
-                    any::<bool>(),
-                )
-            })
-        ) {
-            let map = Heightmap::from_cells(nx, ny, cells).unwrap();
-            let levels = Levels::new(&map, base);
-            let mut top = vec![0u32; (nx * ny) as usize];
-            let mut count = 0;
-            level_cover(&levels, |[x0, y0, x1, y1], level| {
-                count += 1;
-                assert!(x0 < x1 && y0 < y1 && x1 <= nx && y1 <= ny);
-                for y in y0..y1 {
-                    for x in x0..x1 {
-                        assert!(levels.get(x, y) >= level, "box over a lower cell");
-                        let i = (y * nx + x) as usize;
-                        top[i] = top[i].max(level);
-                    }
-                }
-            });
-            for y in 0..ny {
-                for x in 0..nx {
-                    prop_assert_eq!(top[(y * nx + x) as usize], levels.get(x, y));
-                }
-            }
-            prop_assert!(count <= (nx * ny) as usize);
-        }
-    }
 }
