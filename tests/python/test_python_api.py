@@ -296,8 +296,8 @@ def test_a_terrain_from_forged_state_is_refused_not_a_later_panic() -> None:
     fields = json.loads(state)
     forgeries = {
         "0x0 grid": ({**fields, "grid": {**fields["grid"], "nx": 0, "ny": 0}}, b""),
-        "no block": ({**fields, "block_size": 0.0}, cells),
-        "negative step": ({**fields, "step_height": -0.1}, cells),
+        "no block": ({**fields, "globals": {**fields["globals"], "block_size": 0.0}}, cells),
+        "negative step": ({**fields, "globals": {**fields["globals"], "step_height": -0.1}}, cells),
         "frames every 0 cells": ({**fields, "grid": {**fields["grid"], "frame_period": 0}}, cells),
     }
     for forged, forged_cells in forgeries.values():

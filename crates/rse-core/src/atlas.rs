@@ -110,16 +110,11 @@ impl AtlasConfig {
     /// scheme's seed, the defaults for the rest.
     pub fn resolve<'a>(self, schemes: impl IntoIterator<Item = &'a Scheme>) -> AtlasOptions {
         let defaults = AtlasOptions::default();
-        let scheme_seed = || {
-            schemes
-                .into_iter()
-                .next()
-                .map_or(0, |scheme| scheme.globals().seed)
-        };
+        let first = schemes.into_iter().next();
         AtlasOptions {
             rows: self.rows,
             cols: self.cols,
-            seed: self.seed.unwrap_or_else(scheme_seed),
+            seed: first.map_or(self.seed.unwrap_or(0), |scheme| scheme.seed_or(self.seed)),
             border: self.border.unwrap_or(defaults.border),
             difficulty: self.difficulty.unwrap_or(defaults.difficulty),
             rule: defaults.rule,

@@ -87,9 +87,9 @@ pub enum CurriculumOptionsError {
 }
 
 /// The work a curriculum check may cost under its default budget, in cell
-/// visits ([`VISIT_NANOS`](crate::VISIT_NANOS) each on one core): some 100 s, as `check`'s
-/// rebuild. A budget factor allows that many times as much.
-pub const CURRICULUM_VISITS: u64 = 20_000_000_000;
+/// visits ([`VISIT_NANOS`](crate::VISIT_NANOS) each on one core): the
+/// budget of `check`'s rebuild, some 100 s.
+pub const CURRICULUM_VISITS: u64 = crate::BUDGET_VISITS;
 
 /// Measuring a generated world (heights, steps, slopes, its digest), per
 /// cell.

@@ -1,104 +1,170 @@
-//! The global keys of a scheme as one enum: each key's name (in a scheme
-//! file, the editor and Python; `--block-size` on the command line), its
-//! unit, what its value must be, and one line of documentation. The CSV
-//! reader, the patcher, the editor's schema, the command line and Python
-//! read them here instead of matching strings of their own.
+//! The global keys of a scheme, declared once in one table
+//! ([`for_each_global_key`]): each key's name (in a scheme file, the editor
+//! and Python; `--block-size` on the command line), its field and parser in
+//! the patch, its unit, what its value must be, and one line of
+//! documentation. The enum and the patch are built from the table; the
+//! CSV reader, the editor's schema, the command line and Python read the
+//! enum instead of matching strings of their own.
 
-/// A `# key: value` global of a scheme file (docs/schemes.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum GlobalKey {
-    /// `[nx, ny]` in cells.
-    Size,
-    /// Pallets along x and y, or off.
-    Pallets,
-    /// Pallet side in cells.
-    PalletSize,
-    /// Whether every pallet has a frame.
-    PalletBoundary,
-    /// Cell side, metres.
-    BlockSize,
-    /// One step, metres.
-    StepHeight,
-    /// The slab under the grid, metres.
-    Base,
-    /// Worlds in a batch.
-    Amount,
-    /// The batch's base seed.
-    Seed,
+/// The global keys, declared once: each key's variant, name (in a scheme
+/// file, the editor and Python; `--block-size` on the command line), field
+/// and type in [`GlobalsPatch`](crate::GlobalsPatch), unit, what its text
+/// must be, one line of documentation, and its parser. Hands the table to
+/// `$callback`, which builds what it needs of it: [`GlobalKey`] here, the
+/// patch and its `set_key`/`combine`/`given` in `globals_patch.rs`. A key
+/// added here reaches both; what must still be written by hand for it (the
+/// grid rule in `Globals`, its canonical text) is an exhaustive `match`
+/// on [`GlobalKey`] that does not compile without it.
+macro_rules! for_each_global_key {
+    ($callback:ident) => {
+        $callback! {
+            /// `[nx, ny]` in cells.
+            Size {
+                name: "size",
+                field: size: [u32; 2],
+                unit: Some("cells"),
+                expects: "NXxNY, whole numbers of cells",
+                doc: "NXxNY cells, used when pallets are off",
+                parse: |text, _| $crate::globals::parse_dims(text),
+            }
+            /// Pallets along x and y, or off: `Some(None)` turns them off.
+            Pallets {
+                name: "pallets",
+                field: pallets: Option<[u32; 2]>,
+                unit: Some("pallets"),
+                expects: "NXxNY pallets, or off",
+                doc: "PXxPY pallets, or off",
+                parse: |text, _| $crate::globals_patch::parse_pallets(text),
+            }
+            /// Pallet side in cells; needs pallets.
+            PalletSize {
+                name: "pallet_size",
+                field: pallet_size: u32,
+                unit: Some("cells"),
+                expects: "a whole number of cells",
+                doc: "pallet side in cells, inside the frame (needs pallets)",
+                parse: $crate::globals_patch::parse_number,
+            }
+            /// Whether every pallet has a frame; `true` needs pallets.
+            PalletBoundary {
+                name: "pallet_boundary",
+                field: pallet_boundary: bool,
+                unit: None,
+                expects: "true or false",
+                doc: "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)",
+                parse: |text, _| $crate::globals_patch::parse_bool(text),
+            }
+            /// Cell side, metres.
+            BlockSize {
+                name: "block_size",
+                field: block_size: f64,
+                unit: Some("m"),
+                expects: "a length in metres",
+                doc: "cell side S in metres",
+                parse: $crate::globals_patch::parse_number,
+            }
+            /// One step, metres.
+            StepHeight {
+                name: "step_height",
+                field: step_height: f64,
+                unit: Some("m"),
+                expects: "a length in metres",
+                doc: "height of one step in metres",
+                parse: $crate::globals_patch::parse_number,
+            }
+            /// The slab under the grid, metres.
+            Base {
+                name: "base",
+                field: base: f64,
+                unit: Some("m"),
+                expects: "a length in metres",
+                doc: "slab under the whole grid, metres",
+                parse: $crate::globals_patch::parse_number,
+            }
+            /// Worlds in a batch.
+            Amount {
+                name: "amount",
+                field: amount: u64,
+                unit: Some("worlds"),
+                expects: "a whole number of worlds",
+                doc: "worlds in a batch",
+                parse: $crate::globals_patch::parse_number,
+            }
+            /// The batch's base seed.
+            Seed {
+                name: "seed",
+                field: seed: u64,
+                unit: None,
+                expects: "a whole number 0..=2^64-1",
+                doc: "base seed of a batch, 0..2^64-1",
+                parse: $crate::globals_patch::parse_number,
+            }
+        }
+    };
+}
+pub(crate) use for_each_global_key;
+
+/// [`GlobalKey`] from the table of [`for_each_global_key`].
+macro_rules! declare_global_key {
+    ($(
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            parse: $parse:expr,
+        }
+    )*) => {
+        /// A `# key: value` global of a scheme file (docs/schemes.md).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum GlobalKey {
+            $($(#[doc = $what])* $variant,)*
+        }
+
+        impl GlobalKey {
+            /// Every key, in the order a scheme file writes them.
+            pub const ALL: [GlobalKey; [$(stringify!($variant)),*].len()] =
+                [$(GlobalKey::$variant),*];
+
+            /// The key as a scheme file, the editor and Python's keywords
+            /// spell it.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(GlobalKey::$variant => $name,)*
+                }
+            }
+
+            /// The unit of its value, where it has one the editor shows.
+            pub const fn unit(self) -> Option<&'static str> {
+                match self {
+                    $(GlobalKey::$variant => $unit,)*
+                }
+            }
+
+            /// What its text must be, as a parse error says it.
+            pub const fn expects(self) -> &'static str {
+                match self {
+                    $(GlobalKey::$variant => $expects,)*
+                }
+            }
+
+            /// One line of documentation: the "value" column of
+            /// docs/schemes.md's table of keys, without its backticks (the
+            /// editor's tooltip; a test in rse-edit holds the two together).
+            pub const fn doc(self) -> &'static str {
+                match self {
+                    $(GlobalKey::$variant => $doc,)*
+                }
+            }
+        }
+    };
 }
 
+for_each_global_key!(declare_global_key);
+
 impl GlobalKey {
-    /// Every key, in the order a scheme file writes them.
-    pub const ALL: [GlobalKey; 9] = [
-        GlobalKey::Size,
-        GlobalKey::Pallets,
-        GlobalKey::PalletSize,
-        GlobalKey::PalletBoundary,
-        GlobalKey::BlockSize,
-        GlobalKey::StepHeight,
-        GlobalKey::Base,
-        GlobalKey::Amount,
-        GlobalKey::Seed,
-    ];
-
-    /// The key as a scheme file, the editor and Python's keywords spell it.
-    pub const fn name(self) -> &'static str {
-        match self {
-            GlobalKey::Size => "size",
-            GlobalKey::Pallets => "pallets",
-            GlobalKey::PalletSize => "pallet_size",
-            GlobalKey::PalletBoundary => "pallet_boundary",
-            GlobalKey::BlockSize => "block_size",
-            GlobalKey::StepHeight => "step_height",
-            GlobalKey::Base => "base",
-            GlobalKey::Amount => "amount",
-            GlobalKey::Seed => "seed",
-        }
-    }
-
-    /// The unit of its value, where it has one the editor shows.
-    pub const fn unit(self) -> Option<&'static str> {
-        match self {
-            GlobalKey::BlockSize | GlobalKey::StepHeight | GlobalKey::Base => Some("m"),
-            GlobalKey::Size | GlobalKey::PalletSize => Some("cells"),
-            GlobalKey::Pallets => Some("pallets"),
-            GlobalKey::Amount => Some("worlds"),
-            GlobalKey::PalletBoundary | GlobalKey::Seed => None,
-        }
-    }
-
-    /// What its text must be, as a parse error says it.
-    pub const fn expects(self) -> &'static str {
-        match self {
-            GlobalKey::Size => "NXxNY, whole numbers of cells",
-            GlobalKey::Pallets => "NXxNY pallets, or off",
-            GlobalKey::PalletSize => "a whole number of cells",
-            GlobalKey::PalletBoundary => "true or false",
-            GlobalKey::BlockSize | GlobalKey::StepHeight | GlobalKey::Base => "a length in metres",
-            GlobalKey::Amount => "a whole number of worlds",
-            GlobalKey::Seed => "a whole number 0..=2^64-1",
-        }
-    }
-
-    /// One line of documentation: the "value" column of docs/schemes.md's
-    /// table of keys, without its backticks (the editor's tooltip; a test
-    /// in rse-edit holds the two together).
-    pub const fn doc(self) -> &'static str {
-        match self {
-            GlobalKey::Size => "NXxNY cells, used when pallets are off",
-            GlobalKey::Pallets => "PXxPY pallets, or off",
-            GlobalKey::PalletSize => "pallet side in cells, inside the frame (needs pallets)",
-            GlobalKey::PalletBoundary => {
-                "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)"
-            }
-            GlobalKey::BlockSize => "cell side S in metres",
-            GlobalKey::StepHeight => "height of one step in metres",
-            GlobalKey::Base => "slab under the whole grid, metres",
-            GlobalKey::Amount => "worlds in a batch",
-            GlobalKey::Seed => "base seed of a batch, 0..2^64-1",
-        }
-    }
-
     /// The key spelt `name` in any case.
     pub fn find(name: &str) -> Option<GlobalKey> {
         GlobalKey::ALL
@@ -114,8 +180,8 @@ impl std::fmt::Display for GlobalKey {
 }
 
 /// Every key's name, in [`GlobalKey::ALL`] order.
-pub const GLOBAL_KEYS: [&str; 9] = {
-    let mut names = [""; 9];
+pub const GLOBAL_KEYS: [&str; GlobalKey::ALL.len()] = {
+    let mut names = [""; GlobalKey::ALL.len()];
     let mut i = 0;
     while i < names.len() {
         names[i] = GlobalKey::ALL[i].name();

@@ -4,35 +4,74 @@
 //! here and nowhere else).
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::global_key::GlobalKey;
+use crate::global_key::{GlobalKey, for_each_global_key};
 use crate::globals::{self, Globals, Pallets};
 use crate::limits::DEFAULT_PALLET_SIZE;
 
-/// Global parameters, each `None` when not given. Every skin fills one in
-/// and [`apply`](GlobalsPatch::apply)s it onto the globals it starts from
-/// (the defaults for a new scheme, the file's for command-line overrides,
-/// the scheme's own for Python's `replace`).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct GlobalsPatch {
-    /// `[nx, ny]` in cells.
-    pub size: Option<[u32; 2]>,
-    /// `Some(None)` turns pallets off, `Some(Some(count))` on.
-    pub pallets: Option<Option<[u32; 2]>>,
-    /// Pallet side in cells; needs pallets.
-    pub pallet_size: Option<u32>,
-    /// The frame around every pallet; `true` needs pallets.
-    pub pallet_boundary: Option<bool>,
-    /// Cell side in metres.
-    pub block_size: Option<f64>,
-    /// One step in metres.
-    pub step_height: Option<f64>,
-    /// Slab under the grid, metres.
-    pub base: Option<f64>,
-    /// Worlds in a batch.
-    pub amount: Option<u64>,
-    /// Base seed of a batch.
-    pub seed: Option<u64>,
+/// [`GlobalsPatch`], its `set_key`, `combine` and `given`, from the table
+/// of [`for_each_global_key`].
+macro_rules! declare_globals_patch {
+    ($(
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            parse: $parse:expr,
+        }
+    )*) => {
+        /// Global parameters, each `None` when not given. Every skin fills
+        /// one in and [`apply`](GlobalsPatch::apply)s it onto the globals it
+        /// starts from (the defaults for a new scheme, the file's for
+        /// command-line overrides, the scheme's own for Python's `replace`).
+        #[derive(Debug, Clone, Copy, Default, PartialEq)]
+        pub struct GlobalsPatch {
+            $($(#[doc = $what])* pub $field: Option<$ty>,)*
+        }
+
+        impl GlobalsPatch {
+            /// Sets `key` from its text as a scheme file writes it; the
+            /// error's `field` names the key.
+            pub fn set_key(&mut self, key: GlobalKey, text: &str) -> Result<(), SchemeError> {
+                let expects = key.expects();
+                let parsed = match key {
+                    $(GlobalKey::$variant => {
+                        ($parse)(text, expects).map(|value| self.$field = Some(value))
+                    })*
+                };
+                parsed.map_err(|reason: String| {
+                    SchemeError::new(SchemeErrorKind::BadGlobal {
+                        value: text.to_owned(),
+                        reason,
+                    })
+                    .with_field(key.name())
+                })
+            }
+
+            /// `self`'s values, each unset one taken from `other` (ruff's
+            /// `combine`: the first given wins).
+            #[must_use]
+            pub fn combine(self, other: GlobalsPatch) -> GlobalsPatch {
+                GlobalsPatch {
+                    $($field: self.$field.or(other.$field),)*
+                }
+            }
+
+            /// The keys given, in [`GlobalKey::ALL`] order.
+            pub fn given(&self) -> Vec<GlobalKey> {
+                let mut keys = Vec::new();
+                $(if self.$field.is_some() {
+                    keys.push(GlobalKey::$variant);
+                })*
+                keys
+            }
+        }
+    };
 }
+
+for_each_global_key!(declare_globals_patch);
 
 impl GlobalsPatch {
     /// Sets `key` (any case) from its text as a scheme file writes it. The
@@ -51,70 +90,9 @@ impl GlobalsPatch {
         self.set_key(found, text).map(|()| found)
     }
 
-    /// Sets `key` from its text as a scheme file writes it; the error's
-    /// `field` names the key.
-    pub fn set_key(&mut self, key: GlobalKey, text: &str) -> Result<(), SchemeError> {
-        let expects = key.expects();
-        let parsed = match key {
-            GlobalKey::Size => globals::parse_dims(text).map(|d| self.size = Some(d)),
-            GlobalKey::Pallets => parse_pallets(text).map(|p| self.pallets = Some(p)),
-            GlobalKey::PalletSize => {
-                parse_number(text, expects).map(|n| self.pallet_size = Some(n))
-            }
-            GlobalKey::PalletBoundary => parse_bool(text).map(|b| self.pallet_boundary = Some(b)),
-            GlobalKey::BlockSize => parse_number(text, expects).map(|v| self.block_size = Some(v)),
-            GlobalKey::StepHeight => {
-                parse_number(text, expects).map(|v| self.step_height = Some(v))
-            }
-            GlobalKey::Base => parse_number(text, expects).map(|v| self.base = Some(v)),
-            GlobalKey::Amount => parse_number(text, expects).map(|v| self.amount = Some(v)),
-            GlobalKey::Seed => parse_number(text, expects).map(|v| self.seed = Some(v)),
-        };
-        parsed.map_err(|reason| {
-            SchemeError::new(SchemeErrorKind::BadGlobal {
-                value: text.to_owned(),
-                reason,
-            })
-            .with_field(key.name())
-        })
-    }
-
     /// `true` when nothing is given.
     pub fn is_empty(&self) -> bool {
         *self == GlobalsPatch::default()
-    }
-
-    /// `self`'s values, each unset one taken from `other` (ruff's
-    /// `combine`: the first given wins).
-    #[must_use]
-    pub fn combine(self, other: GlobalsPatch) -> GlobalsPatch {
-        GlobalsPatch {
-            size: self.size.or(other.size),
-            pallets: self.pallets.or(other.pallets),
-            pallet_size: self.pallet_size.or(other.pallet_size),
-            pallet_boundary: self.pallet_boundary.or(other.pallet_boundary),
-            block_size: self.block_size.or(other.block_size),
-            step_height: self.step_height.or(other.step_height),
-            base: self.base.or(other.base),
-            amount: self.amount.or(other.amount),
-            seed: self.seed.or(other.seed),
-        }
-    }
-
-    /// The keys given, in [`GlobalKey::ALL`] order.
-    pub fn given(&self) -> Vec<GlobalKey> {
-        let set = |key| match key {
-            GlobalKey::Size => self.size.is_some(),
-            GlobalKey::Pallets => self.pallets.is_some(),
-            GlobalKey::PalletSize => self.pallet_size.is_some(),
-            GlobalKey::PalletBoundary => self.pallet_boundary.is_some(),
-            GlobalKey::BlockSize => self.block_size.is_some(),
-            GlobalKey::StepHeight => self.step_height.is_some(),
-            GlobalKey::Base => self.base.is_some(),
-            GlobalKey::Amount => self.amount.is_some(),
-            GlobalKey::Seed => self.seed.is_some(),
-        };
-        GlobalKey::ALL.into_iter().filter(|&key| set(key)).collect()
     }
 
     /// `onto` with the given values. Pallets turned on keep the size and
@@ -124,9 +102,22 @@ impl GlobalsPatch {
     /// Domains and the grid size are checked by [`Globals::validate`], as
     /// every scheme is built.
     pub fn apply(&self, onto: &Globals) -> Result<Globals, SchemeError> {
+        // Every field by name (no `..`): a key added to the table does not
+        // compile until it is applied here.
+        let GlobalsPatch {
+            size,
+            pallets,
+            pallet_size,
+            pallet_boundary,
+            block_size,
+            step_height,
+            base,
+            amount,
+            seed,
+        } = *self;
         let mut g = *onto;
-        g.size = self.size.unwrap_or(g.size);
-        match self.pallets {
+        g.size = size.unwrap_or(g.size);
+        match pallets {
             None => {}
             Some(None) => g.pallets = None,
             Some(Some(count)) => {
@@ -138,24 +129,24 @@ impl GlobalsPatch {
             }
         }
         if let Some(p) = g.pallets.as_mut() {
-            p.size = self.pallet_size.unwrap_or(p.size);
-            p.boundary = self.pallet_boundary.unwrap_or(p.boundary);
+            p.size = pallet_size.unwrap_or(p.size);
+            p.boundary = pallet_boundary.unwrap_or(p.boundary);
         } else {
             let off = |key: GlobalKey| {
                 Err(SchemeError::new(SchemeErrorKind::PalletsOff).with_field(key.name()))
             };
-            if self.pallet_size.is_some() {
+            if pallet_size.is_some() {
                 return off(GlobalKey::PalletSize);
             }
-            if self.pallet_boundary == Some(true) {
+            if pallet_boundary == Some(true) {
                 return off(GlobalKey::PalletBoundary);
             }
         }
-        g.block_size = self.block_size.unwrap_or(g.block_size);
-        g.step_height = self.step_height.unwrap_or(g.step_height);
-        g.base = self.base.unwrap_or(g.base);
-        g.amount = self.amount.unwrap_or(g.amount);
-        g.seed = self.seed.unwrap_or(g.seed);
+        g.block_size = block_size.unwrap_or(g.block_size);
+        g.step_height = step_height.unwrap_or(g.step_height);
+        g.base = base.unwrap_or(g.base);
+        g.amount = amount.unwrap_or(g.amount);
+        g.seed = seed.unwrap_or(g.seed);
         Ok(g)
     }
 }
@@ -199,27 +190,34 @@ impl Globals {
     /// pallets, which define the grid).
     pub fn cells(&self) -> Vec<(GlobalKey, String)> {
         let defaults = Globals::default();
-        let mut cells = Vec::new();
-        if self.pallets.is_none() || self.size != defaults.size {
-            cells.push((GlobalKey::Size, globals::format_dims(self.size)));
-        }
-        if let Some(p) = self.pallets {
-            cells.push((GlobalKey::Pallets, globals::format_dims(p.count)));
-            cells.push((GlobalKey::PalletSize, p.size.to_string()));
-            cells.push((GlobalKey::PalletBoundary, p.boundary.to_string()));
-        }
-        cells.push((GlobalKey::BlockSize, self.block_size.to_string()));
-        cells.push((GlobalKey::StepHeight, self.step_height.to_string()));
-        if self.base.to_bits() != defaults.base.to_bits() {
-            cells.push((GlobalKey::Base, self.base.to_string()));
-        }
-        if self.amount != defaults.amount {
-            cells.push((GlobalKey::Amount, self.amount.to_string()));
-        }
-        if self.seed != defaults.seed {
-            cells.push((GlobalKey::Seed, self.seed.to_string()));
-        }
-        cells
+        let unless_default = |differs: bool, text: String| differs.then_some(text);
+        GlobalKey::ALL
+            .into_iter()
+            .filter_map(|key| {
+                let text = match key {
+                    GlobalKey::Size => unless_default(
+                        self.pallets.is_none() || self.size != defaults.size,
+                        globals::format_dims(self.size),
+                    ),
+                    GlobalKey::Pallets => self.pallets.map(|p| globals::format_dims(p.count)),
+                    GlobalKey::PalletSize => self.pallets.map(|p| p.size.to_string()),
+                    GlobalKey::PalletBoundary => self.pallets.map(|p| p.boundary.to_string()),
+                    GlobalKey::BlockSize => Some(self.block_size.to_string()),
+                    GlobalKey::StepHeight => Some(self.step_height.to_string()),
+                    GlobalKey::Base => unless_default(
+                        self.base.to_bits() != defaults.base.to_bits(),
+                        self.base.to_string(),
+                    ),
+                    GlobalKey::Amount => {
+                        unless_default(self.amount != defaults.amount, self.amount.to_string())
+                    }
+                    GlobalKey::Seed => {
+                        unless_default(self.seed != defaults.seed, self.seed.to_string())
+                    }
+                };
+                text.map(|text| (key, text))
+            })
+            .collect()
     }
 }
 
@@ -236,7 +234,7 @@ pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
 }
 
 /// `true`/`false`, `yes`/`no`, `on`/`off`, `1`/`0` (case-insensitive).
-fn parse_bool(value: &str) -> Result<bool, String> {
+pub(crate) fn parse_bool(value: &str) -> Result<bool, String> {
     match value.trim().to_ascii_lowercase().as_str() {
         "true" | "yes" | "on" | "1" => Ok(true),
         "false" | "no" | "off" | "0" => Ok(false),
@@ -244,7 +242,10 @@ fn parse_bool(value: &str) -> Result<bool, String> {
     }
 }
 
-fn parse_number<T: std::str::FromStr + IsFinite>(value: &str, what: &str) -> Result<T, String> {
+pub(crate) fn parse_number<T: std::str::FromStr + IsFinite>(
+    value: &str,
+    what: &str,
+) -> Result<T, String> {
     value
         .trim()
         .parse::<T>()
@@ -254,7 +255,7 @@ fn parse_number<T: std::str::FromStr + IsFinite>(value: &str, what: &str) -> Res
 }
 
 /// Lets one parser refuse `inf` and `NaN`, which `f64::from_str` accepts.
-trait IsFinite {
+pub(crate) trait IsFinite {
     fn is_finite_number(&self) -> bool;
 }
 

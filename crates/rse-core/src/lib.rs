@@ -83,7 +83,7 @@ pub use limits::{
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};
 pub use request::{WorldAt, WorldRequest};
-pub use scheme::{Scheme, VISIT_NANOS};
+pub use scheme::{BUDGET_VISITS, Scheme, VISIT_NANOS};
 pub use scheme_file::{MAX_SCHEME_BYTES, read_scheme_file};
 pub use terrain::Terrain;
 

@@ -36,7 +36,7 @@ impl WorldRequest {
     /// its default.
     pub fn resolve(&self, scheme: &Scheme) -> WorldAt {
         WorldAt {
-            seed: self.seed.unwrap_or(scheme.globals().seed),
+            seed: scheme.seed_or(self.seed),
             index: self.index.unwrap_or(0),
             difficulty: self.difficulty.unwrap_or(Difficulty::FULL),
         }

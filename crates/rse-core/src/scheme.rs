@@ -88,6 +88,11 @@ impl PartialEq for Scheme {
 /// and `check-curriculum` price in cell visits.
 pub const VISIT_NANOS: f64 = 5.0;
 
+/// The work one priced job (a world's rebuild in `check`, a whole
+/// `check-curriculum`) may cost under the default budget, in cell visits:
+/// some 100 s on one core. A budget factor allows that many times as much.
+pub const BUDGET_VISITS: u64 = 20_000_000_000;
+
 impl Scheme {
     /// Checks `globals` and that every obstacle's points lie inside the grid.
     pub fn new(globals: Globals, obstacles: Vec<Obstacle>) -> Result<Self, SchemeError> {
@@ -145,6 +150,13 @@ impl Scheme {
     /// The global parameters.
     pub fn globals(&self) -> &Globals {
         &self.globals
+    }
+
+    /// The base seed a run of this scheme uses: the one its user gave,
+    /// else the scheme's `# seed:` (the one fallback every front end and
+    /// request shares).
+    pub fn seed_or(&self, given: Option<u64>) -> u64 {
+        given.unwrap_or(self.globals.seed)
     }
 
     /// The obstacle table, in the order it is applied.

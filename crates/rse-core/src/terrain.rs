@@ -19,9 +19,10 @@ pub struct Terrain {
     grid: Grid,
     #[serde(skip, default = "no_cells")]
     heightmap: Heightmap,
-    block_size: f64,
-    step_height: f64,
-    base: f64,
+    /// The globals it was generated with, as one value (an atlas's: its
+    /// first tile's scheme's; its grid is `grid`), so a global added to
+    /// the scheme reaches everything that reads a terrain.
+    globals: Globals,
     seed: u64,
     index: u64,
     difficulty: Difficulty,
@@ -47,9 +48,7 @@ impl Terrain {
         Terrain {
             grid,
             heightmap,
-            block_size: globals.block_size,
-            step_height: globals.step_height,
-            base: globals.base,
+            globals: *globals,
             seed,
             index,
             difficulty,
@@ -94,11 +93,11 @@ impl Terrain {
             && u64::from(nx) * u64::from(ny) <= MAX_CELLS
             && u64::from(nx.max(ny)) <= MAX_LATTICE_UNITS
             && frame_period.is_none_or(|p| p >= 2)
-            && length(terrain.block_size)
-            && length(terrain.step_height)
-            && (terrain.base == 0.0 || length(terrain.base))
-            && f64::from(nx.max(ny)) * terrain.block_size <= MAX_EXTENT
-            && terrain.base / terrain.step_height + 1.0 <= MAX_LATTICE_UNITS as f64;
+            && length(terrain.block_size())
+            && length(terrain.step_height())
+            && (terrain.base() == 0.0 || length(terrain.base()))
+            && f64::from(nx.max(ny)) * terrain.block_size() <= MAX_EXTENT
+            && terrain.base() / terrain.step_height() + 1.0 <= MAX_LATTICE_UNITS as f64;
         if !sound {
             return None;
         }
@@ -124,24 +123,30 @@ impl Terrain {
         &self.heightmap
     }
 
+    /// The globals it was generated with (an atlas's: its first tile's
+    /// scheme's, whose grid is not the map's: see [`Terrain::grid`]).
+    pub fn globals(&self) -> &Globals {
+        &self.globals
+    }
+
     /// Cell side in metres.
     pub fn block_size(&self) -> f64 {
-        self.block_size
+        self.globals.block_size
     }
 
     /// Step height in metres.
     pub fn step_height(&self) -> f64 {
-        self.step_height
+        self.globals.step_height
     }
 
     /// Slab thickness under the grid, metres.
     pub fn base(&self) -> f64 {
-        self.base
+        self.globals.base
     }
 
     /// Top of cell `(x, y)` in metres: `base + h·step`.
     pub fn elevation(&self, x: u32, y: u32) -> f64 {
-        self.base + f64::from(self.heightmap.get(x, y)) * self.step_height
+        self.base() + f64::from(self.heightmap.get(x, y)) * self.step_height()
     }
 
     /// The batch's base seed.

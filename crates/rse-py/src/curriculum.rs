@@ -33,7 +33,7 @@ pub fn _check_curriculum(
     let options = CurriculumOptions {
         levels,
         draws,
-        seed: seed.unwrap_or(scheme.globals().seed),
+        seed: scheme.seed_or(seed),
     };
     let report = interruptible(py, |stop| {
         rse_core::check_curriculum_within(scheme, options, budget, stop)

@@ -259,7 +259,7 @@ impl EnvTerrains {
             oversample,
             seed,
             env_offset,
-            difficulty: difficulty.map(|d| d.0.get()),
+            difficulty: difficulty.map(|d| d.0),
             layout: layout.map(|l| l.0),
             cols,
             border,

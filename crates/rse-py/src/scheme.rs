@@ -226,19 +226,21 @@ impl Scheme {
         seed: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let given = PyDict::new(py);
-        // The keywords in `GlobalKey::ALL`'s order, as the signature has them.
-        let values = [
-            size,
-            pallets,
-            pallet_size,
-            pallet_boundary,
-            block_size,
-            step_height,
-            base,
-            amount,
-            seed,
-        ];
-        for (key, value) in GlobalKey::ALL.into_iter().zip(values) {
+        // Each keyword by its key: the match is exhaustive, so a key added
+        // to core without its keyword here does not compile (a zip by
+        // position once could drop one silently).
+        for key in GlobalKey::ALL {
+            let value = match key {
+                GlobalKey::Size => &size,
+                GlobalKey::Pallets => &pallets,
+                GlobalKey::PalletSize => &pallet_size,
+                GlobalKey::PalletBoundary => &pallet_boundary,
+                GlobalKey::BlockSize => &block_size,
+                GlobalKey::StepHeight => &step_height,
+                GlobalKey::Base => &base,
+                GlobalKey::Amount => &amount,
+                GlobalKey::Seed => &seed,
+            };
             if let Some(value) = value {
                 given.set_item(key.name(), value)?;
             }

@@ -40,17 +40,6 @@ pub enum CheckConfigError {
 }
 
 impl CheckConfig {
-    /// `self`'s values, each unset one taken from `other`.
-    #[must_use]
-    pub fn combine(self, other: CheckConfig) -> CheckConfig {
-        CheckConfig {
-            physics: self.physics.or(other.physics),
-            strict: self.strict.or(other.strict),
-            template: self.template.or(other.template),
-            budget: self.budget.or(other.budget),
-        }
-    }
-
     /// The options a check runs with.
     pub fn resolve(self) -> Result<CheckOptions, CheckConfigError> {
         let physics = self.physics.unwrap_or(false);

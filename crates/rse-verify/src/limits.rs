@@ -40,8 +40,8 @@ pub const MAX_OBJ_OBJECTS: usize = 1024;
 /// some 100 s on one core of the development machine, room for any
 /// 1000×1000 world with every target (a field of random steps of height 4
 /// takes some 45 s, of height 1000 some 80 s). `check --budget F` allows F
-/// times as much.
-pub const REBUILD_VISITS: u64 = 20_000_000_000;
+/// times as much. The same budget as `check-curriculum`'s.
+pub const REBUILD_VISITS: u64 = rse_core::BUDGET_VISITS;
 
 /// The memory one world's rebuild may take under the default budget: the
 /// memory available (`MemAvailable`) shared by the worlds checked at once,

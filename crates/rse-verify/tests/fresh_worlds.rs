@@ -121,7 +121,7 @@ fn slender_random_walls_pass() {
 /// edges once made the T-junction search give up), 1-cell strips (the
 /// volume once drifted past its tolerance), 1 mm blocks; the physics
 /// smoke test on the small ones it judges (blocks of 1 cm and up), and
-/// its refusal, by name, below that.
+/// its refusal, by name, below that; cones, the box cover's worst shape.
 fn fifth_round_scheme() -> impl Strategy<Value = (String, bool)> {
     prop_oneof![
         // A tall wall along a long thin grid.
@@ -159,6 +159,17 @@ fn fifth_round_scheme() -> impl Strategy<Value = (String, bool)> {
                 false,
             )
         }),
+        // A cone, the box cover's worst shape (every level a thin ring),
+        // with its box list.
+        (10u32..=80, prop::sample::select(vec![20.0, 45.0, 80.0])).prop_map(|(r, angle)| {
+            (
+                format!(
+                    "# size: {0}x{0}\ntype,height,angle,x1,y1\npeak,{r},{angle},{r},{r}\n",
+                    2 * r
+                ),
+                false,
+            )
+        }),
         // Small worlds the physics smoke test judges.
         (
             1u32..=12,
@@ -191,7 +202,8 @@ proptest! {
         let options = BatchConfig {
             amount: Some(2),
             world: WorldConfig {
-                targets: Some(Targets::parse(if physics { "obj,urdf" } else { "obj" }).unwrap()),
+                // The mesh and the box list (URDF's), every shape.
+                targets: Some(Targets::parse("obj,urdf").unwrap()),
                 ..WorldConfig::default()
             },
             ..BatchConfig::default()

@@ -1,9 +1,8 @@
 //! What a user gives a world or a batch, as ruff's configuration pattern
 //! has it: a `*Config` of `Option`s that each front end (the command line,
-//! Python, the editor) fills with what its user gave and nothing else,
-//! [`combine`](BatchConfig::combine) for precedence, and one
-//! [`resolve`](BatchConfig::resolve) that applies the scheme's values, the
-//! defaults and every check. "The user's value, else the scheme's" is
+//! Python, the editor) fills with what its user gave and nothing else, and
+//! one [`resolve`](BatchConfig::resolve) that applies the scheme's values,
+//! the defaults and every check. "The user's value, else the scheme's" is
 //! written here, once.
 
 use std::path::PathBuf;
@@ -31,18 +30,6 @@ pub struct WorldConfig {
 }
 
 impl WorldConfig {
-    /// `self`'s values, each unset one taken from `other`.
-    #[must_use]
-    pub fn combine(self, other: WorldConfig) -> WorldConfig {
-        WorldConfig {
-            difficulty: self.difficulty.or(other.difficulty),
-            targets: self.targets.or(other.targets),
-            mesh: self.mesh.or(other.mesh),
-            mujoco_collider: self.mujoco_collider.or(other.mujoco_collider),
-            oversample: self.oversample.or(other.oversample),
-        }
-    }
-
     /// The world options: defaults for what is unset; an unknown collider,
     /// or an oversample without a height field, is refused.
     pub fn resolve(self) -> Result<WorldOptions, Error> {
@@ -81,19 +68,6 @@ pub struct BatchConfig {
 }
 
 impl BatchConfig {
-    /// `self`'s values, each unset one taken from `other`.
-    #[must_use]
-    pub fn combine(self, other: BatchConfig) -> BatchConfig {
-        BatchConfig {
-            amount: self.amount.or(other.amount),
-            seed: self.seed.or(other.seed),
-            world: self.world.combine(other.world),
-            jobs: self.jobs.or(other.jobs),
-            shard: self.shard.or(other.shard),
-            force: self.force.or(other.force),
-        }
-    }
-
     /// The batch of `scheme` into `out`: the user's values, else the
     /// scheme's (`# amount:`, `# seed:`), else the defaults; every option
     /// checked.
@@ -108,7 +82,7 @@ impl BatchConfig {
         Ok(BatchOptions {
             out: out.into(),
             amount: self.amount.unwrap_or(globals.amount),
-            seed: self.seed.unwrap_or(globals.seed),
+            seed: scheme.seed_or(self.seed),
             world: self.world.resolve()?,
             jobs: self.jobs,
             shard: self.shard.unwrap_or_default(),
@@ -163,21 +137,6 @@ mod tests {
                 oversample: rse_core::DEFAULT_OVERSAMPLE
             }
         );
-    }
-
-    #[test]
-    fn combine_keeps_the_first_given() {
-        let first = BatchConfig {
-            amount: Some(1),
-            ..BatchConfig::default()
-        };
-        let second = BatchConfig {
-            amount: Some(2),
-            seed: Some(9),
-            ..BatchConfig::default()
-        };
-        let both = first.combine(second);
-        assert_eq!((both.amount, both.seed), (Some(1), Some(9)));
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::R
         let options = CurriculumOptions {
             levels: args.levels,
             draws: args.draws,
-            seed: args.seed.unwrap_or(scheme.globals().seed),
+            seed: scheme.seed_or(args.seed),
         };
         let name = path.display().to_string();
         let budget = args.budget.unwrap_or_default().factor();

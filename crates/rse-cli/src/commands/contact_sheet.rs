@@ -21,7 +21,7 @@ pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Resu
     let mix = SchemeMix::new(&proportions).map_err(|e| anyhow::anyhow!("--{e}"))?;
     rse_core::check_mixable(&schemes).map_err(|e| anyhow::anyhow!("SCHEME…: {e}"))?;
     let n = args.envs as usize;
-    let mix_seed = args.seed.unwrap_or(schemes[0].globals().seed);
+    let mix_seed = schemes[0].seed_or(args.seed);
     let drawn = mix.schemes_of(mix_seed, 0, n);
     let names: Vec<String> = args
         .schemes

@@ -75,8 +75,9 @@ pub struct EnvRequest {
     pub seed: Option<u64>,
     /// Global id of environment 0; default 0.
     pub env_offset: Option<u64>,
-    /// Starting difficulty of every environment, 0 to 1; default 1.
-    pub difficulty: Option<f64>,
+    /// Starting difficulty of every environment (checked where the user's
+    /// number is read, by [`Difficulty`]'s own constructor); default 1.
+    pub difficulty: Option<Difficulty>,
     /// Slots or tiles; default slots.
     pub layout: Option<LayoutKind>,
     /// Tiles along x (tiles only); default `ceil(sqrt(num_envs))`.
@@ -91,7 +92,7 @@ pub struct EnvRequest {
 impl EnvRequest {
     /// The options of [`EnvTerrains::new`](super::EnvTerrains::new) for
     /// `scheme`, every unset field given its default. Refused, naming the
-    /// argument: a difficulty outside 0..=1, `cols` or `border` with slots.
+    /// argument: `cols` or `border` with slots.
     /// The rest (counts, sizes, the radius) is checked by `EnvTerrains::new`.
     pub fn resolve(&self, scheme: &Scheme) -> Result<EnvOptions, EnvError> {
         let layout = match self.layout.unwrap_or_default() {
@@ -108,14 +109,11 @@ impl EnvRequest {
                 border: self.border.unwrap_or(0),
             },
         };
-        let difficulty = match self.difficulty {
-            None => Difficulty::FULL,
-            Some(d) => Difficulty::new(d).map_err(|e| bad("difficulty", e.to_string()))?,
-        };
+        let difficulty = self.difficulty.unwrap_or(Difficulty::FULL);
         Ok(EnvOptions {
             num_envs: self.num_envs,
             oversample: self.oversample.unwrap_or(DEFAULT_ENV_OVERSAMPLE),
-            seed: self.seed.unwrap_or(scheme.globals().seed),
+            seed: scheme.seed_or(self.seed),
             env_offset: self.env_offset.unwrap_or(0),
             layout,
             difficulty,
@@ -160,7 +158,7 @@ mod tests {
         let request = EnvRequest {
             num_envs: 10,
             seed: Some(3),
-            difficulty: Some(0.25),
+            difficulty: Some(Difficulty::new(0.25).unwrap()),
             layout: Some(LayoutKind::Tiles),
             ..EnvRequest::default()
         };
@@ -177,13 +175,6 @@ mod tests {
             num_envs: 4,
             ..EnvRequest::default()
         };
-        assert!(
-            refused(EnvRequest {
-                difficulty: Some(1.5),
-                ..base
-            })
-            .starts_with("difficulty: ")
-        );
         assert!(
             refused(EnvRequest {
                 border: Some(1),

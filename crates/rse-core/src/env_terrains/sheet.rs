@@ -275,7 +275,7 @@ mod tests {
         let scheme = Scheme::from_csv("# size: 20x10\ntype,height\nrandom,3\n", None).unwrap();
         let options = EnvRequest {
             num_envs: n,
-            difficulty: Some(0.5),
+            difficulty: Some(crate::Difficulty::new(0.5).unwrap()),
             ..EnvRequest::default()
         }
         .resolve(&scheme)

@@ -45,6 +45,12 @@ pub(crate) struct WorldContext {
     pub collider: &'static str,
     /// The height field, when `collider` is `hfield`.
     pub hfield: Option<HFieldContext>,
+    /// The scheme's globals by their keys' names (`scheme.block_size`,
+    /// `scheme.amount`; pallets as `scheme.pallets.count`, `.size`,
+    /// `.boundary`, or none): the terrain carries them as one value, so a
+    /// key added to the scheme reaches the templates here with no other
+    /// edit. An atlas's are its first tile's scheme's.
+    pub scheme: rse_core::Globals,
 }
 
 /// A `MuJoCo` height field: its file and where it goes.
@@ -91,6 +97,7 @@ impl WorldContext {
             ),
             collider: "boxes",
             hfield: None,
+            scheme: *terrain.globals(),
         }
     }
 

@@ -62,15 +62,9 @@ def fit(scheme: Scheme, size: tuple[float, float]) -> Scheme:
     nx, ny = (max(1, math.floor(extent / s + 1e-9)) for extent in size)
     if scheme.grid == (nx, ny):
         return scheme
-    return Scheme(
-        scheme.obstacles,
-        size=(nx, ny),
-        block_size=s,
-        step_height=scheme.step_height,
-        base=scheme.base,
-        amount=scheme.amount,
-        seed=scheme.seed,
-    )
+    # Every other global is kept as the scheme has it (no keyword list to
+    # fall behind a new option).
+    return scheme.replace(pallets=None, size=(nx, ny))
 
 
 def tile_terrain(cfg: Any, difficulty: float, index: Any) -> tuple[Scheme, Terrain]:

@@ -1,0 +1,128 @@
+"""Every global option of a scheme, walked through every skin that carries
+it: the constructor's keyword, `Scheme.replace`, the scheme file both ways,
+the world's `rse.json`, the templates' context, the framework adapters'
+tile fitting, the command line's flag. The keys come from the library itself (`Scheme().fields()`),
+so a key added to core that a skin drops, or that this table has no value
+for, fails here by name. (The editor's schema lists every key by the same
+table: rse-edit's `api::tests`.)"""
+
+import json
+import subprocess
+from pathlib import Path
+
+import pytest
+import rse
+from conftest import rse_gen_path
+from rse._adapters import tiles
+
+# A value of each key other than its default, as Python gives it, and as a
+# scheme file writes it.
+SAMPLES: dict[str, tuple[object, str]] = {
+    "size": ((13, 11), "13x11"),
+    "pallets": ((2, 1), "2x1"),
+    "pallet_size": (7, "7"),
+    "pallet_boundary": (False, "false"),
+    "block_size": (0.05, "0.05"),
+    "step_height": (0.025, "0.025"),
+    "base": (0.02, "0.02"),
+    "amount": (3, "3"),
+    "seed": (17, "17"),
+}
+KEYS = [key for key in rse.Scheme().fields() if key != "obstacles"]
+# The pallet keys need pallets on; fitting a tile sets the grid itself.
+NEEDS_PALLETS = {"pallet_size", "pallet_boundary"}
+THE_GRID = {"size", "pallets"} | NEEDS_PALLETS
+
+
+def scheme_with(key: str) -> rse.Scheme:
+    value, _ = SAMPLES[key]
+    base: dict[str, object] = {"pallets": (2, 1)} if key in NEEDS_PALLETS else {}
+    return rse.Scheme(**base, **{key: value})
+
+
+def test_every_key_has_a_sample_value() -> None:
+    missing = [key for key in KEYS if key not in SAMPLES]
+    assert not missing, f"give these keys a non-default sample in SAMPLES: {missing}"
+    assert set(SAMPLES) == set(KEYS), f"keys no longer in the library: {set(SAMPLES) - set(KEYS)}"
+    defaults = rse.Scheme().fields()
+    for key, (value, _) in SAMPLES.items():
+        assert defaults[key] != value, f"{key}: the sample is the default"
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_the_constructor_and_replace_carry_it(key: str) -> None:
+    value, _ = SAMPLES[key]
+    assert scheme_with(key).fields()[key] == value
+    base: dict[str, object] = {"pallets": (2, 1)} if key in NEEDS_PALLETS else {}
+    assert rse.Scheme(**base).replace(**{key: value}).fields()[key] == value
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_the_scheme_file_carries_it_both_ways(key: str) -> None:
+    scheme = scheme_with(key)
+    _, text = SAMPLES[key]
+    csv = scheme.to_csv()
+    assert f"# {key}: {text}\n" in csv, csv
+    assert rse.Scheme.from_csv(csv).fields() == scheme.fields()
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_rse_json_records_it(key: str, tmp_path: Path) -> None:
+    _, text = SAMPLES[key]
+    rse.write_worlds(scheme_with(key), tmp_path, amount=1, targets="obj")
+    manifest = json.loads((tmp_path / "world_0000" / "rse.json").read_text())
+    assert f"# {key}: {text}\n" in manifest["scheme"], manifest["scheme"]
+
+
+# How the templates' `scheme` value prints the pallet keys' samples (inside
+# `scheme.pallets`); minijinja prints the others as Python's repr does.
+IN_TEMPLATES = {"pallets": "'count': (2, 1)", "pallet_size": "'size': 7", "pallet_boundary": "'boundary': False"}
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_the_templates_see_it(key: str, tmp_path: Path) -> None:
+    folder = tmp_path / "templates" / "urdf"
+    folder.mkdir(parents=True)
+    (folder / "scheme.txt.j2").write_text("{% for key, value in scheme|items %}{{ key }}={{ value }}\n{% endfor %}")
+    rse.write_worlds(scheme_with(key), tmp_path / "out", amount=1, targets="urdf", template=tmp_path / "templates")
+    text = (tmp_path / "out" / "world_0000" / "urdf" / "scheme.txt").read_text()
+    seen = dict(line.split("=", 1) for line in text.splitlines())
+    value, _ = SAMPLES[key]
+    holder = "pallets" if key in IN_TEMPLATES else key
+    assert holder in seen, f"the templates' `scheme` has no {holder}: {text}"
+    assert IN_TEMPLATES.get(key, repr(value)) in seen[holder], text
+
+
+@pytest.mark.parametrize("key", sorted(set(KEYS) - THE_GRID))
+def test_a_fitted_tile_keeps_it(key: str) -> None:
+    value, _ = SAMPLES[key]
+    # A size the scheme does not span, so the tile is refitted.
+    fitted = tiles.fit(scheme_with(key), (3.0, 2.0))
+    assert fitted.grid != scheme_with(key).grid
+    assert fitted.fields()[key] == value
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_the_command_line_has_its_flag(key: str) -> None:
+    usage = subprocess.run(
+        [str(rse_gen_path()), "batch", "--help"], check=True, capture_output=True, text=True
+    ).stdout
+    flag = "--" + key.replace("_", "-")
+    assert f"{flag} " in usage or f"{flag}\n" in usage, f"rse-gen batch has no {flag}"
+
+
+@pytest.mark.parametrize("key", sorted(set(KEYS) - {"amount", "seed"}))
+def test_the_command_lines_flag_reaches_the_scheme(key: str, tmp_path: Path) -> None:
+    # amount and seed are the batch's own flags (how many worlds, which
+    # seed), recorded as the batch, not as the scheme's text.
+    _, text = SAMPLES[key]
+    scheme = tmp_path / "s.csv"
+    scheme.write_text(rse.Scheme(pallets=(2, 1) if key in NEEDS_PALLETS else None).to_csv())
+    flag = "--" + key.replace("_", "-")
+    subprocess.run(
+        [str(rse_gen_path()), "batch", str(scheme), "-o", str(tmp_path / "out"), "--target", "obj", flag, text],
+        check=True,
+        capture_output=True,
+    )
+    manifest = json.loads((tmp_path / "out" / "world_0000" / "rse.json").read_text())
+    assert f"# {key}: {text}\n" in manifest["scheme"], manifest["scheme"]
