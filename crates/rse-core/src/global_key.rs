@@ -1,15 +1,14 @@
 //! The global keys of a scheme, declared once in one table
 //! ([`for_each_global_key`]): each key's name (in a scheme file, the editor
-//! and Python; `--block-size` on the command line), its field and parser in
-//! the patch, its unit, what its value must be, and one line of
-//! documentation. The enum and the patch are built from the table; the
+//! and Python; `--block-size` on the command line), its field in the patch,
+//! its unit, what its value must be, and one line of documentation. The enum and the patch are built from the table; the
 //! CSV reader, the editor's schema, the command line and Python read the
 //! enum instead of matching strings of their own.
 
 /// The global keys, declared once: each key's variant, name (in a scheme
 /// file, the editor and Python; `--block-size` on the command line), field
-/// and type in [`GlobalsPatch`](crate::GlobalsPatch), unit, what its text
-/// must be, one line of documentation, and its parser. Hands the table to
+/// and type in the patch (whose type picks its parser), unit, what its
+/// text must be, and one line of documentation. Hands the table to
 /// `$callback`, which builds what it needs of it: [`GlobalKey`] here, the
 /// patch and its `set_key`/`combine`/`given` in `globals_patch.rs`. A key
 /// added here reaches both; what must still be written by hand for it (the
@@ -25,7 +24,6 @@ macro_rules! for_each_global_key {
                 unit: Some("cells"),
                 expects: "NXxNY, whole numbers of cells",
                 doc: "NXxNY cells, used when pallets are off",
-                parse: |text, _| $crate::globals::parse_dims(text),
             }
             /// Pallets along x and y, or off: `Some(None)` turns them off.
             Pallets {
@@ -34,7 +32,6 @@ macro_rules! for_each_global_key {
                 unit: Some("pallets"),
                 expects: "NXxNY pallets, or off",
                 doc: "PXxPY pallets, or off",
-                parse: |text, _| $crate::globals_patch::parse_pallets(text),
             }
             /// Pallet side in cells; needs pallets.
             PalletSize {
@@ -43,7 +40,6 @@ macro_rules! for_each_global_key {
                 unit: Some("cells"),
                 expects: "a whole number of cells",
                 doc: "pallet side in cells, inside the frame (needs pallets)",
-                parse: $crate::globals_patch::parse_number,
             }
             /// Whether every pallet has a frame; `true` needs pallets.
             PalletBoundary {
@@ -52,7 +48,6 @@ macro_rules! for_each_global_key {
                 unit: None,
                 expects: "true or false",
                 doc: "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)",
-                parse: |text, _| $crate::globals_patch::parse_bool(text),
             }
             /// Cell side, metres.
             BlockSize {
@@ -61,7 +56,6 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "cell side S in metres",
-                parse: $crate::globals_patch::parse_number,
             }
             /// One step, metres.
             StepHeight {
@@ -70,7 +64,6 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "height of one step in metres",
-                parse: $crate::globals_patch::parse_number,
             }
             /// The slab under the grid, metres.
             Base {
@@ -79,7 +72,6 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "slab under the whole grid, metres",
-                parse: $crate::globals_patch::parse_number,
             }
             /// Worlds in a batch.
             Amount {
@@ -88,7 +80,6 @@ macro_rules! for_each_global_key {
                 unit: Some("worlds"),
                 expects: "a whole number of worlds",
                 doc: "worlds in a batch",
-                parse: $crate::globals_patch::parse_number,
             }
             /// The batch's base seed.
             Seed {
@@ -97,7 +88,6 @@ macro_rules! for_each_global_key {
                 unit: None,
                 expects: "a whole number 0..=2^64-1",
                 doc: "base seed of a batch, 0..2^64-1",
-                parse: $crate::globals_patch::parse_number,
             }
         }
     };
@@ -114,7 +104,6 @@ macro_rules! declare_global_key {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
-            parse: $parse:expr,
         }
     )*) => {
         /// A `# key: value` global of a scheme file (docs/schemes.md).

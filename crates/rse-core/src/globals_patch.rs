@@ -19,7 +19,6 @@ macro_rules! declare_globals_patch {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
-            parse: $parse:expr,
         }
     )*) => {
         /// Global parameters, each `None` when not given. Every skin fills
@@ -38,7 +37,8 @@ macro_rules! declare_globals_patch {
                 let expects = key.expects();
                 let parsed = match key {
                     $(GlobalKey::$variant => {
-                        ($parse)(text, expects).map(|value| self.$field = Some(value))
+                        <$ty as ParseGlobal>::parse_global(text, expects)
+                            .map(|value| self.$field = Some(value))
                     })*
                 };
                 parsed.map_err(|reason: String| {
@@ -221,6 +221,51 @@ impl Globals {
     }
 }
 
+/// A global's value read from its text, the parser picked by the value's
+/// type (each key's type in the table is its own).
+trait ParseGlobal: Sized {
+    /// The value of `text`; `expects` says what it must be.
+    fn parse_global(text: &str, expects: &str) -> Result<Self, String>;
+}
+
+/// `size`: `NXxNY`.
+impl ParseGlobal for [u32; 2] {
+    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
+        globals::parse_dims(text)
+    }
+}
+
+/// `pallets`: a count, or off.
+impl ParseGlobal for Option<[u32; 2]> {
+    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
+        parse_pallets(text)
+    }
+}
+
+impl ParseGlobal for bool {
+    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
+        parse_bool(text)
+    }
+}
+
+impl ParseGlobal for u32 {
+    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
+        parse_number(text, expects)
+    }
+}
+
+impl ParseGlobal for u64 {
+    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
+        parse_number(text, expects)
+    }
+}
+
+impl ParseGlobal for f64 {
+    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
+        parse_number(text, expects)
+    }
+}
+
 /// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets: the `pallets`
 /// value of a scheme file, the editor and `--pallets` alike.
 pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
@@ -234,7 +279,7 @@ pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
 }
 
 /// `true`/`false`, `yes`/`no`, `on`/`off`, `1`/`0` (case-insensitive).
-pub(crate) fn parse_bool(value: &str) -> Result<bool, String> {
+fn parse_bool(value: &str) -> Result<bool, String> {
     match value.trim().to_ascii_lowercase().as_str() {
         "true" | "yes" | "on" | "1" => Ok(true),
         "false" | "no" | "off" | "0" => Ok(false),
@@ -242,10 +287,7 @@ pub(crate) fn parse_bool(value: &str) -> Result<bool, String> {
     }
 }
 
-pub(crate) fn parse_number<T: std::str::FromStr + IsFinite>(
-    value: &str,
-    what: &str,
-) -> Result<T, String> {
+fn parse_number<T: std::str::FromStr + IsFinite>(value: &str, what: &str) -> Result<T, String> {
     value
         .trim()
         .parse::<T>()
@@ -255,7 +297,7 @@ pub(crate) fn parse_number<T: std::str::FromStr + IsFinite>(
 }
 
 /// Lets one parser refuse `inf` and `NaN`, which `f64::from_str` accepts.
-pub(crate) trait IsFinite {
+trait IsFinite {
     fn is_finite_number(&self) -> bool;
 }
 

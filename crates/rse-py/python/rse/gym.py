@@ -34,6 +34,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 import rse
+from rse._adapters import private
 from rse._rse import DEFAULT_OVERSAMPLE
 from rse.mujoco import HFieldSlot, add_hfield, max_top
 
@@ -136,12 +137,12 @@ if _AntEnv is not None:
                 )
                 self._slot.write(self.terrain)
             ground = float(self.terrain.spawn_origin(self.footprint)[2])
-            noise = self._reset_noise_scale
+            noise = private.getattr_checked(self, "_reset_noise_scale", "gymnasium")
             qpos = self.init_qpos + self.np_random.uniform(low=-noise, high=noise, size=self.model.nq)
             qpos[2] = ground + self.spawn_height
             qvel = self.init_qvel + noise * self.np_random.standard_normal(self.model.nv)
             self.set_state(qpos, qvel)
-            return self._get_obs()
+            return private.getattr_checked(self, "_get_obs", "gymnasium")()
 
         def close(self) -> None:
             super().close()

@@ -98,11 +98,12 @@ def go1_joystick(envs: EnvTerrains, config: Any = None, config_overrides: Option
                 path = Path(folder) / "scene_rse_stepfield.xml"
                 path.write_text(scene)
                 base.Go1Env.__init__(self, xml_path=path.as_posix(), config=config, config_overrides=overrides)
-            self._post_init()
-            hid = self._mj_model.hfield(FIELD).id
-            adr = int(self._mj_model.hfield_adr[hid])
-            self._mj_model.hfield_data[adr : adr + envs.samples[0].size] = envs.samples[0].ravel()
-            self._mjx_model = mjx.put_model(self._mj_model, impl="jax")
+            private.getattr_checked(self, "_post_init", "playground")()
+            model = private.getattr_checked(self, "_mj_model", "playground")
+            hid = model.hfield(FIELD).id
+            adr = int(model.hfield_adr[hid])
+            model.hfield_data[adr : adr + envs.samples[0].size] = envs.samples[0].ravel()
+            private.setattr_checked(self, "_mjx_model", mjx.put_model(model, impl="jax"), "playground")
 
     return StepfieldJoystick()
 
