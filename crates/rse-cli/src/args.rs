@@ -500,53 +500,106 @@ pub struct DifficultyArg {
     pub value: Difficulty,
 }
 
-/// Global parameters that override the scheme's, on the subcommands that
-/// read a scheme (after the subcommand, or before it for all of them).
-#[derive(Debug, Clone, Copy, Default, Args)]
-#[command(next_help_heading = "Scheme overrides")]
-pub struct SchemeOverrides {
-    /// Grid size in cells, used when pallets are off.
-    #[arg(long, value_name = "NXxNY", value_parser = parse_dims)]
-    pub size: Option<[u32; 2]>,
+/// `SchemeOverrides` from rse-core's table of global keys
+/// (`for_each_global_key!`): one flag for each key that has one, its type,
+/// help line and clap settings as the table gives them. Munches the table
+/// entry by entry, keeping the keys with a flag (`amount` and `seed` are
+/// the batch's own flags).
+macro_rules! scheme_overrides {
+    (@munch [$($field:ident: $flag:ty => $help:literal ($($arg:tt)*);)*]) => {
+        /// Global parameters that override the scheme's, on the subcommands
+        /// that read a scheme (after the subcommand, or before it for all of
+        /// them).
+        #[derive(Debug, Clone, Copy, Default, Args)]
+        #[command(next_help_heading = "Scheme overrides")]
+        pub struct SchemeOverrides {
+            $(
+                #[doc = $help]
+                #[arg(long, $($arg)*)]
+                pub $field: Option<$flag>,
+            )*
+        }
 
-    /// Pallets along x and y, or `off`.
-    #[arg(long, value_name = "PXxPY|off", value_parser = pallets_flag)]
-    pub pallets: Option<PalletsFlag>,
+        impl SchemeOverrides {
+            /// The flags as core's patch of the scheme's globals (the keys
+            /// without a flag unset).
+            pub fn patch(&self) -> GlobalsPatch {
+                GlobalsPatch {
+                    $($field: self.$field.map(FlagValue::into_patch),)*
+                    ..GlobalsPatch::default()
+                }
+            }
+        }
 
-    /// Pallet side in cells (needs pallets).
-    #[arg(long, value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))]
-    pub pallet_size: Option<u32>,
-
-    /// A 1-cell, 1-step frame around every pallet (needs pallets).
-    #[arg(long, value_name = "true|false", action = clap::ArgAction::Set, hide_possible_values = true)]
-    pub pallet_boundary: Option<bool>,
-
-    /// Cell side in metres.
-    #[arg(long, value_name = "M", value_parser = positive_metres)]
-    pub block_size: Option<f64>,
-
-    /// Height of one step in metres.
-    #[arg(long, value_name = "M", value_parser = positive_metres)]
-    pub step_height: Option<f64>,
-
-    /// Slab under the whole grid in metres (0 for none).
-    #[arg(long, value_name = "M", value_parser = non_negative_metres)]
-    pub base: Option<f64>,
+        impl From<GlobalsPatch> for SchemeOverrides {
+            /// The flags of a patch (it holds no more than they set: it is
+            /// made from them).
+            fn from(patch: GlobalsPatch) -> Self {
+                SchemeOverrides {
+                    $($field: patch.$field.map(FlagValue::from_patch),)*
+                }
+            }
+        }
+    };
+    (@munch [$($done:tt)*]
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            flag: {},
+        }
+        $($rest:tt)*
+    ) => {
+        scheme_overrides!(@munch [$($done)*] $($rest)*);
+    };
+    (@munch [$($done:tt)*]
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            flag: { ty: $flag:ty, help: $help:literal, arg: ($($arg:tt)*) },
+        }
+        $($rest:tt)*
+    ) => {
+        scheme_overrides!(@munch [$($done)* $field: $flag => $help ($($arg)*);] $($rest)*);
+    };
+    ($($table:tt)*) => {
+        scheme_overrides!(@munch [] $($table)*);
+    };
 }
 
-impl From<GlobalsPatch> for SchemeOverrides {
-    /// The flags of a patch (it holds no more than they set: it is made
-    /// from them).
-    fn from(patch: GlobalsPatch) -> Self {
-        SchemeOverrides {
-            size: patch.size,
-            pallets: patch.pallets.map(PalletsFlag),
-            pallet_size: patch.pallet_size,
-            pallet_boundary: patch.pallet_boundary,
-            block_size: patch.block_size,
-            step_height: patch.step_height,
-            base: patch.base,
-        }
+rse_core::for_each_global_key!(scheme_overrides);
+
+/// A flag's value as core's patch holds it, and back: the same value, but
+/// `--pallets`, whose `off` clap cannot hold as an `Option<Option<_>>`.
+trait FlagValue<Patch>: Sized {
+    fn into_patch(self) -> Patch;
+    fn from_patch(patch: Patch) -> Self;
+}
+
+impl<T> FlagValue<T> for T {
+    fn into_patch(self) -> T {
+        self
+    }
+
+    fn from_patch(patch: T) -> T {
+        patch
+    }
+}
+
+impl FlagValue<Option<[u32; 2]>> for PalletsFlag {
+    fn into_patch(self) -> Option<[u32; 2]> {
+        self.0
+    }
+
+    fn from_patch(patch: Option<[u32; 2]>) -> Self {
+        PalletsFlag(patch)
     }
 }
 
@@ -555,20 +608,6 @@ impl SchemeOverrides {
     /// before the subcommand): core's `GlobalsPatch::combine`.
     pub fn or(self, outer: SchemeOverrides) -> SchemeOverrides {
         SchemeOverrides::from(self.patch().combine(outer.patch()))
-    }
-
-    /// The flags as core's patch of the scheme's globals.
-    pub fn patch(&self) -> GlobalsPatch {
-        GlobalsPatch {
-            size: self.size,
-            pallets: self.pallets.map(|PalletsFlag(p)| p),
-            pallet_size: self.pallet_size,
-            pallet_boundary: self.pallet_boundary,
-            block_size: self.block_size,
-            step_height: self.step_height,
-            base: self.base,
-            ..GlobalsPatch::default()
-        }
     }
 
     /// The first global flag given, as typed (`--size`), if any.

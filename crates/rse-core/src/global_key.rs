@@ -8,12 +8,17 @@
 /// The global keys, declared once: each key's variant, name (in a scheme
 /// file, the editor and Python; `--block-size` on the command line), field
 /// and type in the patch (whose type picks its parser), unit, what its
-/// text must be, and one line of documentation. Hands the table to
+/// text must be, one line of documentation, and its command-line flag
+/// (`flag: {}` for none: `amount` and `seed` are the batch's own flags):
+/// the flag's type, help line and clap `#[arg]` settings, as tokens only
+/// rse-cli expands (its parsers are rse-cli's). Hands the table to
 /// `$callback`, which builds what it needs of it: [`GlobalKey`] here, the
-/// patch and its `set_key`/`combine`/`given` in `globals_patch.rs`. A key
+/// patch and its `set_key`/`combine`/`given` in `globals_patch.rs`, the
+/// command line's `SchemeOverrides` in rse-cli's `args.rs`. A key
 /// added here reaches both; what must still be written by hand for it (the
 /// grid rule in `Globals`, its canonical text) is an exhaustive `match`
 /// on [`GlobalKey`] that does not compile without it.
+#[macro_export]
 macro_rules! for_each_global_key {
     ($callback:ident) => {
         $callback! {
@@ -24,6 +29,11 @@ macro_rules! for_each_global_key {
                 unit: Some("cells"),
                 expects: "NXxNY, whole numbers of cells",
                 doc: "NXxNY cells, used when pallets are off",
+                flag: {
+                    ty: [u32; 2],
+                    help: "Grid size in cells, used when pallets are off.",
+                    arg: (value_name = "NXxNY", value_parser = parse_dims)
+                },
             }
             /// Pallets along x and y, or off: `Some(None)` turns them off.
             Pallets {
@@ -32,6 +42,11 @@ macro_rules! for_each_global_key {
                 unit: Some("pallets"),
                 expects: "NXxNY pallets, or off",
                 doc: "PXxPY pallets, or off",
+                flag: {
+                    ty: PalletsFlag,
+                    help: "Pallets along x and y, or `off`.",
+                    arg: (value_name = "PXxPY|off", value_parser = pallets_flag)
+                },
             }
             /// Pallet side in cells; needs pallets.
             PalletSize {
@@ -40,6 +55,11 @@ macro_rules! for_each_global_key {
                 unit: Some("cells"),
                 expects: "a whole number of cells",
                 doc: "pallet side in cells, inside the frame (needs pallets)",
+                flag: {
+                    ty: u32,
+                    help: "Pallet side in cells (needs pallets).",
+                    arg: (value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))
+                },
             }
             /// Whether every pallet has a frame; `true` needs pallets.
             PalletBoundary {
@@ -48,6 +68,11 @@ macro_rules! for_each_global_key {
                 unit: None,
                 expects: "true or false",
                 doc: "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)",
+                flag: {
+                    ty: bool,
+                    help: "A 1-cell, 1-step frame around every pallet (needs pallets).",
+                    arg: (value_name = "true|false", action = clap::ArgAction::Set, hide_possible_values = true)
+                },
             }
             /// Cell side, metres.
             BlockSize {
@@ -56,6 +81,11 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "cell side S in metres",
+                flag: {
+                    ty: f64,
+                    help: "Cell side in metres.",
+                    arg: (value_name = "M", value_parser = positive_metres)
+                },
             }
             /// One step, metres.
             StepHeight {
@@ -64,6 +94,11 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "height of one step in metres",
+                flag: {
+                    ty: f64,
+                    help: "Height of one step in metres.",
+                    arg: (value_name = "M", value_parser = positive_metres)
+                },
             }
             /// The slab under the grid, metres.
             Base {
@@ -72,6 +107,11 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "slab under the whole grid, metres",
+                flag: {
+                    ty: f64,
+                    help: "Slab under the whole grid in metres (0 for none).",
+                    arg: (value_name = "M", value_parser = non_negative_metres)
+                },
             }
             /// Worlds in a batch.
             Amount {
@@ -80,6 +120,7 @@ macro_rules! for_each_global_key {
                 unit: Some("worlds"),
                 expects: "a whole number of worlds",
                 doc: "worlds in a batch",
+                flag: {},
             }
             /// The batch's base seed.
             Seed {
@@ -88,11 +129,11 @@ macro_rules! for_each_global_key {
                 unit: None,
                 expects: "a whole number 0..=2^64-1",
                 doc: "base seed of a batch, 0..2^64-1",
+                flag: {},
             }
         }
     };
 }
-pub(crate) use for_each_global_key;
 
 /// [`GlobalKey`] from the table of [`for_each_global_key`].
 macro_rules! declare_global_key {
@@ -104,6 +145,7 @@ macro_rules! declare_global_key {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            flag: $flag:tt,
         }
     )*) => {
         /// A `# key: value` global of a scheme file (docs/schemes.md).

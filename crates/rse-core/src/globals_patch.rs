@@ -4,7 +4,8 @@
 //! here and nowhere else).
 
 use crate::error::{SchemeError, SchemeErrorKind};
-use crate::global_key::{GlobalKey, for_each_global_key};
+use crate::for_each_global_key;
+use crate::global_key::GlobalKey;
 use crate::globals::{self, Globals, Pallets};
 use crate::limits::DEFAULT_PALLET_SIZE;
 
@@ -19,6 +20,7 @@ macro_rules! declare_globals_patch {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            flag: $flag:tt,
         }
     )*) => {
         /// Global parameters, each `None` when not given. Every skin fills
