@@ -103,8 +103,13 @@ for venv in .venv .venv-mjx; do
     $venv/bin/python -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/py-wheel/rse_gen-*.whl
 done
 cargo build --release --locked --quiet -p rse-cli  # built by the tests above: a no-op unless run alone
+# The binary under test is a copy: tests that run cargo or maturin
+# themselves (`make demo`, `make wheel`) may relink target/release/rse-gen,
+# and a test on another worker once found it missing for that instant.
+mkdir -p target/test-bin
+cp target/release/rse-gen target/test-bin/rse-gen
 say "pytest (tests/python, on every core)"
-RSE_GEN="$PWD/target/release/rse-gen" RSE_GEN_RELEASE="$PWD/target/release/rse-gen" \
+RSE_GEN="$PWD/target/test-bin/rse-gen" RSE_GEN_RELEASE="$PWD/target/test-bin/rse-gen" \
     .venv/bin/python -m pytest -n "${PYTEST_JOBS:-auto}" --durations=15 2>&1 | tee -a "$log"
 
 say "pytest (tests/mjx: rse.mjx inside MJX, in .venv-mjx)"
