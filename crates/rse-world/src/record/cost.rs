@@ -11,6 +11,7 @@ use rse_core::{AtlasOptions, Scheme, Terrain};
 
 use crate::memory::{BYTES_PER_SAMPLE, hfield_samples};
 use crate::record::options::{Collider, WorldOptions};
+use crate::render::templates::{Templates, render_visits};
 
 /// What rebuilding and checking a world costs, estimated before it is done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -103,11 +104,6 @@ pub(crate) struct RecipeSize {
 }
 
 impl RecipeSize {
-    /// Cells of the world's grid (an atlas's whole map).
-    pub(crate) fn cells(&self) -> u64 {
-        self.cells
-    }
-
     /// A world of `scheme`.
     pub(crate) fn of_scheme(scheme: &Scheme) -> Self {
         let grid = scheme.grid();
@@ -151,8 +147,13 @@ impl RecipeSize {
 /// recipe alone (nothing is generated): the generation, the obstacles, the
 /// height field's samples (cells·k²), the flat patches, and the mesh and
 /// boxes at their most per cell, which [`after_generating`] builds to
-/// count. The files come after, from that count.
-pub(crate) fn before_generating(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
+/// count, and a user's `templates` at their fuel for a box a cell. The
+/// files come after, from that count.
+pub(crate) fn before_generating(
+    size: &RecipeSize,
+    options: &WorldOptions,
+    templates: &Templates,
+) -> RebuildCost {
     let recipe = recipe_part(size, options);
     // Counting the mesh and boxes (`after_generating`) builds them: priced
     // here at their most per cell, so that step is bounded too (the boxes
@@ -163,10 +164,12 @@ pub(crate) fn before_generating(size: &RecipeSize, options: &WorldOptions) -> Re
         bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
         visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
     }
+    // A user's templates at their fuel, for as many boxes as cells.
+    let render = render_visits(templates.user_templates(&options.targets), size.cells);
     RebuildCost {
         cells: size.cells,
         bytes: recipe.bytes.saturating_add(bytes),
-        visits: recipe.visits.saturating_add(visits),
+        visits: recipe.visits.saturating_add(visits).saturating_add(render),
     }
 }
 
@@ -209,11 +212,13 @@ fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
 /// (what `before_generating` priced, held to a budget first): its mesh and
 /// boxes counted, since a world's files grow with them (a field of tall
 /// random steps has twice the triangles a cell of a low one has, a flat
-/// atlas next to none).
+/// atlas next to none), and a user's `templates` at their fuel for those
+/// boxes.
 pub(crate) fn after_generating(
     size: &RecipeSize,
     options: &WorldOptions,
     terrain: &Terrain,
+    templates: &Templates,
 ) -> RebuildCost {
     let recipe_cost = recipe_part(size, options);
     let colliders = colliders(options);
@@ -226,11 +231,16 @@ pub(crate) fn after_generating(
     } else {
         0
     };
-    let boxes = if colliders.contains(&Collider::Boxes) {
+    // The boxes are counted once, for the box lists and a user's
+    // templates' fuel alike.
+    let user_templates = templates.user_templates(&options.targets);
+    let has_box_lists = colliders.contains(&Collider::Boxes);
+    let counted = if has_box_lists || user_templates > 0 {
         terrain.boxes().len() as u64
     } else {
         0
     };
+    let boxes = if has_box_lists { counted } else { 0 };
     // Each mesh file (every OBJ copy, the USD), and each box list.
     let meshes = mesh_files.objs() + u64::from(mesh_files.usd);
     let box_lists = colliders.iter().filter(|c| **c == Collider::Boxes).count() as u64;
@@ -254,6 +264,15 @@ pub(crate) fn after_generating(
     let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
         + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(terrain)).log2();
     let mesh_check = (triangles as f64 * per_triangle) as u64;
+    // A user's templates at their fuel for this world's boxes, and the
+    // count of them (a cover more than the rebuild's own, priced alike).
+    let render = if user_templates > 0 {
+        size.cells
+            .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL)
+            .saturating_add(render_visits(user_templates, counted))
+    } else {
+        0
+    };
     RebuildCost {
         cells: recipe_cost.cells,
         bytes: recipe_cost
@@ -263,7 +282,8 @@ pub(crate) fn after_generating(
         visits: recipe_cost
             .visits
             .saturating_add(visits)
-            .saturating_add(mesh_check),
+            .saturating_add(mesh_check)
+            .saturating_add(render),
     }
 }
 

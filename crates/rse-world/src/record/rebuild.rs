@@ -129,11 +129,7 @@ impl<'m> Recipe<'m> {
     /// What rebuilding this world with `templates` would cost, from the
     /// recipe alone: to be held to a budget before [`Self::generate`].
     pub fn cost(&self, templates: &Templates) -> RebuildCost {
-        let mut cost = before_generating(&self.size, &self.manifest.options);
-        // A user's templates at their fuel, for as many boxes as cells.
-        let render = templates.render_visits(&self.manifest.options.targets, self.size.cells());
-        cost.visits = cost.visits.saturating_add(render);
-        cost
+        before_generating(&self.size, &self.manifest.options, templates)
     }
 
     /// The terrain (an atlas's whole map, with its flat patches), the work
@@ -180,20 +176,12 @@ impl Generated<'_> {
     /// [`Recipe::cost`] and the files, which follow the terrain's mesh and
     /// boxes: to be held to a budget before [`Self::rebuild`].
     pub fn cost(&self, templates: &Templates) -> RebuildCost {
-        let options = &self.manifest.options;
-        let mut cost = after_generating(&self.size, options, self.terrain());
-        if templates.render_visits(&options.targets, 0) > 0 {
-            // A user's templates at their fuel for this world's boxes
-            // (counted: a cover more, priced as the rebuild's own).
-            let boxes = self.terrain().boxes().len() as u64;
-            let count = self
-                .size
-                .cells()
-                .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL);
-            let render = templates.render_visits(&options.targets, boxes);
-            cost.visits = cost.visits.saturating_add(count).saturating_add(render);
-        }
-        cost
+        after_generating(
+            &self.size,
+            &self.manifest.options,
+            self.terrain(),
+            templates,
+        )
     }
 
     /// The world this manifest describes, built with `templates` (ours, in

@@ -357,19 +357,23 @@ fn render_fuel(boxes: usize) -> u64 {
 pub const VISITS_PER_FUEL: u64 = 7;
 
 impl Templates {
-    /// The most work rendering the files of `targets` for a world of
-    /// `boxes` boxes may take, in cell visits: a user's templates at their
-    /// fuel (ours are priced with the files they write).
-    pub fn render_visits(&self, targets: &crate::Targets, boxes: u64) -> u64 {
-        let users = targets
+    /// How many of the files `targets` render are a user's templates (run
+    /// under fuel; ours are priced with the files they write).
+    pub(crate) fn user_templates(&self, targets: &crate::Targets) -> u64 {
+        targets
             .iter()
             .filter_map(|target| self.files.get(&target))
             .flatten()
             .filter(|file| !file.ours && file.path.ends_with(TEMPLATE_SUFFIX))
-            .count() as u64;
-        let fuel = FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX));
-        users.saturating_mul(fuel).saturating_mul(VISITS_PER_FUEL)
+            .count() as u64
     }
+}
+
+/// The most work rendering `users` of a user's templates for a world of
+/// `boxes` boxes may take, in cell visits: each at its fuel.
+pub(crate) fn render_visits(users: u64, boxes: u64) -> u64 {
+    let fuel = FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX));
+    users.saturating_mul(fuel).saturating_mul(VISITS_PER_FUEL)
 }
 
 /// The most bytes one rendered file of a world may hold: what `check`
