@@ -8,22 +8,17 @@
 //! Targets: heights + origins + flat patches + single mesh < 1 s
 //! on the 2-core machine; triangles ≤ 0.5× a box on every cell.
 
+mod common;
+
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use rse_core::mesh::naive::box_per_cell;
 use rse_core::{AtlasOptions, Difficulty, PatchOptions, Scheme, build_atlas};
 
-fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
-    let mut times = Vec::new();
-    let start = Instant::now();
-    while times.len() < 5 || (start.elapsed() < budget && times.len() < 50) {
-        let t = Instant::now();
-        run();
-        times.push(t.elapsed());
-    }
-    times.sort();
-    times[times.len() / 2]
+/// The median of 5 to 50 runs within `budget`.
+fn median_time(run: impl FnMut(), budget: Duration) -> Duration {
+    common::median_time(run, budget, 5, 50)
 }
 
 fn main() {

@@ -7,22 +7,17 @@
 //! area walk grew as R^3.5: 155 s at R = 500); ordinary fields, whose
 //! small candidates made the walk cheap, within 1.5× of it.
 
+mod common;
+
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use rse_core::mesh::naive::area_walk_boxes;
 use rse_core::{Scheme, Terrain, generate};
 
-fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
-    let mut times = Vec::new();
-    let start = Instant::now();
-    while times.len() < 3 || (start.elapsed() < budget && times.len() < 100) {
-        let t = Instant::now();
-        run();
-        times.push(t.elapsed());
-    }
-    times.sort();
-    times[times.len() / 2]
+/// The median of 3 to 100 runs within `budget`.
+fn median_time(run: impl FnMut(), budget: Duration) -> Duration {
+    common::median_time(run, budget, 3, 100)
 }
 
 fn row(name: &str, terrain: &Terrain, walk_too: bool) {

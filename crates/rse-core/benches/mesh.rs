@@ -10,8 +10,10 @@
 //! terrain generators build their grids (12 triangles a cell), and "solid
 //! cells", boxes only where a cell has height (the smallest per-cell mesh).
 
+mod common;
+
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use rse_core::mesh::naive::box_per_cell;
 use rse_core::{Scheme, generate};
@@ -27,16 +29,9 @@ fn naive_triangles(terrain: &rse_core::Terrain) -> usize {
         .count()
 }
 
-fn median_time(mut run: impl FnMut(), budget: Duration) -> Duration {
-    let mut times = Vec::new();
-    let start = Instant::now();
-    while times.len() < 5 || (start.elapsed() < budget && times.len() < 200) {
-        let t = Instant::now();
-        run();
-        times.push(t.elapsed());
-    }
-    times.sort();
-    times[times.len() / 2]
+/// The median of 5 to 200 runs within `budget`.
+fn median_time(run: impl FnMut(), budget: Duration) -> Duration {
+    common::median_time(run, budget, 5, 200)
 }
 
 fn row(name: &str, terrain: &rse_core::Terrain) {
