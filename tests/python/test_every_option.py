@@ -25,6 +25,7 @@ SAMPLES: dict[str, tuple[object, str]] = {
     "block_size": (0.05, "0.05"),
     "step_height": (0.025, "0.025"),
     "base": (0.02, "0.02"),
+    "color": ((0.1, 0.2, 0.3), "0.1 0.2 0.3"),
     "amount": (3, "3"),
     "seed": (17, "17"),
 }
@@ -126,3 +127,22 @@ def test_the_command_lines_flag_reaches_the_scheme(key: str, tmp_path: Path) -> 
     )
     manifest = json.loads((tmp_path / "out" / "world_0000" / "rse.json").read_text())
     assert f"# {key}: {text}\n" in manifest["scheme"], manifest["scheme"]
+
+
+def test_a_colour_is_drawn_by_the_simulators(tmp_path: Path) -> None:
+    """`color` reaches MuJoCo's material and USD's display colour as the
+    simulators load them, and `check` rebuilds the world from its record."""
+    import mujoco
+    from pxr import Usd, UsdGeom
+
+    scheme = rse.Scheme.load(Path(__file__).parents[2] / "schemes" / "six_obstacles.csv").replace(color=(0.1, 0.2, 0.3))
+    rse.write_worlds(scheme, tmp_path, amount=1, targets="mujoco,usd")
+    world = tmp_path / "world_0000"
+    model = mujoco.MjModel.from_xml_path(str(world / "mujoco" / "rse.xml"))
+    rgba = model.mat("rse_wood").rgba
+    assert [round(float(c), 6) for c in rgba] == [0.1, 0.2, 0.3, 1.0]
+    stage = Usd.Stage.Open(str(world / "usd" / "terrain.usda"))
+    colors = UsdGeom.Mesh(stage.GetPrimAtPath("/terrain")).GetDisplayColorAttr().Get()
+    assert [round(float(c), 6) for c in colors[0]] == [0.1, 0.2, 0.3]
+    assert rse.check(world).ok
+    assert json.loads((world / "rse.json").read_text())["globals"]["color"] == [0.1, 0.2, 0.3]

@@ -324,3 +324,22 @@ def test_flat_patches_never_pad_past_what_a_terrain_holds() -> None:
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("(4, 4, "), done.stdout
+
+
+def test_the_schemes_stub_is_the_table_of_global_keys() -> None:
+    """`Scheme.__new__` in `_rse.pyi` is written by scripts/python_stubs.py
+    from the extension's signature, which rse-py builds from rse-core's
+    table of global keys: a key added there without rerunning the script
+    fails here, by the script's words."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("python_stubs", REPO / "scripts" / "python_stubs.py")
+    assert spec is not None and spec.loader is not None
+    stubs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(stubs)
+    text = stubs.STUB.read_text()
+    assert stubs.updated(text) == text, "run .venv/bin/python scripts/python_stubs.py"
+    # A key the stub lacks is put back by the script.
+    without_seed = text.replace("        seed: _Int = 0,\n", "", 1)
+    assert without_seed != text and stubs.updated(without_seed) == text
+    assert list(inspect.signature(rse.Scheme).parameters) == list(rse.Scheme().fields())

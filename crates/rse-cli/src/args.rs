@@ -549,6 +549,7 @@ macro_rules! scheme_overrides {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            stored: $stored:tt,
             flag: {},
         }
         $($rest:tt)*
@@ -563,6 +564,7 @@ macro_rules! scheme_overrides {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            stored: $stored:tt,
             flag: { ty: $flag:ty, help: $help:literal, arg: ($($arg:tt)*) },
         }
         $($rest:tt)*

@@ -1,23 +1,38 @@
 //! The global keys of a scheme, declared once in one table
 //! ([`for_each_global_key`]): each key's name (in a scheme file, the editor
 //! and Python; `--block-size` on the command line), its field in the patch,
-//! its unit, what its value must be, and one line of documentation. The enum and the patch are built from the table; the
-//! CSV reader, the editor's schema, the command line and Python read the
-//! enum instead of matching strings of their own.
+//! its unit, what its value must be, its default and one line of
+//! documentation. The enum, the globals and their patch are built from the
+//! table; the CSV reader, the editor's schema, the command line and Python
+//! read them instead of matching strings of their own.
 
 /// The global keys, declared once: each key's variant, name (in a scheme
 /// file, the editor and Python; `--block-size` on the command line), field
-/// and type in the patch (whose type picks its parser), unit, what its
-/// text must be, one line of documentation, and its command-line flag
-/// (`flag: {}` for none: `amount` and `seed` are the batch's own flags):
-/// the flag's type, help line and clap `#[arg]` settings, as tokens only
-/// rse-cli expands (its parsers are rse-cli's). Hands the table to
-/// `$callback`, which builds what it needs of it: [`GlobalKey`] here, the
-/// patch and its `set_key`/`combine`/`given` in `globals_patch.rs`, the
-/// command line's `SchemeOverrides` in rse-cli's `args.rs`. A key
-/// added here reaches both; what must still be written by hand for it (the
-/// grid rule in `Globals`, its canonical text) is an exhaustive `match`
-/// on [`GlobalKey`] that does not compile without it.
+/// and type in the patch (whose type picks its parser, its canonical text
+/// and its Python value), unit, what its text must be, one line of
+/// documentation, how [`Globals`](crate::Globals) stores it, and its
+/// command-line flag.
+///
+/// `stored: { default, text, record }` makes the key a field of `Globals`
+/// of its own: its default, whether the canonical scheme file writes it
+/// `always` or `unless_default`, and whether `rse.json` records it
+/// `always` or `unless_default` (a key added after worlds were written is
+/// `unless_default` there, so their bytes do not change). `stored:
+/// by_hand` is for the grid's keys (`size` and the pallet keys, which
+/// share one `Pallets`), whose rules `globals.rs` and `globals_patch.rs`
+/// write out.
+///
+/// `flag: {}` is for no flag (`amount` and `seed` are the batch's own);
+/// otherwise the flag's type, help line and clap `#[arg]` settings, as
+/// tokens only rse-cli expands (its parsers are rse-cli's).
+///
+/// Hands the table to `$callback`, which builds what it needs of it:
+/// [`GlobalKey`] here; `Globals` and its defaults, canonical text and
+/// record in `globals.rs`; the patch and its `set_key`/`combine`/`given`/
+/// `apply` in `globals_patch.rs`; the command line's `SchemeOverrides` in
+/// rse-cli; Python's keywords, values and signature in rse-py. A key of a
+/// type these already know is added here and nowhere else
+/// (docs/development.md, "Adding a global key of the scheme").
 #[macro_export]
 macro_rules! for_each_global_key {
     ($callback:ident) => {
@@ -28,7 +43,8 @@ macro_rules! for_each_global_key {
                 field: size: [u32; 2],
                 unit: Some("cells"),
                 expects: "NXxNY, whole numbers of cells",
-                doc: "NXxNY cells, used when pallets are off",
+                doc: "`NXxNY` cells, used when pallets are off",
+                stored: by_hand,
                 flag: {
                     ty: [u32; 2],
                     help: "Grid size in cells, used when pallets are off.",
@@ -41,7 +57,8 @@ macro_rules! for_each_global_key {
                 field: pallets: Option<[u32; 2]>,
                 unit: Some("pallets"),
                 expects: "NXxNY pallets, or off",
-                doc: "PXxPY pallets, or off",
+                doc: "`PXxPY` pallets, or `off`",
+                stored: by_hand,
                 flag: {
                     ty: PalletsFlag,
                     help: "Pallets along x and y, or `off`.",
@@ -54,7 +71,8 @@ macro_rules! for_each_global_key {
                 field: pallet_size: u32,
                 unit: Some("cells"),
                 expects: "a whole number of cells",
-                doc: "pallet side in cells, inside the frame (needs pallets)",
+                doc: "pallet side in cells, inside the frame (needs `pallets`; a NIST pallet is 10)",
+                stored: by_hand,
                 flag: {
                     ty: u32,
                     help: "Pallet side in cells (needs pallets).",
@@ -67,7 +85,8 @@ macro_rules! for_each_global_key {
                 field: pallet_boundary: bool,
                 unit: None,
                 expects: "true or false",
-                doc: "true/false: a 1-cell frame, 1 step high, around every pallet (needs pallets)",
+                doc: "`true`/`false`: a 1-cell frame, 1 step high, around every pallet (needs `pallets`)",
+                stored: by_hand,
                 flag: {
                     ty: bool,
                     help: "A 1-cell, 1-step frame around every pallet (needs pallets).",
@@ -80,7 +99,8 @@ macro_rules! for_each_global_key {
                 field: block_size: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
-                doc: "cell side S in metres",
+                doc: "cell side `S` in metres",
+                stored: { default: 0.1, text: always, record: always },
                 flag: {
                     ty: f64,
                     help: "Cell side in metres.",
@@ -94,6 +114,7 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "height of one step in metres",
+                stored: { default: 0.1, text: always, record: always },
                 flag: {
                     ty: f64,
                     help: "Height of one step in metres.",
@@ -107,10 +128,25 @@ macro_rules! for_each_global_key {
                 unit: Some("m"),
                 expects: "a length in metres",
                 doc: "slab under the whole grid, metres",
+                stored: { default: 0.0, text: unless_default, record: always },
                 flag: {
                     ty: f64,
                     help: "Slab under the whole grid in metres (0 for none).",
                     arg: (value_name = "M", value_parser = non_negative_metres)
+                },
+            }
+            /// The terrain's colour, red green blue from 0 to 1.
+            Color {
+                name: "color",
+                field: color: $crate::Color,
+                unit: None,
+                expects: "red, green and blue, each 0 to 1",
+                doc: "the terrain's colour: red green blue, each 0 to 1 (light wood)",
+                stored: { default: $crate::Color::WOOD, text: unless_default, record: unless_default },
+                flag: {
+                    ty: $crate::Color,
+                    help: "The terrain's colour: red green blue, each 0 to 1.",
+                    arg: (value_name = "R,G,B")
                 },
             }
             /// Worlds in a batch.
@@ -120,6 +156,7 @@ macro_rules! for_each_global_key {
                 unit: Some("worlds"),
                 expects: "a whole number of worlds",
                 doc: "worlds in a batch",
+                stored: { default: 1, text: unless_default, record: always },
                 flag: {},
             }
             /// The batch's base seed.
@@ -128,7 +165,8 @@ macro_rules! for_each_global_key {
                 field: seed: u64,
                 unit: None,
                 expects: "a whole number 0..=2^64-1",
-                doc: "base seed of a batch, 0..2^64-1",
+                doc: "base seed of a batch, `0..2^64-1`",
+                stored: { default: 0, text: unless_default, record: always },
                 flag: {},
             }
         }
@@ -145,6 +183,7 @@ macro_rules! declare_global_key {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            stored: $stored:tt,
             flag: $flag:tt,
         }
     )*) => {
@@ -181,9 +220,10 @@ macro_rules! declare_global_key {
                 }
             }
 
-            /// One line of documentation: the "value" column of
-            /// docs/schemes.md's table of keys, without its backticks (the
-            /// editor's tooltip; a test in rse-edit holds the two together).
+            /// One line of documentation, markdown (backticks for what is
+            /// typed): the "value" column of docs/schemes.md's table of
+            /// keys (rse-edit's tests write the table from it), and
+            /// without its backticks the editor's tooltip.
             pub const fn doc(self) -> &'static str {
                 match self {
                     $(GlobalKey::$variant => $doc,)*

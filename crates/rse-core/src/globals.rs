@@ -1,9 +1,12 @@
 //! Global parameters of a scheme (docs/schemes.md) and the grid they define.
 
-use serde::{Deserialize, Serialize};
+use serde::ser::SerializeStruct as _;
+use serde::{Deserialize, Serialize, Serializer};
 
 use crate::error::{SchemeError, SchemeErrorKind};
+use crate::for_each_global_key;
 use crate::global_key::{GLOBAL_KEYS, GlobalKey};
+use crate::global_value::{GlobalText, format_dims};
 use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
 
 /// The global whose name `word` most likely misspells (any case, `-` or a
@@ -52,38 +55,153 @@ pub struct Pallets {
     pub boundary: bool,
 }
 
-/// The global parameters of a scheme (docs/schemes.md). Lengths in metres.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Globals {
-    /// `[nx, ny]` in cells, used when `pallets` is `None`.
-    pub size: [u32; 2],
-    /// Pallet layout; when set, it defines the grid and `size` is ignored.
-    pub pallets: Option<Pallets>,
-    /// Cell side `S` in metres.
-    pub block_size: f64,
-    /// Height of one step in metres.
-    pub step_height: f64,
-    /// Thickness of the slab under the whole grid, metres.
-    pub base: f64,
-    /// Worlds in a batch.
-    pub amount: u64,
-    /// Base seed of a batch.
-    pub seed: u64,
+/// [`Globals`], its defaults and the canonical text of its stored keys,
+/// from the table of [`for_each_global_key`]: the grid's fields by hand
+/// (`size`, and `pallets`, which the three pallet keys share), then a
+/// field for each key `stored` in one of its own. Munches the table entry
+/// by entry, keeping the stored keys.
+macro_rules! declare_globals {
+    (@munch [$($fields:tt)*] [$($keys:tt)*]) => {
+        /// The global parameters of a scheme (docs/schemes.md). Lengths in
+        /// metres.
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+        // A world's record written before a key was added reads as its
+        // default.
+        #[serde(default)]
+        pub struct Globals {
+            /// `[nx, ny]` in cells, used when `pallets` is `None`.
+            pub size: [u32; 2],
+            /// Pallet layout; when set, it defines the grid and `size` is
+            /// ignored.
+            pub pallets: Option<Pallets>,
+            $($fields)*
+        }
+
+        declare_globals!(@keys $($keys)*);
+    };
+    (@keys $($variant:ident $field:ident ($default:expr) $text:ident $record:ident;)*) => {
+        impl Default for Globals {
+            fn default() -> Self {
+                Globals {
+                    size: [10, 10],
+                    pallets: None,
+                    $($field: $default,)*
+                }
+            }
+        }
+
+        impl Globals {
+            /// The keys stored in a field of their own; the rest (the
+            /// grid's) are written out by hand.
+            #[cfg(test)]
+            pub(crate) const STORED: &[GlobalKey] = &[$(GlobalKey::$variant),*];
+
+            /// The canonical text of a stored key, `None` where the scheme
+            /// file leaves it out (its table's `text`) or where `key` is
+            /// the grid's.
+            pub(crate) fn stored_text(&self, key: GlobalKey) -> Option<String> {
+                let defaults = Globals::default();
+                match key {
+                    $(GlobalKey::$variant => {
+                        canonical_text!($text, self.$field, defaults.$field)
+                    })*
+                    _ => None,
+                }
+            }
+
+            /// Serializes these globals as a world's `rse.json` records
+            /// them: every key, but those recorded `unless_default` left
+            /// out at their default (keys added after worlds were written,
+            /// whose records must keep their bytes). `Serialize` writes
+            /// every key (the templates' context, a pickled terrain).
+            ///
+            /// # Errors
+            /// The serializer's.
+            pub fn serialize_record<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let defaults = Globals::default();
+                let mut record = serializer.serialize_struct("Globals", 2 + [$(stringify!($field)),*].len())?;
+                record.serialize_field("size", &self.size)?;
+                record.serialize_field("pallets", &self.pallets)?;
+                $(record_field!($record, record, $field, self.$field, defaults.$field);)*
+                record.end()
+            }
+
+            /// A stored key's default as its text; `None` for the grid's.
+            pub(crate) fn stored_default_text(key: GlobalKey) -> Option<String> {
+                let defaults = Globals::default();
+                match key {
+                    $(GlobalKey::$variant => Some(defaults.$field.global_text()),)*
+                    _ => None,
+                }
+            }
+
+        }
+    };
+    (@munch [$($fields:tt)*] [$($keys:tt)*]
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            stored: by_hand,
+            flag: $flag:tt,
+        }
+        $($rest:tt)*
+    ) => {
+        declare_globals!(@munch [$($fields)*] [$($keys)*] $($rest)*);
+    };
+    (@munch [$($fields:tt)*] [$($keys:tt)*]
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            stored: { default: $default:expr, text: $text:ident, record: $record:ident },
+            flag: $flag:tt,
+        }
+        $($rest:tt)*
+    ) => {
+        declare_globals!(@munch
+            [$($fields)* $(#[doc = $what])* pub $field: $ty,]
+            [$($keys)* $variant $field ($default) $text $record;]
+            $($rest)*);
+    };
+    ($($table:tt)*) => {
+        declare_globals!(@munch [] [] $($table)*);
+    };
 }
 
-impl Default for Globals {
-    fn default() -> Self {
-        Globals {
-            size: [10, 10],
-            pallets: None,
-            block_size: 0.1,
-            step_height: 0.1,
-            base: 0.0,
-            amount: 1,
-            seed: 0,
-        }
-    }
+/// A stored key's canonical text by its table's `text`: `always`, or
+/// `unless_default` (the same value as the default is left out).
+macro_rules! canonical_text {
+    (always, $value:expr, $default:expr) => {
+        Some($value.global_text())
+    };
+    (unless_default, $value:expr, $default:expr) => {
+        (!$value.same_global(&$default)).then(|| $value.global_text())
+    };
 }
+
+/// A stored key's field in `rse.json` by its table's `record`: `always`,
+/// or `unless_default` (left out at its default).
+macro_rules! record_field {
+    (always, $record:ident, $field:ident, $value:expr, $default:expr) => {
+        $record.serialize_field(stringify!($field), &$value)?
+    };
+    (unless_default, $record:ident, $field:ident, $value:expr, $default:expr) => {
+        if $value.same_global(&$default) {
+            $record.skip_field(stringify!($field))?
+        } else {
+            $record.serialize_field(stringify!($field), &$value)?
+        }
+    };
+}
+
+for_each_global_key!(declare_globals);
 
 impl Globals {
     /// The grid these parameters define (frame included).
@@ -273,23 +391,4 @@ impl Grid {
         self.frame_period
             .is_some_and(|period| x.is_multiple_of(period) || y.is_multiple_of(period))
     }
-}
-
-/// Parses `NXxNY` (also `NX×NY`, `NX*NY`, spaces allowed) into `[nx, ny]`.
-pub fn parse_dims(text: &str) -> Result<[u32; 2], String> {
-    let text = text.trim();
-    let (a, b) = text
-        .split_once(['x', 'X', '×', '*'])
-        .ok_or_else(|| format!("`{text}` is not of the form NXxNY, e.g. 50x50"))?;
-    let one = |s: &str| {
-        s.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("`{}` is not a whole number ≥ 0", s.trim()))
-    };
-    Ok([one(a)?, one(b)?])
-}
-
-/// Writes `[nx, ny]` as `NXxNY`.
-pub fn format_dims(dims: [u32; 2]) -> String {
-    format!("{}x{}", dims[0], dims[1])
 }

@@ -6,6 +6,7 @@
 use crate::error::{SchemeError, SchemeErrorKind};
 use crate::for_each_global_key;
 use crate::global_key::GlobalKey;
+use crate::global_value::{ParseGlobal, format_dims};
 use crate::globals::{self, Globals, Pallets};
 use crate::limits::DEFAULT_PALLET_SIZE;
 
@@ -20,6 +21,7 @@ macro_rules! declare_globals_patch {
             unit: $unit:expr,
             expects: $expects:literal,
             doc: $doc:literal,
+            stored: $stored:tt,
             flag: $flag:tt,
         }
     )*) => {
@@ -61,6 +63,23 @@ macro_rules! declare_globals_patch {
                 }
             }
 
+            /// `g` with the keys stored in a field of their own that this
+            /// patch gives ([`apply`](GlobalsPatch::apply) writes out the
+            /// grid's).
+            fn apply_stored(&self, g: &mut Globals) {
+                $(if_stored!($stored, if let Some(value) = self.$field {
+                    g.$field = value;
+                });)*
+            }
+
+            /// The keys stored in a field of their own, each given as `g`
+            /// holds it.
+            fn stored_of(g: &Globals) -> GlobalsPatch {
+                let mut patch = GlobalsPatch::default();
+                $(if_stored!($stored, patch.$field = Some(g.$field));)*
+                patch
+            }
+
             /// The keys given, in [`GlobalKey::ALL`] order.
             pub fn given(&self) -> Vec<GlobalKey> {
                 let mut keys = Vec::new();
@@ -70,6 +89,15 @@ macro_rules! declare_globals_patch {
                 keys
             }
         }
+    };
+}
+
+/// `$code` for a key stored in a field of its own, nothing for the grid's
+/// (`stored: by_hand`), whose fields `Globals` does not have.
+macro_rules! if_stored {
+    (by_hand, $($code:tt)*) => {};
+    ({ $($stored:tt)* }, $($code:tt)*) => {
+        $($code)*
     };
 }
 
@@ -104,18 +132,14 @@ impl GlobalsPatch {
     /// Domains and the grid size are checked by [`Globals::validate`], as
     /// every scheme is built.
     pub fn apply(&self, onto: &Globals) -> Result<Globals, SchemeError> {
-        // Every field by name (no `..`): a key added to the table does not
-        // compile until it is applied here.
+        // The grid's keys, whose rules are these; the rest each replace
+        // their field (`apply_stored`).
         let GlobalsPatch {
             size,
             pallets,
             pallet_size,
             pallet_boundary,
-            block_size,
-            step_height,
-            base,
-            amount,
-            seed,
+            ..
         } = *self;
         let mut g = *onto;
         g.size = size.unwrap_or(g.size);
@@ -144,11 +168,7 @@ impl GlobalsPatch {
                 return off(GlobalKey::PalletBoundary);
             }
         }
-        g.block_size = block_size.unwrap_or(g.block_size);
-        g.step_height = step_height.unwrap_or(g.step_height);
-        g.base = base.unwrap_or(g.base);
-        g.amount = amount.unwrap_or(g.amount);
-        g.seed = seed.unwrap_or(g.seed);
+        self.apply_stored(&mut g);
         Ok(g)
     }
 }
@@ -173,15 +193,24 @@ impl Globals {
             .expect("one pallet is a valid layout")
         };
         match key {
-            GlobalKey::Size => globals::format_dims(defaults.size),
+            GlobalKey::Size => format_dims(defaults.size),
             GlobalKey::Pallets => "off".to_owned(),
             GlobalKey::PalletSize => turned_on().size.to_string(),
             GlobalKey::PalletBoundary => turned_on().boundary.to_string(),
-            GlobalKey::BlockSize => defaults.block_size.to_string(),
-            GlobalKey::StepHeight => defaults.step_height.to_string(),
-            GlobalKey::Base => defaults.base.to_string(),
-            GlobalKey::Amount => defaults.amount.to_string(),
-            GlobalKey::Seed => defaults.seed.to_string(),
+            stored => Globals::stored_default_text(stored).unwrap_or_default(),
+        }
+    }
+
+    /// Every key given, as these globals hold it: the pallet keys `None`
+    /// with pallets off (`pallets` given as off). `apply` onto any globals
+    /// gives these back.
+    pub fn as_patch(&self) -> GlobalsPatch {
+        GlobalsPatch {
+            size: Some(self.size),
+            pallets: Some(self.pallets.map(|p| p.count)),
+            pallet_size: self.pallets.map(|p| p.size),
+            pallet_boundary: self.pallets.map(|p| p.boundary),
+            ..GlobalsPatch::stored_of(self)
         }
     }
 
@@ -191,31 +220,17 @@ impl Globals {
     /// reader would not miss them (`base`, `amount`, `seed`; `size` under
     /// pallets, which define the grid).
     pub fn cells(&self) -> Vec<(GlobalKey, String)> {
-        let defaults = Globals::default();
-        let unless_default = |differs: bool, text: String| differs.then_some(text);
         GlobalKey::ALL
             .into_iter()
             .filter_map(|key| {
                 let text = match key {
-                    GlobalKey::Size => unless_default(
-                        self.pallets.is_none() || self.size != defaults.size,
-                        globals::format_dims(self.size),
-                    ),
-                    GlobalKey::Pallets => self.pallets.map(|p| globals::format_dims(p.count)),
+                    GlobalKey::Size => (self.pallets.is_none()
+                        || self.size != Globals::default().size)
+                        .then(|| format_dims(self.size)),
+                    GlobalKey::Pallets => self.pallets.map(|p| format_dims(p.count)),
                     GlobalKey::PalletSize => self.pallets.map(|p| p.size.to_string()),
                     GlobalKey::PalletBoundary => self.pallets.map(|p| p.boundary.to_string()),
-                    GlobalKey::BlockSize => Some(self.block_size.to_string()),
-                    GlobalKey::StepHeight => Some(self.step_height.to_string()),
-                    GlobalKey::Base => unless_default(
-                        self.base.to_bits() != defaults.base.to_bits(),
-                        self.base.to_string(),
-                    ),
-                    GlobalKey::Amount => {
-                        unless_default(self.amount != defaults.amount, self.amount.to_string())
-                    }
-                    GlobalKey::Seed => {
-                        unless_default(self.seed != defaults.seed, self.seed.to_string())
-                    }
+                    stored => self.stored_text(stored),
                 };
                 text.map(|text| (key, text))
             })
@@ -223,107 +238,51 @@ impl Globals {
     }
 }
 
-/// A global's value read from its text, the parser picked by the value's
-/// type (each key's type in the table is its own).
-trait ParseGlobal: Sized {
-    /// The value of `text`; `expects` says what it must be.
-    fn parse_global(text: &str, expects: &str) -> Result<Self, String>;
-}
-
-/// `size`: `NXxNY`.
-impl ParseGlobal for [u32; 2] {
-    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
-        globals::parse_dims(text)
-    }
-}
-
-/// `pallets`: a count, or off.
-impl ParseGlobal for Option<[u32; 2]> {
-    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
-        parse_pallets(text)
-    }
-}
-
-impl ParseGlobal for bool {
-    fn parse_global(text: &str, _: &str) -> Result<Self, String> {
-        parse_bool(text)
-    }
-}
-
-impl ParseGlobal for u32 {
-    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
-        parse_number(text, expects)
-    }
-}
-
-impl ParseGlobal for u64 {
-    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
-        parse_number(text, expects)
-    }
-}
-
-impl ParseGlobal for f64 {
-    fn parse_global(text: &str, expects: &str) -> Result<Self, String> {
-        parse_number(text, expects)
-    }
-}
-
-/// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets: the `pallets`
-/// value of a scheme file, the editor and `--pallets` alike.
-pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
-    match value.trim().to_ascii_lowercase().as_str() {
-        "off" | "none" | "false" | "no" => Ok(None),
-        _ => match globals::parse_dims(value)? {
-            dims if dims.contains(&0) => Err("needs at least one pallet each way".to_owned()),
-            dims => Ok(Some(dims)),
-        },
-    }
-}
-
-/// `true`/`false`, `yes`/`no`, `on`/`off`, `1`/`0` (case-insensitive).
-fn parse_bool(value: &str) -> Result<bool, String> {
-    match value.trim().to_ascii_lowercase().as_str() {
-        "true" | "yes" | "on" | "1" => Ok(true),
-        "false" | "no" | "off" | "0" => Ok(false),
-        _ => Err("expected true or false".to_owned()),
-    }
-}
-
-fn parse_number<T: std::str::FromStr + IsFinite>(value: &str, what: &str) -> Result<T, String> {
-    value
-        .trim()
-        .parse::<T>()
-        .ok()
-        .filter(IsFinite::is_finite_number)
-        .ok_or_else(|| format!("expected {what}"))
-}
-
-/// Lets one parser refuse `inf` and `NaN`, which `f64::from_str` accepts.
-trait IsFinite {
-    fn is_finite_number(&self) -> bool;
-}
-
-impl IsFinite for f64 {
-    fn is_finite_number(&self) -> bool {
-        self.is_finite()
-    }
-}
-
-impl IsFinite for u32 {
-    fn is_finite_number(&self) -> bool {
-        true
-    }
-}
-
-impl IsFinite for u64 {
-    fn is_finite_number(&self) -> bool {
-        true
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Color;
+
+    /// The keys `stored: by_hand` are the four whose rules `apply`,
+    /// `as_patch`, `cells` and `default_text` write out by name; another
+    /// would be silently dropped by them.
+    #[test]
+    fn only_the_grids_keys_are_written_by_hand() {
+        let by_hand: Vec<GlobalKey> = GlobalKey::ALL
+            .into_iter()
+            .filter(|key| !Globals::STORED.contains(key))
+            .collect();
+        assert_eq!(
+            by_hand,
+            [
+                GlobalKey::Size,
+                GlobalKey::Pallets,
+                GlobalKey::PalletSize,
+                GlobalKey::PalletBoundary
+            ]
+        );
+    }
+
+    /// `as_patch` gives every key, and applied gives the globals back.
+    #[test]
+    fn a_globals_patch_gives_them_back() {
+        let with_pallets = GlobalsPatch {
+            pallets: Some(Some([2, 3])),
+            pallet_size: Some(7),
+            pallet_boundary: Some(false),
+            block_size: Some(0.25),
+            seed: Some(9),
+            ..GlobalsPatch::default()
+        }
+        .apply(&Globals::default())
+        .unwrap();
+        for g in [Globals::default(), with_pallets] {
+            let patch = g.as_patch();
+            let pallet_keys = if g.pallets.is_some() { 0 } else { 2 };
+            assert_eq!(patch.given().len(), GlobalKey::ALL.len() - pallet_keys);
+            assert_eq!(patch.apply(&with_pallets).unwrap(), g);
+        }
+    }
 
     fn patch(pairs: &[(&str, &str)]) -> GlobalsPatch {
         let mut p = GlobalsPatch::default();
@@ -398,7 +357,7 @@ mod tests {
             .set("Block_Size", "inf")
             .unwrap_err();
         assert_eq!(e.field.as_deref(), Some("block_size"));
-        let e = GlobalsPatch::default().set("colour", "red").unwrap_err();
+        let e = GlobalsPatch::default().set("gravity", "9.8").unwrap_err();
         assert!(matches!(e.kind, SchemeErrorKind::UnknownGlobal(_)));
     }
 
@@ -414,6 +373,7 @@ mod tests {
             block_size: 0.05,
             step_height: 0.025,
             base: 0.3,
+            color: Color::new([0.1, 0.0, 1.0]).unwrap(),
             amount: 12,
             seed: u64::MAX,
         };

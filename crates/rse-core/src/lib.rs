@@ -30,6 +30,7 @@
 //! `docs/meshes.md`.
 
 mod atlas;
+mod color;
 mod curriculum;
 mod difficulty;
 mod env_terrains;
@@ -37,6 +38,7 @@ mod error;
 pub mod export;
 mod generate;
 mod global_key;
+mod global_value;
 mod globals;
 mod globals_patch;
 mod heightmap;
@@ -58,6 +60,7 @@ mod stamp;
 mod terrain;
 
 pub use atlas::{Atlas, AtlasConfig, AtlasError, AtlasOptions, PatchOptions, Tile, build_atlas};
+pub use color::Color;
 pub use curriculum::{
     CURRICULUM_VISITS, CurriculumOptions, CurriculumOptionsError, CurriculumProblem,
     CurriculumReport, DEFAULT_DRAWS, DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS,
@@ -72,8 +75,9 @@ pub use env_terrains::{
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at, generate_by};
 pub use global_key::GlobalKey;
-pub use globals::{Globals, Grid, Pallets, format_dims, parse_dims};
-pub use globals_patch::{GlobalsPatch, parse_pallets};
+pub use global_value::{format_dims, parse_dims, parse_pallets};
+pub use globals::{Globals, Grid, Pallets};
+pub use globals_patch::GlobalsPatch;
 pub use heightmap::{Heightmap, HeightmapCsvError};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use limits::{

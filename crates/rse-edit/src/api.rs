@@ -91,7 +91,7 @@ pub fn schema() -> Value {
             "key": key.name(),
             "default": Globals::default_text(key),
             "unit": key.unit(),
-            "doc": key.doc(),
+            "doc": key.doc().replace('`', ""),
         })
     };
     let columns: Vec<Field> = Field::ALL
@@ -510,11 +510,36 @@ mod tests {
         );
     }
 
-    /// The tooltips are docs/schemes.md's words: each key's and column's
-    /// `doc` is its table row's text there, backticks removed.
+    /// docs/schemes.md's table of global keys is written from rse-core's
+    /// table (`RSE_UPDATE_DOCS=1` rewrites it; the editor's tooltips are
+    /// the same words), and each column's tooltip is its table row's text
+    /// there, backticks removed.
     #[test]
     fn the_tooltips_are_the_scheme_docs_text() {
-        let docs = include_str!("../../../docs/schemes.md");
+        use std::fmt::Write as _;
+
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/schemes.md");
+        let docs = std::fs::read_to_string(path).unwrap();
+        let header = "| key | value | default |\n|---|---|---|\n";
+        let start = docs
+            .find(header)
+            .expect("docs/schemes.md has its table of keys")
+            + header.len();
+        let end = start + docs[start..].find("\n\n").unwrap() + 1;
+        let mut rows = String::new();
+        for key in GlobalKey::ALL {
+            let (name, doc, default) = (key.name(), key.doc(), Globals::default_text(key));
+            writeln!(rows, "| `{name}` | {doc} | `{default}` |").unwrap();
+        }
+        if docs[start..end] != rows {
+            if std::env::var_os("RSE_UPDATE_DOCS").is_some() {
+                std::fs::write(path, format!("{}{rows}{}", &docs[..start], &docs[end..])).unwrap();
+            } else {
+                panic!(
+                    "docs/schemes.md's table of global keys is not rse-core's: rerun with RSE_UPDATE_DOCS=1\n{rows}"
+                );
+            }
+        }
         let row = |name: &str| -> Vec<String> {
             let start = format!("| `{name}` |");
             let line = docs

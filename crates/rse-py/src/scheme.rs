@@ -7,12 +7,11 @@ use pyo3::IntoPyObjectExt as _;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rse_core::{
-    GlobalKey, Globals, GlobalsPatch, ObstacleFields, ObstacleKind, Param, SchemeErrorKind,
-};
+use rse_core::{GlobalKey, Globals, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
 
 use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
+use crate::global_keywords;
 use crate::terrain::Terrain;
 
 /// Python's view of a parameter: an int/float or a `(lo, hi)` tuple.
@@ -159,35 +158,7 @@ impl Obstacle {
 /// turned on get a frame; `pallets=None` turns them off, any other `None`
 /// is not given).
 fn apply_patch(py: Python<'_>, given: &Bound<'_, PyDict>, onto: &Globals) -> PyResult<Globals> {
-    let mut patch = GlobalsPatch::default();
-    for key in GlobalKey::ALL {
-        let name = key.name();
-        let Some(v) = given.get_item(name)? else {
-            continue;
-        };
-        // `pallets=None` turns pallets off; any other None is not given.
-        if v.is_none() && key != GlobalKey::Pallets {
-            continue;
-        }
-        match key {
-            GlobalKey::Size => patch.size = Some(args::whole_pair(name, &v)?.into()),
-            GlobalKey::Pallets => {
-                patch.pallets = Some(
-                    (!v.is_none())
-                        .then(|| args::whole_pair(name, &v).map(Into::into))
-                        .transpose()?,
-                );
-            }
-            GlobalKey::PalletSize => patch.pallet_size = Some(args::whole(name, &v)?),
-            GlobalKey::PalletBoundary => patch.pallet_boundary = Some(args::boolean(name, &v)?),
-            GlobalKey::BlockSize => patch.block_size = Some(args::number(name, &v)?),
-            GlobalKey::StepHeight => patch.step_height = Some(args::number(name, &v)?),
-            GlobalKey::Base => patch.base = Some(args::number(name, &v)?),
-            GlobalKey::Amount => patch.amount = Some(args::whole(name, &v)?),
-            GlobalKey::Seed => patch.seed = Some(args::whole(name, &v)?),
-        }
-    }
-    patch
+    global_keywords::patch(given)?
         .apply(onto)
         .map_err(|e| match (&e.kind, e.field.as_deref()) {
             // The rule is core's; the words are Python's.
@@ -200,6 +171,27 @@ fn apply_patch(py: Python<'_>, given: &Bound<'_, PyDict>, onto: &Globals) -> PyR
         })
 }
 
+/// A `TypeError` unless every key of `given` is one of `known`, as Python
+/// says it of a call (`function` the call's name).
+fn only_known(
+    function: &str,
+    given: &Bound<'_, PyDict>,
+    known: impl Iterator<Item = &'static str> + Clone,
+) -> PyResult<()> {
+    for key in given.keys() {
+        let name = key.extract::<String>().unwrap_or_default();
+        if !known.clone().any(|k| k == name) {
+            let names: Vec<&str> = known.collect();
+            return Err(PyTypeError::new_err(format!(
+                "{function}() got an unexpected keyword argument {}: the keywords are {}",
+                key.repr()?,
+                names.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// A scheme: global parameters and an ordered obstacle table (docs/schemes.md).
 #[pyclass(module = "rse", frozen)]
 pub struct Scheme {
@@ -208,49 +200,39 @@ pub struct Scheme {
 
 #[pymethods]
 impl Scheme {
+    /// `Scheme(obstacles=[], *, size=(10, 10), …)`: each global key a
+    /// keyword (`inspect.signature(rse.Scheme)` lists them with their
+    /// defaults).
     #[new]
-    #[pyo3(signature = (obstacles=Vec::new(), *, size=None, pallets=None, pallet_size=None, pallet_boundary=None, block_size=None, step_height=None, base=None, amount=None, seed=None),
-           text_signature = "(obstacles=[], *, size=(10, 10), pallets=None, pallet_size=None, pallet_boundary=None, block_size=0.1, step_height=0.1, base=0.0, amount=1, seed=0)")]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (obstacles=Vec::new(), **globals))]
     fn new(
         py: Python<'_>,
         obstacles: Vec<Bound<'_, Obstacle>>,
-        size: Option<Bound<'_, PyAny>>,
-        pallets: Option<Bound<'_, PyAny>>,
-        pallet_size: Option<Bound<'_, PyAny>>,
-        pallet_boundary: Option<Bound<'_, PyAny>>,
-        block_size: Option<Bound<'_, PyAny>>,
-        step_height: Option<Bound<'_, PyAny>>,
-        base: Option<Bound<'_, PyAny>>,
-        amount: Option<Bound<'_, PyAny>>,
-        seed: Option<Bound<'_, PyAny>>,
+        globals: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let given = PyDict::new(py);
-        // Each keyword by its key: the match is exhaustive, so a key added
-        // to core without its keyword here does not compile (a zip by
-        // position once could drop one silently).
-        for key in GlobalKey::ALL {
-            let value = match key {
-                GlobalKey::Size => &size,
-                GlobalKey::Pallets => &pallets,
-                GlobalKey::PalletSize => &pallet_size,
-                GlobalKey::PalletBoundary => &pallet_boundary,
-                GlobalKey::BlockSize => &block_size,
-                GlobalKey::StepHeight => &step_height,
-                GlobalKey::Base => &base,
-                GlobalKey::Amount => &amount,
-                GlobalKey::Seed => &seed,
-            };
-            if let Some(value) = value {
-                given.set_item(key.name(), value)?;
+        let globals = match globals {
+            Some(given) => {
+                only_known(
+                    "Scheme",
+                    given,
+                    GlobalKey::ALL.into_iter().map(GlobalKey::name),
+                )?;
+                apply_patch(py, given, &Globals::default())?
             }
-        }
-        let globals = apply_patch(py, &given, &Globals::default())?;
+            None => Globals::default(),
+        };
         let table = obstacles.iter().map(|o| o.get().inner.clone()).collect();
         let inner = rse_core::Scheme::new(globals, table).map_err(|e| scheme_error(py, &e))?;
         Ok(Scheme {
             inner: Arc::new(inner),
         })
+    }
+
+    /// The constructor's signature, built from rse-core's table of global
+    /// keys (pyo3 would show `**globals`).
+    #[classattr]
+    fn __signature__(py: Python<'_>) -> PyResult<Py<PyAny>> {
+        global_keywords::scheme_signature(py)
     }
 
     /// A copy with some fields changed, for curricula:
@@ -263,22 +245,17 @@ impl Scheme {
         py: Python<'py>,
         fields: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let known = self.fields(py)?;
         let mut table = None;
         let given = PyDict::new(py);
-        for (key, value) in fields.map(PyDictMethods::iter).into_iter().flatten() {
-            if !known.contains(&key)? {
-                let names: Vec<String> = known.keys().iter().map(|k| k.to_string()).collect();
-                return Err(PyTypeError::new_err(format!(
-                    "replace() got an unexpected keyword argument {}: the fields are {}",
-                    key.repr()?,
-                    names.join(", ")
-                )));
-            }
-            if key.extract::<String>()? == "obstacles" {
-                table = Some(value.extract::<Vec<Bound<'py, Obstacle>>>()?);
-            } else {
-                given.set_item(key, value)?;
+        if let Some(fields) = fields {
+            let known = std::iter::once("obstacles").chain(GlobalKey::ALL.map(GlobalKey::name));
+            only_known("replace", fields, known)?;
+            for (key, value) in fields.iter() {
+                if key.extract::<String>()? == "obstacles" {
+                    table = Some(value.extract::<Vec<Bound<'py, Obstacle>>>()?);
+                } else {
+                    given.set_item(key, value)?;
+                }
             }
         }
         let globals = apply_patch(py, &given, self.inner.globals())?;
@@ -295,26 +272,9 @@ impl Scheme {
 
     /// The constructor's keywords with this scheme's values.
     fn fields<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let g = self.inner.globals();
         let dict = PyDict::new(py);
         dict.set_item("obstacles", self.obstacles())?;
-        for key in GlobalKey::ALL {
-            let value = match key {
-                GlobalKey::Size => (g.size[0], g.size[1]).into_bound_py_any(py)?,
-                GlobalKey::Pallets => g
-                    .pallets
-                    .map(|p| (p.count[0], p.count[1]))
-                    .into_bound_py_any(py)?,
-                GlobalKey::PalletSize => g.pallets.map(|p| p.size).into_bound_py_any(py)?,
-                GlobalKey::PalletBoundary => g.pallets.map(|p| p.boundary).into_bound_py_any(py)?,
-                GlobalKey::BlockSize => g.block_size.into_bound_py_any(py)?,
-                GlobalKey::StepHeight => g.step_height.into_bound_py_any(py)?,
-                GlobalKey::Base => g.base.into_bound_py_any(py)?,
-                GlobalKey::Amount => g.amount.into_bound_py_any(py)?,
-                GlobalKey::Seed => g.seed.into_bound_py_any(py)?,
-            };
-            dict.set_item(key.name(), value)?;
-        }
+        global_keywords::values(self.inner.globals(), &dict)?;
         Ok(dict)
     }
 

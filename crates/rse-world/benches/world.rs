@@ -103,7 +103,10 @@ fn parts(scheme: &Scheme, budget: Duration) -> Vec<(String, Duration)> {
         ),
         (
             "terrain.usda".into(),
-            median_time(|| drop(black_box(usda(&mesh))), budget),
+            median_time(
+                || drop(black_box(usda(&mesh, rse_core::Color::WOOD))),
+                budget,
+            ),
         ),
         (
             "box set".into(),

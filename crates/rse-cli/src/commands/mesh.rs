@@ -6,7 +6,7 @@ use crate::args::{MeshArgs, SchemeOverrides};
 pub fn run(args: &MeshArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     // The format is known from the suffix: refuse a bad one before generating.
     rse_world::mesh_format(&args.output)?;
-    let mesh = super::load_world(&args.scheme, overrides, &args.world)?.mesh();
-    rse_world::write_mesh(&mesh, &args.output)?;
+    let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
+    rse_world::write_mesh(&terrain.mesh(), terrain.globals().color, &args.output)?;
     Ok(ExitStatus::Success)
 }

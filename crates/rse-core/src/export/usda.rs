@@ -8,16 +8,18 @@
 use std::fmt::Write as _;
 
 use super::text::{CoordinateText, push_int};
+use crate::Color;
 use crate::mesh::TriMesh;
 use crate::mesh::invariants::bounding_box;
 
 const FMT: &str = "writing to a String cannot fail";
 
-/// The `.usda` text of a layer holding `mesh` as the `Mesh` prim `terrain`.
+/// The `.usda` text of a layer holding `mesh` as the `Mesh` prim `terrain`,
+/// displayed in `color`.
 ///
 /// # Panics
 /// Never: formatting into a `String` cannot fail.
-pub fn usda(mesh: &TriMesh) -> String {
+pub fn usda(mesh: &TriMesh, color: Color) -> String {
     let mut out = String::with_capacity(mesh.vertices().len() * 32 + mesh.triangles().len() * 24);
     writeln!(
         out,
@@ -57,9 +59,12 @@ pub fn usda(mesh: &TriMesh) -> String {
         coordinates.push_point(&mut out, point, ", ");
         out.push(')');
     }
-    out.push_str(
-        "]\n    color3f[] primvars:displayColor = [(0.72, 0.58, 0.42)]\n    uniform token subdivisionScheme = \"none\"\n}\n",
-    );
+    let [r, g, b] = color.rgb();
+    writeln!(
+        out,
+        "]\n    color3f[] primvars:displayColor = [({r}, {g}, {b})]\n    uniform token subdivisionScheme = \"none\"\n}}"
+    )
+    .expect(FMT);
     out
 }
 

@@ -1,8 +1,9 @@
 """Type stubs of the native module ``rse._rse`` (checked by mypy.stubtest)."""
 
+import inspect
 import os
 from collections.abc import Sequence
-from typing import Any, Literal, Optional, Union, final
+from typing import Any, ClassVar, Literal, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -30,6 +31,7 @@ __all__ = [
     "write_worlds",
     "_time_generate",
     "_check_json",
+    "_global_keyword_types",
     "_check_curriculum",
 ]
 
@@ -105,6 +107,7 @@ class Obstacle:
 
 @final
 class Scheme:
+    # Generated from rse-core's table of global keys by scripts/python_stubs.py.
     def __new__(
         cls,
         obstacles: list[Obstacle] = [],
@@ -116,9 +119,11 @@ class Scheme:
         block_size: _Float = 0.1,
         step_height: _Float = 0.1,
         base: _Float = 0.0,
+        color: Union[tuple[_Float, _Float, _Float], str] = (0.72, 0.58, 0.42),
         amount: _Int = 1,
         seed: _Int = 0,
     ) -> Scheme: ...
+    __signature__: ClassVar[inspect.Signature]
     def replace(self, **fields: object) -> Scheme: ...
     def fields(self) -> dict[str, object]: ...
     def __reduce__(self) -> tuple[object, tuple[str, Optional[str]]]: ...
@@ -298,6 +303,7 @@ def scheme_mix(proportions: Sequence[float], num_envs: int, seed: int, env_offse
 def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: Optional[float] = None
 ) -> list[Terrain]: ...
+def _global_keyword_types() -> list[tuple[str, str]]: ...
 def write_worlds(
     scheme: Scheme,
     out: Union[str, os.PathLike[str]],

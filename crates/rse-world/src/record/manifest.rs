@@ -45,7 +45,10 @@ pub struct Manifest {
     pub templates_sha256: String,
     /// The grid the scheme gave, in cells.
     pub grid: Grid,
-    /// The resolved global parameters (command-line overrides applied).
+    /// The resolved global parameters (command-line overrides applied);
+    /// a key added since worlds were first written is left out at its
+    /// default, so their records keep their bytes.
+    #[serde(serialize_with = "Globals::serialize_record")]
     pub globals: Globals,
     /// The obstacle table: the whole resolved scheme as canonical CSV,
     /// enough to regenerate the heightmap with `seed` and `index`. Absent

@@ -243,7 +243,8 @@ pub(crate) fn terrain_files(
     if shared_mesh || !gazebo_meshes.is_empty() || usd_mesh {
         let mesh = terrain.mesh();
         let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
-        let mtl_bytes = mtl().into_bytes();
+        let color = terrain.globals().color;
+        let mtl_bytes = mtl(color).into_bytes();
         let mut mesh_folders = Vec::new();
         if shared_mesh {
             mesh_folders.push("meshes".to_owned());
@@ -262,7 +263,10 @@ pub(crate) fn terrain_files(
             files.insert(format!("{folder}/terrain.mtl"), mtl_bytes.clone());
         }
         if usd_mesh {
-            files.insert("usd/terrain.usda".to_owned(), usda(&mesh).into_bytes());
+            files.insert(
+                "usd/terrain.usda".to_owned(),
+                usda(&mesh, color).into_bytes(),
+            );
         }
     }
 

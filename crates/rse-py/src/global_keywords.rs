@@ -1,0 +1,228 @@
+//! Python's keywords for the scheme's global keys, built from rse-core's
+//! table (`for_each_global_key!`): each keyword read into the patch and
+//! each value given back by its type, and `Scheme`'s signature with the
+//! defaults of `Globals::default`. A key added to the table is a keyword
+//! here with no edit.
+
+use pyo3::IntoPyObjectExt as _;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rse_core::{Color, Globals, GlobalsPatch};
+
+use crate::args;
+use crate::errors::scheme_error_at;
+
+/// A global's value as Python gives and gets it, picked by its type in the
+/// table (as rse-core's parser is).
+trait PyGlobal: Sized {
+    /// The type as `_rse.pyi` writes it (its aliases).
+    const PY_TYPE: &'static str;
+
+    /// The patch's value of keyword `name`: `None` when not given (Python
+    /// `None` is "not given" but for `pallets`, where it means off).
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>>;
+
+    /// The value as Python gets it.
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>>;
+}
+
+/// `size`: a pair of whole numbers, `(10, 10)`.
+impl PyGlobal for [u32; 2] {
+    const PY_TYPE: &'static str = "_Pair";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| args::whole_pair(name, v).map(Into::into))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        (self[0], self[1]).into_bound_py_any(py)
+    }
+}
+
+/// `pallets`: a pair, or `None` for off.
+impl PyGlobal for Option<[u32; 2]> {
+    const PY_TYPE: &'static str = "Optional[_Pair]";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        if value.is_none() {
+            return Ok(Some(None));
+        }
+        <[u32; 2]>::from_py(name, value).map(|pair| pair.map(Some))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        match self {
+            None => Ok(py.None().into_bound(py)),
+            Some(pair) => pair.to_py(py),
+        }
+    }
+}
+
+impl PyGlobal for u32 {
+    const PY_TYPE: &'static str = "_Int";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| args::whole(name, v))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.into_bound_py_any(py)
+    }
+}
+
+impl PyGlobal for u64 {
+    const PY_TYPE: &'static str = "_Int";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| args::whole(name, v))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.into_bound_py_any(py)
+    }
+}
+
+impl PyGlobal for bool {
+    const PY_TYPE: &'static str = "bool";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| args::boolean(name, v))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.into_bound_py_any(py)
+    }
+}
+
+impl PyGlobal for f64 {
+    const PY_TYPE: &'static str = "_Float";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| args::number(name, v))
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.into_bound_py_any(py)
+    }
+}
+
+/// `color`: `(r, g, b)`, each 0 to 1, or its scheme-file text
+/// (`"0.72 0.58 0.42"`).
+impl PyGlobal for Color {
+    const PY_TYPE: &'static str = "Union[tuple[_Float, _Float, _Float], str]";
+
+    fn from_py(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<Self>> {
+        given(value, |v| {
+            let color = match v.extract::<String>() {
+                Ok(text) => text.parse(),
+                Err(_) => Color::new(args::reals::<3>(name, v, "(0.72, 0.58, 0.42)")?),
+            };
+            color.map_err(|reason| scheme_error_at(v.py(), name, &reason))
+        })
+    }
+
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let [r, g, b] = self.rgb();
+        (r, g, b).into_bound_py_any(py)
+    }
+}
+
+/// `read(value)`, or not given for Python `None`.
+fn given<T>(
+    value: &Bound<'_, PyAny>,
+    read: impl FnOnce(&Bound<'_, PyAny>) -> PyResult<T>,
+) -> PyResult<Option<T>> {
+    if value.is_none() {
+        Ok(None)
+    } else {
+        read(value).map(Some)
+    }
+}
+
+/// A patch field's value as Python gets it: `None` when not set.
+fn patch_value<'py, T: PyGlobal>(
+    py: Python<'py>,
+    value: Option<&T>,
+) -> PyResult<Bound<'py, PyAny>> {
+    match value {
+        None => Ok(py.None().into_bound(py)),
+        Some(value) => value.to_py(py),
+    }
+}
+
+/// [`patch`], [`values`] and [`KEYWORDS`] from the table.
+macro_rules! declare_keywords {
+    ($(
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            doc: $doc:literal,
+            stored: $stored:tt,
+            flag: $flag:tt,
+        }
+    )*) => {
+        /// The global keywords in `given` as core's patch (keys absent or
+        /// `None` not given; `pallets=None` is off).
+        pub fn patch(given: &Bound<'_, PyDict>) -> PyResult<GlobalsPatch> {
+            let mut patch = GlobalsPatch::default();
+            $(if let Some(value) = given.get_item($name)? {
+                patch.$field = <$ty as PyGlobal>::from_py($name, &value)?;
+            })*
+            Ok(patch)
+        }
+
+        /// Each key of `globals` by its keyword, as Python gets it (the
+        /// pallet keys `None` with pallets off).
+        pub fn values(globals: &Globals, into: &Bound<'_, PyDict>) -> PyResult<()> {
+            let py = into.py();
+            let patch = globals.as_patch();
+            $(into.set_item($name, patch_value(py, patch.$field.as_ref())?)?;)*
+            Ok(())
+        }
+
+        /// Every keyword with its type as `_rse.pyi` writes it, in the
+        /// table's order.
+        pub const KEYWORDS: &[(&str, &str)] = &[$(($name, <$ty as PyGlobal>::PY_TYPE)),*];
+    };
+}
+
+rse_core::for_each_global_key!(declare_keywords);
+
+/// `Scheme(obstacles=[], *, size=(10, 10), …)`: the constructor's
+/// `inspect.Signature`, each global a keyword-only parameter with its
+/// default (`Globals::default`).
+pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
+    let inspect = py.import("inspect")?;
+    let parameter = inspect.getattr("Parameter")?;
+    let keyword_only = parameter.getattr("KEYWORD_ONLY")?;
+    let defaults = PyDict::new(py);
+    values(&Globals::default(), &defaults)?;
+    let obstacles = {
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("default", PyList::empty(py))?;
+        parameter.call(
+            ("obstacles", parameter.getattr("POSITIONAL_OR_KEYWORD")?),
+            Some(&kwargs),
+        )?
+    };
+    let mut parameters = vec![obstacles];
+    for &(name, _) in KEYWORDS {
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("default", defaults.get_item(name)?)?;
+        parameters.push(parameter.call((name, &keyword_only), Some(&kwargs))?);
+    }
+    let signature = inspect
+        .getattr("Signature")?
+        .call1((PyList::new(py, parameters)?,))?;
+    Ok(signature.unbind())
+}
+
+/// `((name, type), …)`: each global keyword and its type as `_rse.pyi`
+/// writes it, for `scripts/python_stubs.py`.
+#[pyfunction]
+pub fn _global_keyword_types() -> Vec<(&'static str, &'static str)> {
+    KEYWORDS.to_vec()
+}
