@@ -19,7 +19,8 @@ from mjlab.envs import ManagerBasedRlEnv
 from mjlab.tasks.registry import load_env_cfg
 from mujoco_warp._src.types import OverflowType
 from rse._adapters import contacts
-from rse._mjlab_envs import GROUND_DROP, NCON_HEADROOM, _terrain_colliders
+from rse._adapters.mjlab.config import NCON_HEADROOM, terrain_colliders
+from rse._adapters.mjlab.pool import GROUND_DROP
 from rse.mjlab import env_terrains, use_env_terrains
 
 NUM_ENVS = 16
@@ -88,7 +89,7 @@ def test_large_geoms_collide_with_each_envs_coarse_field_and_feet_with_the_exact
 def test_the_contact_budget_covers_the_fields_pairs_and_no_more(robot) -> None:
     cfg = load_env_cfg(f"Mjlab-Velocity-Rough-Unitree-{robot}")
     before = cfg.sim.nconmax
-    colliders = _terrain_colliders(cfg.scene)
+    colliders = terrain_colliders(cfg.scene)
     use_env_terrains(cfg, rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,0..2\n"))
     # A broadphase pair per colliding geom with its env's field, a few more;
     # the task's own figure where that covers them (on the CPU each slot

@@ -233,8 +233,7 @@ pub fn preview(body: &[u8]) -> Answer {
             bytes.extend_from_slice(if wide { &le } else { &le[..1] });
         }
     }
-    let globals = scheme.globals();
-    Ok(json!({
+    let mut response = json!({
         "ok": true,
         "nx": grid.nx,
         "ny": grid.ny,
@@ -245,11 +244,14 @@ pub fn preview(body: &[u8]) -> Answer {
         "hi": hi,
         "frame_period": grid.frame_period,
         "cell_pixels": preview::auto_cell_pixels(grid.nx, grid.ny),
-        "block_size": globals.block_size,
-        "step_height": globals.step_height,
-        "base": globals.base,
         "server_ms": start.elapsed().as_secs_f64() * 1e3,
-    }))
+    });
+    // The lengths the 3D view scales by, under their keys' names.
+    let globals = json!(scheme.globals());
+    for key in [GlobalKey::BlockSize, GlobalKey::StepHeight, GlobalKey::Base] {
+        response[key.name()] = globals[key.name()].clone();
+    }
+    Ok(response)
 }
 
 #[derive(Deserialize)]

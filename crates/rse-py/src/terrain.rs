@@ -408,13 +408,13 @@ impl Terrain {
     /// geoms) for `mujoco.MjModel.from_xml_string`. To fit it into a
     /// robot's model: `fragment=True` leaves out the globals (compiler,
     /// options, visual, light, floor: the robot's model has its own),
-    /// `prefix` goes before every name, `offset` moves the terrain (metres),
+    /// `prefix` goes before every name, `offset` moves the terrain (metres,
+    /// `(x, y, z)`; None: where it is),
     /// `friction` sets the geoms' (one number: sliding; three: MuJoCo's
     /// sliding, torsional, rolling). Attach it with `mujoco.MjSpec`:
     /// `robot.attach(mujoco.MjSpec.from_string(terrain.mjcf(fragment=True)),
     /// prefix="terrain/", frame=robot.worldbody.add_frame())`.
-    #[pyo3(signature = (*, fragment=false, prefix="", offset=None, friction=None),
-           text_signature = "($self, *, fragment=False, prefix='', offset=(0.0, 0.0, 0.0), friction=None)")]
+    #[pyo3(signature = (*, fragment=false, prefix="", offset=None, friction=None))]
     fn mjcf<'py>(
         &self,
         py: Python<'py>,

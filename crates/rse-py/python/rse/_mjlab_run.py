@@ -126,8 +126,8 @@ def recording_runner(base: Any) -> Any:
     class RecordingRunner(base):  # type: ignore[misc,valid-type]
         def __init__(self, env: Any, train_cfg: Any, log_dir: Optional[str] = None, device: str = "cpu", **kwargs: Any) -> None:
             super().__init__(env, train_cfg, log_dir, device, **kwargs)
+            from rse._adapters.mjlab.event import TERM, event_of
             from rse._adapters.tiles import launcher_rank
-            from rse._mjlab_envs import TERM, _event
 
             unwrapped = getattr(env, "unwrapped", env)
             terrain = unwrapped.cfg.scene.terrain
@@ -135,7 +135,7 @@ def recording_runner(base: Any) -> Any:
                 return
             offset = 0
             try:
-                offset = _event(unwrapped, TERM).env_offset
+                offset = event_of(unwrapped, TERM).env_offset
             except (ValueError, AttributeError):
                 pass
             write(Path(log_dir), terrain, offset)

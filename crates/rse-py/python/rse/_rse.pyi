@@ -194,7 +194,7 @@ class Terrain:
         *,
         fragment: bool = False,
         prefix: str = "",
-        offset: Union[tuple[_Float, _Float, _Float], list[_Float], npt.NDArray[np.floating]] = (0.0, 0.0, 0.0),
+        offset: Optional[Union[tuple[_Float, _Float, _Float], list[_Float], npt.NDArray[np.floating]]] = None,
         friction: Optional[Union[float, tuple[float, ...], list[float]]] = None,
     ) -> str: ...
     def save(self, path: Union[str, os.PathLike[str]]) -> None: ...

@@ -27,7 +27,8 @@ flat within ``max_height_diff`` rounded down to whole steps), filtered by
 the ranges of each ``FlatPatchSamplingCfg``.
 
 Every env its own terrain, new every episode (``use_env_terrains`` and its
-terms) lives in ``rse._mjlab_envs`` and is re-exported here.
+terms) lives in ``rse._adapters.mjlab``, one module a job, and is
+re-exported here.
 """
 
 from __future__ import annotations
@@ -37,19 +38,12 @@ from typing import Any, Optional
 
 import numpy as np
 
+from rse._adapters.mjlab.config import use_env_terrains
+from rse._adapters.mjlab.curriculum import terrain_difficulty
+from rse._adapters.mjlab.event import TERM, EnvTerrainsEvent, contact_sheet, env_terrains
+from rse._adapters.mjlab.pool import BODY, add_pool
+from rse._adapters.mjlab.terms import exact_height_scan, out_of_slot
 from rse._adapters.tiles import TileFields, framework_class, max_step, patches_in_ranges, tile_terrain
-from rse._mjlab_envs import (
-    BODY,
-    TERM,
-    EnvTerrainsEvent,
-    add_pool,
-    contact_sheet,
-    env_terrains,
-    exact_height_scan,
-    out_of_slot,
-    terrain_difficulty,
-    use_env_terrains,
-)
 
 
 def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) -> Any:

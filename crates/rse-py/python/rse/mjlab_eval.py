@@ -93,7 +93,8 @@ def evaluate(
     from mjlab.envs import ManagerBasedRlEnv
     from mjlab.tasks.registry import load_env_cfg
 
-    from rse._mjlab_envs import _event, use_env_terrains
+    from rse._adapters.mjlab.config import use_env_terrains
+    from rse._adapters.mjlab.event import event_of
     from rse._mjlab_run import load_policy, run_terrain
     from rse.mjlab_tasks import STEPFIELD
 
@@ -131,7 +132,7 @@ def evaluate(
     _fix_for_evaluation(cfg, seconds, speed)
     env = ManagerBasedRlEnv(cfg, device=device)
     try:
-        event = _event(env, "rse_terrain")
+        event = event_of(env, "rse_terrain")
         level_of = np.arange(n) // per_level
         difficulty = level_of / max(levels - 1, 1)
         event.envs.difficulty[:] = difficulty

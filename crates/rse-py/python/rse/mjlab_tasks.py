@@ -58,7 +58,8 @@ def register(scheme: SchemeLike = STEPFIELD, *, prefix: str = "Rse-Velocity-Roug
     from mjlab.rl import MjlabOnPolicyRunner
     from mjlab.tasks import registry
 
-    from rse._mjlab_envs import scheme_of, use_env_terrains
+    from rse._adapters.mjlab.config import use_env_terrains
+    from rse._adapters.mjlab.terrains import scheme_of
     from rse._mjlab_run import recording_runner
 
     scheme_of(scheme)  # a bad scheme fails here, naming its line

@@ -28,11 +28,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
 from rse._adapters.fields import geom_id, require_layout
 from rse._adapters.ids import env_ids as _env_ids
-from rse._adapters.pool import GEOM, POOL, add_env_geom, add_env_hfields, copy_env_samples, env_pool, sync_env_hfields
+from rse._adapters.pool import GEOM, POOL, add_env_geom, add_env_hfields, env_pool, sync_env_hfields
+from rse._adapters.warp_fields import copy_rows, route_per_world
 from rse._rse import EnvTerrains
 
 __all__ = ["GEOM", "add_terrain", "put_model", "route", "sync"]
@@ -80,15 +79,11 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = 
     ``geom_dataid`` (batched by ``put_model``, or by a framework: mjlab's
     ``Simulation.expand_model_fields``). The samples are ``sync``'s job
     (``put_model`` uploads them with the host model)."""
-    import warp as wp
-
     gid = _terrain_geom(mjm, geom)
     first, _, _ = env_pool(mjm, envs, name, "mjm")
     if m.geom_dataid.shape[0] != envs.num_envs:
         raise ValueError(f"m: geom_dataid holds {m.geom_dataid.shape[0]} worlds, expected one per env ({envs.num_envs})")
-    dataid = np.tile(np.asarray(mjm.geom_dataid, dtype=np.int32), (envs.num_envs, 1))
-    dataid[:, gid] = first + np.arange(envs.num_envs)
-    wp.copy(m.geom_dataid, wp.array(dataid, dtype=int, device=m.geom_dataid.device))
+    route_per_world(m, gid, first)
 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> None:
@@ -98,15 +93,6 @@ def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str 
     GPU one ``wp.copy`` per env from the host samples, wrapped without a
     copy).
     Call it after ``envs.reset(env_ids)``."""
-    import warp as wp
-
     ids = _env_ids(envs.num_envs, env_ids)
-    _, adr, size = env_pool(mjm, envs, name, "mjm")
-    if m.hfield_data.device.is_cpu:
-        # On the CPU device the warp array is host memory: a numpy view
-        # of it takes a plain copy, without a kernel launch per env.
-        copy_env_samples(m.hfield_data.numpy(), envs, ids, adr, size)
-        return
-    source: Any = wp.array(envs.samples.reshape(-1), dtype=float, device="cpu", copy=False)
-    for e in ids:
-        wp.copy(m.hfield_data, source, dest_offset=int(adr[e]), src_offset=e * size, count=size)
+    _, adr, _ = env_pool(mjm, envs, name, "mjm")
+    copy_rows(m.hfield_data, envs.samples, [(e, adr[e]) for e in ids])

@@ -28,6 +28,7 @@ from typing import Any, Optional
 from rse._adapters import private
 from rse._adapters.fields import require_layout
 from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.warp_fields import copy_rows
 from rse._rse import EnvTerrains
 
 __all__ = ["add_heightfield", "sync"]
@@ -93,19 +94,13 @@ def sync(model: Any, envs: EnvTerrains, env_ids: Any = None, *, solver: Optional
     fields in place: ``model.heightfield_elevations`` and, given a
     ``SolverMuJoCo``, its MuJoCo Warp model's ``hfield_data``. No rebuild,
     no recompilation."""
-    import warp as wp
-
     _check_slots(envs)
     ids = _env_ids(envs.num_envs, env_ids)
     offsets = _world_offsets(model, envs)
-    n = envs.field_shape[0] * envs.field_shape[1]
-    targets = [(model.heightfield_elevations, offsets)]
+    copy_rows(model.heightfield_elevations, envs.samples, [(e, offsets[e]) for e in ids])
     if solver is not None:
-        targets.append((solver.mjw_model.hfield_data, _mujoco_offsets(solver, envs)))
-    for e in ids:
-        src: Any = wp.array(envs.samples[e].ravel(), dtype=wp.float32, device=model.heightfield_elevations.device)
-        for dst, starts in targets:
-            wp.copy(dst, src, dest_offset=starts[e], count=n)
+        starts = _mujoco_offsets(solver, envs)
+        copy_rows(solver.mjw_model.hfield_data, envs.samples, [(e, starts[e]) for e in ids])
 
 
 def _mujoco_offsets(solver: Any, envs: EnvTerrains) -> list[int]:

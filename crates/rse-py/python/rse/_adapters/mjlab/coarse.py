@@ -1,0 +1,39 @@
+"""The contacts' routing at run time: the coarse fields ``add_pool`` made
+for the robot's large geoms, their geom routed per world and their
+samples copied in at a reset (``rse._adapters.contacts`` chose the geoms
+and set their bits when the scene was built)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rse._adapters import contacts
+from rse._adapters.pool import GEOM
+from rse._adapters.warp_fields import copy_rows, route_per_world
+from rse._rse import EnvTerrains
+
+
+class CoarsePool:
+    """The coarse fields ``add_pool`` made for the robot's large geoms, if
+    any: their geom routed to env ``w``'s coarse field in world ``w``, and
+    the reset envs' coarse samples copied in beside the exact ones."""
+
+    def __init__(self, m: Any, mjm: Any, envs: EnvTerrains, name: str) -> None:
+        import mujoco
+
+        self.gid = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, GEOM + contacts.COARSE)
+        if self.gid < 0:
+            return
+        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}{contacts.COARSE}0")
+        self.adr = np.asarray(mjm.hfield_adr[first : first + envs.num_envs], dtype=np.int64)
+        route_per_world(m, self.gid, first)
+
+    def sync(self, m: Any, mjm: Any, envs: EnvTerrains, ids: list[int]) -> None:
+        if self.gid < 0 or not ids:
+            return
+        # Gathered once, for the host model and the device's.
+        samples = contacts.coarse_samples(envs, ids)
+        contacts.copy_coarse(mjm.hfield_data, samples, ids, self.adr)
+        copy_rows(m.hfield_data, samples.reshape(len(ids), -1), [(i, self.adr[e]) for i, e in enumerate(ids)])

@@ -1,0 +1,166 @@
+"""The reset event term: every env its own ``rse.EnvTerrains`` slot, a new
+terrain each time it resets, copied into the simulation (device model,
+host model, ray meshes, coarse pool) and its origin into the scene."""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+from rse._adapters import private
+from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.mjlab.apart import Apart
+from rse._adapters.mjlab.coarse import CoarsePool
+from rse._adapters.mjlab.rays import RayMeshes
+from rse._adapters.mjlab.terrains import (
+    initial_difficulty,
+    launcher_env_offset,
+    make_envs,
+    scheme_of,
+    spread_of,
+    terrain_settings,
+)
+from rse._adapters.pool import POOL, sync_env_hfields
+from rse._rse import EnvTerrains
+
+TERM = "rse_terrain"
+"""The default name of rse's reset event term in an mjlab env config (its
+difficulty curriculum term is ``TERM + "_difficulty"``)."""
+
+
+class EnvTerrainsEvent:
+    """mjlab reset event term (``EventTermCfg(func=EnvTerrainsEvent,
+    mode="reset", params=...)``, before the terms that place the robots):
+    every env its own ``rse.EnvTerrains`` slot, a new terrain each time it
+    resets, spawned at its env's origin.
+
+    ``params``: ``scheme`` (a path, CSV text or ``rse.Scheme``), and
+    optionally ``oversample``, ``seed``, ``difficulty``, ``spawn_radius``,
+    ``env_offset``, ``name`` as ``rse.EnvTerrains`` takes them, and
+    ``initial_levels`` (``(max_init_terrain_level, terrain_levels)``). Where
+    the scene's terrain is an ``EnvTerrainCfg`` (``use_env_terrains``), its
+    fields win: ``train``'s command line sets them. The scene must hold the
+    pool (``add_pool``; ``use_env_terrains`` wires both).
+
+    At construction it makes the ``EnvTerrains`` (``.envs``), expands the
+    model's ``geom_dataid`` per world (mjlab's ``expand_model_fields``) and
+    points each world's terrain geom at its env's field; each call resets
+    the named envs, copies their samples into the simulation's model (and
+    the host model, which mjlab's viewer draws) and writes their origins
+    into ``env.scene.env_origins``.
+    """
+
+    def __init__(self, cfg: Any, env: Any) -> None:
+        from rse.mujoco_warp import route
+
+        p = {**dict(cfg.params), **terrain_settings(env.cfg.scene.terrain)}
+        self.name = p.get("name", POOL)
+        scheme = scheme_of(p["scheme"])
+        offset = launcher_env_offset(env.num_envs) if p.get("env_offset") is None else p["env_offset"]
+        self.env_offset = int(offset)
+        spread = spread_of(p) if p.get("difficulty") is None else None
+        self.terrain_levels: Optional[int] = p.get("terrain_levels")
+        """The curriculum's levels (the scene's ``EnvTerrainCfg``), if any."""
+        self.names: list[str] = list(getattr(scheme, "names", []))
+        """A mix's scheme names, in order (empty for one scheme)."""
+        self.envs = make_envs(
+            scheme,
+            env.num_envs,
+            oversample=p.get("oversample"),
+            seed=p.get("seed"),
+            difficulty=0.0 if spread is not None else p.get("difficulty"),
+            env_offset=offset,
+            spawn_radius=p.get("spawn_radius"),
+        )
+        if spread is not None:
+            # Every env's first terrain at its own starting level.
+            seed = self.envs.schemes[0].seed if p.get("seed") is None else p["seed"]
+            self.envs.reset(list(range(env.num_envs)), difficulty=initial_difficulty(spread, env.num_envs, offset, seed))
+        self._env = env
+        self._rays_of: Any = None
+        self._ray_meshes: Optional[RayMeshes] = None
+        sim = env.sim
+        sim.expand_model_fields(("geom_dataid",))
+        route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
+        self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
+        self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
+        self._copy_out(list(range(env.num_envs)))
+
+    def _copy_out(self, ids: list[int]) -> None:
+        """Copies the terrains of ``ids`` into the simulation's model and
+        the host model, their ray-cast meshes into the sensors' render
+        context, and their origins into ``env_origins``."""
+        import torch
+
+        from rse.mujoco_warp import sync
+
+        sim = self._env.sim
+        sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
+        sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
+        self._coarse.sync(sim.wp_model, sim.mj_model, self.envs, ids)
+        self._refresh_rays(ids)
+        origins = self._env.scene.env_origins
+        index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
+        at = self.envs.origins[ids].copy()
+        at[:, :2] += self.apart.offsets[ids]
+        origins[index] = torch.as_tensor(at, dtype=origins.dtype, device=origins.device)
+        self.apart.place(sim, ids)
+
+    def _refresh_rays(self, ids: list[int]) -> None:
+        """Brings the ray-cast meshes of the fields of ``ids`` up to date in
+        the render context of mjlab's ray sensors (``terrain_scan``, the
+        feet's height sensors). MuJoCo Warp's context holds a BVH per height
+        field, built once from the host model and only for the fields the
+        host model's geoms show (``pool0``): without this every other
+        world's rays would miss its terrain, and all would see the first
+        terrain as it was built. Each env's field gets a mesh of its own,
+        the field's grid as MuJoCo triangulates it, made once; a reset moves
+        its points and refits its BVH in place (a rebuild by MuJoCo Warp's
+        own ``build_hfield_bvh`` took 72 ms a field). A context made anew
+        (mjlab recreates it when an event expands a model field) gets the
+        same meshes."""
+        ctx = private.getattr_checked(self._env.sim, "_sensor_context", "mjlab")
+        if ctx is None or not ctx.has_raycasts:
+            return
+        rc = ctx.render_context
+        if self._ray_meshes is None:
+            self._rays_of = rc
+            self._ray_meshes = RayMeshes(self._env.sim.mj_model, rc, self.envs, self.name)
+            return
+        if rc is not self._rays_of:
+            self._rays_of = rc
+            self._ray_meshes.attach(rc)
+        self._ray_meshes.update(self.envs, ids)
+
+    def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
+        ids = ids_of(env, env_ids)
+        self.envs.reset(ids)
+        self._copy_out(ids)
+
+
+def ids_of(env: Any, env_ids: Any) -> list[int]:
+    """mjlab's env ids (a tensor, a slice or None: all) as a list."""
+    return _env_ids(env.num_envs, env_ids)
+
+
+def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
+    """The ``rse.EnvTerrains`` of a running mjlab ``env`` (its event term
+    ``term``): episodes, difficulties, origins, ``heights_at`` for height
+    scans."""
+    return event_of(env, term).envs
+
+
+def contact_sheet(env: Any, path: Optional[str] = None, term: str = TERM, **options: Any) -> bytes:
+    """The contact sheet of a running mjlab ``env``'s terrains
+    (``EnvTerrains.contact_sheet``: ``env_ids``, ``cols``,
+    ``cell_pixels``), written to ``path`` when given; a mix's tiles name
+    their scheme."""
+    event = event_of(env, term)
+    return event.envs.contact_sheet(path, names=event.names or None, **options)
+
+
+def event_of(env: Any, term: str) -> EnvTerrainsEvent:
+    """The ``EnvTerrainsEvent`` of ``env``'s event term ``term``."""
+    func = env.event_manager.get_term_cfg(term).func
+    if not isinstance(func, EnvTerrainsEvent):
+        raise ValueError(f"term: event term {term!r} is not an rse.mjlab.EnvTerrainsEvent")
+    return func
