@@ -343,3 +343,34 @@ def test_the_schemes_stub_is_the_table_of_global_keys() -> None:
     without_seed = text.replace("        seed: _Int = 0,\n", "", 1)
     assert without_seed != text and stubs.updated(without_seed) == text
     assert list(inspect.signature(rse.Scheme).parameters) == list(rse.Scheme().fields())
+
+
+def test_every_keyword_group_is_the_signature_it_shows(tmp_path: Path) -> None:
+    """Calls that read `**options` into typed keyword groups show their
+    keywords in `inspect.signature` (a hand `text_signature` for functions
+    and methods, `__signature__` built from the groups for classes): an
+    unknown keyword's `TypeError` lists the groups' keywords, which must be
+    the signature's, and each of them is taken."""
+    scheme = rse.Scheme(size=(4, 4))
+    atlas = rse.Atlas([scheme], 1, 1)
+    calls = {
+        "write_worlds": (rse.write_worlds, lambda **kw: rse.write_worlds(scheme, tmp_path / "batch", **kw)),
+        "write_world": (rse.write_world, lambda **kw: rse.write_world(scheme.generate(), tmp_path / "world", **kw)),
+        "write": (rse.Atlas.write, lambda **kw: atlas.write(tmp_path / "atlas", **kw)),
+        "Atlas": (rse.Atlas, lambda **kw: rse.Atlas([scheme], 1, 1, **kw)),
+        "EnvTerrains": (rse.EnvTerrains, lambda **kw: rse.EnvTerrains(scheme, 1, **kw)),
+        "Obstacle": (rse.Obstacle, lambda **kw: rse.Obstacle("random", **kw)),
+    }
+    for name, (shown, call) in calls.items():
+        keywords = [p.name for p in inspect.signature(shown).parameters.values() if p.kind is inspect.Parameter.KEYWORD_ONLY]
+        with pytest.raises(TypeError, match=f"{name}\\(\\) got an unexpected keyword argument 'nope'") as refused:
+            call(nope=1)
+        listed = str(refused.value).split("the keywords are ", 1)[1].split(", ")
+        assert listed == keywords, name
+        for keyword in keywords:
+            try:
+                call(**{keyword: None})
+            except TypeError as e:
+                assert "unexpected keyword" not in str(e), (name, keyword, e)
+            except (ValueError, OSError):
+                pass  # refused for what it is, not for its name

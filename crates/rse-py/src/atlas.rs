@@ -6,13 +6,15 @@ use numpy::ndarray::{Array3, Array4};
 use numpy::{IntoPyArray, PyArray3, PyArray4};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use rse_core::{AtlasConfig, Difficulty};
 use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 
 use crate::args;
 use crate::batch::{outcome_name, templates};
 use crate::errors::{core_error, world_error};
-use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_options};
+use crate::keywords::{self, keyword_group};
+use crate::options::WorldKeywords;
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, check_radius};
 
@@ -62,28 +64,59 @@ fn named_schemes(py: Python<'_>, schemes: &[Bound<'_, PyAny>]) -> PyResult<Vec<N
         .collect()
 }
 
+keyword_group! {
+    /// What `Atlas(...)` takes beyond its schemes and tiles.
+    pub struct AtlasKeywords {
+        /// `seed=` (default: the first scheme's `# seed:`).
+        seed: u64,
+        /// `border=`: cells of ground between tiles.
+        border: u32,
+        /// `difficulty=`: `(easiest, hardest)` along the rows.
+        difficulty: Py<PyAny>,
+        /// `spawn_radius=`, metres.
+        spawn_radius: f64,
+        /// `flat_patches=`: patches a tile.
+        flat_patches: u32,
+        /// `patch_radius=`, metres.
+        patch_radius: f64,
+        /// `max_step=`: the steps a patch may hold.
+        max_step: u16,
+    }
+}
+
 #[pymethods]
 impl Atlas {
+    /// `Atlas(schemes, rows, cols, *, seed=None, …)`: the constructor's
+    /// signature, from its keyword group.
+    #[classattr]
+    fn __signature__(py: Python<'_>) -> PyResult<Py<PyAny>> {
+        keywords::signature(py, &["schemes", "rows", "cols"], &[AtlasKeywords::NAMES])
+    }
+
     #[new]
-    #[pyo3(signature = (schemes, rows, cols, *, seed=None, border=None, difficulty=None, spawn_radius=None, flat_patches=None, patch_radius=None, max_step=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (schemes, rows, cols, **options))]
     fn new(
         py: Python<'_>,
         schemes: Vec<Bound<'_, PyAny>>,
         rows: u32,
         cols: u32,
-        seed: Option<u64>,
-        border: Option<u32>,
-        difficulty: Option<Bound<'_, PyAny>>,
-        spawn_radius: Option<f64>,
-        flat_patches: Option<u32>,
-        patch_radius: Option<f64>,
-        max_step: Option<u16>,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        let given = keywords::given(py, options)?;
+        let AtlasKeywords {
+            seed,
+            border,
+            difficulty,
+            spawn_radius,
+            flat_patches,
+            patch_radius,
+            max_step,
+        } = AtlasKeywords::take(&given)?;
+        keywords::none_left("Atlas", &given, &[AtlasKeywords::NAMES])?;
         let difficulty = match difficulty {
             None => None,
             Some(d) => {
-                let [easiest, hardest] = args::reals("difficulty", &d, "(0.0, 1.0)")?;
+                let [easiest, hardest] = args::reals("difficulty", d.bind(py), "(0.0, 1.0)")?;
                 Some((difficulty_arg(easiest)?, difficulty_arg(hardest)?))
             }
         };
@@ -235,28 +268,21 @@ impl Atlas {
     /// (the same bytes): whole or not at all; an identical folder is left
     /// alone (returns `"skipped"`), a different one refused unless
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
-    #[pyo3(signature = (out, *, targets=None, mesh=None, template=None, force=false, mujoco_collider=None, oversample=None))]
-    #[allow(clippy::too_many_arguments)]
+    /// Keywords: the world options every writer takes.
+    #[pyo3(signature = (out, **options),
+           text_signature = "($self, out, *, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
     fn write(
         &self,
         py: Python<'_>,
         out: std::path::PathBuf,
-        targets: Option<PyTargets>,
-        mesh: Option<PyMeshMode>,
-        template: Option<std::path::PathBuf>,
-        force: bool,
-        mujoco_collider: Option<PyColliderName>,
-        oversample: Option<u32>,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<&'static str> {
-        let options = world_options(
-            py,
-            targets,
-            mesh,
-            Difficulty::FULL,
-            mujoco_collider,
-            oversample,
-        )?;
-        let templates = templates(py, template.as_deref())?;
+        let given = keywords::given(py, options)?;
+        let world = WorldKeywords::take(&given)?;
+        keywords::none_left("write", &given, &[WorldKeywords::NAMES])?;
+        let options = world.options(py, Difficulty::FULL)?;
+        let templates = templates(py, world.template.as_deref())?;
+        let force = world.force.unwrap_or(false);
         let atlas_options = *self.inner.options();
         let (outcome, _) = py
             .detach(|| {

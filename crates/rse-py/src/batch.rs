@@ -8,7 +8,8 @@ use rayon::prelude::*;
 use rse_world::{BatchConfig, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
-use crate::options::{PyColliderName, PyMeshMode, PyTargets, world_config, world_options};
+use crate::keywords::{self, keyword_group};
+use crate::options::WorldKeywords;
 use crate::scheme::{PyDifficulty, Scheme};
 use crate::terrain::Terrain;
 
@@ -55,47 +56,59 @@ pub fn generate_batch(
     }))
 }
 
+keyword_group! {
+    /// What `write_worlds` takes beyond the world options: the batch.
+    pub struct BatchKeywords {
+        /// `amount=`: worlds (default: the scheme's `# amount:`).
+        amount: u64,
+        /// `seed=`: the batch's seed (default: the scheme's `# seed:`).
+        seed: u64,
+        /// `jobs=`: worker threads (default: one a core).
+        jobs: usize,
+        /// `shard=`: `K/N`, this run's share of the batch.
+        shard: String,
+        /// `difficulty=`: 0 to 1 (default 1).
+        difficulty: PyDifficulty,
+    }
+}
+
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
+/// Keywords: the batch's (`amount`, `seed`, `jobs`, `shard`,
+/// `difficulty`) and the world options every writer takes.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, *, amount=None, seed=None, targets=None, mesh=None, jobs=None, shard=None, template=None, force=false, difficulty=None, mujoco_collider=None, oversample=None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (scheme, out, **options),
+       text_signature = "(scheme, out, *, amount=None, seed=None, jobs=None, shard=None, difficulty=None, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
 pub fn write_worlds<'py>(
     py: Python<'py>,
     scheme: &Scheme,
     out: std::path::PathBuf,
-    amount: Option<u64>,
-    seed: Option<u64>,
-    targets: Option<PyTargets>,
-    mesh: Option<PyMeshMode>,
-    jobs: Option<usize>,
-    shard: Option<&str>,
-    template: Option<std::path::PathBuf>,
-    force: bool,
-    difficulty: Option<PyDifficulty>,
-    mujoco_collider: Option<PyColliderName>,
-    oversample: Option<u32>,
+    options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let given = keywords::given(py, options)?;
+    let batch = BatchKeywords::take(&given)?;
+    let world = WorldKeywords::take(&given)?;
+    keywords::none_left(
+        "write_worlds",
+        &given,
+        &[BatchKeywords::NAMES, WorldKeywords::NAMES],
+    )?;
     let options = BatchConfig {
-        amount,
-        seed,
-        world: world_config(
-            targets,
-            mesh,
-            difficulty.map(|d| d.0),
-            mujoco_collider,
-            oversample,
-        ),
-        jobs,
-        shard: shard
+        amount: batch.amount,
+        seed: batch.seed,
+        world: world.config(batch.difficulty.map(|d| d.0)),
+        jobs: batch.jobs,
+        shard: batch
+            .shard
+            .as_deref()
             .map(str::parse::<Shard>)
             .transpose()
             .map_err(|e| world_error(py, &e))?,
-        force: Some(force),
+        force: Some(world.force.unwrap_or(false)),
     }
     .resolve(&scheme.inner, out)
     .map_err(|e| world_error(py, &e))?;
-    let templates = templates(py, template.as_deref())?;
+    let templates = templates(py, world.template.as_deref())?;
     let scheme = &scheme.inner;
     let summary = py
         .detach(|| rse_world::write_batch(scheme, &templates, &options, &|_| {}))
@@ -113,35 +126,28 @@ pub fn write_worlds<'py>(
 /// `rse.check` and `rse-gen check` verify, whole or not at all. An identical
 /// folder is left alone (`"skipped"`), a different one refused unless
 /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
+/// Keywords: the world options every writer takes.
 #[pyfunction]
-#[pyo3(signature = (terrain, out, *, targets=None, mesh=None, template=None, force=false, mujoco_collider=None, oversample=None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (terrain, out, **options),
+       text_signature = "(terrain, out, *, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
 pub fn write_world(
     py: Python<'_>,
     terrain: &Terrain,
     out: std::path::PathBuf,
-    targets: Option<PyTargets>,
-    mesh: Option<PyMeshMode>,
-    template: Option<std::path::PathBuf>,
-    force: bool,
-    mujoco_collider: Option<PyColliderName>,
-    oversample: Option<u32>,
+    options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<&'static str> {
+    let given = keywords::given(py, options)?;
+    let world = WorldKeywords::take(&given)?;
+    keywords::none_left("write_world", &given, &[WorldKeywords::NAMES])?;
     let Some(scheme) = &terrain.scheme else {
         return Err(PyValueError::new_err(
             "this terrain is an atlas's map: write it with Atlas.write",
         ));
     };
     let t = &terrain.inner;
-    let options = world_options(
-        py,
-        targets,
-        mesh,
-        t.difficulty(),
-        mujoco_collider,
-        oversample,
-    )?;
-    let templates = templates(py, template.as_deref())?;
+    let options = world.options(py, t.difficulty())?;
+    let templates = templates(py, world.template.as_deref())?;
+    let force = world.force.unwrap_or(false);
     let outcome = py
         .detach(|| {
             rse_world::write_world_at(

@@ -16,8 +16,10 @@ use numpy::{
 };
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::errors::world_error;
+use crate::keywords::{self, keyword_group};
 use crate::options::PyLayout;
 use crate::scheme::{PyDifficulty, Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
@@ -211,25 +213,61 @@ impl EnvTerrains {
     }
 }
 
+keyword_group! {
+    /// What `EnvTerrains(scheme, num_envs, ...)` takes: rse-core's
+    /// `EnvRequest` as the user gives it, and a mix's proportions.
+    pub struct EnvKeywords {
+        /// `oversample=`: samples a cell along each side.
+        oversample: u32,
+        /// `seed=` (default: the scheme's `# seed:`).
+        seed: u64,
+        /// `difficulty=`: 0 to 1.
+        difficulty: PyDifficulty,
+        /// `layout=`: `"slots"` or `"tiles"`.
+        layout: PyLayout,
+        /// `cols=`: tiles along x (tiles layout).
+        cols: u32,
+        /// `border=`: cells between tiles (tiles layout).
+        border: u32,
+        /// `env_offset=`: this process's first global env id.
+        env_offset: u64,
+        /// `spawn_radius=`, metres.
+        spawn_radius: f64,
+        /// `proportions=`: a mix's shares.
+        proportions: Vec<f64>,
+    }
+}
+
 #[pymethods]
 impl EnvTerrains {
+    /// `EnvTerrains(scheme, num_envs, *, oversample=None, …)`: the
+    /// constructor's signature, from its keyword group.
+    #[classattr]
+    fn __signature__(py: Python<'_>) -> PyResult<Py<PyAny>> {
+        keywords::signature(py, &["scheme", "num_envs"], &[EnvKeywords::NAMES])
+    }
+
     #[new]
-    #[pyo3(signature = (scheme, num_envs, oversample=None, seed=None, difficulty=None, layout=None, *, cols=None, border=None, env_offset=None, spawn_radius=None, proportions=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (scheme, num_envs, **options))]
     fn new(
         py: Python<'_>,
         scheme: &Bound<'_, PyAny>,
         num_envs: usize,
-        oversample: Option<u32>,
-        seed: Option<u64>,
-        difficulty: Option<PyDifficulty>,
-        layout: Option<PyLayout>,
-        cols: Option<u32>,
-        border: Option<u32>,
-        env_offset: Option<u64>,
-        spawn_radius: Option<f64>,
-        proportions: Option<Vec<f64>>,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        let given = keywords::given(py, options)?;
+        let EnvKeywords {
+            oversample,
+            seed,
+            difficulty,
+            layout,
+            cols,
+            border,
+            env_offset,
+            spawn_radius,
+            proportions,
+        } = EnvKeywords::take(&given)?;
+        keywords::none_left("EnvTerrains", &given, &[EnvKeywords::NAMES])?;
         // One scheme, or several mixed by proportion (equal by default).
         let schemes: Vec<Arc<rse_core::Scheme>> = match scheme.cast::<Scheme>() {
             Ok(one) => vec![Arc::clone(&one.get().inner)],

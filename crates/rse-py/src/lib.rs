@@ -17,6 +17,7 @@ mod curriculum;
 mod envs;
 mod errors;
 mod global_keywords;
+mod keywords;
 mod memory;
 mod mix;
 mod options;

@@ -11,6 +11,7 @@ use rse_world::{MeshMode, Targets, WorldConfig, WorldOptions};
 
 use crate::args::describe;
 use crate::errors::world_error;
+use crate::keywords::keyword_group;
 
 /// `targets=`: `"gazebo,mujoco"`, or a sequence of names
 /// (`["gazebo", "mujoco"]`).
@@ -89,35 +90,44 @@ fn string(obj: Borrowed<'_, '_, PyAny>, keyword: &str) -> PyResult<String> {
     obj.extract::<String>()
 }
 
-/// What the keywords every writer takes give a world folder: what the user
-/// gave, `None` for the rest (rse-world's [`WorldConfig`] resolves them).
-pub fn world_config(
-    targets: Option<PyTargets>,
-    mesh: Option<PyMeshMode>,
-    difficulty: Option<Difficulty>,
-    mujoco_collider: Option<PyColliderName>,
-    oversample: Option<u32>,
-) -> WorldConfig {
-    WorldConfig {
-        difficulty,
-        targets: targets.map(|t| t.0),
-        mesh: mesh.map(|m| m.0),
-        mujoco_collider: mujoco_collider.map(|c| c.0),
-        oversample,
+keyword_group! {
+    /// What every writer of world folders takes (`write_worlds`,
+    /// `write_world`, `Atlas.write`): what the folder holds and how it is
+    /// written. `None` is the library's default.
+    pub struct WorldKeywords {
+        /// `targets=`.
+        targets: PyTargets,
+        /// `mesh=`.
+        mesh: PyMeshMode,
+        /// `template=`: a folder overlaying our templates.
+        template: std::path::PathBuf,
+        /// `force=`: replace a different folder.
+        force: bool,
+        /// `mujoco_collider=`.
+        mujoco_collider: PyColliderName,
+        /// `oversample=`: the hfield collider's.
+        oversample: u32,
     }
 }
 
-/// The world options of the keywords every writer takes; `None` for any
-/// of them is [`WorldOptions::default`]'s.
-pub fn world_options(
-    py: Python<'_>,
-    targets: Option<PyTargets>,
-    mesh: Option<PyMeshMode>,
-    difficulty: Difficulty,
-    mujoco_collider: Option<PyColliderName>,
-    oversample: Option<u32>,
-) -> PyResult<WorldOptions> {
-    world_config(targets, mesh, Some(difficulty), mujoco_collider, oversample)
-        .resolve()
-        .map_err(|e| world_error(py, &e))
+impl WorldKeywords {
+    /// What these give a world folder of `difficulty` (`None`: the
+    /// batch's): what the user gave, `None` for the rest (rse-world's
+    /// [`WorldConfig`] resolves them).
+    pub fn config(&self, difficulty: Option<Difficulty>) -> WorldConfig {
+        WorldConfig {
+            difficulty,
+            targets: self.targets.as_ref().map(|t| t.0.clone()),
+            mesh: self.mesh.as_ref().map(|m| m.0),
+            mujoco_collider: self.mujoco_collider.as_ref().map(|c| c.0.clone()),
+            oversample: self.oversample,
+        }
+    }
+
+    /// The world options these give a folder of `difficulty`.
+    pub fn options(&self, py: Python<'_>, difficulty: Difficulty) -> PyResult<WorldOptions> {
+        self.config(Some(difficulty))
+            .resolve()
+            .map_err(|e| world_error(py, &e))
+    }
 }

@@ -6,8 +6,8 @@ use std::sync::Arc;
 use pyo3::IntoPyObjectExt as _;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
-use rse_core::{GlobalKey, Globals, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
+use pyo3::types::PyDict;
+use rse_core::{Field, GlobalKey, Globals, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
 
 use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
@@ -34,51 +34,79 @@ pub struct Obstacle {
 }
 
 impl Obstacle {
-    /// The fields but `type`, by name, in the constructor's order.
+    /// The fields but `type`, by name, in the table's order.
     fn keywords(&self, py: Python<'_>) -> PyResult<Vec<(&'static str, Py<PyAny>)>> {
         let f = self.inner.fields();
-        Ok(vec![
-            ("height", param_to_py(py, f.height)?),
-            ("angle", param_to_py(py, f.angle)?),
-            ("x1", param_to_py(py, f.x1)?),
-            ("y1", param_to_py(py, f.y1)?),
-            ("x2", param_to_py(py, f.x2)?),
-            ("y2", param_to_py(py, f.y2)?),
-            ("sigma", param_to_py(py, f.sigma)?),
-        ])
+        let mut keywords = Vec::new();
+        for field in Field::ALL {
+            let value = match field {
+                Field::Type => continue,
+                Field::Height => param_to_py(py, f.height)?,
+                Field::Angle => param_to_py(py, f.angle)?,
+                Field::X1 => param_to_py(py, f.x1)?,
+                Field::Y1 => param_to_py(py, f.y1)?,
+                Field::X2 => param_to_py(py, f.x2)?,
+                Field::Y2 => param_to_py(py, f.y2)?,
+                Field::Sigma => param_to_py(py, f.sigma)?,
+            };
+            keywords.push((field.name(), value));
+        }
+        Ok(keywords)
     }
+}
+
+/// The obstacle's columns but `type` as keyword-only parameters.
+fn column_keywords() -> Vec<&'static str> {
+    Field::ALL
+        .into_iter()
+        .filter(|&f| f != Field::Type)
+        .map(Field::name)
+        .collect()
 }
 
 #[pymethods]
 impl Obstacle {
+    /// `Obstacle(type, *, height=None, …)`: the type, then each column of
+    /// the obstacle table (docs/schemes.md) as a keyword, read by the
+    /// column's own rules (whole or real; a value or a `(lo, hi)` range).
     #[new]
-    #[pyo3(signature = (r#type, height=None, angle=None, x1=None, y1=None, x2=None, y2=None, sigma=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        py: Python<'_>,
-        r#type: &str,
-        height: Option<Bound<'_, PyAny>>,
-        angle: Option<Bound<'_, PyAny>>,
-        x1: Option<Bound<'_, PyAny>>,
-        y1: Option<Bound<'_, PyAny>>,
-        x2: Option<Bound<'_, PyAny>>,
-        y2: Option<Bound<'_, PyAny>>,
-        sigma: Option<Bound<'_, PyAny>>,
-    ) -> PyResult<Self> {
+    #[pyo3(signature = (r#type, **columns))]
+    fn new(py: Python<'_>, r#type: &str, columns: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let kind: ObstacleKind = r#type
             .parse()
             .map_err(|e| scheme_error_at(py, "type", &format!("{e}")))?;
-        let fields = ObstacleFields {
-            height: args::whole_param("height", height.as_ref())?,
-            angle: args::real_param("angle", angle.as_ref())?,
-            x1: args::whole_param("x1", x1.as_ref())?,
-            y1: args::whole_param("y1", y1.as_ref())?,
-            x2: args::whole_param("x2", x2.as_ref())?,
-            y2: args::whole_param("y2", y2.as_ref())?,
-            sigma: args::real_param("sigma", sigma.as_ref())?,
-        };
+        let mut fields = ObstacleFields::default();
+        for (key, value) in columns.map(PyDictMethods::iter).into_iter().flatten() {
+            let name = key.extract::<String>().unwrap_or_default();
+            let column = Field::ALL
+                .into_iter()
+                .find(|f| *f != Field::Type && f.name() == name);
+            let value = (!value.is_none()).then_some(&value);
+            match column {
+                Some(Field::Height) => fields.height = args::whole_param("height", value)?,
+                Some(Field::Angle) => fields.angle = args::real_param("angle", value)?,
+                Some(Field::X1) => fields.x1 = args::whole_param("x1", value)?,
+                Some(Field::Y1) => fields.y1 = args::whole_param("y1", value)?,
+                Some(Field::X2) => fields.x2 = args::whole_param("x2", value)?,
+                Some(Field::Y2) => fields.y2 = args::whole_param("y2", value)?,
+                Some(Field::Sigma) => fields.sigma = args::real_param("sigma", value)?,
+                Some(Field::Type) | None => {
+                    return Err(PyTypeError::new_err(format!(
+                        "Obstacle() got an unexpected keyword argument {}: the keywords are {}",
+                        key.repr()?,
+                        column_keywords().join(", ")
+                    )));
+                }
+            }
+        }
         let inner = rse_core::Obstacle::new(kind, fields).map_err(|e| scheme_error(py, &e))?;
         Ok(Obstacle { inner })
+    }
+
+    /// The constructor's signature, from the obstacle table's columns.
+    #[classattr]
+    fn __signature__(py: Python<'_>) -> PyResult<Py<PyAny>> {
+        crate::keywords::signature(py, &["type"], &[&column_keywords()])
     }
 
     /// The type: `random`, `gaussian`, `peak`, `pit`, `wall` or `long_pit`.
@@ -140,17 +168,17 @@ impl Obstacle {
         Ok(format!("rse.Obstacle({})", parts.join(", ")))
     }
 
-    /// For pickle and `copy`: the constructor and its arguments.
-    fn __reduce__<'py>(
+    /// For pickle and `copy`: the constructor's arguments, the type and
+    /// the columns as keywords.
+    fn __getnewargs_ex__<'py>(
         &self,
         py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
-        let mut args = vec![self.r#type().into_py_any(py)?];
-        args.extend(self.keywords(py)?.into_iter().map(|(_, v)| v));
-        Ok((
-            py.get_type::<Obstacle>().into_any(),
-            PyTuple::new(py, args)?,
-        ))
+    ) -> PyResult<((&'static str,), Bound<'py, PyDict>)> {
+        let columns = PyDict::new(py);
+        for (name, value) in self.keywords(py)? {
+            columns.set_item(name, value)?;
+        }
+        Ok(((self.r#type(),), columns))
     }
 }
 

@@ -79,6 +79,7 @@ class Obstacle:
     def __new__(
         cls,
         type: str,
+        *,
         height: Optional[_IntParam] = None,
         angle: Optional[_FloatParam] = None,
         x1: Optional[_IntParam] = None,
@@ -103,7 +104,8 @@ class Obstacle:
     def y2(self) -> Optional[_IntParam]: ...
     @property
     def sigma(self) -> Optional[_FloatParam]: ...
-    def __reduce__(self) -> tuple[object, tuple[object, ...]]: ...
+    __signature__: ClassVar[inspect.Signature]
+    def __getnewargs_ex__(self) -> tuple[tuple[str], dict[str, object]]: ...
 
 @final
 class Scheme:
@@ -215,6 +217,7 @@ class Atlas:
         patch_radius: Optional[float] = None,
         max_step: Optional[int] = None,
     ) -> Atlas: ...
+    __signature__: ClassVar[inspect.Signature]
     @property
     def terrain(self) -> Terrain: ...
     @property
@@ -234,7 +237,7 @@ class Atlas:
         targets: Optional[_Targets] = None,
         mesh: Optional[_MeshMode] = None,
         template: Optional[Union[str, os.PathLike[str]]] = None,
-        force: bool = False,
+        force: Optional[bool] = None,
         mujoco_collider: Optional[_MujocoCollider] = None,
         oversample: Optional[int] = None,
     ) -> str: ...
@@ -245,17 +248,18 @@ class EnvTerrains:
         cls,
         scheme: Union[Scheme, Sequence[Scheme]],
         num_envs: int,
+        *,
         oversample: Optional[int] = None,
         seed: Optional[int] = None,
         difficulty: Optional[float] = None,
         layout: Optional[Literal["slots", "tiles"]] = None,
-        *,
         cols: Optional[int] = None,
         border: Optional[int] = None,
         env_offset: Optional[int] = None,
         spawn_radius: Optional[float] = None,
         proportions: Optional[Sequence[float]] = None,
     ) -> EnvTerrains: ...
+    __signature__: ClassVar[inspect.Signature]
     @property
     def scheme_ids(self) -> npt.NDArray[np.int64]: ...
     @property
@@ -310,13 +314,13 @@ def write_worlds(
     *,
     amount: Optional[int] = None,
     seed: Optional[int] = None,
-    targets: Optional[_Targets] = None,
-    mesh: Optional[_MeshMode] = None,
     jobs: Optional[int] = None,
     shard: Optional[str] = None,
-    template: Optional[Union[str, os.PathLike[str]]] = None,
-    force: bool = False,
     difficulty: Optional[float] = None,
+    targets: Optional[_Targets] = None,
+    mesh: Optional[_MeshMode] = None,
+    template: Optional[Union[str, os.PathLike[str]]] = None,
+    force: Optional[bool] = None,
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> dict[str, int]: ...
@@ -327,7 +331,7 @@ def write_world(
     targets: Optional[_Targets] = None,
     mesh: Optional[_MeshMode] = None,
     template: Optional[Union[str, os.PathLike[str]]] = None,
-    force: bool = False,
+    force: Optional[bool] = None,
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
 ) -> str: ...
