@@ -2,7 +2,7 @@
 table of global keys defines: `Scheme.__new__`, from the installed
 extension's `inspect.signature(rse.Scheme)` (built from the table, with
 `Globals::default`'s defaults) and each keyword's type
-(`rse._rse._global_keyword_types()`, by the key's Rust type). `--check` compares instead of writing, for
+(`rse._rse._global_keywords()`, by the key's Rust type). `--check` compares instead of writing, for
 the tests: a key added to the table without the stub fails them.
 
     .venv/bin/python scripts/python_stubs.py           # rewrite the stub
@@ -25,7 +25,7 @@ def scheme_new() -> str:
     import rse
     from rse import _rse
 
-    types = {"obstacles": "list[Obstacle]", **dict(_rse._global_keyword_types())}
+    types = {"obstacles": "list[Obstacle]", **{name: kind for name, kind, _ in _rse._global_keywords()}}
     lines = [BEGIN, "    def __new__(\n", "        cls,\n"]
     keyword_only = False
     for p in inspect.signature(rse.Scheme).parameters.values():

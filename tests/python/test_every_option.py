@@ -1,10 +1,11 @@
 """Every global option of a scheme, walked through every skin that carries
 it: the constructor's keyword, `Scheme.replace`, the scheme file both ways,
 the world's `rse.json`, the templates' context, the framework adapters'
-tile fitting, the command line's flag. The keys come from the library itself (`Scheme().fields()`),
-so a key added to core that a skin drops, or that this table has no value
-for, fails here by name. (The editor's schema lists every key by the same
-table: rse-edit's `api::tests`.)"""
+tile fitting, the command line's flag. The keys and a value of each other
+than its default come from the library itself (`Scheme().fields()`, the
+examples of rse-core's table of keys), so a key added to core that a skin
+drops fails here by name, with no edit of this file. (The editor's schema
+lists every key by the same table: rse-edit's `api::tests`.)"""
 
 import json
 import subprocess
@@ -12,26 +13,23 @@ from pathlib import Path
 
 import pytest
 import rse
+import rse._rse as _rse
 from conftest import rse_gen_path
 from rse._adapters import tiles
 
-# A value of each key other than its default, as Python gives it, and as a
-# scheme file writes it.
-SAMPLES: dict[str, tuple[object, str]] = {
-    "size": ((13, 11), "13x11"),
-    "pallets": ((2, 1), "2x1"),
-    "pallet_size": (7, "7"),
-    "pallet_boundary": (False, "false"),
-    "block_size": (0.05, "0.05"),
-    "step_height": (0.025, "0.025"),
-    "base": (0.02, "0.02"),
-    "color": ((0.1, 0.2, 0.3), "0.1 0.2 0.3"),
-    "amount": (3, "3"),
-    "seed": (17, "17"),
-}
+# A value of each key other than its default, as Python gives it and as a
+# scheme file writes it: the example rse-core's table declares with the key
+# (read back through the scheme file, with pallets on for the pallet keys).
+def _sample(key: str, text: str) -> tuple[object, str]:
+    pallets = "# pallets: 1x1\n" if key in NEEDS_PALLETS else ""
+    value = rse.Scheme.from_csv(f"{pallets}# {key}: {text}\ntype\n").fields()[key]
+    return value, text
+
+
 KEYS = [key for key in rse.Scheme().fields() if key != "obstacles"]
 # The pallet keys need pallets on; fitting a tile sets the grid itself.
 NEEDS_PALLETS = {"pallet_size", "pallet_boundary"}
+SAMPLES: dict[str, tuple[object, str]] = {key: _sample(key, text) for key, _, text in _rse._global_keywords()}
 THE_GRID = {"size", "pallets"} | NEEDS_PALLETS
 
 
@@ -43,7 +41,7 @@ def scheme_with(key: str) -> rse.Scheme:
 
 def test_every_key_has_a_sample_value() -> None:
     missing = [key for key in KEYS if key not in SAMPLES]
-    assert not missing, f"give these keys a non-default sample in SAMPLES: {missing}"
+    assert not missing, f"keys with no example in rse-core's table: {missing}"
     assert set(SAMPLES) == set(KEYS), f"keys no longer in the library: {set(SAMPLES) - set(KEYS)}"
     defaults = rse.Scheme().fields()
     for key, (value, _) in SAMPLES.items():

@@ -9,9 +9,10 @@
 /// The global keys, declared once: each key's variant, name (in a scheme
 /// file, the editor and Python; `--block-size` on the command line), field
 /// and type in the patch (whose type picks its parser, its canonical text
-/// and its Python value), unit, what its text must be, one line of
-/// documentation, how [`Globals`](crate::Globals) stores it, and its
-/// command-line flag.
+/// and its Python value), unit, what its text must be, an example other
+/// than its default (the value the tests walk it through every skin
+/// with), one line of documentation, how [`Globals`](crate::Globals)
+/// stores it, and its command-line flag.
 ///
 /// `stored: { default, text, record }` makes the key a field of `Globals`
 /// of its own: its default, whether the canonical scheme file writes it
@@ -43,6 +44,7 @@ macro_rules! for_each_global_key {
                 field: size: [u32; 2],
                 unit: Some("cells"),
                 expects: "NXxNY, whole numbers of cells",
+                example: "13x11",
                 doc: "`NXxNY` cells, used when pallets are off",
                 stored: by_hand,
                 flag: {
@@ -57,6 +59,7 @@ macro_rules! for_each_global_key {
                 field: pallets: Option<[u32; 2]>,
                 unit: Some("pallets"),
                 expects: "NXxNY pallets, or off",
+                example: "2x1",
                 doc: "`PXxPY` pallets, or `off`",
                 stored: by_hand,
                 flag: {
@@ -71,6 +74,7 @@ macro_rules! for_each_global_key {
                 field: pallet_size: u32,
                 unit: Some("cells"),
                 expects: "a whole number of cells",
+                example: "7",
                 doc: "pallet side in cells, inside the frame (needs `pallets`; a NIST pallet is 10)",
                 stored: by_hand,
                 flag: {
@@ -85,6 +89,7 @@ macro_rules! for_each_global_key {
                 field: pallet_boundary: bool,
                 unit: None,
                 expects: "true or false",
+                example: "false",
                 doc: "`true`/`false`: a 1-cell frame, 1 step high, around every pallet (needs `pallets`)",
                 stored: by_hand,
                 flag: {
@@ -99,6 +104,7 @@ macro_rules! for_each_global_key {
                 field: block_size: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                example: "0.05",
                 doc: "cell side `S` in metres",
                 stored: { default: 0.1, text: always, record: always },
                 flag: {
@@ -113,6 +119,7 @@ macro_rules! for_each_global_key {
                 field: step_height: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                example: "0.025",
                 doc: "height of one step in metres",
                 stored: { default: 0.1, text: always, record: always },
                 flag: {
@@ -127,6 +134,7 @@ macro_rules! for_each_global_key {
                 field: base: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                example: "0.02",
                 doc: "slab under the whole grid, metres",
                 stored: { default: 0.0, text: unless_default, record: always },
                 flag: {
@@ -141,6 +149,7 @@ macro_rules! for_each_global_key {
                 field: color: $crate::Color,
                 unit: None,
                 expects: "red, green and blue, each 0 to 1",
+                example: "0.1 0.2 0.3",
                 doc: "the terrain's colour: red green blue, each 0 to 1 (light wood)",
                 stored: { default: $crate::Color::WOOD, text: unless_default, record: unless_default },
                 flag: {
@@ -155,6 +164,7 @@ macro_rules! for_each_global_key {
                 field: amount: u64,
                 unit: Some("worlds"),
                 expects: "a whole number of worlds",
+                example: "3",
                 doc: "worlds in a batch",
                 stored: { default: 1, text: unless_default, record: always },
                 flag: {},
@@ -165,6 +175,7 @@ macro_rules! for_each_global_key {
                 field: seed: u64,
                 unit: None,
                 expects: "a whole number 0..=2^64-1",
+                example: "17",
                 doc: "base seed of a batch, `0..2^64-1`",
                 stored: { default: 0, text: unless_default, record: always },
                 flag: {},
@@ -182,6 +193,7 @@ macro_rules! declare_global_key {
             field: $field:ident: $ty:ty,
             unit: $unit:expr,
             expects: $expects:literal,
+            example: $example:literal,
             doc: $doc:literal,
             stored: $stored:tt,
             flag: $flag:tt,
@@ -217,6 +229,15 @@ macro_rules! declare_global_key {
             pub const fn expects(self) -> &'static str {
                 match self {
                     $(GlobalKey::$variant => $expects,)*
+                }
+            }
+
+            /// A value other than the default, as a scheme file writes it
+            /// (with pallets on, for the pallet keys): what the tests walk
+            /// every key through every skin with.
+            pub const fn example(self) -> &'static str {
+                match self {
+                    $(GlobalKey::$variant => $example,)*
                 }
             }
 

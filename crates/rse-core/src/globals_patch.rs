@@ -20,6 +20,7 @@ macro_rules! declare_globals_patch {
             field: $field:ident: $ty:ty,
             unit: $unit:expr,
             expects: $expects:literal,
+            example: $example:literal,
             doc: $doc:literal,
             stored: $stored:tt,
             flag: $flag:tt,
@@ -241,7 +242,6 @@ impl Globals {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Color;
 
     /// The keys `stored: by_hand` are the four whose rules `apply`,
     /// `as_patch`, `cells` and `default_text` write out by name; another
@@ -260,6 +260,44 @@ mod tests {
                 GlobalKey::PalletSize,
                 GlobalKey::PalletBoundary
             ]
+        );
+    }
+
+    /// Every key at its example.
+    fn every_example() -> Globals {
+        let mut patch = GlobalsPatch::default();
+        for key in GlobalKey::ALL {
+            patch.set_key(key, key.example()).unwrap();
+        }
+        patch.apply(&Globals::default()).unwrap()
+    }
+
+    /// Each key's example is read, and is not its default (with pallets
+    /// on, for the pallet keys): a test that walks a key through a skin
+    /// with it would otherwise prove nothing.
+    #[test]
+    fn every_example_is_a_value_other_than_the_default() {
+        let pallets_on = GlobalsPatch {
+            pallets: Some(Some([1, 1])),
+            ..GlobalsPatch::default()
+        }
+        .apply(&Globals::default())
+        .unwrap();
+        for key in GlobalKey::ALL {
+            let mut patch = GlobalsPatch::default();
+            patch.set_key(key, key.example()).unwrap();
+            assert_ne!(
+                patch.apply(&pallets_on).unwrap(),
+                pallets_on,
+                "{}: its example is the default",
+                key.name()
+            );
+        }
+        let g = every_example();
+        assert_eq!(
+            g.cells().len(),
+            GlobalKey::ALL.len(),
+            "a key at its example is written"
         );
     }
 
@@ -363,20 +401,7 @@ mod tests {
 
     #[test]
     fn cells_read_back_to_the_same_globals() {
-        let g = Globals {
-            size: [7, 9],
-            pallets: Some(Pallets {
-                size: 4,
-                count: [2, 1],
-                boundary: false,
-            }),
-            block_size: 0.05,
-            step_height: 0.025,
-            base: 0.3,
-            color: Color::new([0.1, 0.0, 1.0]).unwrap(),
-            amount: 12,
-            seed: u64::MAX,
-        };
+        let g = every_example();
         let mut p = GlobalsPatch::default();
         for (key, text) in g.cells() {
             p.set_key(key, &text).unwrap();

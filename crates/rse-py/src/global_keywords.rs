@@ -159,6 +159,7 @@ macro_rules! declare_keywords {
             field: $field:ident: $ty:ty,
             unit: $unit:expr,
             expects: $expects:literal,
+            example: $example:literal,
             doc: $doc:literal,
             stored: $stored:tt,
             flag: $flag:tt,
@@ -183,9 +184,10 @@ macro_rules! declare_keywords {
             Ok(())
         }
 
-        /// Every keyword with its type as `_rse.pyi` writes it, in the
-        /// table's order.
-        pub const KEYWORDS: &[(&str, &str)] = &[$(($name, <$ty as PyGlobal>::PY_TYPE)),*];
+        /// Every keyword with its type as `_rse.pyi` writes it and its
+        /// example's text, in the table's order.
+        pub const KEYWORDS: &[(&str, &str, &str)] =
+            &[$(($name, <$ty as PyGlobal>::PY_TYPE, $example)),*];
     };
 }
 
@@ -209,7 +211,7 @@ pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
         )?
     };
     let mut parameters = vec![obstacles];
-    for &(name, _) in KEYWORDS {
+    for &(name, _, _) in KEYWORDS {
         let kwargs = PyDict::new(py);
         kwargs.set_item("default", defaults.get_item(name)?)?;
         parameters.push(parameter.call((name, &keyword_only), Some(&kwargs))?);
@@ -220,9 +222,11 @@ pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
     Ok(signature.unbind())
 }
 
-/// `((name, type), …)`: each global keyword and its type as `_rse.pyi`
-/// writes it, for `scripts/python_stubs.py`.
+/// `[(name, type, example), …]`: each global keyword, its type as
+/// `_rse.pyi` writes it (for `scripts/python_stubs.py`) and an example other
+/// than its default as a scheme file writes it (the sample
+/// `tests/python/test_every_option.py` walks it through every skin with).
 #[pyfunction]
-pub fn _global_keyword_types() -> Vec<(&'static str, &'static str)> {
+pub fn _global_keywords() -> Vec<(&'static str, &'static str, &'static str)> {
     KEYWORDS.to_vec()
 }

@@ -31,7 +31,7 @@ __all__ = [
     "write_worlds",
     "_time_generate",
     "_check_json",
-    "_global_keyword_types",
+    "_global_keywords",
     "_check_curriculum",
 ]
 
@@ -307,7 +307,7 @@ def scheme_mix(proportions: Sequence[float], num_envs: int, seed: int, env_offse
 def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: Optional[float] = None
 ) -> list[Terrain]: ...
-def _global_keyword_types() -> list[tuple[str, str]]: ...
+def _global_keywords() -> list[tuple[str, str, str]]: ...
 def write_worlds(
     scheme: Scheme,
     out: Union[str, os.PathLike[str]],
