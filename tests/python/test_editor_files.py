@@ -133,6 +133,9 @@ def test_a_lost_server_is_said_retried_and_the_edits_kept(tmp_path: Path, page: 
         page.wait_for_function("!document.getElementById('connection').hidden")
         assert "not answering" in page.locator("#connection").inner_text()
         assert page.locator("#pictures").evaluate("e => e.classList.contains('stale')"), "the pictures are marked out of date"
+        # ... because of the server, not of the scheme, which is fine.
+        out_of_date = page.get_by_role("status").filter(has_text="Out of date").inner_text()
+        assert "server is not answering" in out_of_date and "scheme has an error" not in out_of_date, out_of_date
         page.get_by_role("button", name="Save", exact=True).click()
         status_says(page, "not saved")
         assert "did not answer" in page.locator("#status").inner_text()

@@ -349,12 +349,25 @@ function markError(error) {
   $("error").textContent = where + error.message;
 }
 
-/** The pictures no longer show the scheme (it has an error, or the server
- * is gone): say so and grey them out until a new preview is drawn. */
-function stale(yes) {
+/** Why the pictures can be out of date, in the user's words: the scheme,
+ * a failure of the server's, or a server gone (none of the last two the
+ * user's doing: the edits are kept). */
+const STALE_BECAUSE = {
+  error: "Out of date: the scheme has an error, so these pictures show the last scheme that worked.",
+  failed: "Out of date: the editor's server could not draw this scheme (the message below says why), so these pictures show the last scheme it drew.",
+  server: "Out of date: the editor's server is not answering, so these pictures show the last scheme it drew. Your edits are kept; the pictures come back by themselves when it answers.",
+};
+
+/** The pictures no longer show the scheme (`why`: it has an `error`, or
+ * the `server` is gone): say which and grey them out until a new preview
+ * is drawn. */
+function stale(yes, why = "error") {
   $("pictures").classList.toggle("stale", yes);
   $("stale").hidden = !yes;
-  if (yes) $("timing").textContent = "";
+  if (yes) {
+    $("stale").textContent = STALE_BECAUSE[why];
+    $("timing").textContent = "";
+  }
 }
 
 // --- preview: debounced and superseded ----------------------------------------
@@ -393,7 +406,7 @@ async function send() {
   } catch (e) {
     preview.busy = false;
     window.rseEditor.inFlight -= 1;
-    stale(true);
+    stale(true, e instanceof Lost ? "server" : "failed");
     $("error").textContent = e instanceof Lost ? "" : String(e.message);
     return;
   }
