@@ -462,3 +462,20 @@ def test_download_csv_is_the_file_save_writes(editor, page: Page) -> None:
     assert (folder / "start.csv").read_text() == "# size: 20x16\ntype,height\nrandom,1\n", "a download writes no file"
     save(page)
     assert got.read_text() == (folder / "start.csv").read_text() and "random,2" in got.read_text()
+
+
+def test_add_and_copy_move_the_focus_to_the_new_rows_type(editor, page: Page) -> None:
+    """After Add obstacle or Copy obstacle the keyboard is on the new row's
+    first field, not on the button (which left the new row dozens of Tabs
+    away)."""
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    focused = "document.activeElement.getAttribute('aria-label')"
+    edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+    assert page.evaluate(focused) == "type of obstacle 2"
+    page.keyboard.press("End")  # the last type of the list, by keyboard
+    page.wait_for_function("document.activeElement.value === 'long_pit'")
+    edit(page, lambda: page.get_by_role("button", name="Copy obstacle").click())
+    assert page.evaluate(focused) == "type of obstacle 3"
+    assert [row["type"] for row in table(page)] == ["random", "long_pit", "long_pit"]

@@ -285,8 +285,18 @@ function renderTable() {
 // --- table tools --------------------------------------------------------------
 
 function edit(change) { change(); renderTable(); record(null); refresh(); }
-$("add").onclick = () => edit(() => { state.rows.push({ type: "random", "height.lo": "1" }); state.selected = state.rows.length - 1; });
-$("copy").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected + 1, 0, { ...state.rows[state.selected] }); state.selected += 1; });
+/** Focus on row `i`'s first field (its type): where a new row is edited
+ * next, not dozens of Tabs away on the button that made it. */
+function focusRow(i) { document.querySelector(`#table tbody tr[data-row="${i}"] select`)?.focus(); }
+$("add").onclick = () => {
+  edit(() => { state.rows.push({ type: "random", "height.lo": "1" }); state.selected = state.rows.length - 1; });
+  focusRow(state.selected);
+};
+$("copy").onclick = () => {
+  if (state.selected < 0) return;
+  edit(() => { state.rows.splice(state.selected + 1, 0, { ...state.rows[state.selected] }); state.selected += 1; });
+  focusRow(state.selected);
+};
 $("delete").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected, 1); state.selected = Math.min(state.selected, state.rows.length - 1); });
 function move(by) {
   const i = state.selected, j = i + by;
