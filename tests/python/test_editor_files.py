@@ -150,3 +150,43 @@ def test_a_lost_server_is_said_retried_and_the_edits_kept(tmp_path: Path, page: 
     finally:
         if server.poll() is None:
             stop(server)
+
+
+def test_open_asks_before_replacing_unsaved_edits_and_starts_a_new_history(editor, page: Page) -> None:
+    """With edits not saved, Open asks: Cancel keeps them, Discard drops
+    them, Save writes them first; an opened file is a new document (Undo
+    does not bring the other file back under its name), and the header
+    names the file Save writes."""
+    url, folder = editor
+    start = folder / "start.csv"
+    other = folder / "other.csv"
+    other.write_text("# size: 9x9\ntype,height\nrandom,4\n")
+    wait_ready(page, url)
+    edit(page, lambda: cell(page, 0, "height").fill("3"))
+    assert page.locator("#unsaved").is_visible()
+
+    def open_answering(choice: str) -> None:
+        page.get_by_role("button", name="Open path").click()
+        dialog = page.get_by_role("dialog", name="Save your edits first?")
+        assert "not saved" in dialog.inner_text()
+        dialog.get_by_role("button", name=choice).click()
+
+    open_answering("Cancel")
+    assert not page.get_by_role("dialog").is_visible(), "no path is asked for"
+    assert cell(page, 0, "height").input_value() == "3" and page.locator("#unsaved").is_visible()
+    open_answering("Discard them")
+    page.get_by_label("file path").fill(str(other))
+    edit(page, lambda: page.get_by_role("button", name="OK").click())
+    assert table(page) == [{"type": "random", "height.lo": "4"}]
+    assert page.locator("#file-name").inner_text() == str(other) and page.locator("#unsaved").is_hidden()
+    assert page.get_by_role("button", name="Undo").is_disabled(), "the open starts a new history"
+    assert "random,1" in start.read_text(), "discarded, not written"
+    # Save them first: written, then the other file opened.
+    edit(page, lambda: cell(page, 0, "height").fill("5"))
+    open_answering("Save them first")
+    status_says(page, "saved")
+    page.get_by_label("file path").fill(str(start))
+    edit(page, lambda: page.get_by_role("button", name="OK").click())
+    assert "random,5" in other.read_text()
+    assert page.locator("#file-name").inner_text() == str(start)
+    assert table(page) == [{"type": "random", "height.lo": "1"}]

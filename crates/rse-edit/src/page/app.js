@@ -462,13 +462,37 @@ function askPath(title, suggestion) {
   $("dialog-title").textContent = title;
   $("dialog-path").value = suggestion;
   $("dialog-error").textContent = "";
+  // Escape closes a dialog without setting its value: the last one would stay.
+  dialog.returnValue = "";
   dialog.showModal();
   return new Promise((resolve) => {
     dialog.addEventListener("close", () => resolve(dialog.returnValue === "ok" ? $("dialog-path").value.trim() : null), { once: true });
   });
 }
 
+/** Before another scheme replaces the page's: `true` to go on. With edits
+ * not saved it asks, as a desktop program does: save them first (going on
+ * once they are), discard them (this browser's draft of the file too), or
+ * cancel. `what` says what would replace them. */
+async function mayReplace(what) {
+  if ($("unsaved").hidden) return true;
+  const dialog = $("unsaved-dialog");
+  $("unsaved-text").textContent = `${file.name || "This scheme"} has edits that are not saved. ${what} replaces them.`;
+  dialog.returnValue = "";
+  dialog.showModal();
+  const choice = await new Promise((resolve) => dialog.addEventListener("close", () => resolve(dialog.returnValue), { once: true }));
+  if (choice === "save") {
+    if (file.path) return saveTo(file.path);
+    await saveAs();
+    return $("unsaved").hidden;
+  }
+  if (choice !== "discard") return false;
+  try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
+  return true;
+}
+
 async function openPath() {
+  if (!(await mayReplace("Opening another file"))) return;
   const path = await askPath("Open a file", file.path);
   if (!path) return;
   let answer;
@@ -483,7 +507,7 @@ $("open-path").onclick = openPath;
 
 // A file from this computer: its contents, but no path the editor's server
 // can write (a browser does not tell), so Save asks where.
-$("open-file").onclick = () => $("load").click();
+$("open-file").onclick = async () => { if (await mayReplace("Opening a file")) $("load").click(); };
 $("load").addEventListener("change", async () => {
   const picked = $("load").files[0];
   if (!picked) return;
@@ -491,11 +515,16 @@ $("load").addEventListener("change", async () => {
   try { answer = await api("/api/parse", { csv: await picked.text() }); } catch (e) { say(`not opened: ${e.message}`); return; }
   $("load").value = "";
   if (!answer.ok) { say(`not opened: ${picked.name}: ${answer.error.message}`); markError(answer.error); return; }
-  loadScheme(answer.scheme);
-  file.path = ""; file.name = `${picked.name} (from this computer: Save asks where to write it)`;
+  // A new document, as a desktop program opens one: its own history (an
+  // Undo never brings back the other file under this one's name).
+  file.server = file.path = "";
+  file.name = `${picked.name} (from this computer: Save asks where to write it)`;
+  file.base = null;
   file.saved = null;
   file.suggestion = picked.name;
-  record(null);
+  undoLog.past = []; undoLog.future = []; undoLog.lastKey = null;
+  loadScheme(answer.scheme);
+  undoLog.past.push(snapshot());
   changed();
   say(`opened ${picked.name}`);
 });
