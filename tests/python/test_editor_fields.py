@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import chromium_page, edit, running_editor, wait_ready
+from editor_harness import chromium_page, edit, running_editor, save, wait_ready
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -236,3 +236,25 @@ def test_typing_a_size_sends_a_few_previews_and_draws_the_last(editor, page: Pag
              return (await r.text()).length; })()"""
     )
     assert reply <= 100_000, reply
+
+
+def test_size_says_the_pallets_set_the_grid_and_saved_goes_with_the_next_edit(editor, page: Page) -> None:
+    """With pallets on, the size field is not what the map shows: it says
+    the pallets make the grid, and how big; and "saved …" does not stay
+    beside "unsaved" once the page is edited again."""
+    url, folder = editor
+    wait_ready(page, url)
+    edit(page, lambda: page.get_by_label("pallets", exact=True).fill("5x5"))
+    page.wait_for_function("document.getElementById('unit-size').textContent.includes('56×56')")
+    assert "not used, the pallets make the grid 56×56" in page.locator("#unit-size").inner_text()
+    assert page.get_by_label("size", exact=True).input_value() == "50x50", "the file's value, kept for pallets off"
+    edit(page, lambda: page.get_by_label("pallets", exact=True).fill("off"))
+    assert page.locator("#unit-size").inner_text() == "cells"
+    # An empty size under pallets is greyed out, as the pallet keys without.
+    edit(page, lambda: page.get_by_label("pallets", exact=True).fill("5x5"))
+    edit(page, lambda: page.get_by_label("size", exact=True).fill(""))
+    assert page.get_by_label("size", exact=True).is_disabled()
+    save(page)
+    assert page.locator("#status").inner_text().startswith("saved")
+    edit(page, lambda: page.get_by_label("block size", exact=True).fill("0.2"))
+    assert page.locator("#unsaved").is_visible() and not page.locator("#status").inner_text().startswith("saved")

@@ -130,6 +130,8 @@ function changed() {
   const scheme = JSON.stringify(pageScheme());
   const unsaved = scheme !== file.saved;
   $("unsaved").hidden = !unsaved;
+  // "saved …" beside "unsaved" would say two things at once.
+  if (unsaved && $("status").textContent.startsWith("saved ")) say("");
   $("file-name").textContent = file.name || "(not saved yet)";
   $("undo").disabled = undoLog.past.length < 2;
   $("redo").disabled = !undoLog.future.length;
@@ -445,6 +447,7 @@ async function send() {
   window.rseEditor.lastRoundTripMs = ms;
   window.rseEditor.previews += 1;
   $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
+  if (palletsOn()) updateGlobals(`${answer.nx}×${answer.ny}`);
   clearTimeout(preview.view);
   preview.view = setTimeout(() => {
     const started = performance.now();
@@ -635,15 +638,29 @@ function askUnits() {
   box.replaceChildren();
 }
 
-/** Pallet size and boundary mean something only with pallets: greyed out
- * without (unless they hold a value, which the scheme then refuses). */
-function updateGlobals() {
+/** `true` when the page's pallets are on (they set the grid). */
+function palletsOn() {
   const pallets = document.querySelector('[data-global="pallets"]')?.value.trim().toLowerCase() ?? "";
-  const on = pallets !== "" && pallets !== "off";
+  return pallets !== "" && pallets !== "off";
+}
+
+/** Pallet size and boundary mean something only with pallets, size only
+ * without: greyed out when unused (unless they hold a value, which the
+ * scheme then refuses, or for size ignores), and size says what sets the
+ * grid instead (`grid`: the last preview's cells). */
+function updateGlobals(grid = null) {
+  const on = palletsOn();
   for (const key of ["pallet_size", "pallet_boundary"]) {
     const input = document.querySelector(`[data-global="${key}"]`);
     if (!input) continue;
     input.disabled = !on && globalText(input) === "";
+  }
+  const size = document.querySelector('[data-global="size"]');
+  if (size) {
+    size.disabled = on && globalText(size) === "";
+    if (!on) $("unit-size").textContent = "cells";
+    else if (grid) $("unit-size").textContent = `cells: not used, the pallets make the grid ${grid}`;
+    else if (!$("unit-size").textContent.includes("pallets")) $("unit-size").textContent = "cells: not used, the pallets set the grid";
   }
   askUnits();
 }
@@ -670,7 +687,7 @@ function buildFields(schema) {
       input.addEventListener("input", () => { record(`global.${g.key}`); updateGlobals(); refresh(); });
     }
     const unit = document.createElement("span");
-    unit.className = "unit"; unit.textContent = g.unit ?? "";
+    unit.className = "unit"; unit.id = `unit-${g.key}`; unit.textContent = g.unit ?? "";
     globals.append(label, input, unit);
   }
   const head = document.querySelector("#table thead tr");
