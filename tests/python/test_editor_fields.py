@@ -245,11 +245,11 @@ def test_size_says_the_pallets_set_the_grid_and_saved_goes_with_the_next_edit(ed
     url, folder = editor
     wait_ready(page, url)
     edit(page, lambda: page.get_by_label("pallets", exact=True).fill("5x5"))
-    page.wait_for_function("document.getElementById('unit-size').textContent.includes('56×56')")
-    assert "not used, the pallets make the grid 56×56" in page.locator("#unit-size").inner_text()
+    page.wait_for_function("document.getElementById('grid-note').textContent.includes('56×56')")
+    assert page.get_by_text("Size is not used: the pallets make the grid 56×56 cells.").is_visible()
     assert page.get_by_label("size", exact=True).input_value() == "50x50", "the file's value, kept for pallets off"
     edit(page, lambda: page.get_by_label("pallets", exact=True).fill("off"))
-    assert page.locator("#unit-size").inner_text() == "cells"
+    assert page.locator("#grid-note").is_hidden()
     # An empty size under pallets is greyed out, as the pallet keys without.
     edit(page, lambda: page.get_by_label("pallets", exact=True).fill("5x5"))
     edit(page, lambda: page.get_by_label("size", exact=True).fill(""))

@@ -658,9 +658,10 @@ function updateGlobals(grid = null) {
   const size = document.querySelector('[data-global="size"]');
   if (size) {
     size.disabled = on && globalText(size) === "";
-    if (!on) $("unit-size").textContent = "cells";
-    else if (grid) $("unit-size").textContent = `cells: not used, the pallets make the grid ${grid}`;
-    else if (!$("unit-size").textContent.includes("pallets")) $("unit-size").textContent = "cells: not used, the pallets set the grid";
+    const note = $("grid-note");
+    note.hidden = !on;
+    if (grid) note.textContent = `Size is not used: the pallets make the grid ${grid} cells.`;
+    else if (!note.textContent) note.textContent = "Size is not used: the pallets set the grid.";
   }
   askUnits();
 }
@@ -687,8 +688,15 @@ function buildFields(schema) {
       input.addEventListener("input", () => { record(`global.${g.key}`); updateGlobals(); refresh(); });
     }
     const unit = document.createElement("span");
-    unit.className = "unit"; unit.id = `unit-${g.key}`; unit.textContent = g.unit ?? "";
+    unit.className = "unit"; unit.textContent = g.unit ?? "";
     globals.append(label, input, unit);
+    if (g.key === "size") {
+      // What sets the grid when pallets do (updateGlobals), on a line of
+      // its own under the field.
+      const note = document.createElement("p");
+      note.id = "grid-note"; note.className = "hint grid-note"; note.hidden = true;
+      globals.append(note);
+    }
   }
   const head = document.querySelector("#table thead tr");
   for (const c of schema.column_docs.filter((c) => c.name !== "type")) {
