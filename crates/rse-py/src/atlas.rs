@@ -13,7 +13,7 @@ use rse_world::{AtlasRecord, NamedScheme, atlas_json};
 use crate::args;
 use crate::batch::{outcome_name, templates};
 use crate::errors::{core_error, world_error};
-use crate::keywords::{self, keyword_group};
+use crate::keywords::{self, KeywordGroup as _, keyword_group};
 use crate::options::WorldKeywords;
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, check_radius};
@@ -102,7 +102,6 @@ impl Atlas {
         cols: u32,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let given = keywords::given(py, options)?;
         let AtlasKeywords {
             seed,
             border,
@@ -111,8 +110,7 @@ impl Atlas {
             flat_patches,
             patch_radius,
             max_step,
-        } = AtlasKeywords::take(&given)?;
-        keywords::none_left("Atlas", &given, &[AtlasKeywords::NAMES])?;
+        } = keywords::read::<AtlasKeywords>(py, "Atlas", options)?;
         let difficulty = match difficulty {
             None => None,
             Some(d) => {
@@ -277,9 +275,7 @@ impl Atlas {
         out: std::path::PathBuf,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<&'static str> {
-        let given = keywords::given(py, options)?;
-        let world = WorldKeywords::take(&given)?;
-        keywords::none_left("write", &given, &[WorldKeywords::NAMES])?;
+        let world = keywords::read::<WorldKeywords>(py, "write", options)?;
         let options = world.options(py, Difficulty::FULL)?;
         let templates = templates(py, world.template.as_deref())?;
         let force = world.force.unwrap_or(false);

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use rse_world::{BatchConfig, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
-use crate::keywords::{self, keyword_group};
+use crate::keywords::{self, KeywordGroup as _, keyword_group};
 use crate::options::WorldKeywords;
 use crate::scheme::{PyDifficulty, Scheme};
 use crate::terrain::Terrain;
@@ -136,9 +136,7 @@ pub fn write_world(
     out: std::path::PathBuf,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<&'static str> {
-    let given = keywords::given(py, options)?;
-    let world = WorldKeywords::take(&given)?;
-    keywords::none_left("write_world", &given, &[WorldKeywords::NAMES])?;
+    let world = keywords::read::<WorldKeywords>(py, "write_world", options)?;
     let Some(scheme) = &terrain.scheme else {
         return Err(PyValueError::new_err(
             "this terrain is an atlas's map: write it with Atlas.write",

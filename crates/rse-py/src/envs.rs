@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::world_error;
-use crate::keywords::{self, keyword_group};
+use crate::keywords::{self, KeywordGroup as _, keyword_group};
 use crate::options::PyLayout;
 use crate::scheme::{PyDifficulty, Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
@@ -255,7 +255,6 @@ impl EnvTerrains {
         num_envs: usize,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let given = keywords::given(py, options)?;
         let EnvKeywords {
             oversample,
             seed,
@@ -266,8 +265,7 @@ impl EnvTerrains {
             env_offset,
             spawn_radius,
             proportions,
-        } = EnvKeywords::take(&given)?;
-        keywords::none_left("EnvTerrains", &given, &[EnvKeywords::NAMES])?;
+        } = keywords::read::<EnvKeywords>(py, "EnvTerrains", options)?;
         // One scheme, or several mixed by proportion (equal by default).
         let schemes: Vec<Arc<rse_core::Scheme>> = match scheme.cast::<Scheme>() {
             Ok(one) => vec![Arc::clone(&one.get().inner)],

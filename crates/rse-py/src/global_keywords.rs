@@ -11,6 +11,7 @@ use rse_core::{Color, Globals, GlobalsPatch};
 
 use crate::args;
 use crate::errors::scheme_error_at;
+use crate::keywords::{Parameter, signature_of};
 
 /// A global's value as Python gives and gets it, picked by its type in the
 /// table (as rse-core's parser is).
@@ -197,29 +198,19 @@ rse_core::for_each_global_key!(declare_keywords);
 /// `inspect.Signature`, each global a keyword-only parameter with its
 /// default (`Globals::default`).
 pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
-    let inspect = py.import("inspect")?;
-    let parameter = inspect.getattr("Parameter")?;
-    let keyword_only = parameter.getattr("KEYWORD_ONLY")?;
     let defaults = PyDict::new(py);
     values(&Globals::default(), &defaults)?;
-    let obstacles = {
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("default", PyList::empty(py))?;
-        parameter.call(
-            ("obstacles", parameter.getattr("POSITIONAL_OR_KEYWORD")?),
-            Some(&kwargs),
-        )?
-    };
-    let mut parameters = vec![obstacles];
+    let mut parameters = vec![Parameter::Positional(
+        "obstacles",
+        Some(PyList::empty(py).into_any()),
+    )];
     for &(name, _, _) in KEYWORDS {
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("default", defaults.get_item(name)?)?;
-        parameters.push(parameter.call((name, &keyword_only), Some(&kwargs))?);
+        let default = defaults
+            .get_item(name)?
+            .unwrap_or_else(|| py.None().into_bound(py));
+        parameters.push(Parameter::Keyword(name, default));
     }
-    let signature = inspect
-        .getattr("Signature")?
-        .call1((PyList::new(py, parameters)?,))?;
-    Ok(signature.unbind())
+    signature_of(py, parameters.into_iter())
 }
 
 /// `[(name, type, example), …]`: each global keyword, its type as

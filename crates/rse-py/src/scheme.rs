@@ -4,7 +4,6 @@
 use std::sync::Arc;
 
 use pyo3::IntoPyObjectExt as _;
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rse_core::{Field, GlobalKey, Globals, ObstacleFields, ObstacleKind, Param, SchemeErrorKind};
@@ -12,6 +11,7 @@ use rse_core::{Field, GlobalKey, Globals, ObstacleFields, ObstacleKind, Param, S
 use crate::args;
 use crate::errors::{core_error, scheme_error, scheme_error_at};
 use crate::global_keywords;
+use crate::keywords;
 use crate::terrain::Terrain;
 
 /// Python's view of a parameter: an int/float or a `(lo, hi)` tuple.
@@ -91,11 +91,11 @@ impl Obstacle {
                 Some(Field::Y2) => fields.y2 = args::whole_param("y2", value)?,
                 Some(Field::Sigma) => fields.sigma = args::real_param("sigma", value)?,
                 Some(Field::Type) | None => {
-                    return Err(PyTypeError::new_err(format!(
-                        "Obstacle() got an unexpected keyword argument {}: the keywords are {}",
-                        key.repr()?,
-                        column_keywords().join(", ")
-                    )));
+                    return Err(keywords::unexpected(
+                        "Obstacle",
+                        &key,
+                        column_keywords().into_iter(),
+                    )?);
                 }
             }
         }
@@ -106,7 +106,7 @@ impl Obstacle {
     /// The constructor's signature, from the obstacle table's columns.
     #[classattr]
     fn __signature__(py: Python<'_>) -> PyResult<Py<PyAny>> {
-        crate::keywords::signature(py, &["type"], &[&column_keywords()])
+        keywords::signature(py, &["type"], &[&column_keywords()])
     }
 
     /// The type: `random`, `gaussian`, `peak`, `pit`, `wall` or `long_pit`.
@@ -199,27 +199,6 @@ fn apply_patch(py: Python<'_>, given: &Bound<'_, PyDict>, onto: &Globals) -> PyR
         })
 }
 
-/// A `TypeError` unless every key of `given` is one of `known`, as Python
-/// says it of a call (`function` the call's name).
-fn only_known(
-    function: &str,
-    given: &Bound<'_, PyDict>,
-    known: impl Iterator<Item = &'static str> + Clone,
-) -> PyResult<()> {
-    for key in given.keys() {
-        let name = key.extract::<String>().unwrap_or_default();
-        if !known.clone().any(|k| k == name) {
-            let names: Vec<&str> = known.collect();
-            return Err(PyTypeError::new_err(format!(
-                "{function}() got an unexpected keyword argument {}: the keywords are {}",
-                key.repr()?,
-                names.join(", ")
-            )));
-        }
-    }
-    Ok(())
-}
-
 /// A scheme: global parameters and an ordered obstacle table (docs/schemes.md).
 #[pyclass(module = "rse", frozen)]
 pub struct Scheme {
@@ -240,7 +219,7 @@ impl Scheme {
     ) -> PyResult<Self> {
         let globals = match globals {
             Some(given) => {
-                only_known(
+                keywords::only_known(
                     "Scheme",
                     given,
                     GlobalKey::ALL.into_iter().map(GlobalKey::name),
@@ -277,7 +256,7 @@ impl Scheme {
         let given = PyDict::new(py);
         if let Some(fields) = fields {
             let known = std::iter::once("obstacles").chain(GlobalKey::ALL.map(GlobalKey::name));
-            only_known("replace", fields, known)?;
+            keywords::only_known("replace", fields, known)?;
             for (key, value) in fields.iter() {
                 if key.extract::<String>()? == "obstacles" {
                     table = Some(value.extract::<Vec<Bound<'py, Obstacle>>>()?);

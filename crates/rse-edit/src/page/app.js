@@ -141,6 +141,9 @@ function changed() {
   } catch (e) { /* storage full or refused: the page still works, only without the draft */ }
 }
 
+/** Empties Undo and Redo: a file opened is a new document. */
+function forgetHistory() { undoLog.past = []; undoLog.future = []; undoLog.lastKey = null; }
+
 /** Starts editing `scheme`, the server's file `server` (its answer): a
  * draft this browser kept for that file wins if it was made from what the
  * file still holds (else the file changed since, and the file wins). */
@@ -148,7 +151,7 @@ function startFile(scheme, server) {
   file.server = server || "";
   file.path = file.server; file.name = file.server;
   file.base = JSON.stringify(scheme);
-  undoLog.past = []; undoLog.future = []; undoLog.lastKey = null;
+  forgetHistory();
   loadScheme(scheme);
   file.saved = JSON.stringify(pageScheme());
   let draft = null;
@@ -447,7 +450,7 @@ async function send() {
   window.rseEditor.lastRoundTripMs = ms;
   window.rseEditor.previews += 1;
   $("timing").textContent = `${answer.nx}×${answer.ny}, preview in ${ms.toFixed(1)} ms`;
-  if (palletsOn()) updateGlobals(`${answer.nx}×${answer.ny}`);
+  if (palletsOn()) showGrid(`${answer.nx}×${answer.ny}`);
   clearTimeout(preview.view);
   preview.view = setTimeout(() => {
     const started = performance.now();
@@ -525,7 +528,7 @@ $("load").addEventListener("change", async () => {
   file.base = null;
   file.saved = null;
   file.suggestion = picked.name;
-  undoLog.past = []; undoLog.future = []; undoLog.lastKey = null;
+  forgetHistory();
   loadScheme(answer.scheme);
   undoLog.past.push(snapshot());
   changed();
@@ -647,8 +650,8 @@ function palletsOn() {
 /** Pallet size and boundary mean something only with pallets, size only
  * without: greyed out when unused (unless they hold a value, which the
  * scheme then refuses, or for size ignores), and size says what sets the
- * grid instead (`grid`: the last preview's cells). */
-function updateGlobals(grid = null) {
+ * grid instead. */
+function updateGlobals() {
   const on = palletsOn();
   for (const key of ["pallet_size", "pallet_boundary"]) {
     const input = document.querySelector(`[data-global="${key}"]`);
@@ -656,14 +659,20 @@ function updateGlobals(grid = null) {
     input.disabled = !on && globalText(input) === "";
   }
   const size = document.querySelector('[data-global="size"]');
-  if (size) {
-    size.disabled = on && globalText(size) === "";
-    const note = $("grid-note");
-    note.hidden = !on;
-    if (grid) note.textContent = `Size is not used: the pallets make the grid ${grid} cells.`;
-    else if (!note.textContent) note.textContent = "Size is not used: the pallets set the grid.";
-  }
+  if (size) size.disabled = on && globalText(size) === "";
+  showGrid(null);
   askUnits();
+}
+
+/** The line under size while pallets set the grid: `grid` the last
+ * preview's cells (null: keep what it says). Called by each preview, so it
+ * touches that line only. */
+function showGrid(grid) {
+  const note = $("grid-note");
+  if (!note) return;
+  note.hidden = !palletsOn();
+  if (grid) note.textContent = `Size is not used: the pallets make the grid ${grid} cells.`;
+  else if (!note.textContent) note.textContent = "Size is not used: the pallets set the grid.";
 }
 
 function buildFields(schema) {
