@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from rse._adapters.warp_fields import write_rows
 from rse._rse import EnvTerrains
 
 MAX_PRISMS = 50
@@ -122,7 +123,4 @@ def copy_coarse(data: np.ndarray, samples: np.ndarray, ids: list[int], adr: np.n
     """Copies ``samples`` (``coarse_samples`` of ``ids``) into ``data`` (a
     model's ``hfield_data``, or a numpy view of a Warp model's on the CPU)
     at the coarse fields' addresses ``adr`` (one per env)."""
-    rows = samples.reshape(len(ids), -1)
-    size = rows.shape[1]
-    for row, e in zip(rows, ids):
-        data[int(adr[e]) : int(adr[e]) + size] = row
+    write_rows(data, samples.reshape(len(ids), -1), [(i, adr[e]) for i, e in enumerate(ids)])

@@ -14,6 +14,7 @@ import numpy as np
 from rse._adapters.fields import field_size, hfield_id
 from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.mjcf import field_model, floats
+from rse._adapters.warp_fields import write_rows
 from rse._rse import EnvTerrains
 
 POOL = "rse_env"
@@ -125,9 +126,7 @@ def env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") 
 def copy_env_samples(data: np.ndarray, envs: EnvTerrains, ids: list[int], adr: np.ndarray, size: int) -> None:
     """Copies the samples of ``ids`` into ``data`` (a model's
     ``hfield_data``, or a host view of a device copy of it) at ``adr``."""
-    flat = envs.samples.reshape(-1)
-    for e in ids:
-        data[adr[e] : adr[e] + size] = flat[e * size : (e + 1) * size]
+    write_rows(data, envs.samples.reshape(-1, size), [(e, adr[e]) for e in ids])
 
 
 def sync_env_hfields(model: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> None:

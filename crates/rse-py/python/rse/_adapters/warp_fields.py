@@ -1,7 +1,8 @@
-"""Host samples into a Warp model's arrays, one way for every adapter on
-MuJoCo Warp (``rse.mujoco_warp``, mjlab, ``rse.newton``): rows copied
-into a flat device array at given starts, and a geom pointed at a field
-per world (``geom_dataid`` batched per world)."""
+"""Host samples into a model's height fields, one way for every adapter:
+rows written into a flat host array (``write_rows``: a ``MjModel``'s
+``hfield_data``) or copied into a Warp array (``copy_rows``: MuJoCo Warp,
+mjlab, ``rse.newton``) at given starts, and a geom pointed at a field per
+world (``geom_dataid`` batched per world)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,16 @@ from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
+
+
+def write_rows(data: np.ndarray, rows: np.ndarray, pairs: Iterable[tuple[int, int]]) -> None:
+    """Writes row ``r`` of ``rows`` (one row a field) into the flat host
+    array ``data`` (a ``MjModel``'s ``hfield_data``, a numpy view of a Warp
+    array) at ``start``, for each ``(r, start)`` of ``pairs``."""
+    rows = rows.reshape(len(rows), -1)
+    size = rows.shape[1]
+    for r, start in pairs:
+        data[int(start) : int(start) + size] = rows[r]
 
 
 def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]]) -> None:
@@ -29,8 +40,7 @@ def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]]) -> N
         view = full.reshape(-1)
         if not np.shares_memory(view, full):
             raise ValueError("dst: a Warp array of one contiguous block was expected")
-        for r, start in pairs:
-            view[int(start) : int(start) + size] = rows[r]
+        write_rows(view, rows, pairs)
         return
     source: Any = wp.array(rows.reshape(-1), dtype=float, device="cpu", copy=False)
     for r, start in pairs:
