@@ -109,6 +109,52 @@ def test_a_click_places_the_peak_and_a_drag_draws_the_wall_on_the_cells_pointed_
         assert page.locator("#error").inner_text() == ""
 
 
+def test_a_click_places_the_selected_obstacle_even_inside_another_ones_range(tmp_path: Path, page: Page) -> None:
+    """On a busy map (six obstacles, their random ranges covering the middle)
+    a click places the selected new pit where it is, and says so first;
+    another obstacle is picked with Shift; Enter next to another's point
+    places too (it no longer grabs the neighbour)."""
+    scheme_file = tmp_path / "six.csv"
+    scheme_file.write_text((REPO / "schemes/six_obstacles.csv").read_text())
+    with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
+        wait_ready(page, url)
+        edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+        edit(page, lambda: page.get_by_label("type of obstacle 7").select_option("pit"))
+        edit(page, lambda: page.get_by_label("angle of obstacle 7", exact=True).fill("60"))
+        assert page.evaluate("window.rseEditor.state.selected") == 6
+        # (20, 30) lies inside the peak's, the wall's and the other pit's ranges.
+        page.mouse.move(*cell_point(page, 20, 30))
+        hint = page.locator("#map-hint")
+        assert hint.inner_text().startswith("Click: place pit 7 here"), hint.inner_text()
+        assert page.locator("#map-overlay").evaluate("e => e.style.cursor") == "crosshair"
+        edit(page, lambda: page.mouse.click(*cell_point(page, 20, 30)))
+        assert (table(page)[6]["x1.lo"], table(page)[6]["y1.lo"]) == ("20", "30")
+        assert page.evaluate("window.rseEditor.state.selected") == 6, "the pit stays selected"
+        assert table(page)[2]["x1.lo"] == "10" and table(page)[2]["x1.hi"] == "40", "the peak did not move"
+
+        # Shift+click picks the obstacle whose range is there: the peak.
+        page.keyboard.down("Shift")
+        page.mouse.move(*cell_point(page, 21, 31))
+        assert hint.inner_text() == "Click: select peak 3 and move it", hint.inner_text()
+        page.mouse.click(*cell_point(page, 21, 31))
+        page.keyboard.up("Shift")
+        assert page.evaluate("window.rseEditor.state.selected") == 2
+
+        # The keyboard: the pit again, Enter on the cell next to the long
+        # pit's end (25, 0) places the pit there.
+        page.get_by_label("type of obstacle 7").focus()
+        page.get_by_role("application", name="top-down map").focus()  # the cursor starts mid-grid, (25, 25)
+        page.keyboard.press("ArrowRight")
+        for _ in range(24):
+            page.keyboard.press("ArrowDown")
+        assert hint.inner_text().startswith("Click: place pit 7 here"), hint.inner_text()
+        edit(page, lambda: page.keyboard.press("Enter"))
+        page.keyboard.press("Enter")
+        assert (table(page)[6]["x1.lo"], table(page)[6]["y1.lo"]) == ("26", "1")
+        assert (table(page)[5]["x1.lo"], table(page)[5]["y1.lo"]) == ("25", "0"), "the long pit stayed"
+        assert page.evaluate("window.rseEditor.state.selected") == 6
+
+
 def test_the_keyboard_draws_on_the_map(tmp_path: Path, page: Page) -> None:
     scheme_file = tmp_path / "start.csv"
     scheme_file.write_text("# size: 20x16\ntype,height,angle,x1,y1,x2,y2\nwall,2,90,0,0,1,0\n")

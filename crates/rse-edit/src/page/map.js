@@ -2,9 +2,11 @@
 // (north up, `cell_pixels` pixels a cell, darker cell edges from 4 pixels
 // on), an overlay with every obstacle's points, walls and random ranges, a
 // legend, a readout of the cell under the pointer, and drawing: click to
-// place a peak or pit, drag to draw a wall or long pit, drag a point or a
-// range's rectangle to move it. The keyboard does the same with the arrow
-// keys and Enter.
+// place the selected peak or pit, drag to draw the selected wall or long
+// pit, drag a point or a range's rectangle to move it; another obstacle is
+// picked by its own point or with Shift, and a line under the map says
+// what a click will do. The keyboard does the same with the arrow keys and
+// Enter.
 "use strict";
 
 import { FRAME_RGB, isFrame, legendHeights, palette } from "./colours.js";
@@ -165,23 +167,63 @@ export class TopView {
     this.readout.textContent = `column ${cell.x}, row ${cell.y}: height ${h} ${h === 1 ? "step" : "steps"} (${metres(p.base + h * p.step_height)})${frame ? ", pallet frame" : ""}`;
   }
 
-  /** The end of an obstacle at `cell` (the selected row's first), as
-   * {row, k, end}, or null. */
-  endAt(cell) {
-    const rows = this.page.rows();
-    const order = rows.map((_, i) => i).filter((i) => i !== this.page.selected());
-    if (this.page.selected() >= 0) order.unshift(this.page.selected());
-    for (const i of order) {
-      for (const k of ENDS[rows[i].type] ?? []) {
-        const end = endOf(rows[i], k);
-        if (!end) continue;
-        const inside = end.range
-          ? cell.x >= end.x[0] && cell.x <= end.x[1] && cell.y >= end.y[0] && cell.y <= end.y[1]
-          : Math.abs(cell.x - end.x[0]) <= 1 && Math.abs(cell.y - end.y[0]) <= 1;
-        if (inside) return { row: i, k, end };
-      }
+  /** Row `i`'s end at `cell` as {row, k, end}, or null: inside a random
+   * range's rectangle, or on a point or the cells around it (`near`), or
+   * exactly on the point (not `near`). */
+  endOf(i, cell, near) {
+    const row = this.page.rows()[i];
+    for (const k of ENDS[row?.type] ?? []) {
+      const end = endOf(row, k);
+      if (!end) continue;
+      const reach = near ? 1 : 0;
+      const inside = end.range
+        ? cell.x >= end.x[0] && cell.x <= end.x[1] && cell.y >= end.y[0] && cell.y <= end.y[1]
+        : Math.abs(cell.x - end.x[0]) <= reach && Math.abs(cell.y - end.y[0]) <= reach;
+      if (inside) return { row: i, k, end };
     }
     return null;
+  }
+
+  /** What a press at `cell` does, as {act, row, …, text}: `move` an end
+   * (selecting its row), `place` the selected row there, or `none`. The
+   * selected obstacle comes first: a click places it, or moves it when on
+   * its own point or range, wherever other obstacles lie (a busy map's
+   * ranges cover its middle). Another obstacle is picked only by its own
+   * point (the dot drawn on its cell) or, anywhere it reaches, with Shift
+   * (`pick`). `text` says it in words, for the hint under the map. */
+  intent(cell, pick) {
+    const rows = this.page.rows();
+    const selected = this.page.selected();
+    const others = rows.map((_, i) => i).filter((i) => i !== selected);
+    const name = (i) => `${rows[i].type.replaceAll("_", " ")} ${i + 1}`;
+    const first = (order, near) => { for (const i of order) { const e = this.endOf(i, cell, near); if (e) return e; } return null; };
+    const picked = (e) => ({ act: "move", ...e, text: e.row === selected ? `move ${name(e.row)}` : `select ${name(e.row)} and move it` });
+    if (pick) {
+      const e = first(others, true) ?? first([selected].filter((i) => i >= 0), true);
+      return e ? picked(e) : { act: "none", text: "nothing here to select" };
+    }
+    const own = selected >= 0 ? this.endOf(selected, cell, true) : null;
+    if (own) return picked(own);
+    const dot = first(others, false);
+    if (dot && !dot.end.range) return picked(dot);
+    if (selected >= 0 && ENDS[rows[selected]?.type]) {
+      const what = ENDS[rows[selected].type].length === 2 ? `start ${name(selected)} here (drag to its other end)` : `place ${name(selected)} here`;
+      return { act: "place", row: selected, text: what };
+    }
+    // Nothing to place: a click picks what is there, as Shift would.
+    const e = first(others, true);
+    return e ? picked(e) : { act: "none", text: "select a peak, pit, wall or long pit in the table to place it" };
+  }
+
+  /** Says under the map (and by the pointer's shape) what a click or
+   * Enter at `cell` would do. */
+  showIntent(cell, pick) {
+    const hint = document.getElementById("map-hint");
+    if (!cell || !this.preview) { hint.textContent = ""; this.overlay.style.cursor = ""; return; }
+    const intent = this.intent(cell, pick);
+    const shift = pick ? "" : " · Shift+click (Shift+Enter): select another obstacle here";
+    hint.textContent = `Click: ${intent.text}${shift}`;
+    this.overlay.style.cursor = { move: intent.row === this.page.selected() ? "move" : "pointer", place: "crosshair", none: "not-allowed" }[intent.act];
   }
 
   /** The fields that put end `k` of a drag's start `end` moved by (dx, dy),
@@ -195,21 +237,16 @@ export class TopView {
     return { [`x${k}.lo`]: String(x[0]), [`x${k}.hi`]: hi(x, end.x), [`y${k}.lo`]: String(y[0]), [`y${k}.hi`]: hi(y, end.y) };
   }
 
-  /** A press at `cell`: grab an end there, else place the selected peak or
-   * pit there, or start the selected wall or long pit there. */
-  press(cell) {
-    const grabbed = this.endAt(cell);
-    if (grabbed) {
-      if (grabbed.row !== this.page.selected()) this.page.select(grabbed.row);
-      return { kind: "move", start: cell, ...grabbed };
+  /** A press at `cell` (`pick`: with Shift): does what `intent` says. */
+  press(cell, pick) {
+    const intent = this.intent(cell, pick);
+    if (intent.act === "none") { this.page.hint(intent.text); return null; }
+    if (intent.act === "move") {
+      if (intent.row !== this.page.selected()) this.page.select(intent.row);
+      return { kind: "move", start: cell, row: intent.row, k: intent.k, end: intent.end };
     }
-    const i = this.page.selected();
-    const row = this.page.rows()[i];
-    const ends = row ? ENDS[row.type] : undefined;
-    if (!ends) {
-      this.page.hint("Select a peak, pit, wall or long pit in the table to place it on the map.");
-      return null;
-    }
+    const i = intent.row;
+    const ends = ENDS[this.page.rows()[i].type];
     const point = (k) => ({ [`x${k}.lo`]: String(cell.x), [`x${k}.hi`]: "", [`y${k}.lo`]: String(cell.y), [`y${k}.hi`]: "" });
     this.page.change(i, ends.length === 2 ? { ...point(1), ...point(2) } : point(1));
     return ends.length === 2 ? { kind: "line", row: i } : { kind: "move", start: cell, row: i, k: 1, end: endOf(this.page.rows()[i], 1) };
@@ -237,20 +274,21 @@ export class TopView {
       if (!cell || e.button !== 0) return;
       e.preventDefault();
       o.setPointerCapture(e.pointerId);
-      this.drag = this.press(cell);
+      this.drag = this.press(cell, e.shiftKey);
       this.page.rendered();
     });
     o.addEventListener("pointermove", (e) => {
       const cell = this.cellAt(e);
       this.showReadout(cell);
+      if (!this.drag) this.showIntent(cell, e.shiftKey);
       if (this.drag) { this.follow(cell); this.page.rendered(); }
     });
     o.addEventListener("pointerup", () => { this.finish(); this.page.rendered(); });
     o.addEventListener("pointercancel", () => { this.finish(); this.page.rendered(); });
-    o.addEventListener("pointerleave", () => { if (!this.drag) this.showReadout(this.cursor); });
+    o.addEventListener("pointerleave", () => { if (!this.drag) { this.showReadout(this.cursor); this.showIntent(document.activeElement === o ? this.cursor : null, false); } });
     o.addEventListener("focus", () => {
       if (!this.cursor && this.preview) this.cursor = { x: this.preview.nx >> 1, y: this.preview.ny >> 1 };
-      this.showReadout(this.cursor); this.drawOverlay();
+      this.showReadout(this.cursor); this.showIntent(this.cursor, false); this.drawOverlay();
     });
     o.addEventListener("blur", () => { if (this.keyDrawing) { this.keyDrawing = false; this.finish(); } this.drawOverlay(); });
     o.addEventListener("keydown", (e) => {
@@ -264,13 +302,14 @@ export class TopView {
           y: Math.min(Math.max(this.cursor.y + step[1] * by, 0), this.preview.ny - 1),
         };
         this.showReadout(this.cursor);
+        if (!this.keyDrawing) this.showIntent(this.cursor, false);
         if (this.keyDrawing) this.follow(this.cursor);
         this.page.rendered();
       } else if (e.key === "Enter" || e.key === " ") {
         e.preventDefault();
         // Enter grabs or places at the cursor; the next Enter lets go.
         if (this.keyDrawing) { this.keyDrawing = false; this.finish(); } else {
-          this.drag = this.press(this.cursor);
+          this.drag = this.press(this.cursor, e.shiftKey);
           this.keyDrawing = this.drag !== null;
         }
         this.page.rendered();
