@@ -36,10 +36,18 @@ def test_units_show_and_a_step_in_metres_that_looks_like_cm_is_questioned(editor
     url, _ = editor
     wait_ready(page, url)
     headers = page.locator("#table thead th").all_inner_texts()
-    assert [h.split("\n") for h in headers[2:]] == [
+    assert [h.split("\n")[:2] for h in headers[2:]] == [
         ["height", "steps"], ["angle", "degrees"], ["x1", "cells"], ["y1", "cells"],
         ["x2", "cells"], ["y2", "cells"], ["sigma", "steps"],
     ]
+    # Each column's two fields have a visible name each, right above them.
+    for column in ("height", "x1", "sigma"):
+        header = page.locator("#table thead th", has_text=column).first
+        for part, name in (("lo", "low"), ("hi", "high")):
+            label = header.get_by_text(name, exact=True).bounding_box()
+            field = page.locator(f'#table tbody tr[data-row="1"] [data-field="{column}"][data-part="{part}"]').bounding_box()
+            centre = label["x"] + label["width"] / 2
+            assert field["x"] <= centre <= field["x"] + field["width"], f"{column}: '{name}' is not above its field"
     for key, unit in [("step height", "m"), ("block size", "m"), ("base", "m"), ("size", "cells"), ("amount", "worlds")]:
         field = page.get_by_label(key, exact=True).first
         assert field.evaluate("e => e.nextElementSibling.textContent") == unit, key
@@ -151,7 +159,7 @@ def test_at_800_px_nothing_scrolls_sideways_and_the_preview_moves_below_the_tabl
     scheme = tmp_path / "six.csv"
     scheme.write_text((REPO / "schemes/six_obstacles.csv").read_text())
     with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
-        for width in (800, 1024, 1280, 1920):
+        for width in (800, 1024, 1200, 1280, 1440, 1920):
             with chromium_page(width, 900) as page:
                 wait_ready(page, url)
                 scroll, client = page.evaluate("[document.documentElement.scrollWidth, document.documentElement.clientWidth]")
@@ -159,10 +167,28 @@ def test_at_800_px_nothing_scrolls_sideways_and_the_preview_moves_below_the_tabl
                 table_box = page.locator("#table").bounding_box()
                 map_box = page.locator("#map-overlay").bounding_box()
                 assert map_box["x"] + map_box["width"] <= width and table_box["x"] + table_box["width"] <= width
-                if width < 1450:
+                if width < 1200:
                     assert map_box["y"] >= table_box["y"] + table_box["height"], f"{width} px: the preview is below the table"
                 else:
                     assert map_box["x"] >= table_box["x"] + table_box["width"], f"{width} px: the preview is beside the table"
+                    assert map_box["width"] >= 300, f"{width} px: the map is {map_box['width']} px wide"
+
+
+def test_at_1440_px_the_map_stays_in_view_beside_any_row_edited(tmp_path: Path) -> None:
+    """A laptop's 1440×900: the map beside the table, whole on the screen,
+    whichever row is edited (the page scrolled down to the 30th)."""
+    scheme = tmp_path / "long.csv"
+    scheme.write_text("# size: 40x40\ntype,height,angle,x1,y1\n" + "".join(f"peak,3,60,{i},{i}\n" for i in range(30)))
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url, chromium_page(1440, 900) as page:
+        wait_ready(page, url)
+        for row in (1, 15, 30):
+            field = page.get_by_label(f"height of obstacle {row}", exact=True)
+            edit(page, lambda field=field: field.fill("4"))
+            field_box = field.bounding_box()
+            map_box = page.locator("#map-overlay").bounding_box()
+            assert 0 <= field_box["y"] < 900, "the edited field is on the screen"
+            assert 0 <= map_box["y"] and map_box["y"] + map_box["height"] <= 900, f"row {row}: the map is at {map_box}"
+            assert map_box["x"] >= field_box["x"] + field_box["width"]
 
 
 def focus_section(page: Page) -> str:

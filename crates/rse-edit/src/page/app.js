@@ -713,7 +713,16 @@ function buildFields(schema) {
     th.scope = "col"; th.title = c.doc; th.textContent = c.name;
     const unit = document.createElement("span");
     unit.className = "unit"; unit.textContent = c.unit ?? "";
-    th.append(unit);
+    // Each of the column's two fields is named above it: the value (or a
+    // random range's low end) and the range's high end.
+    const parts = document.createElement("span");
+    parts.className = "parts";
+    for (const [text, title] of [["low", "the value, or the low end of a random range"], ["high", "the high end of a random range (empty: the value alone)"]]) {
+      const part = document.createElement("span");
+      part.textContent = text; part.title = title;
+      parts.append(part);
+    }
+    th.append(unit, parts);
     head.append(th);
   }
   head.children[1].title = COLUMN_DOCS.type;
