@@ -404,6 +404,46 @@ def test_undo_and_redo_by_buttons_and_keys(editor, page: Page) -> None:
     assert len(table(page)) == 2
 
 
+def test_one_action_is_one_undo_step_whatever_mix_of_buttons_keys_and_map_grabs_made_it(editor, page: Page) -> None:
+    url, _ = editor
+    page.goto(url)
+    page.wait_for_function("window.rseEditor?.previews >= 1")
+    undo, redo = page.get_by_role("button", name="Undo"), page.get_by_role("button", name="Redo")
+    edit(page, lambda: cell(page, 0, "height").fill("2"))  # typed
+    edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())  # a button
+    edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("peak"))
+    edit(page, lambda: page.get_by_label("angle of obstacle 2", exact=True).fill("90"))
+    mapped = page.get_by_role("application", name="top-down map")
+    mapped.focus()  # the cursor starts mid-grid, (10, 8)
+    edit(page, lambda: page.keyboard.press("Enter"))  # a keyboard grab places the peak …
+    for _ in range(3):
+        edit(page, lambda: page.keyboard.press("ArrowRight"))  # … and moves it, still held
+    assert table(page)[1]["x1.lo"] == "13"
+    # Ctrl+Z mid-grab takes back the grab, and only it.
+    edit(page, lambda: page.keyboard.press("Control+Z"))
+    assert table(page)[1] == {"type": "peak", "height.lo": "1", "angle.lo": "90"}, table(page)
+    edit(page, lambda: page.keyboard.press("Control+Shift+Z"))
+    assert (table(page)[1]["x1.lo"], table(page)[1]["y1.lo"]) == ("13", "8"), "Redo brings the grab back"
+    # A grab, then a button clicked while it is held: two steps.
+    mapped.focus()
+    edit(page, lambda: page.keyboard.press("Enter"))  # grabs the peak's own point
+    for _ in range(2):
+        edit(page, lambda: page.keyboard.press("ArrowUp"))
+    edit(page, lambda: page.get_by_role("button", name="Copy obstacle").click())
+    assert len(table(page)) == 3 and table(page)[2]["y1.lo"] == "10"
+    edit(page, lambda: undo.click())
+    assert len(table(page)) == 2 and table(page)[1]["y1.lo"] == "10"
+    edit(page, lambda: undo.click())
+    assert table(page)[1]["y1.lo"] == "8"
+    edit(page, lambda: undo.click())
+    assert "x1.lo" not in table(page)[1] and table(page)[1]["angle.lo"] == "90"
+    edit(page, lambda: undo.click())
+    assert "angle.lo" not in table(page)[1] and table(page)[1]["type"] == "peak"
+    for _ in range(4):
+        edit(page, lambda: redo.click())
+    assert len(table(page)) == 3 and redo.is_disabled()
+
+
 def test_delete_acts_on_the_obstacle_being_edited_and_undo_brings_it_back(editor, page: Page) -> None:
     url, _ = editor
     page.goto(url)

@@ -110,7 +110,12 @@ function restore(text) {
   changed();
 }
 
+// One user action is one step whatever made it: a map grab still held
+// when Undo or Redo comes (by key, mid-drag) is let go first, so it is the
+// step Undo takes back (and Redo brings back), not lost with the one
+// before it.
 function undo() {
+  map.letGo();
   if (undoLog.past.length < 2) return;
   undoLog.future.push(undoLog.past.pop());
   undoLog.lastKey = null;
@@ -118,6 +123,7 @@ function undo() {
 }
 
 function redo() {
+  map.letGo();
   if (!undoLog.future.length) return;
   const text = undoLog.future.pop();
   undoLog.past.push(text);

@@ -267,6 +267,10 @@ export class TopView {
     if (this.drag) { this.drag = null; this.page.done(); }
   }
 
+  /** Ends a drag or keyboard grab under way as a finished edit (Undo and
+   * Redo call it first: a grab still held is the newest step, not lost). */
+  letGo() { this.keyDrawing = false; this.finish(); }
+
   listen() {
     const o = this.overlay;
     o.addEventListener("pointerdown", (e) => {
@@ -290,7 +294,7 @@ export class TopView {
       if (!this.cursor && this.preview) this.cursor = { x: this.preview.nx >> 1, y: this.preview.ny >> 1 };
       this.showReadout(this.cursor); this.showIntent(this.cursor, false); this.drawOverlay();
     });
-    o.addEventListener("blur", () => { if (this.keyDrawing) { this.keyDrawing = false; this.finish(); } this.drawOverlay(); });
+    o.addEventListener("blur", () => { if (this.keyDrawing) this.letGo(); this.drawOverlay(); });
     o.addEventListener("keydown", (e) => {
       if (!this.preview || !this.cursor) return;
       const step = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] }[e.key];
