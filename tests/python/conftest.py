@@ -2,6 +2,7 @@
 
 import os
 import subprocess
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -9,6 +10,10 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 SCHEMES = REPO / "schemes"
+
+# The editors the tests start keep their drafts and last ports in a folder
+# of this run's, not the user's (~/.local/state/rse).
+os.environ.setdefault("RSE_STATE_DIR", tempfile.mkdtemp(prefix="rse-test-state-"))
 
 
 def rse_gen_path() -> Path:

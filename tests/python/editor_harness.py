@@ -24,10 +24,11 @@ CHROMIUM_FLAGS = [
 
 
 @contextmanager
-def running_editor(binary: Path, scheme: Path, cwd: Path) -> Iterator[str]:
-    """`rse-gen edit SCHEME` running in `cwd`; yields the URL it prints."""
+def running_editor(binary: Path, scheme: Path, cwd: Path, port: int | None = None) -> Iterator[str]:
+    """`rse-gen edit SCHEME` running in `cwd` (on `port`, else where it
+    chooses); yields the URL it prints."""
     process = subprocess.Popen(
-        [str(binary), "edit", str(scheme)],
+        [str(binary), "edit", str(scheme), *(["--port", str(port)] if port else [])],
         stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL,
         text=True,

@@ -190,3 +190,79 @@ def test_open_asks_before_replacing_unsaved_edits_and_starts_a_new_history(edito
     assert "random,5" in other.read_text()
     assert page.locator("#file-name").inner_text() == str(start)
     assert table(page) == [{"type": "random", "height.lo": "1"}]
+
+
+def wait_for_kept_draft(page: Page) -> None:
+    """Waits until the page has sent its last edit's draft to the server."""
+    page.wait_for_function("window.rseEditor.draftsSent > 0 && window.rseEditor.draftPending === false")
+
+
+def test_the_draft_and_its_undo_history_belong_to_the_file_not_the_port_or_browser(tmp_path: Path) -> None:
+    """Edits not saved, the editor stopped: started again the README way (no
+    --port) it comes back on the same port; started on another port (a new
+    origin) in a browser that never saw the page, the edits and their undo
+    history are there, kept by the server for the file."""
+    from editor_harness import chromium_page
+
+    scheme = tmp_path / "start.csv"
+    scheme.write_text(START)
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as first_url, chromium_page() as page:
+        wait_ready(page, first_url)
+        edit(page, lambda: cell(page, 0, "height").fill("2"))
+        edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+        wait_for_kept_draft(page)
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as again:
+        assert again == first_url, "the file's last port, free again, is reused"
+    with running_editor(rse_gen_release_path(), scheme, tmp_path, port=free_port()) as url, chromium_page() as page:
+        assert url != first_url
+        wait_ready(page, url)
+        assert len(table(page)) == 2 and cell(page, 0, "height").input_value() == "2"
+        assert page.locator("#unsaved").is_visible() and "restored" in page.locator("#status").inner_text()
+        assert scheme.read_text() == START, "nothing was written to the file"
+        undo = page.get_by_role("button", name="Undo")
+        edit(page, lambda: undo.click())
+        assert len(table(page)) == 1 and cell(page, 0, "height").input_value() == "2"
+        edit(page, lambda: undo.click())
+        assert cell(page, 0, "height").input_value() == "1" and undo.is_disabled()
+        edit(page, lambda: page.get_by_role("button", name="Redo").click())
+        assert cell(page, 0, "height").input_value() == "2"
+        # Saved, the draft is the file's: a reload shows the file, not "unsaved".
+        save(page)
+        wait_for_kept_draft(page)
+        page.reload()
+        page.wait_for_function("window.rseEditor?.previews >= 1")
+        assert page.locator("#unsaved").is_hidden() and cell(page, 0, "height").input_value() == "2"
+
+
+def test_download_csv_works_with_the_server_gone(tmp_path: Path, page: Page) -> None:
+    import rse
+
+    scheme = tmp_path / "start.csv"
+    scheme.write_text("# size: 20x16\n# step_height: 0.05\ntype,height,angle,x1,y1\nrandom,1,,,\n")
+    port = free_port()
+    server = start_editor(scheme, port)
+    try:
+        wait_ready(page, f"http://127.0.0.1:{port}/")
+        edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+        edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("peak"))
+        edit(page, lambda: page.get_by_label("angle of obstacle 2", exact=True).fill("45"))
+        edit(page, lambda: page.get_by_label("x1 of obstacle 2", exact=True).fill("3"))
+        edit(page, lambda: page.get_by_label("x1 range high end of obstacle 2").fill("9"))
+        edit(page, lambda: page.get_by_label("y1 of obstacle 2", exact=True).fill("4"))
+        page.get_by_label("notes").fill("made offline")
+        with page.expect_download() as online:
+            page.get_by_role("button", name="Download CSV").click()
+        stop(server)
+        with page.expect_download() as offline:
+            page.get_by_role("button", name="Download CSV").click()
+        assert offline.value.suggested_filename == "start.csv"
+        status_says(page, "downloaded as typed")
+        got = tmp_path / "offline.csv"
+        offline.value.save_as(got)
+        want = tmp_path / "online.csv"
+        online.value.save_as(want)
+        assert rse.Scheme.load(got).to_csv() == rse.Scheme.load(want).to_csv(), got.read_text()
+        assert "random,1" in got.read_text() and "peak,1,45,3..9,4" in got.read_text()
+    finally:
+        if server.poll() is None:
+            stop(server)

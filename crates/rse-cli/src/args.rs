@@ -97,7 +97,7 @@ pub struct EditArgs {
     /// The scheme CSV file to start from (the editor saves where you say).
     pub scheme: Option<PathBuf>,
 
-    /// Port on 127.0.0.1 [default: a free one].
+    /// Port on 127.0.0.1 [default: the one this file was last edited on, when free; else a free one].
     #[arg(long, value_name = "P")]
     pub port: Option<u16>,
 

@@ -13,6 +13,7 @@ use rse_world::{BatchConfig, MeshMode, Target, Targets, Templates, WorldConfig, 
 use serde::Deserialize;
 use serde_json::{Value, json};
 
+use crate::drafts::Drafts;
 use crate::model::{FieldError, PageScheme};
 
 /// The editor's state between requests.
@@ -28,6 +29,9 @@ pub struct Editor {
     pub saved: Mutex<Option<(PathBuf, PageScheme)>>,
     /// The batch being written (or last written).
     pub job: Arc<Job>,
+    /// Where each file's draft and undo history are kept (None: nowhere,
+    /// the page keeps them in the browser only).
+    pub drafts: Option<Drafts>,
 }
 
 /// Progress of a Generate run.
@@ -73,11 +77,47 @@ pub fn state(editor: &Editor) -> Value {
         Some((path, scheme)) => (Some(path), scheme),
         None => (editor.path.as_ref(), &editor.initial),
     };
+    let shown = path.map(|p| p.display().to_string());
     json!({
         "ok": true,
         "scheme": scheme,
-        "path": path.map(|p| p.display().to_string()),
+        "draft": draft_of(editor, shown.as_deref().unwrap_or("")),
+        "path": shown,
     })
+}
+
+/// `file`'s draft as the server keeps it (null: none).
+fn draft_of(editor: &Editor, file: &str) -> Value {
+    editor.drafts.as_ref().and_then(|d| d.load(file)).unwrap_or(Value::Null)
+}
+
+#[derive(Deserialize)]
+struct DraftRequest {
+    /// The file the draft is of, as the server named it ("": none yet).
+    file: String,
+    /// The page's draft (its scheme, the file's scheme it was made from,
+    /// its undo history), kept as the page sent it; null forgets it.
+    draft: Value,
+}
+
+/// `POST /api/draft`: keeps (or with a null draft forgets) the page's
+/// draft of a file, so a reload, another browser or the editor restarted
+/// on another port finds it.
+pub fn draft(editor: &Editor, body: &[u8]) -> Answer {
+    let request: DraftRequest = request(body)?;
+    let Some(drafts) = &editor.drafts else {
+        return Ok(json!({ "ok": true, "kept": false }));
+    };
+    if request.draft.is_null() {
+        drafts.forget(&request.file);
+    } else if !request.draft.is_object() {
+        return Err(bad("bad request: a draft is an object"));
+    } else {
+        drafts
+            .store(&request.file, &request.draft)
+            .map_err(|e| bad(format!("the draft could not be kept: {e}")))?;
+    }
+    Ok(json!({ "ok": true, "kept": true }))
 }
 
 /// `GET /api/schema`: what the page's fields and lists are made of — the
@@ -302,7 +342,8 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
 /// If the lock is poisoned (a panic while saving).
 fn remember(editor: &Editor, path: PathBuf, scheme: &rse_core::Scheme) -> Value {
     let page = PageScheme::from_scheme(scheme);
-    let answer = json!({ "ok": true, "path": path.display().to_string(), "scheme": page });
+    let shown = path.display().to_string();
+    let answer = json!({ "ok": true, "draft": draft_of(editor, &shown), "path": shown, "scheme": page });
     *editor.saved.lock().unwrap() = Some((path, page));
     answer
 }

@@ -6,8 +6,10 @@
 //! it over a loopback socket; the fuzz targets call the API directly.
 
 pub mod api;
+mod drafts;
 mod model;
 pub mod page;
 
 pub use api::{Answer, Editor, Job};
+pub use drafts::Drafts;
 pub use model::{FieldError, PageScheme};

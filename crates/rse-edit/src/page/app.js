@@ -24,6 +24,7 @@ const state = { rows: [], selected: -1 };
 window.rseEditor = {
   state, lastRoundTripMs: null, lastViewMs: null, previews: 0, answers: 0, requests: 0, views: 0, preview: null,
   inFlight: 0, mostInFlight: 0, // previews on their way now, and at most at once
+  draftsSent: 0, draftPending: false, // drafts the server took, and one waiting or on its way
 };
 
 /** The server's JSON answer; throws `Lost` when the server cannot be
@@ -59,6 +60,7 @@ function connectionLost() {
     clearInterval(retrying); retrying = null;
     banner.hidden = true;
     $("status").textContent = "connected to the editor's server again";
+    sendDraft(); // what was edited meanwhile
     refresh();
   }, 2000);
 }
@@ -67,9 +69,10 @@ function connectionLost() {
 //
 // Every edit records the page's scheme after it (typing in one field within
 // HISTORY_MERGE_MS is one edit, a drag on the map is one edit). Undo and
-// Redo move through the records; the newest is also kept in the browser's
-// storage under the file the server holds for this editor until it is
-// saved, so a reload or a restart of the browser brings it back.
+// Redo move through the records. The draft — the page's scheme, unsaved or
+// not, and its undo history — is kept by the server per file (any port,
+// reload or browser finds it) and, for when the server is gone, in this
+// browser's storage too.
 
 const HISTORY_MERGE_MS = 600;
 const undoLog = { past: [], future: [], lastKey: null, lastAt: 0, restoring: false };
@@ -142,35 +145,89 @@ function changed() {
   $("undo").disabled = undoLog.past.length < 2;
   $("redo").disabled = !undoLog.future.length;
   try {
-    if (unsaved) localStorage.setItem(draftKey(), JSON.stringify({ scheme: pageScheme(), base: file.base, path: file.path, name: file.name }));
+    if (unsaved) localStorage.setItem(draftKey(), JSON.stringify(draft(true)));
     else localStorage.removeItem(draftKey());
   } catch (e) { /* storage full or refused: the page still works, only without the draft */ }
+  keepDraft();
+}
+
+// --- the draft, kept by the server per file ------------------------------------
+
+const DRAFT_DELAY_MS = 250; // edits a quarter second apart are sent once
+const HISTORY_KEPT = 100; // undo steps kept each way
+const drafts = { timer: null };
+
+/** What a reload (on any port, in any browser) starts from: the page's
+ * scheme, whether it differs from the file, what the file held when it was
+ * made (a draft of an older file is not used), and the undo history. */
+function draft(unsaved) {
+  return {
+    scheme: pageScheme(), unsaved, base: file.base, path: file.path, name: file.name,
+    past: undoLog.past.slice(-HISTORY_KEPT), future: undoLog.future.slice(-HISTORY_KEPT),
+  };
+}
+
+function keepDraft() {
+  clearTimeout(drafts.timer);
+  drafts.timer = setTimeout(sendDraft, DRAFT_DELAY_MS);
+  window.rseEditor.draftPending = true;
+}
+
+/** Sends the draft of the file the server holds for this page (`forget`:
+ * that there is none). With the server gone it is not sent: the browser's
+ * copy stands, and the next change (or the server's return) sends it. */
+function sendDraft({ keepalive = false, forget = false, of = file.server } = {}) {
+  clearTimeout(drafts.timer); drafts.timer = null;
+  const body = JSON.stringify({ file: of, draft: forget ? null : draft(!$("unsaved").hidden) });
+  window.rseEditor.draftPending = true;
+  fetch("/api/draft", { method: "POST", headers: { "Content-Type": "application/json" }, body, keepalive })
+    .then(() => { window.rseEditor.draftsSent += 1; })
+    .catch(() => {})
+    .finally(() => { window.rseEditor.draftPending = drafts.timer !== null; });
+}
+// A reload or a closed tab within the quarter second still sends the last edit.
+window.addEventListener("pagehide", () => { if (drafts.timer) sendDraft({ keepalive: true }); });
+
+/** Forgets the draft of `of` (the file the page held): saved or discarded. */
+function forgetDraft(of) {
+  try { localStorage.removeItem(`rse-editor:${of || "(unnamed)"}`); } catch (e) { /* nothing kept */ }
+  sendDraft({ forget: true, of });
 }
 
 /** Empties Undo and Redo: a file opened is a new document. */
 function forgetHistory() { undoLog.past = []; undoLog.future = []; undoLog.lastKey = null; }
 
-/** Starts editing `scheme`, the server's file `server` (its answer): a
- * draft this browser kept for that file wins if it was made from what the
- * file still holds (else the file changed since, and the file wins). */
-function startFile(scheme, server) {
+/** Starts editing `scheme`, the server's file `server` (its answer), with
+ * the draft the server kept for it (`kept`, or null): that draft, else one
+ * this browser kept, wins if it was made from what the file still holds
+ * (else the file changed since, and the file wins). A draft brings back
+ * the unsaved scheme and the undo history. */
+function startFile(scheme, server, kept) {
   file.server = server || "";
   file.path = file.server; file.name = file.server;
   file.base = JSON.stringify(scheme);
   forgetHistory();
   loadScheme(scheme);
   file.saved = JSON.stringify(pageScheme());
-  let draft = null;
-  try {
-    const kept = JSON.parse(localStorage.getItem(draftKey()) ?? "null");
-    if (kept && kept.base === file.base) draft = kept;
-  } catch (e) { /* no draft */ }
-  if (draft) {
-    loadScheme(draft.scheme);
-    file.path = draft.path ?? file.path; file.name = draft.name ?? file.name;
-    say("unsaved changes restored from this browser");
+  let found = kept && kept.base === file.base ? kept : null;
+  if (!found) {
+    try {
+      const local = JSON.parse(localStorage.getItem(draftKey()) ?? "null");
+      if (local && local.base === file.base) found = local;
+    } catch (e) { /* no draft */ }
   }
-  undoLog.past.push(snapshot());
+  if (found && found.unsaved !== false && found.scheme) {
+    loadScheme(found.scheme);
+    file.path = found.path ?? file.path; file.name = found.name ?? file.name;
+    say("unsaved changes restored");
+  }
+  if (found && Array.isArray(found.past) && found.past.length) {
+    undoLog.past = found.past.filter((t) => typeof t === "string");
+    undoLog.future = Array.isArray(found.future) ? found.future.filter((t) => typeof t === "string") : [];
+  }
+  // The history ends at the page's scheme (a draft's does; a file's starts there).
+  const top = undoLog.past[undoLog.past.length - 1];
+  if (!top || JSON.stringify(JSON.parse(top).scheme) !== JSON.stringify(pageScheme())) undoLog.past.push(snapshot());
   changed();
 }
 
@@ -499,7 +556,7 @@ async function mayReplace(what) {
     return $("unsaved").hidden;
   }
   if (choice !== "discard") return false;
-  try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
+  forgetDraft(file.server);
   return true;
 }
 
@@ -512,8 +569,8 @@ async function openPath() {
   if (!answer.ok) { say(`not opened: ${answer.error.message}`); $("error").textContent = answer.error.message; return; }
   // The draft of the file left behind stays in this browser: opening it
   // again brings it back.
-  startFile(answer.scheme, answer.path);
-  say(`opened ${answer.path}`);
+  startFile(answer.scheme, answer.path, answer.draft);
+  if (!$("status").textContent.startsWith("unsaved changes restored")) say(`opened ${answer.path}`);
 }
 $("open-path").onclick = openPath;
 
@@ -554,7 +611,9 @@ async function saveTo(path) {
     if (answer.error.row !== null || answer.error.field !== null) markError(answer.error);
     return false;
   }
-  // The file is now what the page holds: the drafts go, the name stays.
+  // The file is now what the page holds: the draft of the file the page
+  // held goes (the new file's is sent by `changed`), the name stays.
+  if (file.server !== answer.path) forgetDraft(file.server);
   try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
   file.server = file.path = file.name = answer.path;
   file.base = JSON.stringify(answer.scheme);
@@ -571,19 +630,37 @@ async function saveAs() {
 $("save").onclick = () => (file.path ? saveTo(file.path) : saveAs());
 $("save-as").onclick = saveAs;
 
+/** The page's scheme as a CSV file written by the page itself, for
+ * Download CSV with the server gone: the file's layout (notes, `# key:
+ * value` globals, the table with the columns in use, `low..high` ranges)
+ * with the values as typed, unchecked. */
+function csvOfPage() {
+  const scheme = pageScheme();
+  const lines = scheme.notes.split("\n").filter((l) => l.trim() !== "").map((l) => `# ${l.trim()}`);
+  for (const [key, value] of Object.entries(scheme.globals)) if (value !== "") lines.push(`# ${key}: ${value}`);
+  const text = (o, c) => { const [lo, hi] = o[c].map((v) => v.trim()); return hi === "" ? lo : `${lo}..${hi}`; };
+  const used = COLUMNS.filter((c) => scheme.obstacles.some((o) => text(o, c) !== ""));
+  lines.push(["type", ...used].join(","));
+  for (const o of scheme.obstacles) lines.push([o.type, ...used.map((c) => text(o, c))].join(","));
+  return lines.join("\n") + "\n";
+}
+
 // The canonical CSV Save would write, as a file the browser saves: named
-// as the file the page edits (or scheme.csv).
+// as the file the page edits (or scheme.csv). With the server gone the
+// page writes it itself, and says so.
 $("download").onclick = async () => {
-  let answer;
+  let csv;
   try {
-    answer = await api("/api/csv", { scheme: pageScheme() });
+    const answer = await api("/api/csv", { scheme: pageScheme() });
+    if (!answer.ok) { say("no download: the scheme has an error"); markError(answer.error); return; }
+    csv = answer.csv;
   } catch (e) {
-    say(`no download: ${e.message}`);
-    return;
+    if (!(e instanceof Lost)) { say(`no download: ${e.message}`); return; }
+    csv = csvOfPage();
+    say("downloaded as typed: the editor's server is not answering, so this page wrote the file without checking it");
   }
-  if (!answer.ok) { say("no download: the scheme has an error"); markError(answer.error); return; }
   const link = document.createElement("a");
-  link.href = URL.createObjectURL(new Blob([answer.csv], { type: "text/csv" }));
+  link.href = URL.createObjectURL(new Blob([csv], { type: "text/csv" }));
   link.download = (file.path.split(/[\\/]/).pop() || file.suggestion || "scheme.csv");
   document.body.append(link);
   link.click();
@@ -756,5 +833,5 @@ function buildFields(schema) {
     answer = await api("/api/state");
   } catch (e) { say(`the editor's server did not answer: ${e.message}; reload the page once it runs`); return; }
   buildFields(schema);
-  startFile(answer.scheme, answer.path);
+  startFile(answer.scheme, answer.path, answer.draft);
 })();

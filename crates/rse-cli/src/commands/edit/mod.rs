@@ -13,7 +13,7 @@ use hyper::Method;
 
 use crate::ExitStatus;
 use crate::args::{EditArgs, SchemeOverrides};
-use rse_edit::{Editor, PageScheme, api};
+use rse_edit::{Drafts, Editor, PageScheme, api};
 
 pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let mut editor = Editor::default();
@@ -26,12 +26,33 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
             .expect("the starting scheme is valid");
         editor.initial = PageScheme::from_scheme(&scheme);
     }
-    let asked = args.port.unwrap_or(0);
+    editor.drafts = state_folder().map(Drafts::new);
+    let file = args
+        .scheme
+        .as_ref()
+        .map_or_else(String::new, |p| p.display().to_string());
     let runtime = server::runtime().context("cannot start the editor's server")?;
     runtime.block_on(async {
-        let listener =
-            server::listen(asked).with_context(|| format!("cannot listen on 127.0.0.1:{asked}"))?;
+        let listener = match args.port {
+            Some(asked) => server::listen(asked)
+                .with_context(|| format!("cannot listen on 127.0.0.1:{asked}"))?,
+            // The port this file was last edited on, when it is free: the
+            // page's address (and what the browser keeps for it) stays the
+            // same across restarts.
+            None => editor
+                .drafts
+                .as_ref()
+                .and_then(|d| d.last_port(&file))
+                .and_then(|last| server::listen(last).ok())
+                .map_or_else(|| server::listen(0), Ok)
+                .context("cannot listen on 127.0.0.1")?,
+        };
         let port = listener.local_addr()?.port();
+        if let Some(drafts) = &editor.drafts
+            && let Err(e) = drafts.remember_port(&file, port)
+        {
+            eprintln!("rse-gen: cannot remember the editor's port: {e}");
+        }
         let url = format!("http://127.0.0.1:{port}/");
         let mut stdout = std::io::stdout().lock();
         writeln!(stdout, "{url}")?;
@@ -47,6 +68,18 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
         server::serve(listener, port, handler).await;
         Ok(ExitStatus::Success)
     })
+}
+
+/// The editor's state folder (drafts and last ports): `RSE_STATE_DIR`, else
+/// the platform's state folder for rse (`$XDG_STATE_HOME/rse/editor`,
+/// `~/.local/state/rse/editor`), else its local data folder (macOS,
+/// Windows); None when there is no home to put it in.
+fn state_folder() -> Option<std::path::PathBuf> {
+    if let Some(dir) = std::env::var_os("RSE_STATE_DIR").filter(|d| !d.is_empty()) {
+        return Some(dir.into());
+    }
+    let dirs = directories::ProjectDirs::from("", "", "rse")?;
+    Some(dirs.state_dir().unwrap_or_else(|| dirs.data_local_dir()).join("editor"))
 }
 
 /// Opens `url` with the desktop's opener, in the background; when there is
@@ -87,6 +120,7 @@ fn route(editor: &Editor, method: &Method, path: &str, body: &[u8]) -> http::Rep
                 "/api/save" => api::save(editor, body),
                 "/api/open" => api::open(editor, body),
                 "/api/csv" => api::csv(body),
+                "/api/draft" => api::draft(editor, body),
                 "/api/generate" => api::generate(editor, body),
                 _ => return http::text(404, "not found"),
             };
