@@ -202,7 +202,7 @@ def test_a_huge_preview_is_refused_quickly(editor) -> None:
     answer = post(url, "api/preview", {"scheme": scheme})
     assert time.monotonic() - started < 2.0
     assert not answer["ok"] and answer["error"]["field"] == "size"
-    assert "more than the editor previews" in answer["error"]["message"] and "rse-gen preview" in answer["error"]["message"]
+    assert "more than the editor draws" in answer["error"]["message"] and "Generate writes worlds of any size" in answer["error"]["message"]
     scheme["globals"]["size"] = "500x500"
     assert post(url, "api/preview", {"scheme": scheme})["ok"], "the largest previewed grid"
 
@@ -253,7 +253,7 @@ def test_trickling_and_idle_clients_neither_hold_the_editor_nor_stop_it(editor) 
         # work cap at once (it took 25 s), so it cannot hold a worker either.
         rows = [{"type": "peak", "height": "60", "angle": "0.5", "x1": str(i % 500), "y1": "250"} for i in range(400)]
         refused = post(url, "api/preview", {"scheme": {"globals": {"size": "500x500"}, "obstacles": rows}})
-        assert not refused["ok"] and "more than the editor previews" in refused["error"]["message"], refused
+        assert not refused["ok"] and "more than the editor draws" in refused["error"]["message"], refused
 
         silent.settimeout(15)
         assert silent.recv(4096) == b"", "closed, without an answer"

@@ -79,11 +79,13 @@ def test_a_failed_save_or_open_says_why_in_words(editor, page: Page) -> None:
     url, folder = editor
     wait_ready(page, url)
     save_as_button = page.get_by_role("button", name="Save as")
-    for path, words in [(folder / "no/such/folder/x.csv", "not saved: "), (folder / "x.txt", ".csv")]:
+    for path, words in [(folder / "no/such/folder/x.csv", "does not exist"), (folder / "x.txt", ".csv")]:
         page.evaluate("document.getElementById('status').textContent = ''")
         save_as_button.click()
         page.get_by_label("file path").fill(str(path))
         page.get_by_role("button", name="OK").click()
+        if "folder" in str(path):  # asked whether to create it: no
+            page.get_by_role("dialog", name="Create the folder?").get_by_role("button", name="Cancel").click()
         status_says(page, "not saved")
         said = page.locator("#status").inner_text()
         assert words in said and "bad request" not in said, said

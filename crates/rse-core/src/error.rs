@@ -215,7 +215,7 @@ pub enum SchemeErrorKind {
         limit: f64,
     },
     /// An angle outside `[0, 90]` degrees.
-    #[error("{0} is outside 0..=90 degrees")]
+    #[error("{0} is outside 0 to 90 degrees")]
     AngleOutOfRange(f64),
     /// A negative or non-finite standard deviation.
     #[error("{0} is not a finite number ≥ 0")]
@@ -229,7 +229,7 @@ pub enum SchemeErrorKind {
         hi: String,
     },
     /// A coordinate outside the grid.
-    #[error("{value} is outside the grid: {axis} must be in 0..={max} for a {nx}x{ny} grid")]
+    #[error("{value} is outside the grid: {axis} must be from 0 to {max} for a {nx}x{ny} grid")]
     PointOutsideGrid {
         /// The offending coordinate (a range's end).
         value: i64,
@@ -252,6 +252,106 @@ pub enum SchemeErrorKind {
     },
 }
 
+impl SchemeErrorKind {
+    /// One error of every kind, for tests that hold every message to a
+    /// rule (the editor's: no file syntax, no Rust range, no key spelt with
+    /// `_` reaches its page). `index` below does not compile when a kind is
+    /// added, and the test beside it fails until the kind has an example.
+    #[doc(hidden)]
+    pub fn examples() -> Vec<Self> {
+        vec![
+            Self::NotUtf8,
+            Self::Csv("unclosed quote".into()),
+            Self::UnknownGlobal("colour".into()),
+            Self::NearGlobal {
+                found: "step-height".into(),
+                near: "step_height",
+            },
+            Self::NoteReadsAsGlobal("size".into()),
+            Self::DuplicateGlobal,
+            Self::BadGlobal {
+                value: "abc".into(),
+                reason: "expected a length in metres".into(),
+            },
+            Self::PalletsOff,
+            Self::UnknownColumn("hieght".into()),
+            Self::DuplicateColumn,
+            Self::MissingTypeColumn,
+            Self::TooManyFields {
+                found: 4,
+                expected: 2,
+            },
+            Self::UnknownType("hill".into()),
+            Self::MissingField("peak"),
+            Self::UnusedField("random"),
+            Self::NotANumber {
+                value: "two".into(),
+                expected: "a whole number ≥ 0",
+            },
+            Self::NegativeHeight(-1),
+            Self::HeightTooLarge(70_000),
+            Self::TooManySteps {
+                height: 60_000,
+                steps: 9e6,
+            },
+            Self::TooTall {
+                height: 9000,
+                top: 900.0,
+                limit: 400.0,
+            },
+            Self::AngleOutOfRange(95.0),
+            Self::BadSigma(-1.0),
+            Self::ReversedRange {
+                lo: "5".into(),
+                hi: "3".into(),
+            },
+            Self::PointOutsideGrid {
+                value: 50,
+                axis: 'x',
+                max: 49,
+                nx: 50,
+                ny: 50,
+            },
+            Self::GridTooLarge {
+                nx: 100_000,
+                ny: 100_000,
+            },
+        ]
+    }
+
+    /// The kind's place in the declaration (see [`examples`](Self::examples)).
+    #[doc(hidden)]
+    pub fn index(&self) -> usize {
+        match self {
+            Self::NotUtf8 => 0,
+            Self::Csv(_) => 1,
+            Self::UnknownGlobal(_) => 2,
+            Self::NearGlobal { .. } => 3,
+            Self::NoteReadsAsGlobal(_) => 4,
+            Self::DuplicateGlobal => 5,
+            Self::BadGlobal { .. } => 6,
+            Self::PalletsOff => 7,
+            Self::UnknownColumn(_) => 8,
+            Self::DuplicateColumn => 9,
+            Self::MissingTypeColumn => 10,
+            Self::TooManyFields { .. } => 11,
+            Self::UnknownType(_) => 12,
+            Self::MissingField(_) => 13,
+            Self::UnusedField(_) => 14,
+            Self::NotANumber { .. } => 15,
+            Self::NegativeHeight(_) => 16,
+            Self::HeightTooLarge(_) => 17,
+            Self::TooManySteps { .. } => 18,
+            Self::TooTall { .. } => 19,
+            Self::AngleOutOfRange(_) => 20,
+            Self::BadSigma(_) => 21,
+            Self::ReversedRange { .. } => 22,
+            Self::PointOutsideGrid { .. } => 23,
+            Self::GridTooLarge { .. } => 24,
+        }
+    }
+}
+
 /// How an error quotes text from a scheme: [`excerpt`] of
 /// [`QUOTE_CHARS`], so a 10 MB field is not echoed whole.
 pub(crate) fn quote(text: &str) -> String {
@@ -266,5 +366,28 @@ pub fn excerpt(text: &str, chars: usize) -> String {
     match escaped.char_indices().nth(chars) {
         Some((at, _)) => format!("{}…", &escaped[..at]),
         None => escaped,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_has_one_example() {
+        let examples = SchemeErrorKind::examples();
+        let indexes: Vec<usize> = examples.iter().map(SchemeErrorKind::index).collect();
+        assert_eq!(
+            indexes,
+            (0..examples.len()).collect::<Vec<_>>(),
+            "one example a kind, in order"
+        );
+    }
+
+    #[test]
+    fn no_message_uses_rust_range_syntax() {
+        for kind in SchemeErrorKind::examples() {
+            assert!(!kind.to_string().contains("..="), "{kind}");
+        }
     }
 }

@@ -174,9 +174,9 @@ macro_rules! for_each_global_key {
                 name: "seed",
                 field: seed: u64,
                 unit: None,
-                expects: "a whole number 0..=2^64-1",
+                expects: "a whole number from 0 to 2^64 − 1",
                 example: "17",
-                doc: "base seed of a batch, `0..2^64-1`",
+                doc: "base seed of a batch, a whole number from 0 to 2^64 − 1",
                 stored: { default: 0, text: unless_default, record: always },
                 flag: {},
             }

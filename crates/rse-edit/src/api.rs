@@ -15,6 +15,7 @@ use serde_json::{Value, json};
 
 use crate::drafts::Drafts;
 use crate::model::{FieldError, PageScheme};
+use crate::words;
 
 /// The editor's state between requests.
 #[derive(Default)]
@@ -47,6 +48,8 @@ pub struct Job {
     pub result: Mutex<Option<Result<String, String>>>,
     /// The `check` summary of the written worlds.
     pub check: Mutex<Option<String>>,
+    /// An output folder to offer when the one given holds other worlds.
+    pub suggestion: Mutex<Option<String>>,
 }
 
 /// What a handler answers: `Ok` the result, `Err` a refusal for the page
@@ -88,7 +91,11 @@ pub fn state(editor: &Editor) -> Value {
 
 /// `file`'s draft as the server keeps it (null: none).
 fn draft_of(editor: &Editor, file: &str) -> Value {
-    editor.drafts.as_ref().and_then(|d| d.load(file)).unwrap_or(Value::Null)
+    editor
+        .drafts
+        .as_ref()
+        .and_then(|d| d.load(file))
+        .unwrap_or(Value::Null)
 }
 
 #[derive(Deserialize)]
@@ -113,9 +120,12 @@ pub fn draft(editor: &Editor, body: &[u8]) -> Answer {
     } else if !request.draft.is_object() {
         return Err(bad("bad request: a draft is an object"));
     } else {
-        drafts
-            .store(&request.file, &request.draft)
-            .map_err(|e| bad(format!("the draft could not be kept: {e}")))?;
+        drafts.store(&request.file, &request.draft).map_err(|e| {
+            bad(format!(
+                "the draft could not be kept: {}",
+                words::world_failure(&e)
+            ))
+        })?;
     }
     Ok(json!({ "ok": true, "kept": true }))
 }
@@ -185,7 +195,8 @@ fn control_error(control: &str, message: &str) -> Value {
 
 /// A whole number the page's control `control` (shown as `label`) holds, as
 /// typed: `None` when blank, else a number `0..=u64::MAX` or a refusal in
-/// words (a parser's text such as "expected u64" tells a user nothing).
+/// the page's words (a parser's "expected u64", or the bound, tells a user
+/// nothing).
 fn whole_number(control: &str, label: &str, value: &Value) -> Result<Option<u64>, Value> {
     let text = match value {
         Value::Null => return Ok(None),
@@ -195,15 +206,9 @@ fn whole_number(control: &str, label: &str, value: &Value) -> Result<Option<u64>
     if text.is_empty() {
         return Ok(None);
     }
-    text.parse::<u64>().map(Some).map_err(|_| {
-        control_error(
-            control,
-            &format!(
-                "the {label} must be a whole number from 0 to {}, not `{text}`",
-                u64::MAX
-            ),
-        )
-    })
+    text.parse::<u64>()
+        .map(Some)
+        .map_err(|_| control_error(control, &words::not_a_whole_number(label, &text)))
 }
 
 /// The largest grid the editor previews, in cells (500×500): its answer
@@ -241,7 +246,7 @@ pub fn preview(body: &[u8]) -> Answer {
             row: None,
             field: Some(field.to_owned()),
             message: format!(
-                "a {}x{} grid ({cells} cells) is more than the editor previews ({MAX_PREVIEW_CELLS} cells, e.g. 500x500); save the scheme and use `rse-gen preview` or `rse-gen batch`, which take any size",
+                "a {}x{} grid ({cells} cells) is more than the editor draws ({MAX_PREVIEW_CELLS} cells, e.g. 500x500): make it smaller to see it here; Generate writes worlds of any size",
                 grid.nx, grid.ny
             ),
         }));
@@ -252,7 +257,7 @@ pub fn preview(body: &[u8]) -> Answer {
             row: None,
             field: None,
             message: format!(
-                "its obstacles reach {visits} cells in all, more than the editor previews ({MAX_PREVIEW_VISITS}): fewer or steeper peaks and walls; `rse-gen preview` takes any scheme"
+                "its obstacles reach {visits} cells in all, more than the editor draws ({MAX_PREVIEW_VISITS}): fewer or steeper peaks and walls to see it here; Generate writes it as it is"
             ),
         }));
     }
@@ -302,7 +307,8 @@ struct ParseRequest {
 /// `POST /api/parse`: a scheme file's text as the page's fields.
 pub fn parse(body: &[u8]) -> Answer {
     let request: ParseRequest = request(body)?;
-    let scheme = rse_core::Scheme::from_csv(&request.csv, None).map_err(|e| bad(e.to_string()))?;
+    let scheme =
+        rse_core::Scheme::from_csv(&request.csv, None).map_err(|e| bad(words::file_fault(&e)))?;
     Ok(json!({ "ok": true, "scheme": PageScheme::from_scheme(&scheme) }))
 }
 
@@ -329,9 +335,9 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
     // A regular file only, its size counted as it is read: a FIFO held a
     // worker thread for good, a link to /dev/zero (size 0) ran the memory out.
     let bytes = rse_core::read_scheme_file(&path)
-        .map_err(|e| control_error("path", &format!("cannot open {shown}: {e}")))?;
+        .map_err(|e| control_error("path", &words::io_failure("open", &path, &e)))?;
     let scheme = rse_core::Scheme::from_csv_bytes(&bytes, Some(&shown.to_string()))
-        .map_err(|e| control_error("path", &e.to_string()))?;
+        .map_err(|e| control_error("path", &format!("{shown}, {}", words::file_fault(&e))))?;
     Ok(remember(editor, path, &scheme))
 }
 
@@ -343,7 +349,8 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
 fn remember(editor: &Editor, path: PathBuf, scheme: &rse_core::Scheme) -> Value {
     let page = PageScheme::from_scheme(scheme);
     let shown = path.display().to_string();
-    let answer = json!({ "ok": true, "draft": draft_of(editor, &shown), "path": shown, "scheme": page });
+    let answer =
+        json!({ "ok": true, "draft": draft_of(editor, &shown), "path": shown, "scheme": page });
     *editor.saved.lock().unwrap() = Some((path, page));
     answer
 }
@@ -365,11 +372,17 @@ pub fn csv(body: &[u8]) -> Answer {
 struct SaveRequest {
     scheme: PageScheme,
     path: PathBuf,
+    /// Make the file's folder when it does not exist (the page asked the
+    /// user first).
+    #[serde(default)]
+    make_folder: bool,
 }
 
 /// `POST /api/save`: writes the scheme as canonical CSV to the file the
 /// user named (the only file the editor writes besides the batch), and
-/// remembers it as what a reload starts from.
+/// remembers it as what a reload starts from. A folder that does not exist
+/// is made when asked (`make_folder`), else the refusal names it
+/// (`missing_folder`) for the page to ask.
 ///
 /// # Panics
 /// If the lock is poisoned (a panic while saving).
@@ -377,10 +390,24 @@ pub fn save(editor: &Editor, body: &[u8]) -> Answer {
     let request: SaveRequest = request(body)?;
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
     if request.path.extension().is_none_or(|e| e != "csv") {
-        return Err(bad("the scheme file must end in .csv"));
+        return Err(control_error("path", "a scheme file's name ends in .csv"));
+    }
+    if let Some(folder) = request.path.parent().filter(|f| !f.as_os_str().is_empty())
+        && !folder.exists()
+    {
+        if !request.make_folder {
+            let mut refusal = control_error(
+                "path",
+                &format!("the folder {} does not exist", folder.display()),
+            );
+            refusal["missing_folder"] = json!(folder.display().to_string());
+            return Err(refusal);
+        }
+        std::fs::create_dir_all(folder)
+            .map_err(|e| control_error("path", &words::io_failure("create", folder, &e)))?;
     }
     rse_world::write_atomically(&request.path, scheme.to_csv().as_bytes())
-        .map_err(|e| bad(format!("{:#}", anyhow::Error::from(e))))?;
+        .map_err(|e| control_error("path", &words::world_failure(&e)))?;
     Ok(remember(editor, request.path, &scheme))
 }
 
@@ -454,19 +481,24 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         Ok(options) => options,
         Err(e) => {
             *job.running.lock().expect("not poisoned") = false;
-            return Err(bad(e.to_string()));
+            return Err(bad(words::world_failure(&e)));
         }
     };
     job.done.store(0, Ordering::SeqCst);
     job.total.store(options.amount, Ordering::SeqCst);
     *job.result.lock().expect("not poisoned") = None;
     *job.check.lock().expect("not poisoned") = None;
+    *job.suggestion.lock().expect("not poisoned") = None;
     let total = options.amount;
     std::thread::spawn(move || {
         let outcome = write_batch(&scheme, &Templates::builtin(), &options, &|_| {
             job.done.fetch_add(1, Ordering::SeqCst);
         });
-        let result = outcome.map_err(|e| format!("{e:#}")).map(|s| {
+        if let Err(rse_world::Error::Conflict { .. }) = &outcome {
+            *job.suggestion.lock().expect("not poisoned") =
+                words::free_folder_beside(&options.out).map(|p| p.display().to_string());
+        }
+        let result = outcome.map_err(|e| words::world_failure(&e)).map(|s| {
             format!(
                 "{} worlds written, {} already there, into {}",
                 s.written,
@@ -499,6 +531,7 @@ pub fn job(editor: &Editor) -> Value {
         "summary": result.as_ref().and_then(|r| r.as_ref().ok()),
         "error": result.as_ref().and_then(|r| r.as_ref().err()),
         "check": *job.check.lock().expect("not poisoned"),
+        "suggestion": *job.suggestion.lock().expect("not poisoned"),
     })
 }
 
@@ -614,13 +647,13 @@ mod tests {
                 json!("abc"),
                 json!(0),
                 "seed",
-                "the world seed must be a whole number from 0 to",
+                "the world seed must be a whole number of 0 or more",
             ),
             (
                 json!(null),
                 json!(-1),
                 "index",
-                "the index must be a whole number from 0 to",
+                "the index must be a whole number of 0 or more",
             ),
             (json!(""), json!("1.5"), "index", "not `1.5`"),
         ] {
@@ -669,10 +702,7 @@ mod tests {
         let bad = dir.path().join("bad.csv");
         let refusal = open(&editor, json!({ "path": bad }).to_string().as_bytes()).unwrap_err();
         let message = refusal["error"]["message"].as_str().unwrap();
-        assert!(
-            message.contains("bad.csv:2:") && message.contains("height"),
-            "{message}"
-        );
+        assert!(message.contains("bad.csv, line 2: height"), "{message}");
         let refusal = open(
             &editor,
             json!({ "path": "/etc/passwd" }).to_string().as_bytes(),
@@ -736,10 +766,7 @@ mod tests {
         let distinct = (0..17_000).map(|i| row(65_535 - i)).collect();
         let refused = preview(scheme(distinct).to_string().as_bytes()).unwrap_err();
         let message = refused["error"]["message"].as_str().unwrap();
-        assert!(
-            message.contains("more than the editor previews"),
-            "{message}"
-        );
+        assert!(message.contains("more than the editor draws"), "{message}");
         let alike = vec![row(65_535); 17_000];
         assert!(preview(scheme(alike).to_string().as_bytes()).is_ok());
     }

@@ -45,7 +45,9 @@ impl Drafts {
 
     fn entry(&self, kind: &str, file: &str) -> PathBuf {
         let digest = rse_world::sha256_hex(Self::identity(file).as_bytes());
-        self.folder.join(kind).join(format!("{}.json", &digest[..24]))
+        self.folder
+            .join(kind)
+            .join(format!("{}.json", &digest[..24]))
     }
 
     /// `file`'s draft as the page last stored it, or None.
@@ -89,7 +91,10 @@ impl Drafts {
     /// When the state folder or its file cannot be written.
     pub fn remember_port(&self, file: &str, port: u16) -> Result<(), rse_world::Error> {
         let entry = self.entry("ports", file);
-        write_entry(&entry, &serde_json::json!({ "file": Self::identity(file), "port": port }))
+        write_entry(
+            &entry,
+            &serde_json::json!({ "file": Self::identity(file), "port": port }),
+        )
     }
 }
 

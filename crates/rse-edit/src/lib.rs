@@ -9,6 +9,7 @@ pub mod api;
 mod drafts;
 mod model;
 pub mod page;
+pub mod words;
 
 pub use api::{Answer, Editor, Job};
 pub use drafts::Drafts;

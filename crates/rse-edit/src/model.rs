@@ -60,7 +60,7 @@ pub struct FieldError {
     pub row: Option<usize>,
     /// The column or global key, when known.
     pub field: Option<String>,
-    /// What is wrong, as rse-core says it.
+    /// What is wrong, in the page's words (`words::scheme_fault`).
     pub message: String,
 }
 
@@ -69,7 +69,7 @@ impl FieldError {
         FieldError {
             row: row.or(e.obstacle),
             field: e.field.clone(),
-            message: e.kind.to_string(),
+            message: crate::words::scheme_fault(&e.kind),
         }
     }
 }
@@ -249,7 +249,7 @@ mod tests {
         p.notes = "fine\nAuthor: me".to_owned();
         let e = p.scheme().unwrap_err();
         assert_eq!((e.row, e.field.as_deref()), (None, Some("notes")), "{e:?}");
-        assert!(e.message.contains("`Author: …`"), "{}", e.message);
+        assert!(e.message.contains("starts with `Author:`"), "{}", e.message);
     }
 
     #[test]

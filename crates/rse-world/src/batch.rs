@@ -344,6 +344,10 @@ fn write_shard(
     })
 }
 
+/// The advice a batch too large for the memory ends with (a front end
+/// without a worker count, the editor's page, words its own).
+pub const FEWER_JOBS: &str = "; use fewer worker threads (jobs) or a smaller grid";
+
 /// Refuses a batch whose worlds, as many at once as it has threads, would
 /// need more memory than the machine has available (`MemAvailable` on
 /// Linux; elsewhere nothing is refused): better a clear error before
@@ -356,7 +360,7 @@ fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
     let at_once = threads.min(options.shard.worlds(options.amount)).max(1);
     check_memory_for(scheme.grid().cells() as u64, &options.world, at_once).map_err(|e| match e {
         Error::TooBig { message } => Error::TooBig {
-            message: format!("{message}; use fewer worker threads (jobs) or a smaller grid"),
+            message: format!("{message}{FEWER_JOBS}"),
         },
         other => other,
     })

@@ -34,7 +34,7 @@ mod render;
 
 pub use atlas::{ATLAS_JSON, atlas_json, atlas_of, build_atlas_world, write_atlas};
 pub use batch::{
-    BatchOptions, Shard, Summary, thread_pool, world_index, world_name, write_batch,
+    BatchOptions, FEWER_JOBS, Shard, Summary, thread_pool, world_index, world_name, write_batch,
     write_batch_until,
 };
 pub use config::{BatchConfig, WorldConfig};

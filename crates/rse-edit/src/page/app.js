@@ -38,11 +38,19 @@ async function api(path, body) {
     });
   } catch (e) {
     connectionLost();
-    throw new Lost(`the editor's server did not answer (${e.message})`);
+    throw new Lost("the editor's server did not answer");
   }
-  if (!response.ok) throw new Error(`${path}: ${response.status} ${await response.text()}`);
+  if (!response.ok) throw new Error(REFUSED_BECAUSE[response.status] ?? `the editor's server failed to answer (error ${response.status}); try again`);
   return response.json();
 }
+
+// The server's own refusals of a request, in words (its text is for
+// programs: "payload too large").
+const REFUSED_BECAUSE = {
+  403: "the editor's server refused this page: open the editor at the address it printed when it started",
+  413: "the scheme is too large to send to the editor's server (over 1 MiB)",
+  431: "the editor's server refused this page's request (too long)",
+};
 
 // --- a lost server: say so, retry, carry on --------------------------------
 
@@ -598,13 +606,25 @@ $("load").addEventListener("change", async () => {
   say(`opened ${picked.name}`);
 });
 
-async function saveTo(path) {
+/** Asks whether to make `folder` for a file saved into it; `true`: make it. */
+function askMakeFolder(folder) {
+  const dialog = $("folder-dialog");
+  $("folder-text").textContent = `The folder ${folder} does not exist. Create it and save the scheme there?`;
+  dialog.returnValue = "";
+  dialog.showModal();
+  return new Promise((resolve) => dialog.addEventListener("close", () => resolve(dialog.returnValue === "make"), { once: true }));
+}
+
+async function saveTo(path, makeFolder = false) {
   let answer;
   try {
-    answer = await api("/api/save", { scheme: pageScheme(), path });
+    answer = await api("/api/save", { scheme: pageScheme(), path, make_folder: makeFolder });
   } catch (e) {
     say(`not saved: ${e.message}; your edits are kept in this browser`);
     return false;
+  }
+  if (!answer.ok && answer.missing_folder && !makeFolder && (await askMakeFolder(answer.missing_folder))) {
+    return saveTo(path, true);
   }
   if (!answer.ok) {
     say(`not saved: ${answer.error.message}`);
@@ -670,6 +690,15 @@ $("download").onclick = async () => {
 
 // --- generate ------------------------------------------------------------------
 
+/** After a Generate into a folder holding other worlds: a button that
+ * writes into `folder` (one that does not exist yet) instead. */
+function offerFolder(folder) {
+  const button = document.createElement("button");
+  button.textContent = `Write into ${folder} instead`;
+  button.onclick = () => { $("gen-out").value = folder; $("generate").click(); };
+  $("gen-summary").append(" ", button);
+}
+
 $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
@@ -689,6 +718,7 @@ $("generate").onclick = async () => {
     if (job.running || (!job.summary && !job.error)) { setTimeout(poll, 100); return; }
     $("gen-summary").textContent = job.error ? `failed: ${job.error}` : job.summary;
     $("gen-check").textContent = job.check ?? "";
+    if (job.error && job.suggestion) offerFolder(job.suggestion);
   };
   poll();
 };

@@ -79,7 +79,11 @@ fn state_folder() -> Option<std::path::PathBuf> {
         return Some(dir.into());
     }
     let dirs = directories::ProjectDirs::from("", "", "rse")?;
-    Some(dirs.state_dir().unwrap_or_else(|| dirs.data_local_dir()).join("editor"))
+    Some(
+        dirs.state_dir()
+            .unwrap_or_else(|| dirs.data_local_dir())
+            .join("editor"),
+    )
 }
 
 /// Opens `url` with the desktop's opener, in the background; when there is
