@@ -13,6 +13,7 @@ from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
 
+REPO = Path(__file__).resolve().parents[2]
 START = "# size: 20x16\ntype,height\nrandom,1\n"
 
 
@@ -268,3 +269,61 @@ def test_download_csv_works_with_the_server_gone(tmp_path: Path, page: Page) -> 
     finally:
         if server.poll() is None:
             stop(server)
+
+
+def test_files_like_a_desktop_program_new_samples_working_folder_and_base_files(editor, page: Page) -> None:
+    """New (asking first), the working folder shown, the sample schemes to
+    open, Save of a sample into that folder, and Generate with the user's
+    own base files (templates), each world's check listed."""
+    import rse
+
+    url, folder = editor
+    wait_ready(page, url)
+    assert page.locator("#work-folder").inner_text() == str(folder)
+    edit(page, lambda: cell(page, 0, "height").fill("3"))
+    page.get_by_role("button", name="New", exact=True).click()
+    page.get_by_role("dialog", name="Save your edits first?").get_by_role("button", name="Discard them").click()
+    page.wait_for_function("document.getElementById('status').textContent === 'a new scheme'")
+    assert table(page) == [{"type": "random", "height.lo": "1"}]
+    assert page.locator("#file-name").inner_text() == "(not saved yet)"
+    assert page.get_by_role("button", name="Undo").is_disabled()
+
+    # The samples, each a button named by its file.
+    page.get_by_role("button", name="Open sample").click()
+    samples = page.get_by_role("dialog", name="Open a sample scheme")
+    names = sorted(p.name for p in (REPO / "schemes").glob("*.csv"))
+    assert [b for b in samples.get_by_role("button").all_inner_texts() if b != "Cancel"] == names
+    assert "One obstacle of each of the six types" in samples.inner_text()
+    edit(page, lambda: samples.get_by_role("button", name="six_obstacles.csv").click())
+    assert len(table(page)) == 6 and "six_obstacles.csv (a sample" in page.locator("#file-name").inner_text()
+    page.get_by_role("button", name="Save", exact=True).click()
+    assert str(folder) in page.get_by_role("dialog", name="Save as").inner_text(), "the dialog says where a relative path starts"
+    assert page.get_by_label("file path").input_value() == "six_obstacles.csv"
+    page.get_by_role("button", name="OK").click()
+    status_says(page, "saved")
+    saved = folder / "six_obstacles.csv"
+    assert rse.Scheme.load(saved).to_csv() == rse.Scheme.load(REPO / "schemes/six_obstacles.csv").to_csv()
+    assert page.locator("#file-name").inner_text() == "six_obstacles.csv"
+
+    # Base files of one's own: a Gazebo world template with a mark in it.
+    subprocess.run([str(rse_gen_release_path()), "templates", "export", str(folder / "mine")], check=True, capture_output=True)
+    world_template = folder / "mine/gazebo/rse.world.j2"
+    world_template.write_text("<!-- made with my base files -->\n" + world_template.read_text())
+    page.get_by_label("number of worlds").fill("2")
+    page.get_by_label("output folder").fill("worlds")
+    page.get_by_label("base files").fill(str(folder / "nowhere"))
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-summary').textContent.startsWith('not started')")
+    assert page.get_by_label("base files").get_attribute("aria-invalid") == "true"
+    assert "nowhere" in page.locator("#gen-summary").inner_text()
+    page.get_by_label("base files").fill(str(folder / "mine"))
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-summary').textContent.includes('worlds written')")
+    worlds = sorted((folder / "worlds").glob("world_*"))
+    assert len(worlds) == 2
+    for world in worlds:
+        assert (world / "gazebo/rse.world").read_text().startswith("<!-- made with my base files -->")
+    assert page.locator("#gen-check").inner_text().startswith("checked 2 worlds: 2 good")
+    page.get_by_text("Each world's check").click()
+    rows = page.locator("#gen-worlds tbody tr").all_inner_texts()
+    assert [r.split("\t") for r in rows] == [[w.name, "good"] for w in worlds], rows

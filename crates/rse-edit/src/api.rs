@@ -50,7 +50,14 @@ pub struct Job {
     pub check: Mutex<Option<String>>,
     /// An output folder to offer when the one given holds other worlds.
     pub suggestion: Mutex<Option<String>>,
+    /// Each written world's `check` (its name, whether it is good, its
+    /// faults), at most [`WORLDS_LISTED`].
+    pub worlds: Mutex<Vec<Value>>,
 }
+
+/// The most worlds whose check results the page is sent one by one (the
+/// summary line counts them all).
+pub const WORLDS_LISTED: usize = 1000;
 
 /// What a handler answers: `Ok` the result, `Err` a refusal for the page
 /// (both are sent as JSON; the page reads `ok`).
@@ -86,6 +93,8 @@ pub fn state(editor: &Editor) -> Value {
         "scheme": scheme,
         "draft": draft_of(editor, shown.as_deref().unwrap_or("")),
         "path": shown,
+        // Where relative paths (Open path, Save as, the output folder) start.
+        "folder": std::env::current_dir().map(|d| d.display().to_string()).unwrap_or_default(),
     })
 }
 
@@ -172,7 +181,22 @@ pub fn schema() -> Value {
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
         "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),
+        "new_scheme": page_scheme_of(crate::NEW_SCHEME),
+        "samples": crate::SAMPLES.map(|(name, csv)| {
+            let scheme = page_scheme_of(csv);
+            // The notes' first sentence, their lines joined.
+            let notes = scheme.notes.split_whitespace().collect::<Vec<_>>().join(" ");
+            let about = notes.find(". ").map_or(notes.as_str(), |end| &notes[..=end]).to_owned();
+            json!({ "name": name, "about": about, "scheme": scheme })
+        }),
     })
+}
+
+/// A built-in scheme's text as the page holds it (a test reads each).
+fn page_scheme_of(csv: &str) -> PageScheme {
+    PageScheme::from_scheme(
+        &rse_core::Scheme::from_csv(csv, None).expect("a built-in scheme reads"),
+    )
 }
 
 #[derive(Deserialize)]
@@ -427,6 +451,10 @@ struct GenerateRequest {
     /// Target names; none given: the default targets.
     #[serde(default)]
     targets: Vec<String>,
+    /// A folder of the user's own templates over the built-in ones (the
+    /// paper's "custom base files"); absent or blank: the built-in ones.
+    #[serde(default)]
+    templates: Option<String>,
 }
 
 /// `POST /api/generate`: starts writing a batch in the background.
@@ -457,6 +485,11 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
             Targets::parse(&request.targets.join(","))
                 .map_err(|e| control_error("gen-targets", &e.to_string()))?,
         )
+    };
+    let templates = match request.templates.as_deref().map(str::trim) {
+        None | Some("") => Templates::builtin(),
+        Some(folder) => Templates::with_overrides(Path::new(folder))
+            .map_err(|e| control_error("gen-templates", &words::world_failure(&e)))?,
     };
     let job = Arc::clone(&editor.job);
     {
@@ -489,9 +522,11 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     *job.result.lock().expect("not poisoned") = None;
     *job.check.lock().expect("not poisoned") = None;
     *job.suggestion.lock().expect("not poisoned") = None;
+    job.worlds.lock().expect("not poisoned").clear();
     let total = options.amount;
     std::thread::spawn(move || {
-        let outcome = write_batch(&scheme, &Templates::builtin(), &options, &|_| {
+        let templates = Arc::new(templates);
+        let outcome = write_batch(&scheme, &templates, &options, &|_| {
             job.done.fetch_add(1, Ordering::SeqCst);
         });
         if let Err(rse_world::Error::Conflict { .. }) = &outcome {
@@ -507,8 +542,9 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
             )
         });
         if result.is_ok() {
-            let check = check_summary(&options.out);
+            let (check, worlds) = check_summary(&options.out, templates);
             *job.check.lock().expect("not poisoned") = Some(check);
+            *job.worlds.lock().expect("not poisoned") = worlds;
         }
         *job.result.lock().expect("not poisoned") = Some(result);
         *job.running.lock().expect("not poisoned") = false;
@@ -532,20 +568,40 @@ pub fn job(editor: &Editor) -> Value {
         "error": result.as_ref().and_then(|r| r.as_ref().err()),
         "check": *job.check.lock().expect("not poisoned"),
         "suggestion": *job.suggestion.lock().expect("not poisoned"),
+        "worlds": *job.worlds.lock().expect("not poisoned"),
     })
 }
 
-/// The one-line `check` verdict on the worlds in `folder` (no physics), as
-/// the page shows it after a Generate: the verdict, and the first fault.
-fn check_summary(folder: &Path) -> String {
-    let report = match check_paths(&[folder.to_path_buf()], &CheckOptions::default(), &|| {}) {
-        Ok(report) => report,
-        Err(e) => return format!("check: {e}"),
+/// The `check` of the worlds in `folder` (no physics; with the templates
+/// they were written with, so custom files are compared byte for byte) as
+/// the page shows it after a Generate: the verdict and the first fault,
+/// and each world's name, verdict and faults.
+fn check_summary(folder: &Path, templates: Arc<Templates>) -> (String, Vec<Value>) {
+    let options = CheckOptions {
+        templates: Some(templates),
+        ..CheckOptions::default()
     };
-    match report.first_fault() {
+    let report = match check_paths(&[folder.to_path_buf()], &options, &|| {}) {
+        Ok(report) => report,
+        Err(e) => return (format!("check: {e}"), Vec::new()),
+    };
+    let worlds = report
+        .worlds
+        .iter()
+        .take(WORLDS_LISTED)
+        .map(|w| {
+            let name = Path::new(&w.world)
+                .file_name()
+                .map_or_else(|| w.world.clone(), |n| n.to_string_lossy().into_owned());
+            let faults: Vec<String> = w.faults.iter().map(ToString::to_string).collect();
+            json!({ "world": name, "ok": w.ok, "faults": faults })
+        })
+        .collect();
+    let line = match report.first_fault() {
         Some(first) => format!("{} (first: {first})", report.verdict()),
         None => report.verdict(),
-    }
+    };
+    (line, worlds)
 }
 
 #[cfg(test)]

@@ -9,8 +9,10 @@ pub mod api;
 mod drafts;
 mod model;
 pub mod page;
+mod samples;
 pub mod words;
 
 pub use api::{Answer, Editor, Job};
 pub use drafts::Drafts;
 pub use model::{FieldError, PageScheme};
+pub use samples::{NEW_SCHEME, SAMPLES};

@@ -91,6 +91,7 @@ const file = {
   base: null, // the server's scheme for it, as JSON: a draft made from it is still good
   saved: null, // the page's scheme as that file holds it, as JSON (null: not on disk)
   suggestion: "", // the name of a file picked from this computer, offered by Save as
+  opened: null, // the scheme of a document in no file as it was opened, as JSON
 };
 
 function draftKey() { return `rse-editor:${file.server || "(unnamed)"}`; }
@@ -214,6 +215,7 @@ function startFile(scheme, server, kept) {
   file.server = server || "";
   file.path = file.server; file.name = file.server;
   file.base = JSON.stringify(scheme);
+  file.opened = null;
   forgetHistory();
   loadScheme(scheme);
   file.saved = JSON.stringify(pageScheme());
@@ -552,7 +554,9 @@ function askPath(title, suggestion) {
  * once they are), discard them (this browser's draft of the file too), or
  * cancel. `what` says what would replace them. */
 async function mayReplace(what) {
-  if ($("unsaved").hidden) return true;
+  // Nothing to lose: the page is its file, or a new scheme or sample not
+  // edited since it was opened.
+  if ($("unsaved").hidden || JSON.stringify(pageScheme()) === file.opened) return true;
   const dialog = $("unsaved-dialog");
   $("unsaved-text").textContent = `${file.name || "This scheme"} has edits that are not saved. ${what} replaces them.`;
   dialog.returnValue = "";
@@ -582,6 +586,47 @@ async function openPath() {
 }
 $("open-path").onclick = openPath;
 
+/** Starts a new document holding `scheme`, in no file yet (its first Save
+ * asks where, offering `suggestion`), with its own history. */
+function startUnnamed(scheme, name, suggestion) {
+  file.server = file.path = "";
+  file.name = name;
+  file.base = null;
+  file.saved = null;
+  file.suggestion = suggestion;
+  forgetHistory();
+  loadScheme(scheme);
+  file.opened = JSON.stringify(pageScheme());
+  undoLog.past.push(snapshot());
+  changed();
+}
+
+$("new").onclick = async () => {
+  if (!(await mayReplace("A new scheme"))) return;
+  startUnnamed(NEW_SCHEME, "", "scheme.csv");
+  say("a new scheme");
+};
+
+/** The sample schemes (from the server's schema), each a button opening a copy. */
+function listSamples(samples) {
+  $("sample-list").replaceChildren(...samples.map((sample) => {
+    const li = document.createElement("li");
+    const button = document.createElement("button");
+    button.type = "button"; button.textContent = sample.name;
+    button.onclick = async () => {
+      $("sample-dialog").close();
+      if (!(await mayReplace("Opening a sample"))) return;
+      startUnnamed(sample.scheme, `${sample.name} (a sample: Save asks where to write it)`, sample.name);
+      say(`opened the sample ${sample.name}`);
+    };
+    const about = document.createElement("span");
+    about.className = "hint"; about.textContent = sample.about;
+    li.append(button, about);
+    return li;
+  }));
+}
+$("open-sample").onclick = () => $("sample-dialog").showModal();
+
 // A file from this computer: its contents, but no path the editor's server
 // can write (a browser does not tell), so Save asks where.
 $("open-file").onclick = async () => { if (await mayReplace("Opening a file")) $("load").click(); };
@@ -594,15 +639,7 @@ $("load").addEventListener("change", async () => {
   if (!answer.ok) { say(`not opened: ${picked.name}: ${answer.error.message}`); markError(answer.error); return; }
   // A new document, as a desktop program opens one: its own history (an
   // Undo never brings back the other file under this one's name).
-  file.server = file.path = "";
-  file.name = `${picked.name} (from this computer: Save asks where to write it)`;
-  file.base = null;
-  file.saved = null;
-  file.suggestion = picked.name;
-  forgetHistory();
-  loadScheme(answer.scheme);
-  undoLog.past.push(snapshot());
-  changed();
+  startUnnamed(answer.scheme, `${picked.name} (from this computer: Save asks where to write it)`, picked.name);
   say(`opened ${picked.name}`);
 });
 
@@ -690,6 +727,20 @@ $("download").onclick = async () => {
 
 // --- generate ------------------------------------------------------------------
 
+/** Each written world's check, one row a world (its faults in words). */
+function showWorlds(worlds) {
+  $("gen-worlds").hidden = worlds.length === 0;
+  $("gen-worlds").querySelector("tbody").replaceChildren(...worlds.map((w) => {
+    const tr = document.createElement("tr");
+    const name = document.createElement("td"); name.textContent = w.world;
+    const verdict = document.createElement("td");
+    verdict.textContent = w.ok ? "good" : `failed: ${w.faults.join("; ")}`;
+    if (!w.ok) verdict.className = "failed";
+    tr.append(name, verdict);
+    return tr;
+  }));
+}
+
 /** After a Generate into a folder holding other worlds: a button that
  * writes into `folder` (one that does not exist yet) instead. */
 function offerFolder(folder) {
@@ -702,11 +753,12 @@ function offerFolder(folder) {
 $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
+  $("gen-worlds").hidden = true;
   let answer;
   try {
     answer = await api("/api/generate", {
       scheme: pageScheme(), out: $("gen-out").value.trim(), amount: $("gen-amount").value,
-      seed: $("seed").value, targets, mesh: $("mesh").value || null,
+      seed: $("seed").value, targets, mesh: $("mesh").value || null, templates: $("gen-templates").value,
     });
   } catch (e) { $("gen-summary").textContent = `not started: ${e.message}`; return; }
   if (!answer.ok) { markError(answer.error); $("gen-summary").textContent = `not started: ${answer.error.message}`; return; }
@@ -719,6 +771,7 @@ $("generate").onclick = async () => {
     $("gen-summary").textContent = job.error ? `failed: ${job.error}` : job.summary;
     $("gen-check").textContent = job.check ?? "";
     if (job.error && job.suggestion) offerFolder(job.suggestion);
+    showWorlds(job.worlds ?? []);
   };
   poll();
 };
@@ -726,6 +779,7 @@ $("generate").onclick = async () => {
 // --- the fields the schema names ----------------------------------------------
 
 let COLUMN_DOCS = {};
+let NEW_SCHEME = null; // what New starts from (the schema's)
 
 /** A step height above 1 m or a block size above 2 m is most likely
  * centimetres typed as metres: ask, offering the value in metres. */
@@ -846,6 +900,8 @@ function buildFields(schema) {
     option.value = m === schema.default_mesh ? "" : m; option.textContent = names[m] ?? m;
     $("mesh").append(option);
   }
+  NEW_SCHEME = schema.new_scheme;
+  listSamples(schema.samples);
   const targets = $("gen-targets");
   for (const t of schema.targets) {
     const label = document.createElement("label");
@@ -863,5 +919,6 @@ function buildFields(schema) {
     answer = await api("/api/state");
   } catch (e) { say(`the editor's server did not answer: ${e.message}; reload the page once it runs`); return; }
   buildFields(schema);
+  $("work-folder").textContent = $("dialog-folder").textContent = answer.folder;
   startFile(answer.scheme, answer.path, answer.draft);
 })();

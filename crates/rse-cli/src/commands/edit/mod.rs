@@ -22,8 +22,8 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
         editor.initial = PageScheme::from_scheme(&scheme);
         editor.path = Some(path.clone());
     } else {
-        let scheme = rse_core::Scheme::from_csv("# size: 20x20\ntype,height\nrandom,1\n", None)
-            .expect("the starting scheme is valid");
+        let scheme = rse_core::Scheme::from_csv(rse_edit::NEW_SCHEME, None)
+            .expect("the starting scheme is valid (a test reads it)");
         editor.initial = PageScheme::from_scheme(&scheme);
     }
     editor.drafts = state_folder().map(Drafts::new);
