@@ -1,9 +1,13 @@
-"""Takes docs/images/editor.png (a 1500 px window) and
-docs/images/editor-narrow.png (800 px: the preview below the table):
-`rse-gen edit` on schemes/six_obstacles.csv in headless Chromium, the peak
-selected and the pointer on the map. Run: .venv/bin/python scripts/editor_screenshot.py"""
+"""Takes docs/images/editor.png (a 1440 px laptop window: the preview beside
+the table), docs/images/editor-wide.png (1920 px: globals, table and
+preview in three columns) and docs/images/editor-narrow.png (800 px: the
+preview below the table): `rse-gen edit` on schemes/six_obstacles.csv in
+headless Chromium, the peak selected and the pointer on the map. Run:
+.venv/bin/python scripts/editor_screenshot.py"""
 
+import os
 import sys
+import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
@@ -13,9 +17,11 @@ from editor_harness import cell_point, chromium_page, edit, running_editor  # no
 
 
 def main() -> None:
+    # A state folder of its own: no draft of an earlier session shows.
+    os.environ["RSE_STATE_DIR"] = tempfile.mkdtemp(prefix="rse-screenshot-state-")
     scheme = REPO / "schemes/six_obstacles.csv"
     with running_editor(REPO / "target/release/rse-gen", scheme, REPO) as url:
-        for width, height, name in [(1500, 1000, "editor.png"), (800, 1000, "editor-narrow.png")]:
+        for width, height, name in [(1440, 900, "editor.png"), (1920, 1080, "editor-wide.png"), (800, 1000, "editor-narrow.png")]:
             with chromium_page(width, height) as page:
                 page.goto(url)
                 page.wait_for_function("window.rseEditor.previews >= 1")
