@@ -175,8 +175,9 @@ def test_at_800_px_nothing_scrolls_sideways_and_the_preview_moves_below_the_tabl
 
 
 def test_at_1440_px_the_map_stays_in_view_beside_any_row_edited(tmp_path: Path) -> None:
-    """A laptop's 1440×900: the map beside the table, whole on the screen,
-    whichever row is edited (the page scrolled down to the 30th)."""
+    """A laptop's 1440×900: the map and the 3D view beside the table, whole
+    on the screen, whichever row is edited (the page scrolled down to the
+    30th)."""
     scheme = tmp_path / "long.csv"
     scheme.write_text("# size: 40x40\ntype,height,angle,x1,y1\n" + "".join(f"peak,3,60,{i},{i}\n" for i in range(30)))
     with running_editor(rse_gen_release_path(), scheme, tmp_path) as url, chromium_page(1440, 900) as page:
@@ -189,6 +190,8 @@ def test_at_1440_px_the_map_stays_in_view_beside_any_row_edited(tmp_path: Path) 
             assert 0 <= field_box["y"] < 900, "the edited field is on the screen"
             assert 0 <= map_box["y"] and map_box["y"] + map_box["height"] <= 900, f"row {row}: the map is at {map_box}"
             assert map_box["x"] >= field_box["x"] + field_box["width"]
+            view = page.get_by_role("img", name="3D view of the blocks").bounding_box()
+            assert 0 <= view["y"] and view["y"] + view["height"] <= 900, f"row {row}: the 3D view is at {view}"
 
 
 def focus_section(page: Page) -> str:
