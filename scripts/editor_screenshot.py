@@ -29,8 +29,8 @@ def main() -> None:
                 # Draw a few more times: the first previews' times include the page's
                 # start (the script's compilation), not what an edit costs.
                 for index in ["1", "2", "0"]:
+                    views = page.evaluate("window.rseEditor.views")  # before the edit: its view may come at once
                     edit(page, lambda index=index: page.get_by_label("index").fill(index))
-                    views = page.evaluate("window.rseEditor.views")
                     page.wait_for_function(f"window.rseEditor.views > {views}")  # the 3D view of this draw
                 page.mouse.move(*cell_point(page, 20, 31))
                 page.screenshot(path=str(REPO / "docs/images" / name), full_page=True)
