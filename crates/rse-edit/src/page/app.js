@@ -164,16 +164,24 @@ function changed() {
 
 const DRAFT_DELAY_MS = 250; // edits a quarter second apart are sent once
 const HISTORY_KEPT = 100; // undo steps kept each way
+const DRAFT_MAX_CHARS = 900_000; // under the server's 1 MiB request cap
 const drafts = { timer: null };
 
 /** What a reload (on any port, in any browser) starts from: the page's
  * scheme, whether it differs from the file, what the file held when it was
- * made (a draft of an older file is not used), and the undo history. */
+ * made (a draft of an older file is not used), and the undo history: its
+ * last HISTORY_KEPT steps each way, the oldest dropped first while the
+ * draft is over DRAFT_MAX_CHARS (a long table's steps are large). */
 function draft(unsaved) {
-  return {
-    scheme: pageScheme(), unsaved, base: file.base, path: file.path, name: file.name,
-    past: undoLog.past.slice(-HISTORY_KEPT), future: undoLog.future.slice(-HISTORY_KEPT),
-  };
+  let keep = HISTORY_KEPT;
+  for (;;) {
+    const kept = {
+      scheme: pageScheme(), unsaved, base: file.base, path: file.path, name: file.name,
+      past: undoLog.past.slice(-keep), future: undoLog.future.slice(-keep),
+    };
+    if (keep <= 1 || JSON.stringify(kept).length <= DRAFT_MAX_CHARS) return kept;
+    keep = Math.floor(keep / 2);
+  }
 }
 
 function keepDraft() {
@@ -190,7 +198,7 @@ function sendDraft({ keepalive = false, forget = false, of = file.server } = {})
   const body = JSON.stringify({ file: of, draft: forget ? null : draft(!$("unsaved").hidden) });
   window.rseEditor.draftPending = true;
   fetch("/api/draft", { method: "POST", headers: { "Content-Type": "application/json" }, body, keepalive })
-    .then(() => { window.rseEditor.draftsSent += 1; })
+    .then((response) => { if (response.ok) window.rseEditor.draftsSent += 1; })
     .catch(() => {})
     .finally(() => { window.rseEditor.draftPending = drafts.timer !== null; });
 }
