@@ -101,6 +101,12 @@ def table(page: Page) -> list[dict]:
     return [{k: v for k, v in row.items() if v != ""} for row in rows]
 
 
+def save_target(page: Page) -> str:
+    """The file the header names as the one Save writes, whole (the header
+    shows a file in the working folder by its path from there)."""
+    return page.locator("#file-name").get_attribute("title") or ""
+
+
 def status_says(page: Page, start: str) -> None:
     """Waits until the header's status line starts with `start`."""
     page.wait_for_function(f"document.getElementById('status').textContent.startsWith({start!r})")

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import rse
 from conftest import rse_gen_release_path
-from editor_harness import cell, edit, preview_round_trips, running_editor, save, save_as, table
+from editor_harness import cell, edit, preview_round_trips, running_editor, save, save_as, save_target, table
 from PIL import Image
 from playwright.sync_api import Page
 
@@ -357,7 +357,7 @@ def test_a_reload_keeps_unsaved_edits_asks_before_leaving_and_save_makes_them_th
     url, folder = editor
     page.goto(url)
     page.wait_for_function("window.rseEditor?.previews >= 1")
-    assert page.locator("#file-name").inner_text() == str(folder / "start.csv")
+    assert save_target(page) == str(folder / "start.csv")
     assert page.locator("#unsaved").is_hidden()
     edit(page, lambda: cell(page, 0, "height").fill("3"))
     assert page.locator("#unsaved").is_visible()

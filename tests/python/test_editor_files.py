@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import cell, edit, running_editor, save, save_as, status_says, table, wait_ready
+from editor_harness import cell, edit, running_editor, save, save_as, save_target, status_says, table, wait_ready
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -39,7 +39,7 @@ def test_open_by_path_then_save_writes_the_opened_file_and_save_as_moves_on(edit
     other.write_text("# size: 12x9\ntype,height,angle,x1,y1\npeak,3,45,4,4\n")
     wait_ready(page, url)
     open_path(page, other)
-    assert page.locator("#file-name").inner_text() == str(other), "the page shows which file Save writes"
+    assert save_target(page) == str(other), "the page shows which file Save writes"
     assert table(page) == [{"type": "peak", "height.lo": "3", "angle.lo": "45", "x1.lo": "4", "y1.lo": "4"}]
     edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("5"))
     save(page)
@@ -48,12 +48,12 @@ def test_open_by_path_then_save_writes_the_opened_file_and_save_as_moves_on(edit
     # A reload starts from the file opened last, not the one on the command line.
     page.reload()
     page.wait_for_function("window.rseEditor?.previews >= 1")
-    assert page.locator("#file-name").inner_text() == str(other)
+    assert save_target(page) == str(other)
     assert cell(page, 0, "height").input_value() == "5"
     # Save as: a third file, which Save then writes.
     third = folder / "third.csv"
     save_as(page, third)
-    assert page.locator("#file-name").inner_text() == str(third)
+    assert save_target(page) == str(third)
     edit(page, lambda: page.get_by_label("angle of obstacle 1", exact=True).fill("60"))
     save(page)
     assert "peak,5,60,4,4" in third.read_text() and "peak,5,45,4,4" in other.read_text()
@@ -66,7 +66,7 @@ def test_a_file_from_this_computer_is_edited_and_save_asks_where(editor, page: P
     wait_ready(page, url)
     edit(page, lambda: page.set_input_files("#load", str(picked)))
     assert table(page) == [{"type": "random", "height.lo": "4"}]
-    assert page.locator("#file-name").inner_text().startswith("picked.csv (from this computer")
+    assert save_target(page).startswith("picked.csv (from this computer")
     assert page.locator("#unsaved").is_visible(), "not written anywhere the editor knows yet"
     page.get_by_role("button", name="Save", exact=True).click()
     assert page.get_by_label("file path").input_value() == "picked.csv", "Save asks, offering the picked name"
@@ -96,7 +96,7 @@ def test_a_failed_save_or_open_says_why_in_words(editor, page: Page) -> None:
     page.get_by_role("button", name="OK").click()
     status_says(page, "not opened")
     assert "cannot open" in page.locator("#status").inner_text()
-    assert page.locator("#file-name").inner_text() == str(folder / "start.csv"), "still the same file"
+    assert save_target(page) == str(folder / "start.csv"), "still the same file"
 
 
 def free_port() -> int:
@@ -181,7 +181,7 @@ def test_open_asks_before_replacing_unsaved_edits_and_starts_a_new_history(edito
     page.get_by_label("file path").fill(str(other))
     edit(page, lambda: page.get_by_role("button", name="OK").click())
     assert table(page) == [{"type": "random", "height.lo": "4"}]
-    assert page.locator("#file-name").inner_text() == str(other) and page.locator("#unsaved").is_hidden()
+    assert save_target(page) == str(other) and page.locator("#unsaved").is_hidden()
     assert page.get_by_role("button", name="Undo").is_disabled(), "the open starts a new history"
     assert "random,1" in start.read_text(), "discarded, not written"
     # Save them first: written, then the other file opened.
@@ -191,7 +191,7 @@ def test_open_asks_before_replacing_unsaved_edits_and_starts_a_new_history(edito
     page.get_by_label("file path").fill(str(start))
     edit(page, lambda: page.get_by_role("button", name="OK").click())
     assert "random,5" in other.read_text()
-    assert page.locator("#file-name").inner_text() == str(start)
+    assert save_target(page) == str(start)
     assert table(page) == [{"type": "random", "height.lo": "1"}]
 
 
@@ -280,12 +280,14 @@ def test_files_like_a_desktop_program_new_samples_working_folder_and_base_files(
     url, folder = editor
     wait_ready(page, url)
     assert page.locator("#work-folder").inner_text() == str(folder)
+    # The file the editor started on, in that folder, by its path from there.
+    assert page.locator("#file-name").inner_text() == "start.csv" and save_target(page) == str(folder / "start.csv")
     edit(page, lambda: cell(page, 0, "height").fill("3"))
     page.get_by_role("button", name="New", exact=True).click()
     page.get_by_role("dialog", name="Save your edits first?").get_by_role("button", name="Discard them").click()
     page.wait_for_function("document.getElementById('status').textContent === 'a new scheme'")
     assert table(page) == [{"type": "random", "height.lo": "1"}]
-    assert page.locator("#file-name").inner_text() == "(not saved yet)"
+    assert save_target(page) == "(not saved yet)"
     assert page.get_by_role("button", name="Undo").is_disabled()
 
     # The samples, each a button named by its file.
@@ -295,7 +297,7 @@ def test_files_like_a_desktop_program_new_samples_working_folder_and_base_files(
     assert [b for b in samples.get_by_role("button").all_inner_texts() if b != "Cancel"] == names
     assert "One obstacle of each of the six types" in samples.inner_text()
     edit(page, lambda: samples.get_by_role("button", name="six_obstacles.csv").click())
-    assert len(table(page)) == 6 and "six_obstacles.csv (a sample" in page.locator("#file-name").inner_text()
+    assert len(table(page)) == 6 and "six_obstacles.csv (a sample" in save_target(page)
     page.get_by_role("button", name="Save", exact=True).click()
     assert str(folder) in page.get_by_role("dialog", name="Save as").inner_text(), "the dialog says where a relative path starts"
     assert page.get_by_label("file path").input_value() == "six_obstacles.csv"
@@ -303,7 +305,8 @@ def test_files_like_a_desktop_program_new_samples_working_folder_and_base_files(
     status_says(page, "saved")
     saved = folder / "six_obstacles.csv"
     assert rse.Scheme.load(saved).to_csv() == rse.Scheme.load(REPO / "schemes/six_obstacles.csv").to_csv()
-    assert page.locator("#file-name").inner_text() == "six_obstacles.csv"
+    assert save_target(page) == "six_obstacles.csv"
+    assert page.locator("#work-folder").inner_text() == str(folder)
 
     # Base files of one's own: a Gazebo world template with a mark in it.
     subprocess.run([str(rse_gen_release_path()), "templates", "export", str(folder / "mine")], check=True, capture_output=True)

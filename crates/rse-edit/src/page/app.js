@@ -150,7 +150,11 @@ function changed() {
   $("unsaved").hidden = !unsaved;
   // "saved …" beside "unsaved" would say two things at once.
   if (unsaved && $("status").textContent.startsWith("saved ")) say("");
-  $("file-name").textContent = file.name || "(not saved yet)";
+  // A file in the working folder (shown beside it) by its path from there.
+  const folder = $("work-folder").textContent;
+  const shown = folder && file.name.startsWith(`${folder}/`) ? file.name.slice(folder.length + 1) : file.name;
+  $("file-name").textContent = shown || "(not saved yet)";
+  $("file-name").title = file.name || "(not saved yet)";
   $("undo").disabled = undoLog.past.length < 2;
   $("redo").disabled = !undoLog.future.length;
   try {
@@ -927,6 +931,6 @@ function buildFields(schema) {
     answer = await api("/api/state");
   } catch (e) { say(`the editor's server did not answer: ${e.message}; reload the page once it runs`); return; }
   buildFields(schema);
-  $("work-folder").textContent = $("dialog-folder").textContent = answer.folder;
+  $("work-folder").textContent = $("work-folder").title = $("dialog-folder").textContent = answer.folder;
   startFile(answer.scheme, answer.path, answer.draft);
 })();
