@@ -101,6 +101,18 @@ def table(page: Page) -> list[dict]:
     return [{k: v for k, v in row.items() if v != ""} for row in rows]
 
 
+def gen_summary_says(page: Page, text: str) -> None:
+    """Waits until Generate's summary line holds `text`."""
+    page.wait_for_function("text => document.getElementById('gen-summary').textContent.includes(text)", arg=text)
+
+
+def generate(page: Page, until: str) -> None:
+    """Clicks Generate and waits until its summary line holds `until`
+    ("not started", "worlds written", …)."""
+    page.get_by_role("button", name="Generate").click()
+    gen_summary_says(page, until)
+
+
 def save_target(page: Page) -> str:
     """The file the header names as the one Save writes, whole (the header
     shows a file in the working folder by its path from there)."""

@@ -11,7 +11,15 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import chromium_page, edit, running_editor, save, wait_ready
+from editor_harness import (
+    chromium_page,
+    edit,
+    gen_summary_says,
+    generate,
+    running_editor,
+    save,
+    wait_ready,
+)
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -148,8 +156,8 @@ def test_refused_values_are_marked_in_words_and_the_pictures_marked_out_of_date(
     # Generate with an amount that is not a number: refused on that field, nothing written.
     page.get_by_label("number of worlds").fill("abc")
     page.get_by_label("output folder").fill(str(folder / "worlds"))
-    page.get_by_role("button", name="Generate").click()
-    page.wait_for_function("document.getElementById('gen-summary').textContent.startsWith('not started')")
+    generate(page, "not started")
+    assert page.locator("#gen-summary").inner_text().startswith("not started")
     assert page.get_by_label("number of worlds").get_attribute("aria-invalid") == "true"
     assert "the number of worlds must be a whole number" in page.locator("#gen-summary").inner_text()
     assert not (folder / "worlds").exists()
@@ -372,13 +380,12 @@ def test_every_error_is_said_in_the_users_words_naming_the_control_and_the_fix(e
 
     # Another scheme's worlds in the output folder: a new folder is offered.
     page.get_by_label("output folder").fill(str(folder / "worlds"))
-    page.get_by_role("button", name="Generate").click()
-    page.wait_for_function("document.getElementById('gen-summary').textContent.includes('worlds written')")
+    generate(page, "worlds written")
     edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("3"))
     page.get_by_role("button", name="Generate").click()
     said("choose another output folder")
     page.get_by_role("button", name=f"Write into {folder / 'worlds-2'} instead").click()
-    page.wait_for_function("document.getElementById('gen-summary').textContent.includes('worlds written')")
+    gen_summary_says(page, "worlds written")
     assert (folder / "worlds-2").is_dir() and page.get_by_label("output folder").input_value() == str(folder / "worlds-2")
 
     # Open of a file that is not there, then Save as into a new folder.

@@ -8,7 +8,18 @@ from pathlib import Path
 
 import pytest
 from conftest import rse_gen_release_path
-from editor_harness import cell, edit, running_editor, save, save_as, save_target, status_says, table, wait_ready
+from editor_harness import (
+    cell,
+    edit,
+    generate,
+    running_editor,
+    save,
+    save_as,
+    save_target,
+    status_says,
+    table,
+    wait_ready,
+)
 from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
@@ -315,13 +326,12 @@ def test_files_like_a_desktop_program_new_samples_working_folder_and_base_files(
     page.get_by_label("number of worlds").fill("2")
     page.get_by_label("output folder").fill("worlds")
     page.get_by_label("base files").fill(str(folder / "nowhere"))
-    page.get_by_role("button", name="Generate").click()
-    page.wait_for_function("document.getElementById('gen-summary').textContent.startsWith('not started')")
+    generate(page, "not started")
+    assert page.locator("#gen-summary").inner_text().startswith("not started")
     assert page.get_by_label("base files").get_attribute("aria-invalid") == "true"
     assert "nowhere" in page.locator("#gen-summary").inner_text()
     page.get_by_label("base files").fill(str(folder / "mine"))
-    page.get_by_role("button", name="Generate").click()
-    page.wait_for_function("document.getElementById('gen-summary').textContent.includes('worlds written')")
+    generate(page, "worlds written")
     worlds = sorted((folder / "worlds").glob("world_*"))
     assert len(worlds) == 2
     for world in worlds:

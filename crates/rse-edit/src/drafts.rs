@@ -21,11 +21,6 @@ impl Drafts {
         Self { folder }
     }
 
-    /// The folder the drafts are in.
-    pub fn folder(&self) -> &Path {
-        &self.folder
-    }
-
     /// What identifies `file` across runs: its absolute path, its links
     /// resolved when it exists (two spellings of one file share a draft).
     /// A scheme in no file yet ("") is the one of the folder the editor
@@ -52,11 +47,7 @@ impl Drafts {
 
     /// `file`'s draft as the page last stored it, or None.
     pub fn load(&self, file: &str) -> Option<Value> {
-        let text = std::fs::read(self.entry("drafts", file)).ok()?;
-        let kept: Value = serde_json::from_slice(&text).ok()?;
-        // The entry names its file: a hash collision never hands over
-        // another file's draft.
-        (kept.get("file")?.as_str()? == Self::identity(file)).then(|| kept.get("draft").cloned())?
+        self.read("drafts", file, "draft")
     }
 
     /// Keeps `draft` as `file`'s (written whole or not at all).
@@ -64,9 +55,7 @@ impl Drafts {
     /// # Errors
     /// When the state folder or its file cannot be written.
     pub fn store(&self, file: &str, draft: &Value) -> Result<(), rse_world::Error> {
-        let entry = self.entry("drafts", file);
-        let kept = serde_json::json!({ "file": Self::identity(file), "draft": draft });
-        write_entry(&entry, &kept)
+        self.write("drafts", file, "draft", draft)
     }
 
     /// Forgets `file`'s draft (it was saved or discarded).
@@ -77,12 +66,7 @@ impl Drafts {
 
     /// The port the editor last served `file` on, if any.
     pub fn last_port(&self, file: &str) -> Option<u16> {
-        let text = std::fs::read(self.entry("ports", file)).ok()?;
-        let kept: Value = serde_json::from_slice(&text).ok()?;
-        if kept.get("file")?.as_str()? != Self::identity(file) {
-            return None;
-        }
-        u16::try_from(kept.get("port")?.as_u64()?).ok()
+        u16::try_from(self.read("ports", file, "port")?.as_u64()?).ok()
     }
 
     /// Remembers that `file` is served on `port`.
@@ -90,11 +74,30 @@ impl Drafts {
     /// # Errors
     /// When the state folder or its file cannot be written.
     pub fn remember_port(&self, file: &str, port: u16) -> Result<(), rse_world::Error> {
-        let entry = self.entry("ports", file);
-        write_entry(
-            &entry,
-            &serde_json::json!({ "file": Self::identity(file), "port": port }),
-        )
+        self.write("ports", file, "port", &Value::from(port))
+    }
+
+    /// The `field` of `file`'s entry of `kind`, or None. The entry names its
+    /// file: a hash collision never hands over another file's.
+    fn read(&self, kind: &str, file: &str, field: &str) -> Option<Value> {
+        let text = std::fs::read(self.entry(kind, file)).ok()?;
+        let mut kept: Value = serde_json::from_slice(&text).ok()?;
+        (kept.get("file")?.as_str()? == Self::identity(file))
+            .then(|| kept.get_mut(field).map(Value::take))?
+    }
+
+    /// Writes `file`'s entry of `kind` holding `value` as its `field`.
+    fn write(
+        &self,
+        kind: &str,
+        file: &str,
+        field: &str,
+        value: &Value,
+    ) -> Result<(), rse_world::Error> {
+        let entry = self.entry(kind, file);
+        let mut kept = serde_json::json!({ "file": Self::identity(file) });
+        kept[field] = value.clone();
+        write_entry(&entry, &kept)
     }
 }
 

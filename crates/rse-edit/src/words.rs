@@ -145,7 +145,7 @@ mod tests {
 
     /// What must never reach the page, and why: a flag, file syntax, Rust
     /// range syntax, an integer bound, a system's words, a key's spelling.
-    pub(crate) const FORBIDDEN: [(&str, &str); 11] = [
+    const FORBIDDEN: [(&str, &str); 11] = [
         (" --", "a command-line flag"),
         ("rse-gen ", "a command"),
         ("`# ", "scheme-file syntax"),
@@ -159,7 +159,7 @@ mod tests {
         ("pallet_size", "a key's spelling"),
     ];
 
-    pub(crate) fn assert_in_page_words(text: &str) {
+    fn assert_in_page_words(text: &str) {
         for (bad, what) in FORBIDDEN {
             assert!(!text.contains(bad), "{what} (`{bad}`) in {text:?}");
         }

@@ -94,7 +94,8 @@ const file = {
   opened: null, // the scheme of a document in no file as it was opened, as JSON
 };
 
-function draftKey() { return `rse-editor:${file.server || "(unnamed)"}`; }
+/** Where this browser keeps the draft of `of` (the file the server holds for the page). */
+function draftKey(of = file.server) { return `rse-editor:${of || "(unnamed)"}`; }
 
 function snapshot() { return JSON.stringify({ scheme: pageScheme(), selected: state.selected }); }
 
@@ -211,7 +212,7 @@ window.addEventListener("pagehide", () => { if (drafts.timer) sendDraft({ keepal
 
 /** Forgets the draft of `of` (the file the page held): saved or discarded. */
 function forgetDraft(of) {
-  try { localStorage.removeItem(`rse-editor:${of || "(unnamed)"}`); } catch (e) { /* nothing kept */ }
+  try { localStorage.removeItem(draftKey(of)); } catch (e) { /* nothing kept */ }
   sendDraft({ forget: true, of });
 }
 
@@ -680,10 +681,10 @@ async function saveTo(path, makeFolder = false) {
     if (answer.error.row !== null || answer.error.field !== null) markError(answer.error);
     return false;
   }
-  // The file is now what the page holds: the draft of the file the page
-  // held goes (the new file's is sent by `changed`), the name stays.
+  // The file is now what the page holds: the draft of another file the
+  // page held goes; `changed` below drops this browser's copy of this
+  // file's and sends the server its saved state.
   if (file.server !== answer.path) forgetDraft(file.server);
-  try { localStorage.removeItem(draftKey()); } catch (e) { /* nothing kept */ }
   file.server = file.path = file.name = answer.path;
   file.base = JSON.stringify(answer.scheme);
   file.saved = JSON.stringify(pageScheme());

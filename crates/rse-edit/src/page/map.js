@@ -170,7 +170,7 @@ export class TopView {
   /** Row `i`'s end at `cell` as {row, k, end}, or null: inside a random
    * range's rectangle, or on a point or the cells around it (`near`), or
    * exactly on the point (not `near`). */
-  endOf(i, cell, near) {
+  endAt(i, cell, near) {
     const row = this.page.rows()[i];
     for (const k of ENDS[row?.type] ?? []) {
       const end = endOf(row, k);
@@ -196,13 +196,13 @@ export class TopView {
     const selected = this.page.selected();
     const others = rows.map((_, i) => i).filter((i) => i !== selected);
     const name = (i) => `${rows[i].type.replaceAll("_", " ")} ${i + 1}`;
-    const first = (order, near) => { for (const i of order) { const e = this.endOf(i, cell, near); if (e) return e; } return null; };
+    const first = (order, near) => { for (const i of order) { const e = this.endAt(i, cell, near); if (e) return e; } return null; };
     const picked = (e) => ({ act: "move", ...e, text: e.row === selected ? `move ${name(e.row)}` : `select ${name(e.row)} and move it` });
     if (pick) {
       const e = first(others, true) ?? first([selected].filter((i) => i >= 0), true);
       return e ? picked(e) : { act: "none", text: "nothing here to select" };
     }
-    const own = selected >= 0 ? this.endOf(selected, cell, true) : null;
+    const own = selected >= 0 ? this.endAt(selected, cell, true) : null;
     if (own) return picked(own);
     const dot = first(others, false);
     if (dot && !dot.end.range) return picked(dot);
