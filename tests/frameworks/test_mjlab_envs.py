@@ -142,6 +142,43 @@ def test_bad_configurations_are_named() -> None:
     assert isinstance(EnvTerrainsEvent, type)
 
 
+def test_the_pool_is_the_one_of_the_config_mjlab_builds_whatever_copied_it() -> None:
+    """The scene's ``spec_fn`` is bound to the scene config that holds it,
+    read afresh: the copy tyro makes from the command line (as ``train``
+    does), ``dataclasses.replace`` and ``copy.deepcopy`` each build the
+    pool of their own settings, with the task's own ``spec_fn`` run first,
+    and a logged config has the scene once (nothing read off the stack)."""
+    import copy
+    import dataclasses
+
+    import mjlab
+    import tyro
+    import yaml
+
+    calls = []
+    cfg = ManagerBasedRlEnvCfg(
+        decimation=1,
+        scene=SceneCfg(num_envs=2, entities={"robot": EntityCfg(spec_fn=ball)}, spec_fn=lambda spec: calls.append(spec)),
+    )
+    use_env_terrains(cfg, SCHEME, seed=3)
+    built = tyro.cli(type(cfg), args=["--scene.num-envs", "3", "--scene.terrain.seed", "9"], default=cfg, config=mjlab.TYRO_FLAGS)
+    assert type(built.scene) is type(cfg.scene) and built.scene.spec_fn.scene is built.scene
+    env = ManagerBasedRlEnv(built, device="cpu")
+    try:
+        envs = env_terrains(env)
+        assert envs.num_envs == 3 and envs.terrain(0).seed == rse.EnvTerrains(SCHEME, 1, seed=9).terrain(0).seed
+        assert len(calls) == 1, "the task's own spec_fn ran first, once"
+    finally:
+        env.close()
+    deep = copy.deepcopy(cfg)
+    assert deep.scene.spec_fn.scene is deep.scene and deep.scene.terrain is not cfg.scene.terrain
+    moved = dataclasses.replace(cfg.scene, num_envs=5)
+    assert moved.spec_fn.scene is moved and moved.spec_fn.earlier is cfg.scene.spec_fn.earlier
+    logged = yaml.dump(dataclasses.asdict(cfg))
+    assert "spec_fn: !!python/object:rse._adapters.mjlab.spec_fn.PoolSpec" in logged
+    assert logged.count("scheme_sha256:") == 1, "the scene once in the logged config, not again in its spec_fn"
+
+
 
 def test_the_docs_example_runs_as_written(tmp_path) -> None:
     """docs/envs.md's ```python mjlab block runs as written."""

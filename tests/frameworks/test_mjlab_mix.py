@@ -95,12 +95,14 @@ def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_pat
         assert "Base Environment" not in text and not (tmp_path / "logs").exists()
 
 
-def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_path, capsys) -> None:
-    """mjlab's ``play`` takes no terrain flags and builds its env inside
-    ``run_play`` with the checkpoint's path in ``resume_path``: rse finds
-    the run's record there and plays on what the run trained on."""
+def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_path, capsys, monkeypatch) -> None:
+    """mjlab's ``play`` takes no terrain flags; its command line names the
+    checkpoint (``--checkpoint-file``): rse finds the run's record beside
+    it and plays on what the run trained on. Outside ``play`` the same
+    command line changes nothing."""
     import dataclasses
 
+    import mjlab.scripts.play  # noqa: F401  (this process is mjlab's play)
     from rse import _mjlab_run
 
     mine = tmp_path / "mine.csv"
@@ -109,10 +111,9 @@ def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_pat
     cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1", play=True)
     _mjlab_run.write(run, dataclasses.replace(cfg.scene.terrain, scheme=str(mine), seed=7))
     cfg.scene.num_envs = 2
-    # A stand-in for mjlab.scripts.play.run_play: the same name, module and local.
-    play = {"__name__": "mjlab.scripts.play", "ManagerBasedRlEnv": ManagerBasedRlEnv}
-    exec("def run_play(resume_path, env_cfg):\n    return ManagerBasedRlEnv(env_cfg, device='cpu')\n", play)
-    env = play["run_play"](run / "model_3.pt", cfg)
+    argv = ["play", "Rse-Velocity-Rough-Unitree-Go1", "--num-envs", "2", "--checkpoint-file", str(run / "model_3.pt")]
+    monkeypatch.setattr(sys, "argv", argv)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
     try:
         envs = env_terrains(env)
         want = rse.EnvTerrains(rse.Scheme.load(mine), 1, seed=7)
@@ -121,3 +122,10 @@ def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_pat
     finally:
         env.close()
     assert f"playing on what the run trained on: {run / 'params' / 'rse_scheme.csv'} (seed 7)" in capsys.readouterr().out
+
+    from rse._adapters.mjlab.spec_fn import plays_checkpoint
+
+    assert plays_checkpoint(["play", "T", f"--checkpoint_file={run}/model_9.pt"]) == f"{run}/model_9.pt"
+    assert plays_checkpoint(["play", "T", "--wandb-run-path", "a/b/c"]) is None
+    monkeypatch.delitem(sys.modules, "mjlab.scripts.play")
+    assert plays_checkpoint(argv) is None, "not play: its flags mean nothing"

@@ -470,7 +470,7 @@ impl Terrain {
         };
         match text {
             Some(bytes) => rse_world::write_atomically(&path, &bytes),
-            None => rse_world::write_mesh(&self.inner.mesh(), self.inner.globals().color, &path),
+            None => rse_world::write_mesh(&self.inner.mesh(), self.inner.globals(), &path),
         }
         .map_err(|e| world_error(py, &e))
     }

@@ -104,7 +104,7 @@ fn parts(scheme: &Scheme, budget: Duration) -> Vec<(String, Duration)> {
         (
             "terrain.usda".into(),
             median_time(
-                || drop(black_box(usda(&mesh, rse_core::Color::WOOD))),
+                || drop(black_box(usda(&mesh, &rse_core::Globals::default()))),
                 budget,
             ),
         ),

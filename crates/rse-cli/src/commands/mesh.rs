@@ -7,6 +7,6 @@ pub fn run(args: &MeshArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
     // The format is known from the suffix: refuse a bad one before generating.
     rse_world::mesh_format(&args.output)?;
     let terrain = super::load_world(&args.scheme, overrides, &args.world)?;
-    rse_world::write_mesh(&terrain.mesh(), terrain.globals().color, &args.output)?;
+    rse_world::write_mesh(&terrain.mesh(), terrain.globals(), &args.output)?;
     Ok(ExitStatus::Success)
 }

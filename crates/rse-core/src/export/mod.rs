@@ -4,13 +4,15 @@
 //! Writers build bytes in memory; where they go is the caller's business.
 
 mod glb;
+mod look;
 mod obj;
 mod stl;
 mod text;
 mod usda;
 
 pub use glb::glb;
-pub use obj::{MATERIAL, mtl, obj};
+pub use look::mtl;
+pub use obj::{MATERIAL, obj};
 pub use stl::stl;
 pub use usda::usda;
 

@@ -4,7 +4,6 @@
 use std::fmt::Write as _;
 
 use super::text::{CoordinateText, push_int};
-use crate::Color;
 use crate::mesh::{Normal, TriMesh};
 
 /// The material name used by [`obj`] and defined by [`mtl`].
@@ -62,11 +61,3 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
     out
 }
 
-/// The MTL text defining [`MATERIAL`]: matte, of the scheme's `color`
-/// (light wood by default).
-pub fn mtl(color: Color) -> String {
-    format!(
-        "# rse {}\nnewmtl {MATERIAL}\nKa 0.2 0.2 0.2\nKd {color}\nKs 0.05 0.05 0.05\nNs 10\nd 1\nillum 2\n",
-        crate::VERSION
-    )
-}

@@ -8,18 +8,18 @@
 use std::fmt::Write as _;
 
 use super::text::{CoordinateText, push_int};
-use crate::Color;
+use crate::Globals;
 use crate::mesh::TriMesh;
 use crate::mesh::invariants::bounding_box;
 
 const FMT: &str = "writing to a String cannot fail";
 
 /// The `.usda` text of a layer holding `mesh` as the `Mesh` prim `terrain`,
-/// displayed in `color`.
+/// displayed as the scheme's globals say (`look`).
 ///
 /// # Panics
 /// Never: formatting into a `String` cannot fail.
-pub fn usda(mesh: &TriMesh, color: Color) -> String {
+pub fn usda(mesh: &TriMesh, globals: &Globals) -> String {
     let mut out = String::with_capacity(mesh.vertices().len() * 32 + mesh.triangles().len() * 24);
     writeln!(
         out,
@@ -59,12 +59,9 @@ pub fn usda(mesh: &TriMesh, color: Color) -> String {
         coordinates.push_point(&mut out, point, ", ");
         out.push(')');
     }
-    let [r, g, b] = color.rgb();
-    writeln!(
-        out,
-        "]\n    color3f[] primvars:displayColor = [({r}, {g}, {b})]\n    uniform token subdivisionScheme = \"none\"\n}}"
-    )
-    .expect(FMT);
+    out.push_str("]\n");
+    out.push_str(&super::look::usd_display(globals));
+    out.push_str("    uniform token subdivisionScheme = \"none\"\n}\n");
     out
 }
 

@@ -6,7 +6,7 @@
 use std::io::Write as _;
 use std::path::Path;
 
-use rse_core::Color;
+use rse_core::Globals;
 use rse_core::export::{self, MeshFormat};
 use rse_core::mesh::TriMesh;
 
@@ -158,8 +158,8 @@ pub fn mesh_format(path: &Path) -> Result<MeshFormat, Error> {
 /// Writes `mesh` to `path` in the format its suffix names (`.obj`, `.stl`,
 /// `.glb`). An OBJ gets its material library beside it, named after it
 /// (`terrain.obj` → `terrain.mtl`); a name that is not UTF-8 is refused,
-/// since the OBJ must name the `.mtl` in text. `color` is the material's.
-pub fn write_mesh(mesh: &TriMesh, color: Color, path: &Path) -> Result<(), Error> {
+/// since the OBJ must name the `.mtl` in text. `globals` give its material (`export::mtl`).
+pub fn write_mesh(mesh: &TriMesh, globals: &Globals, path: &Path) -> Result<(), Error> {
     let format = mesh_format(path)?;
     match format {
         MeshFormat::Obj => {
@@ -173,7 +173,7 @@ pub fn write_mesh(mesh: &TriMesh, color: Color, path: &Path) -> Result<(), Error
                 })?;
             let obj = export::obj(mesh, Some(mtl_name));
             let had_mtl = mtl_path.symlink_metadata().is_ok();
-            write_atomically(&mtl_path, export::mtl(color).as_bytes())?;
+            write_atomically(&mtl_path, export::mtl(globals).as_bytes())?;
             // A failed OBJ takes its new `.mtl` with it.
             write_atomically(path, obj.as_bytes()).inspect_err(|_| {
                 if !had_mtl {
@@ -196,7 +196,7 @@ mod tests {
         let scheme =
             rse_core::Scheme::from_csv("# size: 3x3\ntype,height\nrandom,2\n", None).unwrap();
         let mesh = rse_core::generate(&scheme, 0, 0).mesh();
-        write_mesh(&mesh, Color::WOOD, &dir.path().join("t.obj")).unwrap();
+        write_mesh(&mesh, &Globals::default(), &dir.path().join("t.obj")).unwrap();
         let text = std::fs::read_to_string(dir.path().join("t.obj")).unwrap();
         assert!(text.contains("mtllib t.mtl"));
         assert!(dir.path().join("t.mtl").is_file());
@@ -205,7 +205,7 @@ mod tests {
             2,
             "no temporary file left"
         );
-        let err = write_mesh(&mesh, Color::WOOD, &dir.path().join("t.ply")).unwrap_err();
+        let err = write_mesh(&mesh, &Globals::default(), &dir.path().join("t.ply")).unwrap_err();
         assert!(err.to_string().contains("unknown mesh format"), "{err}");
     }
 
@@ -218,7 +218,7 @@ mod tests {
             rse_core::Scheme::from_csv("# size: 3x3\ntype,height\nrandom,2\n", None).unwrap();
         let mesh = rse_core::generate(&scheme, 0, 0).mesh();
         let name = std::ffi::OsStr::from_bytes(b"t\xff.obj");
-        let err = write_mesh(&mesh, Color::WOOD, &dir.path().join(name)).unwrap_err();
+        let err = write_mesh(&mesh, &Globals::default(), &dir.path().join(name)).unwrap_err();
         assert!(err.to_string().contains("not UTF-8"), "{err}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }

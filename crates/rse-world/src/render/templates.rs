@@ -74,6 +74,14 @@ const BUILTIN: &[(Target, &str, &str)] = &[
     ),
 ];
 
+/// Our files that every target's templates share, imported by name
+/// (`{% import "look.j2" as look %}`: the terrain's and the ground's looks
+/// in every target, so a look key of the scheme is written in one file).
+/// Built in, for ours and a user's templates alike; never written into a
+/// world, and not replaced by a `--template` folder (a user's template
+/// that wants another look writes it itself).
+const SHARED: &[(&str, &str)] = &[("look.j2", include_str!("../../../../templates/look.j2"))];
+
 /// One file of a target's template folder.
 #[derive(Debug, Clone)]
 struct TemplateFile {
@@ -207,6 +215,12 @@ impl Templates {
                 .expect("default delimiters"),
         );
         let mut all = Vec::new();
+        for &(name, source) in SHARED {
+            all.extend(format!("{name}\0{}\0", source.len()).bytes());
+            all.extend(source.as_bytes());
+            env.add_template(name, source)
+                .map_err(|e| template_error(&format!("templates/{name}"), source.as_bytes(), &e))?;
+        }
         for (target, list) in &files {
             for file in list {
                 all.extend(format!("{target}/{}\0{}\0", file.path, file.bytes.len()).bytes());

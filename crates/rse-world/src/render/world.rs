@@ -243,8 +243,7 @@ pub(crate) fn terrain_files(
     if shared_mesh || !gazebo_meshes.is_empty() || usd_mesh {
         let mesh = terrain.mesh();
         let obj_bytes = obj(&mesh, Some("terrain.mtl")).into_bytes();
-        let color = terrain.globals().color;
-        let mtl_bytes = mtl(color).into_bytes();
+        let mtl_bytes = mtl(terrain.globals()).into_bytes();
         let mut mesh_folders = Vec::new();
         if shared_mesh {
             mesh_folders.push("meshes".to_owned());
@@ -265,7 +264,7 @@ pub(crate) fn terrain_files(
         if usd_mesh {
             files.insert(
                 "usd/terrain.usda".to_owned(),
-                usda(&mesh, color).into_bytes(),
+                usda(&mesh, terrain.globals()).into_bytes(),
             );
         }
     }

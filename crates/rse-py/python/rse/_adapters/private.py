@@ -72,13 +72,11 @@ USES = (
         "the collider's height field and bounds, rewritten in place", instance=True),
     Use("genesis", "genesis.engine.entities.rigid_entity.terrain_entity:TerrainEntity", "_terrain_height_field",
         "rse.genesis.sync", "the heights get_terrain_height answers from", instance=True),
-    # mjlab: the scene's env count and the ray sensors' state.
+    # mjlab: the ray sensors' state.
     Use("mjlab", "mjlab.sim.sim:Simulation", "_sensor_context", "rse.mjlab.EnvTerrainsEvent",
         "the ray sensors' render context, whose height-field meshes a reset refreshes", instance=True),
     Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", "_cached_world_origins", "rse.mjlab.exact_height_scan",
         "where the scan's rays start this step", instance=True),
-    Use("mjlab", "mjlab.scene.scene:Scene", "_cfg", "rse.mjlab.use_env_terrains",
-        "the env count and terrain settings of the scene being built (read from the stack in spec_fn)", instance=True),
     # MuJoCo Warp's render context (mjlab's ray sensors): per-field BVHs,
     # fields of a public class that MuJoCo Warp fills and reads itself.
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",

@@ -9,7 +9,7 @@ from typing import Any, Optional, Union
 from rse._adapters.mjlab.curriculum import initial_levels, terrain_difficulty
 from rse._adapters.mjlab.event import TERM, EnvTerrainsEvent
 from rse._adapters.mjlab.pool import BODY
-from rse._adapters.mjlab.spec_fn import PoolSpec
+from rse._adapters.mjlab.spec_fn import PoolScene, pool_scene
 from rse._adapters.mjlab.terms import out_of_slot
 from rse._adapters.mjlab.terrains import scheme_of, scheme_setting
 from rse._adapters.tiles import SchemeLike
@@ -140,7 +140,7 @@ def use_env_terrains(
         )
     if BODY in (getattr(scene, "entities", None) or {}):
         raise ValueError(f"env_cfg.scene.entities[{BODY!r}]: rse's terrain body is named {BODY!r}; rename the entity")
-    if isinstance(scene.spec_fn, PoolSpec):
+    if isinstance(scene, PoolScene):
         raise ValueError("env_cfg: has rse's terrains already (use_env_terrains was called on it once)")
     if spawn_radius is None:
         spawn_radius = spawn_radius_of(env_cfg)
@@ -169,8 +169,9 @@ def use_env_terrains(
         spawn_radius=spawn_radius,
         apart=apart,
     )
-    earlier = scene.spec_fn
-    scene.spec_fn = PoolSpec(earlier)
+    # The scene becomes a copy whose spec_fn adds the pool of whatever
+    # config mjlab builds from it (the command line's included).
+    env_cfg.scene = pool_scene(scene)
     # The scheme, seed and levels are the scene's EnvTerrainCfg's (which the
     # command line sets): none is copied here, where it would go stale.
     params = dict(env_offset=env_offset)

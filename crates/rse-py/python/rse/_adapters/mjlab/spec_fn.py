@@ -1,33 +1,51 @@
 """The scene's ``spec_fn``: rse's pool added while mjlab's ``Scene`` builds
-the scene, sized and set from the ``Scene`` being built (its env count,
-its ``EnvTerrainCfg``, the run ``play`` replays)."""
+the scene, sized and set from the scene's own config (its env count, its
+``EnvTerrainCfg``), and, in mjlab's ``play``, the run the checkpoint
+recorded. Nothing is read off the call stack."""
 
 from __future__ import annotations
 
-from typing import Any
+import sys
+from typing import Any, Optional
 
-from rse._adapters import private
 from rse._adapters.mjlab.pool import add_pool, available_memory, pool_memory
 from rse._adapters.mjlab.terrains import probe_envs, scheme_of, terrain_settings
 
+PLAY_MODULE = "mjlab.scripts.play"
+"""mjlab's ``play`` command."""
+
+CHECKPOINT_FLAGS = ("--checkpoint-file", "--checkpoint_file")
+"""How ``play``'s command line names the checkpoint it plays (mjlab's
+``PlayConfig.checkpoint_file``; tyro takes either spelling)."""
+
 
 class PoolSpec:
-    """The scene's ``spec_fn``: the earlier one, then rse's pool, one field
-    per env of the scene being built. Everything is read from the ``Scene``
-    mjlab is building (the caller of ``spec_fn``): its env count and its
-    ``EnvTerrainCfg``, as mjlab's ``train`` and ``play`` rebuilt it from the
-    registered config with the command line's overrides
-    (``--env.scene.num-envs 4096``, ``--env.scene.terrain.scheme``). It
-    holds no settings of its own, so a run's logged config (``env.yaml``)
-    has the scheme once, where it was set."""
+    """The ``spec_fn`` of one scene config (``scene``): the earlier one,
+    then rse's pool, one field per env. Made afresh each time the scene
+    config's ``spec_fn`` is read (``PoolScene``), so it is bound to the
+    config mjlab builds, as mjlab's ``train`` and ``play`` rebuilt it from
+    the registered config with the command line's overrides
+    (``--env.scene.num-envs 4096``, ``--env.scene.terrain.scheme``). mjlab
+    sets ``scene.terrain.num_envs`` from the scene before it calls this."""
 
-    def __init__(self, earlier: Any) -> None:
+    def __init__(self, earlier: Any, scene: Any = None) -> None:
         self.earlier = earlier
+        self.scene = scene
+
+    def __getstate__(self) -> dict[str, Any]:
+        # A logged config (mjlab's env.yaml, written from a copy) has the
+        # scene once, where it is, not again inside its spec_fn.
+        return {"earlier": self.earlier}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.earlier, self.scene = state["earlier"], None
 
     def __call__(self, spec: Any) -> None:
         if self.earlier is not None:
             self.earlier(spec)
-        scene, device = scene_being_built()
+        scene = self.scene
+        if scene is None:
+            raise ValueError("env_cfg.scene.spec_fn: rse's pool is added by the scene config use_env_terrains set (read it from env_cfg.scene)")
         if type(scene.terrain).__name__ != "EnvTerrainCfg":
             raise ValueError(
                 f"env_cfg.scene.terrain: rse's pool needs the EnvTerrainCfg use_env_terrains set; the scene's terrain is a {type(scene.terrain).__name__}"
@@ -43,6 +61,7 @@ class PoolSpec:
         scheme = scheme_of(settings["scheme"])
         oversample = settings["oversample"]
         n = int(scene.num_envs)
+        device = likely_device()
         host, on_device = pool_memory(probe_envs(scheme, oversample), n, device)
         print(
             f"[INFO] rse terrains: {n} envs, {(host + on_device) / n / 2**20:.2f} MiB an env, "
@@ -58,22 +77,72 @@ class PoolSpec:
         add_pool(spec, scheme, n, oversample=oversample, apart=bool(settings.get("apart")))
 
 
+class PoolScene:
+    """Mixed into a copy of an mjlab ``SceneCfg`` by ``pool_scene``: its
+    ``spec_fn`` reads as a ``PoolSpec`` bound to this very config, so
+    every copy (tyro's from the command line, ``dataclasses.replace``,
+    ``copy.deepcopy``) adds the pool of its own settings. What was set as
+    ``spec_fn`` (the task's own, or a ``PoolSpec`` read from another copy)
+    runs first."""
+
+    @property
+    def spec_fn(self) -> PoolSpec:
+        return PoolSpec(self.__dict__.get("_rse_earlier"), self)
+
+    @spec_fn.setter
+    def spec_fn(self, value: Any) -> None:
+        self.__dict__["_rse_earlier"] = value.earlier if isinstance(value, PoolSpec) else value
+
+
+_SCENE_CLASSES: dict[type, type] = {}
+
+
+def pool_scene(scene: Any) -> Any:
+    """A copy of ``scene`` (an mjlab ``SceneCfg``, or a subclass) whose
+    ``spec_fn`` adds rse's pool after the one it had. Its class is the
+    scene's own with ``PoolScene`` mixed in (its fields, its dataclass
+    methods), kept in this module under ``RsePool<Name>`` so a pickled
+    config finds it."""
+    base = type(scene)
+    cls = _SCENE_CLASSES.get(base)
+    if cls is None:
+        name = f"RsePool{base.__name__}"
+        while name in globals():
+            name += "_"
+        cls = type(name, (PoolScene, base), {"__module__": __name__, "__qualname__": name, "__doc__": base.__doc__})
+        globals()[name] = _SCENE_CLASSES[base] = cls
+    copy = cls.__new__(cls)
+    fields = dict(vars(scene))
+    earlier = fields.pop("spec_fn", None)
+    copy.__dict__.update(fields)
+    copy.spec_fn = earlier
+    return copy
+
+
+def likely_device() -> str:
+    """Where mjlab will put the simulation: CUDA where torch sees a GPU,
+    else the CPU, as ``train`` (CPU when ``CUDA_VISIBLE_DEVICES`` is empty,
+    which hides every GPU from torch) and ``play`` (unless ``--device``)
+    choose. Only the memory check reads it: the scene config does not
+    carry the device, which mjlab passes to its ``Scene`` alone."""
+    try:
+        import torch
+
+        return "cuda" if torch.cuda.is_available() else "cpu"
+    except ImportError:
+        return "cpu"
+
+
 def play_the_runs_scheme(terrain: Any) -> None:
     """In mjlab's ``play`` of a checkpoint whose run recorded its terrains
     (``rse._mjlab_run``), the terrain's scheme and seed become the run's,
     and it says so: ``play`` takes no terrain flags, and would show the
-    task's registered scheme. Found as ``run_play``'s ``resume_path`` on
-    the call stack (``play`` builds the env inside it); elsewhere nothing
-    changes."""
+    task's registered scheme. The checkpoint is the one ``play``'s command
+    line names (``plays_checkpoint``); elsewhere nothing changes."""
     from rse._mjlab_run import run_terrain
 
-    def resume_path(frame: Any) -> Any:
-        if frame.f_code.co_name == "run_play" and frame.f_globals.get("__name__", "").startswith("mjlab."):
-            return frame.f_locals.get("resume_path")
-        return None
-
-    resume = on_the_stack(resume_path)
-    recorded = run_terrain(str(resume)) if resume is not None else None
+    checkpoint = plays_checkpoint(sys.argv)
+    recorded = run_terrain(checkpoint) if checkpoint is not None else None
     if recorded is None:
         return
     for name, value in recorded.items():
@@ -82,35 +151,21 @@ def play_the_runs_scheme(terrain: Any) -> None:
     print(f"[INFO] rse: playing on what the run trained on: {shown} (seed {terrain.seed})")
 
 
-def on_the_stack(pick: Any) -> Any:
-    """The first value ``pick(frame)`` gives that is not None, walking up
-    the call stack from the caller; None if none does."""
-    import inspect
-
-    frame = inspect.currentframe()
-    try:
-        while frame is not None:
-            found = pick(frame)
-            if found is not None:
-                return found
-            frame = frame.f_back
-    finally:
-        del frame
-    return None
-
-
-def scene_being_built() -> tuple[Any, str]:
-    """The ``SceneCfg`` and device of the mjlab ``Scene`` whose construction
-    called this (through ``spec_fn``)."""
-    from mjlab.scene import Scene
-
-    def scene(frame: Any) -> Any:
-        owner = frame.f_locals.get("self")
-        if isinstance(owner, Scene):
-            return private.getattr_checked(owner, "_cfg", "mjlab"), str(owner.device)
+def plays_checkpoint(argv: list[str]) -> Optional[str]:
+    """The checkpoint file mjlab's ``play`` was given (``--checkpoint-file
+    PATH`` on its command line, ``argv``) when this process runs ``play``
+    (its module imported, or run as ``python -m``); None otherwise. The
+    flag is ``play``'s public interface; a checkpoint found through
+    ``--wandb-run-path`` is downloaded without its run folder, so it has no
+    record to replay."""
+    main = getattr(sys.modules.get("__main__"), "__spec__", None)
+    if PLAY_MODULE not in sys.modules and getattr(main, "name", None) != PLAY_MODULE:
         return None
-
-    found = on_the_stack(scene)
-    if found is None:
-        raise ValueError("env_cfg.scene.spec_fn: rse's pool is added while mjlab's Scene builds the scene (ManagerBasedRlEnv)")
+    found = None
+    for i, arg in enumerate(argv[1:], start=1):
+        for flag in CHECKPOINT_FLAGS:
+            if arg == flag and i + 1 < len(argv):
+                found = argv[i + 1]
+            elif arg.startswith(flag + "="):
+                found = arg[len(flag) + 1 :]
     return found
