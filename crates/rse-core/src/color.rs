@@ -19,6 +19,9 @@ impl Color {
     /// Matte light wood, the colour of a NIST stepfield's blocks.
     pub const WOOD: Color = Color([0.72, 0.58, 0.42]);
 
+    /// Light grey, the ground's colour around the terrain.
+    pub const LIGHT_GREY: Color = Color([0.8, 0.8, 0.8]);
+
     /// `[r, g, b]`, each a finite number from 0 to 1.
     ///
     /// # Errors

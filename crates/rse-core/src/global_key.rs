@@ -158,6 +158,21 @@ macro_rules! for_each_global_key {
                     arg: (value_name = "R,G,B")
                 },
             }
+            /// The ground's colour around the terrain, red green blue from 0 to 1.
+            GroundColor {
+                name: "ground_color",
+                field: ground_color: $crate::Color,
+                unit: None,
+                expects: "red, green and blue, each 0 to 1",
+                example: "0.3 0.5 0.3",
+                doc: "the ground's colour around the terrain: red green blue, each 0 to 1 (light grey)",
+                stored: { default: $crate::Color::LIGHT_GREY, text: unless_default, record: unless_default },
+                flag: {
+                    ty: $crate::Color,
+                    help: "The ground's colour around the terrain: red green blue, each 0 to 1.",
+                    arg: (value_name = "R,G,B")
+                },
+            }
             /// Worlds in a batch.
             Amount {
                 name: "amount",

@@ -122,6 +122,7 @@ class Scheme:
         step_height: _Float = 0.1,
         base: _Float = 0.0,
         color: Union[tuple[_Float, _Float, _Float], str] = (0.72, 0.58, 0.42),
+        ground_color: Union[tuple[_Float, _Float, _Float], str] = (0.8, 0.8, 0.8),
         amount: _Int = 1,
         seed: _Int = 0,
     ) -> Scheme: ...
