@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use super::text::{CoordinateText, push_int};
 use crate::mesh::{Normal, TriMesh};
 
-/// The material name used by [`obj`] and defined by [`mtl`].
+/// The material name used by [`obj`] and defined by [`mtl`](super::mtl).
 pub const MATERIAL: &str = "rse_terrain";
 
 const FMT: &str = "writing to a String cannot fail";
@@ -60,4 +60,3 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
     }
     out
 }
-

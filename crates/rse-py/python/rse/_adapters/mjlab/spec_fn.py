@@ -111,7 +111,7 @@ def pool_scene(scene: Any) -> Any:
             name += "_"
         cls = type(name, (PoolScene, base), {"__module__": __name__, "__qualname__": name, "__doc__": base.__doc__})
         globals()[name] = _SCENE_CLASSES[base] = cls
-    copy = cls.__new__(cls)
+    copy: Any = object.__new__(cls)
     fields = dict(vars(scene))
     earlier = fields.pop("spec_fn", None)
     copy.__dict__.update(fields)
