@@ -101,8 +101,8 @@ def pool_scene(scene: Any) -> Any:
     """A copy of ``scene`` (an mjlab ``SceneCfg``, or a subclass) whose
     ``spec_fn`` adds rse's pool after the one it had. Its class is the
     scene's own with ``PoolScene`` mixed in (its fields, its dataclass
-    methods), kept in this module under ``RsePool<Name>`` so a pickled
-    config finds it."""
+    methods), kept in this module under ``RsePool<Name>``. (mjlab's scene
+    configs do not pickle: their entities' defaults are lambdas.)"""
     base = type(scene)
     cls = _SCENE_CLASSES.get(base)
     if cls is None:
