@@ -144,3 +144,35 @@ def test_a_colour_is_drawn_by_the_simulators(tmp_path: Path) -> None:
     assert [round(float(c), 6) for c in colors[0]] == [0.1, 0.2, 0.3]
     assert rse.check(world).ok
     assert json.loads((world / "rse.json").read_text())["globals"]["color"] == [0.1, 0.2, 0.3]
+
+
+def test_the_ground_colour_is_drawn_by_the_simulators(tmp_path: Path) -> None:
+    """`ground_color` reaches the ground as MuJoCo (its floor's checker, two
+    shades around the colour), usd-core and PyBullet load it; the terrain
+    keeps its own colour, and `check` rebuilds the world from its record."""
+    import mujoco
+    import pybullet
+    from pxr import Usd, UsdGeom
+
+    scheme = rse.Scheme.load(Path(__file__).parents[2] / "schemes" / "six_obstacles.csv").replace(ground_color=(0.3, 0.5, 0.98))
+    rse.write_worlds(scheme, tmp_path, amount=1, targets="mujoco,usd,urdf")
+    world = tmp_path / "world_0000"
+    spec = mujoco.MjSpec.from_file(str(world / "mujoco" / "rse.xml"))
+    grid = spec.texture("grid")
+    assert [round(float(c), 6) for c in grid.rgb1] == [0.35, 0.55, 1.0], "lightened, within 0 to 1"
+    assert [round(float(c), 6) for c in grid.rgb2] == [0.25, 0.45, 0.93]
+    model = spec.compile()
+    assert model.mat_texid[model.mat("grid").id].max() == model.tex("grid").id
+    stage = Usd.Stage.Open(str(world / "usd" / "rse.usda"))
+    ground = UsdGeom.Cube(stage.GetPrimAtPath("/World/ground")).GetDisplayColorAttr().Get()
+    assert [round(float(c), 6) for c in ground[0]] == [0.3, 0.5, 0.98]
+    client = pybullet.connect(pybullet.DIRECT)
+    try:
+        body = pybullet.loadURDF(str(world / "urdf" / "rse.urdf"), useFixedBase=True, physicsClientId=client)
+        shapes = pybullet.getVisualShapeData(body, physicsClientId=client)
+        colours = {round(s[7][0], 6): [round(c, 6) for c in s[7]] for s in shapes}
+        assert colours[0.3] == [0.3, 0.5, 0.98, 1.0], shapes
+        assert colours[0.72] == [0.72, 0.58, 0.42, 1.0], "the terrain keeps its colour"
+    finally:
+        pybullet.disconnect(client)
+    assert rse.check(world).ok
