@@ -113,6 +113,15 @@ def generate(page: Page, until: str) -> None:
     gen_summary_says(page, until)
 
 
+def generate_refused(page: Page, field: str, words: str) -> None:
+    """Clicks Generate and checks it was refused before starting, on the
+    control labelled `field` (marked invalid), with `words` in the summary."""
+    generate(page, "not started")
+    assert page.locator("#gen-summary").inner_text().startswith("not started")
+    assert page.get_by_label(field).get_attribute("aria-invalid") == "true"
+    assert words in page.locator("#gen-summary").inner_text()
+
+
 def save_target(page: Page) -> str:
     """The file the header names as the one Save writes, whole (the header
     shows a file in the working folder by its path from there)."""
