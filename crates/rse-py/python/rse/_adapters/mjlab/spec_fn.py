@@ -101,16 +101,15 @@ def pool_scene(scene: Any) -> Any:
     """A copy of ``scene`` (an mjlab ``SceneCfg``, or a subclass) whose
     ``spec_fn`` adds rse's pool after the one it had. Its class is the
     scene's own with ``PoolScene`` mixed in (its fields, its dataclass
-    methods), kept in this module under ``RsePool<Name>``. (mjlab's scene
-    configs do not pickle: their entities' defaults are lambdas.)"""
+    methods), ``RsePool<Name>``, made once per class. (It needs no name
+    pickle could find: mjlab's scene configs do not pickle, their
+    entities' defaults being lambdas.)"""
     base = type(scene)
     cls = _SCENE_CLASSES.get(base)
     if cls is None:
         name = f"RsePool{base.__name__}"
-        while name in globals():
-            name += "_"
         cls = type(name, (PoolScene, base), {"__module__": __name__, "__qualname__": name, "__doc__": base.__doc__})
-        globals()[name] = _SCENE_CLASSES[base] = cls
+        _SCENE_CLASSES[base] = cls
     copy: Any = object.__new__(cls)
     fields = dict(vars(scene))
     earlier = fields.pop("spec_fn", None)
