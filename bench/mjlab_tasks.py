@@ -1,11 +1,17 @@
 """mjlab's Go1 rough velocity task on mjlab's own terrain and on rse's
 per-env stepfields (a new terrain every episode), same envs, same run: env
-steps per second, what the contact solver is given and does (terrain
-contacts per loaded foot, constraint rows and solver iterations per world,
-broadphase pairs, penetration), the time of one PPO iteration of mjlab's
-runner, and the height scan from rays (mjlab's ``height_scan``) beside
-rse's exact one (``exact_height_scan``), per step. The aim: rse's overhead
-at most 5 % of a step.
+steps per second, each part's share of a step for both terrains (physics,
+of it the collision pipeline, the ray sensors, the managers' terms, the
+resets at the episodes' rate), what the contact solver is given and does
+(terrain contacts per loaded foot, constraint rows and solver iterations
+per world, broadphase pairs, penetration), the time of one PPO iteration
+of mjlab's runner, the height scan from rays (mjlab's ``height_scan``)
+beside rse's exact one (``exact_height_scan``), and the proxies a CPU
+checks for a GPU (docs/train.md): terrain bytes per env on the device
+(counted from the arrays, the estimate the ``[INFO]`` line prints, and on
+a GPU what Warp's allocator holds for each env beside mjlab's), a reset's
+host time and bytes uploaded per env, host copies in rse's step terms.
+The aim: rse's overhead at most 5 % of a step.
 
 Episodes are cut short (``--episode-s``) so that resets, where rse writes
 new terrains, happen as often as in a long training run's worst case.
@@ -112,6 +118,96 @@ def scan_cost(env, repeats: int) -> tuple[float, float]:
     return timed(envs_mdp.height_scan), timed(exact_height_scan)
 
 
+def sync(env) -> None:
+    import warp as wp
+
+    wp.synchronize_device(env.sim.wp_device)
+    if str(env.device).startswith("cuda"):
+        torch.cuda.synchronize()
+
+
+def timed(env, f, repeats: int) -> float:
+    """Seconds per call of ``f``, the device drained before and after."""
+    sync(env)
+    start = time.perf_counter()
+    for _ in range(repeats):
+        f()
+    sync(env)
+    return (time.perf_counter() - start) / repeats
+
+
+def step_parts(env, episode_s: float, repeats: int) -> dict[str, float]:
+    """Milliseconds per env step of each part of one: physics (the
+    decimation's ``sim.step``s), of it the collision pipeline (MuJoCo
+    Warp's ``collision``: broadphase and narrowphase, captured in a graph
+    on a GPU as mjlab captures the step), the sensors (``sim.sense``: ray
+    casting), the managers' terms (observations, rewards, terminations),
+    and the resets at the episodes' rate (``env.reset`` of the envs one
+    step resets on average: rse's new terrains among them)."""
+    import mujoco_warp as mjw
+    import warp as wp
+
+    sim, decimation = env.sim, env.cfg.decimation
+    collision = lambda: mjw.collision(sim.wp_model, sim.wp_data)  # noqa: E731
+    if sim.wp_device.is_cuda:
+        with wp.ScopedDevice(sim.wp_device), wp.ScopedCapture() as capture:
+            collision()
+        graph = capture.graph
+        collision = lambda: wp.capture_launch(graph)  # noqa: E731
+    per_step = max(1, round(env.num_envs * env.step_dt / episode_s))
+    ids = torch.arange(per_step, device=env.device)
+    return {
+        "physics": 1e3 * decimation * timed(env, sim.step, repeats),
+        "of it collision": 1e3 * decimation * timed(env, collision, repeats),
+        "sensors": 1e3 * timed(env, sim.sense, repeats),
+        "terms": 1e3
+        * timed(env, lambda: (env.observation_manager.compute(), env.reward_manager.compute(dt=env.step_dt), env.termination_manager.compute()), repeats),
+        "resets": 1e3 * timed(env, lambda: env.reset(env_ids=ids), max(1, repeats // 2)),
+    }
+
+
+def proxies(env, episode_s: float) -> dict[str, float]:
+    """The CPU-checkable proxies of rse's env: terrain bytes per env on
+    the device (from the arrays), the reset event's host time per env
+    (generation, then the upload) and bytes uploaded per env, and the host
+    copies rse's step terms make."""
+    import sys
+
+    from rse._adapters.mjlab.event import event_of
+    from rse.mjlab import exact_height_scan, out_of_slot
+
+    sys.path.insert(0, str(REPO / "tests" / "frameworks"))
+    from host_copies import HostCopies
+
+    event = event_of(env, "rse_terrain")
+    parts = event.device_bytes()
+    n = max(1, round(env.num_envs * env.step_dt / episode_s))
+    ids = list(range(n))
+    generate = timed(env, lambda: event.envs.reset(ids), 5) / n
+    upload = timed(env, lambda: event._copy_out(ids), 5) / n
+    cells = parts["fields"] + parts["coarse fields"]
+    with HostCopies() as copies:
+        exact_height_scan(env, "terrain_scan")
+        out_of_slot(env)
+    return {
+        "device bytes/env": sum(parts.values()) / env.num_envs,
+        "reset generate us/env": 1e6 * generate,
+        "reset upload us/env": 1e6 * upload,
+        # The samples, each field's start (4 bytes) and the origin (12).
+        "uploaded bytes/env": cells / env.num_envs + 2 * 4 + 12,
+        "host copies in step terms": float(len(copies.found)),
+    }
+
+
+def allocated(device: str) -> int:
+    """Bytes Warp's allocator holds on ``device`` (0 on the CPU)."""
+    import warp as wp
+
+    if not device.startswith("cuda"):
+        return 0
+    return int(wp.get_mempool_used_mem_current(device))
+
+
 def ppo_iteration(task: str, env) -> float:
     from dataclasses import asdict
 
@@ -146,7 +242,11 @@ def main() -> None:
     # Both envs live side by side and are measured in alternating rounds:
     # on a small machine one long run of each is at the mercy of whatever
     # else runs (single runs of a second differed by 40 %).
-    envs = {rse: make(args.task, args.num_envs, args.device, args.episode_s, rse) for rse in (False, True)}
+    envs, held = {}, {}
+    for rse in (False, True):
+        before = allocated(args.device)
+        envs[rse] = make(args.task, args.num_envs, args.device, args.episode_s, rse)
+        held[rse] = allocated(args.device) - before
     for env in envs.values():
         steps_per_second(env, 5)
     rates: dict[bool, list[float]] = {False: [], True: []}
@@ -155,6 +255,8 @@ def main() -> None:
             rates[rse].append(steps_per_second(env, args.steps))
     load = {rse: solver_load(env, 10) for rse, env in envs.items()}
     rays, exact = scan_cost(envs[True], 20)
+    shares = {rse: step_parts(env, args.episode_s, 10) for rse, env in envs.items()}
+    proxy = proxies(envs[True], args.episode_s)
     # One runner per env (a second runner on an env the first used meets
     # its inference-mode tensors): a warm-up iteration, then one timed.
     ppo = {rse: [ppo_iteration(args.task, env)] for rse, env in envs.items()}
@@ -181,6 +283,28 @@ def main() -> None:
             f"{stats['pairs']:6.1f} {stats['p99 mm']:7.1f} {stats['overflows']:9.0f}"
         )
     print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms")
+    print("each part of a step, ms per env step (share of the parts' sum):")
+    names = list(shares[False])
+    print(f"{'terrain':32} " + " ".join(f"{n:>17}" for n in names))
+    for label, rse in (("mjlab's terrain", False), ("rse, new terrain per episode", True)):
+        total = sum(v for k, v in shares[rse].items() if not k.startswith("of it"))
+        print(f"{label:32} " + " ".join(f"{v:9.3f} ({100 * v / total:3.0f} %)" for v in shares[rse].values()))
+    from rse._adapters.mjlab.pool import pool_memory
+    from rse._adapters.mjlab.terrains import probe_envs
+    from rse.mjlab_tasks import STEPFIELD
+
+    import rse as rse_pkg
+
+    host, on_device = pool_memory(probe_envs(rse_pkg.Scheme.from_csv(STEPFIELD), None), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
+    print(
+        f"terrain on the device per env: {proxy['device bytes/env'] / 1024:.1f} KiB counted from the arrays, "
+        f"{on_device / args.num_envs / 1024:.1f} KiB estimated ([INFO] line), "
+        + (f"{(held[True] - held[False]) / args.num_envs / 1024:.1f} KiB by Warp's allocator (rse's env less mjlab's)" if held[True] else "no allocator on the CPU")
+    )
+    print(
+        f"a reset, per env: generation {proxy['reset generate us/env']:.0f} us, upload {proxy['reset upload us/env']:.0f} us "
+        f"of the host's time, {proxy['uploaded bytes/env'] / 1024:.1f} KiB uploaded; host copies in rse's step terms: {proxy['host copies in step terms']:.0f}"
+    )
 
 
 if __name__ == "__main__":

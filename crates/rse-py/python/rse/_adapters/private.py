@@ -73,18 +73,16 @@ USES = (
     Use("genesis", "genesis.engine.entities.rigid_entity.terrain_entity:TerrainEntity", "_terrain_height_field",
         "rse.genesis.sync", "the heights get_terrain_height answers from", instance=True),
     # mjlab: the ray sensors' state.
-    Use("mjlab", "mjlab.sim.sim:Simulation", "_sensor_context", "rse.mjlab.EnvTerrainsEvent",
-        "the ray sensors' render context, whose height-field meshes a reset refreshes", instance=True),
     Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", "_cached_world_origins", "rse.mjlab.exact_height_scan",
         "where the scan's rays start this step", instance=True),
-    # MuJoCo Warp's render context (mjlab's ray sensors): per-field BVHs,
-    # fields of a public class that MuJoCo Warp fills and reads itself.
+    # MuJoCo Warp's render context (mjlab's camera sensors): per-field
+    # BVHs, fields of a public class that MuJoCo Warp fills and reads itself.
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",
-        "the meshes the rays hit, one per env's field", instance=True),
+        "the meshes the cameras see, one per env's field", instance=True),
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_bvh_id", "rse.mjlab.EnvTerrainsEvent",
-        "which mesh each height field's rays hit", instance=True),
+        "which mesh each height field's camera rays hit", instance=True),
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_bounds_size", "rse.mjlab.EnvTerrainsEvent",
-        "the box each field's rays are tested against", instance=True),
+        "the box each field's camera rays are tested against", instance=True),
     # Newton: a height field's samples as given (Newton rescales them).
     Use("newton", "newton:Heightfield", "_data", "rse.newton.add_heightfield",
         "the samples, kept in rse's [0, 1] of [0, top]", instance=True),

@@ -1,11 +1,13 @@
 """Host samples into a model's height fields, one way for every adapter:
 rows written into a flat host array (``write_rows``: a ``MjModel``'s
-``hfield_data``) or copied into a Warp array (``copy_rows``: MuJoCo Warp,
-mjlab, ``rse.newton``) at given starts, and a geom pointed at a field per
-world (``geom_dataid`` batched per world)."""
+``hfield_data``) or copied into a Warp array on any device in one upload
+(``copy_rows``: MuJoCo Warp, mjlab, ``rse.newton``) at given starts,
+and a geom pointed at a field per world (``geom_dataid`` batched per
+world)."""
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable
 from typing import Any
 
@@ -25,26 +27,38 @@ def write_rows(data: np.ndarray, rows: np.ndarray, pairs: Iterable[tuple[int, in
 def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]]) -> None:
     """Copies row ``r`` of ``rows`` (float32, one row a field) into the Warp
     array ``dst`` (a model's ``hfield_data``, Newton's elevations) at
-    ``start``, for each ``(r, start)`` of ``pairs``. On the CPU device into
-    a numpy view of ``dst`` (its memory: a plain copy, no kernel launch
-    per field); on a GPU one ``wp.copy`` per field from ``rows`` wrapped
-    in place (no copy on the host)."""
+    ``start``, for each ``(r, start)`` of ``pairs``, on any device in one
+    upload: the rows named are gathered on the host, sent in one copy with
+    their starts, and one kernel (``scatter_rows``) writes them in place.
+    One copy per field (as before: 2·82 per step at 4096 envs resetting
+    every 50 steps) cost a driver round trip each on a GPU."""
     import warp as wp
 
-    if len(rows) == 0:
+    pairs = [(int(r), int(start)) for r, start in pairs]
+    if not pairs:
         return
-    rows = np.ascontiguousarray(rows, dtype=np.float32).reshape(len(rows), -1)
-    size = rows.shape[1]
-    if dst.device.is_cpu:
-        full = dst.numpy()
-        view = full.reshape(-1)
-        if not np.shares_memory(view, full):
-            raise ValueError("dst: a Warp array of one contiguous block was expected")
-        write_rows(view, rows, pairs)
-        return
-    source: Any = wp.array(rows.reshape(-1), dtype=float, device="cpu", copy=False)
-    for r, start in pairs:
-        wp.copy(dst, source, dest_offset=int(start), src_offset=int(r) * size, count=size)
+    rows = np.asarray(rows).reshape(len(rows), -1)
+    picked = [r for r, _ in pairs]
+    gathered = np.ascontiguousarray(rows[picked], dtype=np.float32)
+    device = dst.device
+    source = wp.array(gathered, dtype=wp.float32, device=device)
+    starts = wp.array(np.array([start for _, start in pairs], dtype=np.int32), dtype=wp.int32, device=device)
+    wp.launch(scatter_rows_kernel(), dim=gathered.shape, inputs=[source, starts], outputs=[dst], device=device)
+
+
+@functools.lru_cache(maxsize=None)
+def scatter_rows_kernel() -> Any:
+    """The Warp kernel of ``copy_rows``: element ``i`` of row ``r`` of
+    ``src`` to ``dst[starts[r] + i]``, a thread each. Made on first use, so
+    that importing rse needs no Warp."""
+    import warp as wp
+
+    @wp.kernel
+    def scatter_rows(src: wp.array2d(dtype=wp.float32), starts: wp.array(dtype=wp.int32), dst: wp.array(dtype=wp.float32)):  # type: ignore[valid-type]
+        r, i = wp.tid()
+        dst[starts[r] + i] = src[r, i]
+
+    return scatter_rows
 
 
 def route_per_world(m: Any, gid: int, first: int) -> None:

@@ -33,6 +33,7 @@ class Apart:
         n = envs.num_envs
         self.offsets = np.zeros((n, 2))
         self.mocap = -1
+        self._shift: dict[tuple[Any, Any], Any] = {}
         if not on:
             return
         self.offsets = apart_offsets(envs)
@@ -55,11 +56,16 @@ class Apart:
     def slot_xy(self, xy: Any) -> Any:
         """World xy (torch, ``[num_envs, ..., 2]``) in each env's slot
         frame: less its env's offset."""
-        import torch
-
         if not self.offsets.any():
             return xy
-        shift = torch.as_tensor(self.offsets, dtype=xy.dtype, device=xy.device)
+        key = (xy.device, xy.dtype)
+        shift = self._shift.get(key)
+        if shift is None:
+            import torch
+
+            # Made once per device and dtype: a term's step makes no
+            # tensor from host data.
+            shift = self._shift[key] = torch.as_tensor(self.offsets, dtype=xy.dtype, device=xy.device)
         return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
 
     def place(self, sim: Any, ids: list[int]) -> None:

@@ -1,16 +1,20 @@
 """The reset event term: every env its own ``rse.EnvTerrains`` slot, a new
-terrain each time it resets, copied into the simulation (device model,
-host model, ray meshes, coarse pool) and its origin into the scene."""
+terrain each time it resets, copied into the simulation (device model in
+one upload, host model, coarse pool, camera meshes where cameras are) and
+its origin into the scene."""
 
 from __future__ import annotations
 
 from typing import Any, Optional
 
-from rse._adapters import private
+import numpy as np
+
+from rse._adapters import contacts
 from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.mjlab.apart import Apart
 from rse._adapters.mjlab.coarse import CoarsePool
-from rse._adapters.mjlab.rays import RayMeshes
+from rse._adapters.mjlab.pool import GEOM_GROUP
+from rse._adapters.mjlab.rays import RAY_BYTES_PER_SAMPLE, RayMeshes, cast_on_each_worlds_field
 from rse._adapters.mjlab.terrains import (
     initial_difficulty,
     launcher_env_offset,
@@ -19,6 +23,7 @@ from rse._adapters.mjlab.terrains import (
     spread_of,
     terrain_settings,
 )
+from rse._adapters.mjlab.tops import DeviceTops
 from rse._adapters.pool import POOL, sync_env_hfields
 from rse._rse import EnvTerrains
 
@@ -41,9 +46,11 @@ class EnvTerrainsEvent:
     fields win: ``train``'s command line sets them. The scene must hold the
     pool (``add_pool``; ``use_env_terrains`` wires both).
 
-    At construction it makes the ``EnvTerrains`` (``.envs``), expands the
-    model's ``geom_dataid`` per world (mjlab's ``expand_model_fields``) and
-    points each world's terrain geom at its env's field; each call resets
+    At construction it makes the ``EnvTerrains`` (``.envs``), makes the
+    ray sensors that see the terrain cast on each world's own field
+    (``DirectRays``), expands the model's ``geom_dataid`` per world (mjlab's
+    ``expand_model_fields``, which captures the sense graph anew with them)
+    and points each world's terrain geom at its env's field; each call resets
     the named envs, copies their samples into the simulation's model (and
     the host model, which mjlab's viewer draws) and writes their origins
     into ``env.scene.env_origins``.
@@ -79,16 +86,72 @@ class EnvTerrainsEvent:
         self._rays_of: Any = None
         self._ray_meshes: Optional[RayMeshes] = None
         sim = env.sim
+        self.direct_rays = cast_on_each_worlds_field(env.scene, GEOM_GROUP)
+        """How many ray sensors cast on each world's own field."""
         sim.expand_model_fields(("geom_dataid",))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
+        self._tops: Any = None
+        self._slot_size: dict[tuple[Any, Any], Any] = {}
         self._copy_out(list(range(env.num_envs)))
+
+    def device_tops(self, sim: Any) -> Any:
+        """The exact tops of every env on ``sim``'s device
+        (``DeviceTops``), made on first use."""
+        if self._tops is None:
+            self._tops = DeviceTops(sim, self.envs, self.name)
+        return self._tops
+
+    def device_bytes(self) -> dict[str, int]:
+        """What rse's terrains hold on the simulation's device, bytes, by
+        part, counted from the arrays themselves: the pool's fields and the
+        coarse fields (their share of the device model's ``hfield_data``),
+        each world's routing (``geom_dataid`` expanded per world) and the
+        cameras' meshes, if any (their points, and their BVHs at
+        ``RAY_BYTES_PER_SAMPLE``). ``pool_memory`` estimates the same
+        before the scene is built."""
+        import mujoco
+
+        mjm, m = self._env.sim.mj_model, self._env.sim.wp_model
+        n = self.envs.num_envs
+
+        def fields(prefix: str) -> int:
+            first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{prefix}0")
+            if first < 0:
+                return 0
+            sizes = mjm.hfield_nrow[first : first + n].astype(np.int64) * mjm.hfield_ncol[first : first + n]
+            return 4 * int(sizes.sum())  # float32 samples
+
+        routing = m.geom_dataid
+        parts = {
+            "fields": fields(self.name),
+            "coarse fields": fields(self.name + contacts.COARSE),
+            "routing": int(routing.shape[0] - 1) * int(routing.shape[1]) * 4,
+            "camera meshes": 0,
+        }
+        if self._ray_meshes is not None:
+            samples = int(np.prod(self.envs.field_shape))
+            parts["camera meshes"] = n * samples * RAY_BYTES_PER_SAMPLE
+        return parts
+
+    def slot_size(self, like: Any) -> Any:
+        """A slot's size ``[x, y]``, metres, as a tensor of ``like``'s
+        device and dtype, made once each (a term's step makes no tensor
+        from host data)."""
+        key = (like.device, like.dtype)
+        size = self._slot_size.get(key)
+        if size is None:
+            import torch
+
+            x, y, _ = self.envs.hfield_pos
+            size = self._slot_size[key] = torch.tensor([2.0 * x, 2.0 * y], device=like.device, dtype=like.dtype)
+        return size
 
     def _copy_out(self, ids: list[int]) -> None:
         """Copies the terrains of ``ids`` into the simulation's model and
-        the host model, their ray-cast meshes into the sensors' render
-        context, and their origins into ``env_origins``."""
+        the host model, their meshes into the cameras' render context (if
+        any), and their origins into ``env_origins``."""
         import torch
 
         from rse.mujoco_warp import sync
@@ -106,20 +169,20 @@ class EnvTerrainsEvent:
         self.apart.place(sim, ids)
 
     def _refresh_rays(self, ids: list[int]) -> None:
-        """Brings the ray-cast meshes of the fields of ``ids`` up to date in
-        the render context of mjlab's ray sensors (``terrain_scan``, the
-        feet's height sensors). MuJoCo Warp's context holds a BVH per height
-        field, built once from the host model and only for the fields the
-        host model's geoms show (``pool0``): without this every other
-        world's rays would miss its terrain, and all would see the first
-        terrain as it was built. Each env's field gets a mesh of its own,
-        the field's grid as MuJoCo triangulates it, made once; a reset moves
-        its points and refits its BVH in place (a rebuild by MuJoCo Warp's
-        own ``build_hfield_bvh`` took 72 ms a field). A context made anew
-        (mjlab recreates it when an event expands a model field) gets the
-        same meshes."""
-        ctx = private.getattr_checked(self._env.sim, "_sensor_context", "mjlab")
-        if ctx is None or not ctx.has_raycasts:
+        """Brings the camera meshes of the fields of ``ids`` up to date in
+        the render context of mjlab's camera sensors, where the scene has
+        any. MuJoCo Warp's context holds a BVH per height field, built once
+        from the host model and only for the fields the host model's geoms
+        show (``pool0``): without this every other world's camera would see
+        the first terrain as it was built. Each env's field gets a mesh of
+        its own, the field's grid as MuJoCo triangulates it, made once; a
+        reset moves its points and refits its BVH in place (a rebuild by
+        MuJoCo Warp's own ``build_hfield_bvh`` took 72 ms a field). A
+        context made anew (mjlab recreates it when an event expands a model
+        field) gets the same meshes. Ray sensors need none
+        (``DirectRays``)."""
+        ctx = self._env.scene.sensor_context
+        if ctx is None or not ctx.has_cameras:
             return
         rc = ctx.render_context
         if self._ray_meshes is None:

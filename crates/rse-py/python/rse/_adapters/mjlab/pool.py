@@ -32,9 +32,12 @@ COARSE_GROUP = 3
 with: one the ray sensors do not see and MuJoCo's viewer hides."""
 
 
-VIEW_GROUP = 1
-"""The geom group of the view geom (``apart``): one mjlab's viewer draws
-and its ray sensors (group 0 only) do not see."""
+VIEW_GROUP = GEOM_GROUP
+"""The geom group of the view geom (``apart``): the terrain's, which
+mjlab's viewer draws and its ray sensors see. Where the envs are laid out
+apart the exact geom is hidden (alpha 0), and MuJoCo Warp's rays skip a
+hidden geom: they land on the view geom, the same field in the same
+place."""
 
 
 VIEW = "_view"
@@ -108,17 +111,20 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     contacts.route_geoms(small, large, exact, coarse, ground)
 
 
-def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu") -> tuple[int, int]:
+def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms: int = 0, cameras: bool = False) -> tuple[int, int]:
     """What ``num_envs`` envs of ``probe``'s shape cost in an mjlab scene,
     bytes, in host memory and on ``device`` (0 for "cpu", where it is all
-    host memory): the samples (``EnvTerrains``), the host model's fields
-    (exact and coarse), MuJoCo Warp's copy of them, and the ray sensors'
-    meshes (``RAY_BYTES_PER_SAMPLE``)."""
+    host memory): the samples (``EnvTerrains``) and the host model's fields
+    (exact and coarse); on the device MuJoCo Warp's copy of the fields and
+    each world's routing (its row of ``geom_dataid``, 4 bytes for each of
+    the scene's ``geoms``, which mjlab expands per world for rse), and with
+    camera sensors (``cameras``) their meshes (``RAY_BYTES_PER_SAMPLE``).
+    ``EnvTerrainsEvent.device_bytes`` counts the same from the arrays."""
     nrow, ncol = probe.field_shape
     samples = nrow * ncol
     cells = probe.terrain(0).heights.size if contacts.oversample_of(probe) > 1 else 0
     host = num_envs * 4 * (2 * samples + cells)
-    on_device = num_envs * (4 * (samples + cells) + RAY_BYTES_PER_SAMPLE * samples)
+    on_device = num_envs * (4 * (samples + cells + geoms) + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
     if str(device).startswith("cpu"):
         return host + on_device, 0
     return host, on_device

@@ -1,6 +1,10 @@
-"""The ray sensors' meshes: one Warp mesh per env's height field in the
-render context of mjlab's ray sensors, refitted in place when a reset
-moves its samples."""
+"""Rays on each env's own field. mjlab's ray sensors that see the terrain
+cast through MuJoCo Warp's direct ray test (``DirectRays``), which reads
+the height field each world's terrain geom points at, in place: nothing
+per env. Camera sensors render through the render context's BVHs, which
+MuJoCo Warp builds only for the field the host model shows; for them each
+env's field gets a Warp mesh of its own (``RayMeshes``), refitted in place
+when a reset moves its samples."""
 
 from __future__ import annotations
 
@@ -15,16 +19,54 @@ RAY_LEAF = 4
 
 
 RAY_BYTES_PER_SAMPLE = 116
-"""What a ray mesh costs per height-field sample: its points (12 bytes)
-and its BVH (SAH, ``RAY_LEAF`` triangles a leaf), measured with Warp 1.19
-on a 160 × 160 field (2.94 MB)."""
+"""What a camera mesh (``RayMeshes``) costs per height-field sample: its
+points (12 bytes) and its BVH (SAH, ``RAY_LEAF`` triangles a leaf),
+measured with Warp 1.19 on a 160 × 160 field (2.94 MB)."""
+
+
+class DirectRays:
+    """A ray sensor's ``raycast_kernel`` (mjlab calls it with the render
+    context, inside the sense graph it captures) that casts with no render
+    context: ``mujoco_warp.rays``' direct test, whose ``ray_hfield`` reads
+    the field that world ``w``'s terrain geom points at (``geom_dataid``
+    per world) and tests the few cells under a ray. The context's BVH path
+    needs a BVH per field, which MuJoCo Warp builds only for the field the
+    host model shows: one mesh per env took 2.9 MB (11.8 GiB at 4096 envs)
+    and a refit at each reset. The rays hit the same surface as before:
+    MuJoCo's triangles of the same samples."""
+
+    def __init__(self, kernel: Any) -> None:
+        self.kernel = kernel
+
+    def __call__(self, rc: Any = None) -> None:
+        self.kernel(rc=None)
+
+
+def cast_on_each_worlds_field(scene: Any, group: int) -> int:
+    """Makes every ray sensor of an mjlab ``scene`` that can see geom
+    ``group`` (its ``include_geom_groups`` holds it, or is None) cast with
+    ``DirectRays``; returns how many do. Call it before the simulation
+    captures its sense graph (``Simulation.create_graph``, which
+    ``expand_model_fields`` calls)."""
+    ctx = scene.sensor_context
+    if ctx is None:
+        return 0
+    count = 0
+    for sensor in ctx.raycast_sensors:
+        groups = sensor.cfg.include_geom_groups
+        if groups is not None and group not in groups:
+            continue
+        if not isinstance(sensor.raycast_kernel, DirectRays):
+            sensor.raycast_kernel = DirectRays(sensor.raycast_kernel)
+        count += 1
+    return count
 
 
 class RayMeshes:
-    """One Warp mesh per env's height field in a render context, the
-    field's sample grid as MuJoCo triangulates it (two triangles a quad,
-    split from its first corner to its opposite one), registered where the
-    context keeps its height-field BVHs."""
+    """For camera sensors: one Warp mesh per env's height field in a
+    render context, the field's sample grid as MuJoCo triangulates it (two
+    triangles a quad, split from its first corner to its opposite one),
+    registered where the context keeps its height-field BVHs."""
 
     def __init__(self, model: Any, rc: Any, envs: EnvTerrains, name: str) -> None:
         import mujoco

@@ -62,7 +62,7 @@ class PoolSpec:
         oversample = settings["oversample"]
         n = int(scene.num_envs)
         device = likely_device()
-        host, on_device = pool_memory(probe_envs(scheme, oversample), n, device)
+        host, on_device = pool_memory(probe_envs(scheme, oversample), n, device, geoms=len(spec.geoms) + POOL_GEOMS, cameras=has_cameras(scene))
         print(
             f"[INFO] rse terrains: {n} envs, {(host + on_device) / n / 2**20:.2f} MiB an env, "
             f"{host / 2**30:.2f} GiB in host memory" + (f" and {on_device / 2**30:.2f} GiB on {device}" if on_device else "")
@@ -116,6 +116,19 @@ def pool_scene(scene: Any) -> Any:
     copy.__dict__.update(fields)
     copy.spec_fn = earlier
     return copy
+
+
+POOL_GEOMS = 4
+"""The most geoms ``add_pool`` adds: the exact and coarse terrain geoms,
+the ground, the view geom."""
+
+
+def has_cameras(scene: Any) -> bool:
+    """Whether the scene config has camera sensors (they render rse's
+    terrain through per-env meshes: ``RayMeshes``)."""
+    from mjlab.sensor import CameraSensorCfg
+
+    return any(isinstance(s, CameraSensorCfg) for s in (getattr(scene, "sensors", None) or ()))
 
 
 def likely_device() -> str:

@@ -1,0 +1,70 @@
+"""Every env's exact tops on the simulation's device, for the terms that
+read them in a step (``exact_height_scan``): tensor ops on the fields
+where they already are, no copy to the host."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rse._rse import EnvTerrains
+
+
+class DeviceTops:
+    """Every env's exact tops on the simulation's device, read from the
+    pool's fields where they are (the device model's ``hfield_data``, no
+    copy kept): each cell's k×k samples hold its height, so the sample at
+    a cell's first corner is its top. Only the fields' addresses are made
+    here, once."""
+
+    def __init__(self, sim: Any, envs: EnvTerrains, name: str) -> None:
+        import mujoco
+        import torch
+
+        mjm = sim.mj_model
+        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
+        n = envs.num_envs
+        t = envs.terrain(0)
+        self.cells = t.heights.shape  # (ny, nx)
+        self.k = envs.field_shape[1] // self.cells[1]
+        self.ncol = int(mjm.hfield_ncol[first])
+        self.block = float(t.block_size)
+        _, _, self.elevation, _ = envs.hfield_size
+        self.z0 = float(envs.hfield_pos[2])
+        self.model = sim.wp_model
+        self._array: Any = None
+        self._data: Any = None
+        self.adr = torch.as_tensor(mjm.hfield_adr[first : first + n].astype(np.int64), device=sim.device)
+
+    def tops(self, xy: Any) -> Any:
+        """The tops under ``xy`` (``[num_envs, P, 2]``, each env's slot
+        frame, metres): ``[num_envs, P]``, 0 off its terrain. As
+        ``EnvTerrains.heights_at``: a point on a line between cells reads
+        the highest of them; the cells are found in float64, as there."""
+        import torch
+
+        data = self.samples()
+        ny, nx = self.cells
+        u = xy.to(torch.float64) / self.block
+        x, y = u[..., 0], u[..., 1]
+        on = (x >= 0) & (x <= nx) & (y >= 0) & (y <= ny)
+        top = None
+        for i in ((torch.ceil(x) - 1).clamp(0, nx - 1), torch.floor(x).clamp(0, nx - 1)):
+            for j in ((torch.ceil(y) - 1).clamp(0, ny - 1), torch.floor(y).clamp(0, ny - 1)):
+                index = self.adr.view(-1, *([1] * (x.dim() - 1))) + (j.long() * self.k) * self.ncol + i.long() * self.k
+                sample = data[index]
+                top = sample if top is None else torch.maximum(top, sample)
+        assert top is not None
+        return torch.where(on, top.to(torch.float64) * self.elevation + self.z0, 0.0)
+
+    def samples(self) -> Any:
+        """The device model's ``hfield_data`` as a tensor sharing its memory,
+        wrapped once (Warp's CPU interop goes through numpy), and again only
+        if the model's array was replaced."""
+        import warp as wp
+
+        array = self.model.hfield_data
+        if array is not self._array:
+            self._array, self._data = array, wp.to_torch(array)
+        return self._data

@@ -1,0 +1,124 @@
+"""What rse's mjlab task holds on the device and does there in a step,
+checked on the CPU device (the proxies docs/train.md names for a GPU):
+every term rse adds to a step runs on the device alone (no host copy,
+caught by name: ``host_copies.HostCopies``), the terrains take at most
+128 KiB an env on the device at the task's stepfield, counted from the
+arrays and estimated before the scene is built within 20 %, and the ray
+sensors read each env's own field with no mesh per env."""
+
+from __future__ import annotations
+
+import mjlab.tasks  # noqa: F401  (registers the tasks)
+import numpy as np
+import pytest
+import rse
+import torch
+from host_copies import HostCopies
+from mjlab.envs import ManagerBasedRlEnv
+from mjlab.managers.observation_manager import ObservationTermCfg
+from mjlab.tasks.registry import load_env_cfg
+from rse._adapters.mjlab.event import event_of
+from rse._adapters.mjlab.pool import pool_memory
+from rse._adapters.mjlab.rays import DirectRays
+from rse._adapters.mjlab.terrains import probe_envs
+from rse.mjlab import env_terrains, exact_height_scan, use_env_terrains
+from rse.mjlab_tasks import STEPFIELD
+
+TASK = "Mjlab-Velocity-Rough-Unitree-Go1"
+NUM_ENVS = 4
+
+
+@pytest.fixture(scope="module")
+def env():
+    """The Go1 rough task on rse's stepfield, laid out apart (the offsets'
+    path of every term) and with the exact scan as the critic's height
+    scan, so that each step term rse has is in the config."""
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = NUM_ENVS
+    use_env_terrains(cfg, rse.Scheme.from_csv(STEPFIELD), seed=3, apart=True)
+    cfg.observations["critic"].terms["height_scan"] = ObservationTermCfg(func=exact_height_scan, params={"sensor_name": "terrain_scan"})
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    env.reset()
+    env.step(torch.zeros(env.action_space.shape))
+    yield env
+    env.close()
+
+
+def step_terms(env: ManagerBasedRlEnv) -> list[tuple[str, object]]:
+    """Every observation, reward and termination term of ``env``'s config
+    whose function is rse's: what rse adds to each step (the curriculum
+    term and the reset event run at resets, which copy a new terrain up by
+    design)."""
+    found = []
+    for group, cfg in env.cfg.observations.items():
+        found += [(f"observations[{group}].{name}", term) for name, term in cfg.terms.items()]
+    found += [(f"rewards.{name}", term) for name, term in env.cfg.rewards.items()]
+    found += [(f"terminations.{name}", term) for name, term in env.cfg.terminations.items()]
+    return [(name, term) for name, term in found if getattr(term.func, "__module__", "").startswith("rse.")]
+
+
+def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> None:
+    terms = step_terms(env)
+    assert {term.func.__name__ for _, term in terms} == {"exact_height_scan", "out_of_slot"}, terms
+    for name, term in terms:
+        with HostCopies() as copies:
+            term.func(env, **term.params)
+        assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
+
+
+def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None:
+    """The scan as it was (rays' origins to numpy, ``heights_at`` on the
+    host, back as a tensor) is caught: the test above can fail."""
+    envs = rse.EnvTerrains(rse.Scheme.from_csv(STEPFIELD), 2)
+    origins = torch.zeros((2, 3, 3))
+    with HostCopies() as copies:
+        xy = origins[..., :2].to("cpu", torch.float64).numpy()
+        torch.as_tensor(np.nan_to_num(envs.heights_at(np.arange(2), xy)), device=origins.device)
+    said = " | ".join(copies.found)
+    for kind in ("Tensor.to", "Tensor.numpy", "torch.as_tensor"):
+        assert kind in said, said
+    with HostCopies() as copies:
+        float(torch.ones(1).sum())
+    assert any("_local_scalar_dense" in f for f in copies.found), copies.found
+
+
+def test_the_terrains_take_at_most_128_kib_an_env_on_the_device_as_estimated(env) -> None:
+    event = event_of(env, "rse_terrain")
+    parts = event.device_bytes()
+    per_env = sum(parts.values()) / NUM_ENVS
+    assert parts["camera meshes"] == 0, parts
+    assert per_env <= 128 * 1024, parts
+    probe = probe_envs(rse.Scheme.from_csv(STEPFIELD), None)
+    _, estimate = pool_memory(probe, NUM_ENVS, "cuda", geoms=env.sim.mj_model.ngeom)
+    assert abs(estimate / NUM_ENVS - per_env) <= 0.2 * per_env, (estimate / NUM_ENVS, parts)
+
+
+def test_the_ray_sensors_read_each_envs_own_field_with_no_mesh_per_env(env) -> None:
+    """Both ray sensors of the task (``terrain_scan``, the feet's
+    ``foot_height_scan``) cast with ``DirectRays``, and the rays of each
+    env land on its own tops."""
+    ctx = env.scene.sensor_context
+    assert ctx is not None and not ctx.has_cameras
+    assert all(isinstance(s.raycast_kernel, DirectRays) for s in ctx.raycast_sensors), ctx.raycast_sensors
+    assert event_of(env, "rse_terrain").direct_rays == 2
+    envs = env_terrains(env)
+    sensor = env.scene["terrain_scan"]
+    hits = sensor.data.hit_pos_w.numpy().astype(np.float64)
+    slot = event_of(env, "rse_terrain").apart.slot_xy(torch.as_tensor(hits[..., :2])).numpy()
+    t = envs.terrain(0)
+    spacing = t.block_size * t.heights.shape[1] / envs.field_shape[1]  # one sample
+    near = [(dx, dy) for dx in (-spacing, 0.0, spacing) for dy in (-spacing, 0.0, spacing)]
+    for e in range(NUM_ENVS):
+        tops = envs.heights_at([e], slot[e][None])[0]
+        inside = np.isfinite(tops)
+        assert inside.sum() > 100, e
+        # On a top, or within a sample of a step edge on MuJoCo's slope
+        # between the tops on either side; never another env's terrain.
+        around = np.stack([envs.heights_at([e], (slot[e] + d)[None])[0] for d in near])[:, inside]
+        z = hits[e, inside, 2]
+        assert np.all((z >= around.min(axis=0) - 1e-4) & (z <= around.max(axis=0) + 1e-4)), e
+        assert (np.abs(z - tops[inside]) < 1e-4).mean() > 0.3, e
+        others = [np.abs(z - envs.heights_at([o], slot[e][None])[0][inside]).mean() for o in range(NUM_ENVS) if o != e]
+        # Two terrains may agree under a scan (both at ground level there):
+        # some other env must differ.
+        assert np.abs(z - tops[inside]).mean() < max(others), e
