@@ -122,3 +122,45 @@ def test_the_ray_sensors_read_each_envs_own_field_with_no_mesh_per_env(env) -> N
         # Two terrains may agree under a scan (both at ground level there):
         # some other env must differ.
         assert np.abs(z - tops[inside]).mean() < max(others), e
+
+
+def test_each_worlds_terrain_is_bounded_by_its_own_tops_so_only_the_feet_pair_with_flat_ground() -> None:
+    """MuJoCo Warp's broadphase pairs a geom with the terrain where their
+    boxes overlap: each world's terrain geoms reach up to that env's
+    highest top (``geom_aabb`` per world, renewed at its resets), so on
+    flat ground (difficulty 0) the standing Go1's feet alone pair with it,
+    where the box of the scheme's highest top paired all 26 colliders."""
+    import mujoco
+
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = NUM_ENVS
+    use_env_terrains(cfg, rse.Scheme.from_csv(STEPFIELD), seed=3, difficulty=0.0)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        env.reset()
+        envs = env_terrains(env)
+        mjm, m = env.sim.mj_model, env.sim.wp_model
+        gids = [mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, g) for g in ("rse_terrain", "rse_terrain_coarse")]
+        _, _, elevation, base = envs.hfield_size
+
+        def bounded() -> np.ndarray:
+            aabb = m.geom_aabb.numpy()
+            top = envs.samples.reshape(NUM_ENVS, -1).max(axis=1) * elevation
+            for g in gids:
+                assert np.allclose(aabb[:, g, 0, 2], (top - base) / 2, atol=1e-6), aabb[:, g]
+                assert np.allclose(aabb[:, g, 1, 2], (top + base) / 2, atol=1e-6), aabb[:, g]
+            return top
+
+        assert bounded().max() == 0.0
+        pairs = []
+        for _ in range(10):
+            env.step(torch.zeros(env.action_space.shape))
+            pairs.append(env.sim.wp_data.ncollision.numpy()[0] / NUM_ENVS)
+        assert max(pairs[5:]) <= 4, pairs  # the four feet
+        # A reset renews the bounds of the envs it renews, and theirs only.
+        envs.difficulty = [1.0] + [0.0] * (NUM_ENVS - 1)
+        env.reset(env_ids=torch.tensor([0]))
+        top = bounded()
+        assert top[0] > 0.1 and not top[1:].any(), top
+    finally:
+        env.close()

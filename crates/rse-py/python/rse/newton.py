@@ -23,6 +23,7 @@ one into the other).
 
 from __future__ import annotations
 
+import weakref
 from typing import Any, Optional
 
 from rse._adapters import private
@@ -68,9 +69,34 @@ def add_heightfield(builder: Any, envs: EnvTerrains, env: int, **shape_options: 
     )
 
 
+_OFFSETS: dict[int, tuple[Any, list[int]]] = {}
+"""Each model's and solver's field starts by ``id``, with a weak reference
+to the object they were read from: read from the device once, so a reset
+copies the new samples up and reads nothing back."""
+
+
+def _once(owner: Any, read: Any) -> list[int]:
+    """``read()``, kept for ``owner`` while it lives."""
+    kept = _OFFSETS.get(id(owner))
+    if kept is not None and kept[0]() is owner:
+        return kept[1]
+    value = read()
+    key = id(owner)
+    _OFFSETS[key] = (weakref.ref(owner, lambda _: _OFFSETS.pop(key, None)), value)
+    return value
+
+
 def _world_offsets(model: Any, envs: EnvTerrains) -> list[int]:
     """Where each world's field starts in ``model.heightfield_elevations``:
-    the fields in the order their shapes were added, one per world."""
+    the fields in the order their shapes were added, one per world (read
+    once per model: they are fixed when it is finalized)."""
+    offsets = _once(model, lambda: _read_world_offsets(model, envs))
+    if len(offsets) != envs.num_envs:
+        raise ValueError(f"model: height fields in {len(offsets)} worlds, expected one in each of the {envs.num_envs} worlds")
+    return offsets
+
+
+def _read_world_offsets(model: Any, envs: EnvTerrains) -> list[int]:
     data = model.heightfield_data.numpy()
     index = model.shape_heightfield_index.numpy()
     worlds = model.shape_world.numpy()
@@ -105,7 +131,14 @@ def sync(model: Any, envs: EnvTerrains, env_ids: Any = None, *, solver: Optional
 
 def _mujoco_offsets(solver: Any, envs: EnvTerrains) -> list[int]:
     """Where each world's field starts in ``SolverMuJoCo``'s ``hfield_data``
-    (the per-world ``geom_dataid`` Newton sets)."""
+    (the per-world ``geom_dataid`` Newton sets; read once per solver)."""
+    starts = _once(solver, lambda: _read_mujoco_offsets(solver, envs))
+    if len(starts) != envs.num_envs:
+        raise ValueError(f"solver: {len(starts)} worlds, expected {envs.num_envs}")
+    return starts
+
+
+def _read_mujoco_offsets(solver: Any, envs: EnvTerrains) -> list[int]:
     import mujoco
     import numpy as np
 

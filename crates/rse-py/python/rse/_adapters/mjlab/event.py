@@ -10,7 +10,9 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._adapters import contacts
+from rse._adapters.fields import geom_id
 from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.mjlab import bounds
 from rse._adapters.mjlab.apart import Apart
 from rse._adapters.mjlab.coarse import CoarsePool
 from rse._adapters.mjlab.pool import GEOM_GROUP
@@ -24,7 +26,7 @@ from rse._adapters.mjlab.terrains import (
     terrain_settings,
 )
 from rse._adapters.mjlab.tops import DeviceTops
-from rse._adapters.pool import POOL, sync_env_hfields
+from rse._adapters.pool import GEOM, POOL, sync_env_hfields
 from rse._rse import EnvTerrains
 
 TERM = "rse_terrain"
@@ -48,9 +50,11 @@ class EnvTerrainsEvent:
 
     At construction it makes the ``EnvTerrains`` (``.envs``), makes the
     ray sensors that see the terrain cast on each world's own field
-    (``DirectRays``), expands the model's ``geom_dataid`` per world (mjlab's
-    ``expand_model_fields``, which captures the sense graph anew with them)
-    and points each world's terrain geom at its env's field; each call resets
+    (``DirectRays``), expands the model's ``geom_dataid`` and ``geom_aabb``
+    per world (mjlab's ``expand_model_fields``, which captures the sense
+    graph anew with them), points each world's terrain geom at its env's
+    field and bounds it by that terrain's tops (``TerrainBounds``); each
+    call resets
     the named envs, copies their samples into the simulation's model (and
     the host model, which mjlab's viewer draws) and writes their origins
     into ``env.scene.env_origins``.
@@ -88,9 +92,10 @@ class EnvTerrainsEvent:
         sim = env.sim
         self.direct_rays = cast_on_each_worlds_field(env.scene, GEOM_GROUP)
         """How many ray sensors cast on each world's own field."""
-        sim.expand_model_fields(("geom_dataid",))
+        sim.expand_model_fields(("geom_dataid", bounds.FIELD))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
+        self._bounds = bounds.TerrainBounds(sim.wp_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
         self._slot_size: dict[tuple[Any, Any], Any] = {}
@@ -107,7 +112,8 @@ class EnvTerrainsEvent:
         """What rse's terrains hold on the simulation's device, bytes, by
         part, counted from the arrays themselves: the pool's fields and the
         coarse fields (their share of the device model's ``hfield_data``),
-        each world's routing (``geom_dataid`` expanded per world) and the
+        each world's routing and bounds (``geom_dataid`` and ``geom_aabb``
+        expanded per world) and the
         cameras' meshes, if any (their points, and their BVHs at
         ``RAY_BYTES_PER_SAMPLE``). ``pool_memory`` estimates the same
         before the scene is built."""
@@ -123,11 +129,12 @@ class EnvTerrainsEvent:
             sizes = mjm.hfield_nrow[first : first + n].astype(np.int64) * mjm.hfield_ncol[first : first + n]
             return 4 * int(sizes.sum())  # float32 samples
 
-        routing = m.geom_dataid
+        worlds, geoms = int(m.geom_dataid.shape[0]) - 1, int(m.geom_dataid.shape[1])
         parts = {
             "fields": fields(self.name),
             "coarse fields": fields(self.name + contacts.COARSE),
-            "routing": int(routing.shape[0] - 1) * int(routing.shape[1]) * 4,
+            # geom_dataid (an int) and geom_aabb (two vec3) a geom, per world.
+            "routing and bounds": worlds * geoms * (4 + 24),
             "camera meshes": 0,
         }
         if self._ray_meshes is not None:
@@ -160,6 +167,7 @@ class EnvTerrainsEvent:
         sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
         sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
         self._coarse.sync(sim.wp_model, sim.mj_model, self.envs, ids)
+        self._bounds.sync(sim.wp_model, self.envs, ids)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)

@@ -116,15 +116,16 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     bytes, in host memory and on ``device`` (0 for "cpu", where it is all
     host memory): the samples (``EnvTerrains``) and the host model's fields
     (exact and coarse); on the device MuJoCo Warp's copy of the fields and
-    each world's routing (its row of ``geom_dataid``, 4 bytes for each of
-    the scene's ``geoms``, which mjlab expands per world for rse), and with
+    each world's routing and bounds (its rows of ``geom_dataid`` and
+    ``geom_aabb``, 28 bytes for each of the scene's ``geoms``, which mjlab
+    expands per world for rse), and with
     camera sensors (``cameras``) their meshes (``RAY_BYTES_PER_SAMPLE``).
     ``EnvTerrainsEvent.device_bytes`` counts the same from the arrays."""
     nrow, ncol = probe.field_shape
     samples = nrow * ncol
     cells = probe.terrain(0).heights.size if contacts.oversample_of(probe) > 1 else 0
     host = num_envs * 4 * (2 * samples + cells)
-    on_device = num_envs * (4 * (samples + cells + geoms) + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
+    on_device = num_envs * (4 * (samples + cells) + 28 * geoms + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
     if str(device).startswith("cpu"):
         return host + on_device, 0
     return host, on_device

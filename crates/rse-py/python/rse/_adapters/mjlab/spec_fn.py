@@ -64,8 +64,8 @@ class PoolSpec:
         device = likely_device()
         host, on_device = pool_memory(probe_envs(scheme, oversample), n, device, geoms=len(spec.geoms) + POOL_GEOMS, cameras=has_cameras(scene))
         print(
-            f"[INFO] rse terrains: {n} envs, {(host + on_device) / n / 2**20:.2f} MiB an env, "
-            f"{host / 2**30:.2f} GiB in host memory" + (f" and {on_device / 2**30:.2f} GiB on {device}" if on_device else "")
+            f"[INFO] rse terrains: {n} envs, {host / 2**30:.2f} GiB in host memory ({host / n / 1024:.0f} KiB an env)"
+            + (f" and {on_device / 2**30:.2f} GiB on {device} ({on_device / n / 1024:.0f} KiB an env)" if on_device else "")
         )
         available = available_memory()
         if available is not None and host > available:

@@ -1,0 +1,52 @@
+"""Each world's terrain geoms bounded by its own terrain: the box MuJoCo
+Warp's broadphase tests a robot geom against (``geom_aabb``, batched per
+world) reaches up to that env's highest top, not to the highest a scheme
+allows, so a geom above every top of its env's terrain (a hip, a trunk
+over low ground) makes no pair with it."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from rse._adapters.warp_fields import copy_rows
+from rse._rse import EnvTerrains
+
+FIELD = "geom_aabb"
+"""The model field batched per world: each geom's box, ``(center, half
+size)`` in its frame."""
+
+
+class TerrainBounds:
+    """The terrain geoms ``gids`` (the exact and coarse fields' geoms, in
+    the field's frame: the samples go from 0 to ``elevation`` above it, the
+    base ``base`` below) of world ``w`` bounded by env ``w``'s tops. The
+    model's ``geom_aabb`` must be batched per world (mjlab's
+    ``expand_model_fields``)."""
+
+    def __init__(self, m: Any, gids: list[int], envs: EnvTerrains) -> None:
+        self.gids = [g for g in gids if g >= 0]
+        _, _, self.elevation, self.base = envs.hfield_size
+        nworld, self.ngeom = m.geom_aabb.shape[:2]
+        if nworld != envs.num_envs:
+            raise ValueError(f"m: geom_aabb holds {nworld} worlds, expected one per env ({envs.num_envs})")
+
+    def sync(self, m: Any, envs: EnvTerrains, ids: list[int]) -> None:
+        """Bounds the terrain geoms of the worlds ``ids`` by their envs'
+        current tops (``envs.samples``, after ``envs.reset(ids)``): the
+        box's centre and half height in z, each a float of ``geom_aabb``,
+        four per env with both geoms, in one upload."""
+        if not ids or not self.gids:
+            return
+        top = envs.samples[ids].reshape(len(ids), -1).max(axis=1).astype(np.float64) * self.elevation
+        # z from -base (the prisms' bottom) to the highest top.
+        centre, half = 0.5 * (top - self.base), 0.5 * (top + self.base)
+        rows, starts = [], []
+        for i, w in enumerate(ids):
+            for g in self.gids:
+                box = (w * self.ngeom + g) * 2  # the geom's (center, size) vec3s
+                rows += [centre[i], half[i]]
+                starts += [box * 3 + 2, (box + 1) * 3 + 2]
+        flat = m.geom_aabb.flatten().view(float).flatten()
+        copy_rows(flat, np.asarray(rows, dtype=np.float32).reshape(-1, 1), enumerate(starts))
