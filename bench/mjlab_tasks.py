@@ -37,7 +37,6 @@ def make(task: str, num_envs: int, device: str, episode_s: float, rse: bool):
     import mjlab.tasks  # noqa: F401
     from mjlab.envs import ManagerBasedRlEnv
     from mjlab.tasks.registry import load_env_cfg
-
     from rse.mjlab import use_env_terrains
     from rse.mjlab_tasks import STEPFIELD
 
@@ -106,7 +105,6 @@ def scan_cost(env, repeats: int) -> tuple[float, float]:
     step already cast: the rays' cost is in the step) and of rse's exact
     scan."""
     from mjlab.envs import mdp as envs_mdp
-
     from rse.mjlab import exact_height_scan
 
     def timed(f) -> float:
@@ -186,9 +184,15 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     generate = timed(env, lambda: event.envs.reset(ids), 5) / n
     upload = timed(env, lambda: event._copy_out(ids), 5) / n
     cells = parts["fields"] + parts["coarse fields"]
+    # As a GPU runs them: the tops by tensor ops on the device (the CPU
+    # device reads them with heights_at over the points' own memory).
+    tops = event.device_tops(env.sim)
+    on_host, tops.on_host = tops.on_host, False
+    exact_height_scan(env, "terrain_scan")  # wraps the device's fields once
     with HostCopies() as copies:
         exact_height_scan(env, "terrain_scan")
         out_of_slot(env)
+    tops.on_host = on_host
     return {
         "device bytes/env": sum(parts.values()) / env.num_envs,
         "reset generate us/env": 1e6 * generate,
@@ -209,12 +213,11 @@ def allocated(device: str) -> int:
 
 
 def ppo_iteration(task: str, env) -> float:
+    import tempfile
     from dataclasses import asdict
 
     from mjlab.rl import RslRlVecEnvWrapper
     from mjlab.tasks.registry import load_rl_cfg, load_runner_cls
-
-    import tempfile
 
     agent = load_rl_cfg(task)
     agent.num_steps_per_env = 24
@@ -289,11 +292,10 @@ def main() -> None:
     for label, rse in (("mjlab's terrain", False), ("rse, new terrain per episode", True)):
         total = sum(v for k, v in shares[rse].items() if not k.startswith("of it"))
         print(f"{label:32} " + " ".join(f"{v:9.3f} ({100 * v / total:3.0f} %)" for v in shares[rse].values()))
+    import rse as rse_pkg
     from rse._adapters.mjlab.pool import pool_memory
     from rse._adapters.mjlab.terrains import probe_envs
     from rse.mjlab_tasks import STEPFIELD
-
-    import rse as rse_pkg
 
     host, on_device = pool_memory(probe_envs(rse_pkg.Scheme.from_csv(STEPFIELD), None), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
     print(

@@ -58,12 +58,24 @@ def step_terms(env: ManagerBasedRlEnv) -> list[tuple[str, object]]:
 
 
 def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> None:
+    """Each term as a GPU runs it: the exact tops by tensor ops on the
+    device (``DeviceTops.device_tops``; the CPU device reads them with
+    ``heights_at`` over the points' own memory, and both give the same)."""
     terms = step_terms(env)
     assert {term.func.__name__ for _, term in terms} == {"exact_height_scan", "out_of_slot"}, terms
-    for name, term in terms:
-        with HostCopies() as copies:
-            term.func(env, **term.params)
-        assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
+    tops = event_of(env, "rse_terrain").device_tops(env.sim)
+    on_host = [term.func(env, **term.params) for _, term in terms]
+    tops.on_host = False
+    try:
+        # The first call wraps the device model's fields once.
+        tops.device_tops(torch.zeros((NUM_ENVS, 1, 2)))
+        for (name, term), expected in zip(terms, on_host):
+            with HostCopies() as copies:
+                got = term.func(env, **term.params)
+            assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
+            assert torch.allclose(got.float(), expected.float(), atol=1e-5), name
+    finally:
+        tops.on_host = True
 
 
 def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None:

@@ -104,3 +104,23 @@ def test_bad_input_is_named() -> None:
         rse.mujoco_warp.sync(m, mjm, envs, [NWORLD])
     with pytest.raises(ValueError, match="^mjm"):
         rse.mujoco_warp.put_model(mujoco.MjModel.from_xml_string("<mujoco/>"), envs)
+
+
+def test_the_gpus_one_upload_writes_what_the_cpus_view_writes() -> None:
+    """``copy_rows`` on a GPU gathers the rows, uploads them once and
+    scatters them with one kernel; on the CPU it writes a numpy view. The
+    kernel, forced on the CPU device, writes the same floats at the same
+    starts, and nothing else."""
+    from rse._adapters.warp_fields import copy_rows
+
+    rows = np.arange(5 * 7, dtype=np.float32).reshape(5, 7) + 0.25
+    pairs = [(3, 40), (0, 2), (4, 19)]
+    written = []
+    for scatter in (False, True):
+        dst = wp.array(np.full(60, -1.0, dtype=np.float32), dtype=wp.float32, device="cpu")
+        copy_rows(dst, rows, pairs, scatter=scatter)
+        written.append(dst.numpy().copy())
+    expected = np.full(60, -1.0, dtype=np.float32)
+    for r, start in pairs:
+        expected[start : start + 7] = rows[r]
+    assert np.array_equal(written[0], expected) and np.array_equal(written[1], expected)

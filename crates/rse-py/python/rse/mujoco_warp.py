@@ -88,11 +88,10 @@ def route(m: Any, mjm: Any, envs: EnvTerrains, *, name: str = POOL, geom: str = 
 
 def sync(m: Any, mjm: Any, envs: EnvTerrains, env_ids: Any = None, *, name: str = POOL) -> None:
     """Copies the samples of ``env_ids`` (all when None) from ``envs`` into
-    the device model ``m``'s height fields, each into its own field only
-    (on the CPU device a copy into a numpy view of the warp array; on a
-    GPU one ``wp.copy`` per env from the host samples, wrapped without a
-    copy).
-    Call it after ``envs.reset(env_ids)``."""
+    the device model ``m``'s height fields, each into its own field only,
+    on any device in one upload (the rows of ``env_ids``, then one kernel
+    writes each at its field's address). Call it after
+    ``envs.reset(env_ids)``."""
     ids = _env_ids(envs.num_envs, env_ids)
     _, adr, _ = env_pool(mjm, envs, name, "mjm")
     copy_rows(m.hfield_data, envs.samples, [(e, adr[e]) for e in ids])

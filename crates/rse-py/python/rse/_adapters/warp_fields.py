@@ -1,7 +1,7 @@
 """Host samples into a model's height fields, one way for every adapter:
 rows written into a flat host array (``write_rows``: a ``MjModel``'s
-``hfield_data``) or copied into a Warp array on any device in one upload
-(``copy_rows``: MuJoCo Warp, mjlab, ``rse.newton``) at given starts,
+``hfield_data``) or copied into a Warp array (``copy_rows``: MuJoCo Warp,
+mjlab, ``rse.newton``; on a GPU in one upload) at given starts,
 and a geom pointed at a field per world (``geom_dataid`` batched per
 world)."""
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, Optional
 
 import numpy as np
 
@@ -24,22 +24,32 @@ def write_rows(data: np.ndarray, rows: np.ndarray, pairs: Iterable[tuple[int, in
         data[int(start) : int(start) + size] = rows[r]
 
 
-def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]]) -> None:
+def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]], *, scatter: Optional[bool] = None) -> None:
     """Copies row ``r`` of ``rows`` (float32, one row a field) into the Warp
     array ``dst`` (a model's ``hfield_data``, Newton's elevations) at
-    ``start``, for each ``(r, start)`` of ``pairs``, on any device in one
+    ``start``, for each ``(r, start)`` of ``pairs``. On a GPU in one
     upload: the rows named are gathered on the host, sent in one copy with
-    their starts, and one kernel (``scatter_rows``) writes them in place.
-    One copy per field (as before: 2·82 per step at 4096 envs resetting
-    every 50 steps) cost a driver round trip each on a GPU."""
+    their starts, and one kernel (``scatter_rows``) writes them in place;
+    a copy per field (as before: 2·82 a step at 4096 envs resetting every
+    50 steps) cost a driver round trip each. On the CPU device the rows go
+    into a numpy view of ``dst``'s memory, with no kernel to launch.
+    ``scatter`` forces the one way or the other (tests)."""
     import warp as wp
 
     pairs = [(int(r), int(start)) for r, start in pairs]
     if not pairs:
         return
     rows = np.asarray(rows).reshape(len(rows), -1)
-    picked = [r for r, _ in pairs]
-    gathered = np.ascontiguousarray(rows[picked], dtype=np.float32)
+    if scatter is None:
+        scatter = not dst.device.is_cpu
+    if not scatter:
+        full = dst.numpy()
+        view = full.reshape(-1)
+        if not np.shares_memory(view, full):
+            raise ValueError("dst: a Warp array of one contiguous block was expected")
+        write_rows(view, rows.astype(np.float32, copy=False), pairs)
+        return
+    gathered = np.ascontiguousarray(rows[[r for r, _ in pairs]], dtype=np.float32)
     device = dst.device
     source = wp.array(gathered, dtype=wp.float32, device=device)
     starts = wp.array(np.array([start for _, start in pairs], dtype=np.int32), dtype=wp.int32, device=device)

