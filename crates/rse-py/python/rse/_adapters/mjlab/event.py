@@ -54,10 +54,9 @@ class EnvTerrainsEvent:
     per world (mjlab's ``expand_model_fields``, which captures the sense
     graph anew with them), points each world's terrain geom at its env's
     field and bounds it by that terrain's tops (``TerrainBounds``); each
-    call resets
-    the named envs, copies their samples into the simulation's model (and
-    the host model, which mjlab's viewer draws) and writes their origins
-    into ``env.scene.env_origins``.
+    call resets the named envs, copies their samples into the simulation's
+    model (and the host model, which mjlab's viewer draws) and writes their
+    origins into ``env.scene.env_origins``.
     """
 
     def __init__(self, cfg: Any, env: Any) -> None:
@@ -113,10 +112,9 @@ class EnvTerrainsEvent:
         part, counted from the arrays themselves: the pool's fields and the
         coarse fields (their share of the device model's ``hfield_data``),
         each world's routing and bounds (``geom_dataid`` and ``geom_aabb``
-        expanded per world) and the
-        cameras' meshes, if any (their points, and their BVHs at
-        ``RAY_BYTES_PER_SAMPLE``). ``pool_memory`` estimates the same
-        before the scene is built."""
+        expanded per world) and the cameras' meshes, if any (their points,
+        and their BVHs at ``RAY_BYTES_PER_SAMPLE``). ``pool_memory``
+        estimates the same before the scene is built."""
         import mujoco
 
         mjm, m = self._env.sim.mj_model, self._env.sim.wp_model

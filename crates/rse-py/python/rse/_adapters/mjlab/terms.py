@@ -26,8 +26,9 @@ def exact_height_scan(
     the sensor's ``max_distance`` is a miss (``miss_value``, default
     ``max_distance``), as for the rays. The sensor must cast its rays
     straight down (a grid pattern), as the velocity tasks' does. Computed
-    on the simulation's device from the fields there (``DeviceTops``), with
-    no copy to the host. Use it in place of ``height_scan``:
+    where the simulation runs (``DeviceTops``: on a GPU from the fields
+    there), with no copy between the host and a device. Use it in place
+    of ``height_scan``:
     ``ObservationTermCfg(func=exact_height_scan, params={"sensor_name": "terrain_scan"})``."""
     import torch
 
