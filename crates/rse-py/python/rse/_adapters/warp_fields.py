@@ -51,8 +51,8 @@ def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]], *, s
         return
     gathered = np.ascontiguousarray(rows[[r for r, _ in pairs]], dtype=np.float32)
     device = dst.device
-    source = wp.array(gathered, dtype=wp.float32, device=device)
-    starts = wp.array(np.array([start for _, start in pairs], dtype=np.int32), dtype=wp.int32, device=device)
+    source: Any = wp.array(gathered, dtype=wp.float32, device=device)
+    starts: Any = wp.array(np.array([start for _, start in pairs], dtype=np.int32), dtype=wp.int32, device=device)
     wp.launch(scatter_rows_kernel(), dim=gathered.shape, inputs=[source, starts], outputs=[dst], device=device)
 
 
@@ -65,7 +65,7 @@ def scatter_rows_kernel() -> Any:
 
     @wp.kernel
     def scatter_rows(src: wp.array2d(dtype=wp.float32), starts: wp.array(dtype=wp.int32), dst: wp.array(dtype=wp.float32)):  # type: ignore[valid-type]
-        r, i = wp.tid()
+        r, i = wp.tid()  # type: ignore[misc]
         dst[starts[r] + i] = src[r, i]
 
     return scatter_rows
