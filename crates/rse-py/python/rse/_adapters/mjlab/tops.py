@@ -34,8 +34,8 @@ class DeviceTops:
         _, _, self.elevation, _ = envs.hfield_size
         self.z0 = float(envs.hfield_pos[2])
         self.model = sim.wp_model
-        self._array: Any = None
-        self._data: Any = None
+        self._wrapped: Any = None
+        self._tensor: Any = None
         self.adr = torch.as_tensor(mjm.hfield_adr[first : first + n].astype(np.int64), device=sim.device)
         self.envs = envs
         self.all = np.arange(n)
@@ -86,6 +86,6 @@ class DeviceTops:
         import warp as wp
 
         array = self.model.hfield_data
-        if array is not self._array:
-            self._array, self._data = array, wp.to_torch(array)
-        return self._data
+        if array is not self._wrapped:
+            self._wrapped, self._tensor = array, wp.to_torch(array)
+        return self._tensor
