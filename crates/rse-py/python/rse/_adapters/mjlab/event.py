@@ -7,16 +7,13 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
-import numpy as np
-
-from rse._adapters import contacts
 from rse._adapters.fields import geom_id
 from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.mjlab import bounds
 from rse._adapters.mjlab.apart import Apart
 from rse._adapters.mjlab.coarse import CoarsePool
-from rse._adapters.mjlab.pool import GEOM_GROUP
-from rse._adapters.mjlab.rays import RAY_BYTES_PER_SAMPLE, RayMeshes, cast_on_each_worlds_field
+from rse._adapters.mjlab.pool import GEOM_GROUP, device_bytes
+from rse._adapters.mjlab.rays import RayMeshes, cast_on_each_worlds_field
 from rse._adapters.mjlab.terrains import (
     initial_difficulty,
     launcher_env_offset,
@@ -109,36 +106,9 @@ class EnvTerrainsEvent:
 
     def device_bytes(self) -> dict[str, int]:
         """What rse's terrains hold on the simulation's device, bytes, by
-        part, counted from the arrays themselves: the pool's fields and the
-        coarse fields (their share of the device model's ``hfield_data``),
-        each world's routing and bounds (``geom_dataid`` and ``geom_aabb``
-        expanded per world) and the cameras' meshes, if any (their points,
-        and their BVHs at ``RAY_BYTES_PER_SAMPLE``). ``pool_memory``
-        estimates the same before the scene is built."""
-        import mujoco
-
-        mjm, m = self._env.sim.mj_model, self._env.sim.wp_model
-        n = self.envs.num_envs
-
-        def fields(prefix: str) -> int:
-            first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{prefix}0")
-            if first < 0:
-                return 0
-            sizes = mjm.hfield_nrow[first : first + n].astype(np.int64) * mjm.hfield_ncol[first : first + n]
-            return 4 * int(sizes.sum())  # float32 samples
-
-        worlds, geoms = int(m.geom_dataid.shape[0]) - 1, int(m.geom_dataid.shape[1])
-        parts = {
-            "fields": fields(self.name),
-            "coarse fields": fields(self.name + contacts.COARSE),
-            # geom_dataid (an int) and geom_aabb (two vec3) a geom, per world.
-            "routing and bounds": worlds * geoms * (4 + 24),
-            "camera meshes": 0,
-        }
-        if self._ray_meshes is not None:
-            samples = int(np.prod(self.envs.field_shape))
-            parts["camera meshes"] = n * samples * RAY_BYTES_PER_SAMPLE
-        return parts
+        part, counted from the arrays (``pool.device_bytes``)."""
+        sim = self._env.sim
+        return device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
 
     def slot_size(self, like: Any) -> Any:
         """A slot's size ``[x, y]``, metres, as a tensor of ``like``'s

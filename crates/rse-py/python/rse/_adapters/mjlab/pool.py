@@ -131,6 +131,36 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     return host, on_device
 
 
+def device_bytes(mjm: Any, m: Any, envs: EnvTerrains, name: str = POOL, *, cameras: bool = False) -> dict[str, int]:
+    """What the pool ``name`` of ``envs`` holds on the device of ``m`` (a
+    MuJoCo Warp model compiled from ``mjm``), bytes, by part, counted from
+    the arrays themselves: the pool's fields and the coarse fields (their
+    share of ``hfield_data``), each world's routing and bounds
+    (``geom_dataid`` and ``geom_aabb`` expanded per world) and, with camera
+    sensors (``cameras``), their meshes (``RAY_BYTES_PER_SAMPLE``: their
+    points and BVHs). ``pool_memory`` estimates the same before the scene
+    is built."""
+    import mujoco
+
+    n = envs.num_envs
+
+    def fields(prefix: str) -> int:
+        first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{prefix}0")
+        if first < 0:
+            return 0
+        sizes = mjm.hfield_nrow[first : first + n].astype(np.int64) * mjm.hfield_ncol[first : first + n]
+        return 4 * int(sizes.sum())  # float32 samples
+
+    worlds, geoms = int(m.geom_dataid.shape[0]) - 1, int(m.geom_dataid.shape[1])
+    return {
+        "fields": fields(name),
+        "coarse fields": fields(name + contacts.COARSE),
+        # geom_dataid (an int) and geom_aabb (two vec3) a geom, per world.
+        "routing and bounds": worlds * geoms * (4 + 24),
+        "camera meshes": n * int(np.prod(envs.field_shape)) * RAY_BYTES_PER_SAMPLE if cameras else 0,
+    }
+
+
 def available_memory() -> Optional[int]:
     """``MemAvailable`` of ``/proc/meminfo``, bytes; None where there is none."""
     try:
