@@ -493,3 +493,25 @@ def test_the_registered_stepfield_has_no_dead_level_on_mjlabs_ten_levels() -> No
     assert report.ok, report.problems
     assert report.levels[0].flat_share == 1.0 and all(level.flat_share == 0.0 for level in report.levels[1:])
     assert all(level.distinct == 30 for level in report.levels[1:]), "every env its own terrain at every level"
+
+
+def test_a_built_scene_says_the_seed_and_oversample_it_used_in_its_config_and_record() -> None:
+    """Neither set: the scene's ``EnvTerrainCfg`` holds, once built, the
+    scheme's own seed and rse's default oversample, so mjlab's ``env.yaml``
+    (dumped from the config after the env is built) and rse's
+    ``rse_terrain.json`` (``record``) say the same values, not None."""
+    from rse._mjlab_run import record
+
+    cfg = task_cfg()
+    seeded = rse.Scheme.from_csv("# seed: 11\n" + SCHEME.to_csv())
+    use_env_terrains(cfg, seeded)
+    assert cfg.scene.terrain.seed is None and cfg.scene.terrain.oversample is None
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        terrain = env.cfg.scene.terrain
+        assert (terrain.seed, terrain.oversample) == (11, rse.DEFAULT_ENV_OVERSAMPLE)
+        said = record(terrain)
+        assert (said["seed"], said["oversample"]) == (11, rse.DEFAULT_ENV_OVERSAMPLE)
+        assert env_terrains(env).schemes[0].seed == 11
+    finally:
+        env.close()

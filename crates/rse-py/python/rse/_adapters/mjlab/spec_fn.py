@@ -8,6 +8,7 @@ from __future__ import annotations
 import sys
 from typing import Any, Optional
 
+from rse._adapters import contacts
 from rse._adapters.mjlab.pool import add_pool, available_memory, pool_memory
 from rse._adapters.mjlab.terrains import probe_envs, scheme_of, terrain_settings
 
@@ -62,7 +63,9 @@ class PoolSpec:
         oversample = settings["oversample"]
         n = int(scene.num_envs)
         device = likely_device()
-        host, on_device = pool_memory(probe_envs(scheme, oversample), n, device, geoms=len(spec.geoms) + POOL_GEOMS, cameras=has_cameras(scene))
+        probe = probe_envs(scheme, oversample)
+        record_what_is_used(scene.terrain, probe)
+        host, on_device = pool_memory(probe, n, device, geoms=len(spec.geoms) + POOL_GEOMS, cameras=has_cameras(scene))
         print(
             f"[INFO] rse terrains: {n} envs, {host / 2**30:.2f} GiB in host memory ({host / n / 1024:.0f} KiB an env)"
             + (f" and {on_device / 2**30:.2f} GiB on {device} ({on_device / n / 1024:.0f} KiB an env)" if on_device else "")
@@ -116,6 +119,20 @@ def pool_scene(scene: Any) -> Any:
     copy.__dict__.update(fields)
     copy.spec_fn = earlier
     return copy
+
+
+def record_what_is_used(terrain: Any, probe: Any) -> None:
+    """Writes into the scene's ``EnvTerrainCfg`` the seed and oversample
+    its unset fields (None) resolve to, as the scene is built: the
+    scheme's ``# seed:`` (a mix's first scheme's) and rse's default
+    oversample. mjlab's ``env.yaml`` and rse's ``rse_terrain.json`` then
+    say the same values; the config built once says what it was built
+    with. (Not when the config is made: a scheme set later, on ``train``'s
+    command line, brings its own seed.)"""
+    if terrain.seed is None:
+        terrain.seed = int(probe.schemes[0].seed)
+    if terrain.oversample is None:
+        terrain.oversample = contacts.oversample_of(probe)
 
 
 POOL_GEOMS = 4
