@@ -117,7 +117,11 @@ pub enum SchemeErrorKind {
     #[error("malformed CSV: {0}")]
     Csv(String),
     /// A `# key: value` line names no known global parameter.
-    #[error("unknown global parameter `{}` (known: {known})", quote(.0), known = crate::limits::GLOBAL_KEYS.join(", "))]
+    #[error(
+        "unknown global parameter `{}` (known: {known}; a note is written `# note: …`)",
+        quote(.0),
+        known = crate::limits::GLOBAL_KEYS.join(", ")
+    )]
     UnknownGlobal(String),
     /// A leading comment `# word: value` whose word is a global's name
     /// misspelt (`step-height`, `Seeds`): an error, not a note, since the

@@ -124,13 +124,17 @@ pub(crate) fn parse(text: &str, file: Option<&str>) -> Result<Scheme, SchemeErro
     Scheme::with_origin(globals, obstacles, notes, origin)
 }
 
-/// `key: value` where key is a single word (letters, digits, `_`); anything
-/// else in a leading comment is a free-text note.
+/// The word that starts a note whatever follows (`# note: Try 0.05`): the
+/// one single word before a `:` that is not a global parameter.
+pub(crate) const NOTE: &str = "note";
+
+/// `key: value` where key is a single word (letters, digits, `_`) other
+/// than [`NOTE`]; anything else in a leading comment is a free-text note.
 pub(crate) fn split_global(comment: &str) -> Option<(&str, &str)> {
     let (key, value) = comment.split_once(':')?;
     let key = key.trim();
     let is_word = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    is_word.then(|| (key, value.trim()))
+    (is_word && !key.eq_ignore_ascii_case(NOTE)).then(|| (key, value.trim()))
 }
 
 /// The free-text note of the comment at `line`, or the error of one that

@@ -436,3 +436,36 @@ fn a_negative_zero_base_is_zero() {
     let built = Scheme::new(globals, zero.obstacles().to_vec()).unwrap();
     assert!(built.globals().base.is_sign_positive());
 }
+
+/// A comment that reads as `word: text` is a parameter, so a note such as
+/// `# Try: 0.05 for a small robot` is refused; the error says how to write
+/// one, and `# note: …` is a note whatever follows, kept when saved.
+#[test]
+fn a_note_is_written_note_colon_and_the_refusal_says_so() {
+    let e = refuse(&format!(
+        "# Try: 0.05 for a small robot\n{HEAD}random,2,,,,,\n"
+    ));
+    assert_eq!(e.line, Some(1), "{e}");
+    assert!(matches!(e.kind, SchemeErrorKind::UnknownGlobal(_)), "{e}");
+    assert!(
+        e.to_string().contains("a note is written `# note: …`"),
+        "{e}"
+    );
+    let s = scheme(&format!(
+        "# note: Try 0.05 for a small robot\n# Note: size: 9x9 is too small\n{HEAD}random,2,,,,,\n"
+    ));
+    assert_eq!(
+        s.notes(),
+        [
+            "note: Try 0.05 for a small robot",
+            "Note: size: 9x9 is too small"
+        ]
+    );
+    assert_eq!(s.globals().grid().nx, 20);
+    assert_eq!(scheme(&s.to_csv()), s);
+    let kept = s
+        .clone()
+        .with_notes(vec!["note: seed: 3 was better".into()])
+        .unwrap();
+    assert_eq!(scheme(&kept.to_csv()), kept);
+}

@@ -26,6 +26,10 @@ pub fn scheme_fault(kind: &SchemeErrorKind) -> String {
             "a line of the notes starts with `{}:`, which a scheme file would read as a setting: reword its start",
             quote(key)
         ),
+        SchemeErrorKind::UnknownGlobal(key) => format!(
+            "`{}` is not a setting of a scheme; for a note, start the line with `note:`",
+            quote(key)
+        ),
         SchemeErrorKind::NearGlobal { found, near } => format!(
             "`{}` is not a setting of a scheme; did you mean `{near}`?",
             quote(found)
