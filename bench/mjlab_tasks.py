@@ -193,8 +193,15 @@ def proxies(env, episode_s: float) -> dict[str, float]:
         exact_height_scan(env, "terrain_scan")
         out_of_slot(env)
     tops.on_host = on_host
+    # What the allocator gave the arrays that hold them: the model's
+    # height fields (the Go1 scene has none but rse's) and the per-world
+    # routing and bounds, less the one row each had before rse expanded it.
+    m = env.sim.wp_model
+    geoms = int(m.geom_dataid.shape[1])
+    held = int(m.hfield_data.capacity) + int(m.geom_dataid.capacity) + int(m.geom_aabb.capacity) - geoms * (4 + 24)
     return {
         "device bytes/env": sum(parts.values()) / env.num_envs,
+        "allocated bytes/env": held / env.num_envs,
         "reset generate us/env": 1e6 * generate,
         "reset upload us/env": 1e6 * upload,
         # The samples, each field's start (4 bytes) and the origin (12).
@@ -303,6 +310,7 @@ def main() -> None:
     host, on_device = pool_memory(probe_envs(rse_pkg.Scheme.from_csv(STEPFIELD), None), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
     print(
         f"terrain on the device per env: {proxy['device bytes/env'] / 1024:.1f} KiB counted from the arrays, "
+        f"{proxy['allocated bytes/env'] / 1024:.1f} KiB allocated to them, "
         f"{on_device / args.num_envs / 1024:.1f} KiB estimated ([INFO] line), "
         + (f"{(held[True] - held[False]) / args.num_envs / 1024:.1f} KiB by Warp's allocator (rse's env less mjlab's)" if held[True] else "no allocator on the CPU")
     )
