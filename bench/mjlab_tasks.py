@@ -175,7 +175,7 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     from rse.mjlab import exact_height_scan, out_of_slot
 
     sys.path.insert(0, str(REPO / "tests" / "frameworks"))
-    from host_copies import HostCopies
+    from host_copies import HostCopies, as_a_gpu_runs_them
 
     event = event_of(env, "rse_terrain")
     parts = event.device_bytes()
@@ -184,15 +184,9 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     generate = timed(env, lambda: event.envs.reset(ids), 5) / n
     upload = timed(env, lambda: event._copy_out(ids), 5) / n
     cells = parts["fields"] + parts["coarse fields"]
-    # As a GPU runs them: the tops by tensor ops on the device (the CPU
-    # device reads them with heights_at over the points' own memory).
-    tops = event.device_tops(env.sim)
-    on_host, tops.on_host = tops.on_host, False
-    exact_height_scan(env, "terrain_scan")  # wraps the device's fields once
-    with HostCopies() as copies:
+    with as_a_gpu_runs_them(event.exact_tops()), HostCopies() as copies:
         exact_height_scan(env, "terrain_scan")
         out_of_slot(env)
-    tops.on_host = on_host
     # What the allocator gave the arrays that hold them: the model's
     # height fields (the Go1 scene has none but rse's) and the per-world
     # routing and bounds, less the one row each had before rse expanded it.

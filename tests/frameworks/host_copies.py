@@ -7,6 +7,8 @@ Python call, or torch's dispatch), not by their cost."""
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -79,3 +81,18 @@ class HostCopies(TorchDispatchMode):
         for owner, name, original in reversed(self._saved):
             setattr(owner, name, original)
         self._saved.clear()
+
+
+@contextlib.contextmanager
+def as_a_gpu_runs_them(tops: Any) -> Iterator[None]:
+    """While active, ``tops`` (an ``EnvTerrainsEvent.exact_tops()``) reads
+    the exact tops by tensor ops on the device, as on a GPU, where the CPU
+    device reads them with ``heights_at`` over the points' own memory. The
+    device model's fields are wrapped on entry (once, as a GPU does at its
+    first step), so that what is recorded inside is a step's work alone."""
+    on_host, tops.on_host = tops.on_host, False
+    try:
+        tops.samples()
+        yield
+    finally:
+        tops.on_host = on_host

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import rse
 import torch
-from host_copies import HostCopies
+from host_copies import HostCopies, as_a_gpu_runs_them
 from mjlab.envs import ManagerBasedRlEnv
 from mjlab.managers.observation_manager import ObservationTermCfg
 from mjlab.tasks.registry import load_env_cfg
@@ -63,19 +63,13 @@ def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> No
     ``heights_at`` over the points' own memory, and both give the same)."""
     terms = step_terms(env)
     assert {term.func.__name__ for _, term in terms} == {"exact_height_scan", "out_of_slot"}, terms
-    tops = event_of(env, "rse_terrain").device_tops(env.sim)
     on_host = [term.func(env, **term.params) for _, term in terms]
-    tops.on_host = False
-    try:
-        # The first call wraps the device model's fields once.
-        tops.device_tops(torch.zeros((NUM_ENVS, 1, 2)))
+    with as_a_gpu_runs_them(event_of(env, "rse_terrain").exact_tops()):
         for (name, term), expected in zip(terms, on_host):
             with HostCopies() as copies:
                 got = term.func(env, **term.params)
             assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
             assert torch.allclose(got.float(), expected.float(), atol=1e-5), name
-    finally:
-        tops.on_host = True
 
 
 def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None:

@@ -32,8 +32,11 @@ class Apart:
 
         n = envs.num_envs
         self.offsets = np.zeros((n, 2))
+        x, y, _ = envs.hfield_pos
+        self.size = np.array([2.0 * x, 2.0 * y])
+        """A slot's size ``[x, y]``, metres: twice the field's centre."""
         self.mocap = -1
-        self._shift: dict[tuple[Any, Any], Any] = {}
+        self._tensors: dict[tuple[str, Any, Any], Any] = {}
         if not on:
             return
         self.offsets = apart_offsets(envs)
@@ -58,15 +61,24 @@ class Apart:
         frame: less its env's offset."""
         if not self.offsets.any():
             return xy
-        key = (xy.device, xy.dtype)
-        shift = self._shift.get(key)
-        if shift is None:
+        shift = self._tensor("offsets", xy)
+        return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
+
+    def slot_size(self, like: Any) -> Any:
+        """``size`` as a tensor of ``like``'s device and dtype."""
+        return self._tensor("size", like)
+
+    def _tensor(self, name: str, like: Any) -> Any:
+        """The array ``name`` of this object as a tensor of ``like``'s
+        device and dtype, made once each: a term's step makes no tensor
+        from host data."""
+        key = (name, like.device, like.dtype)
+        tensor = self._tensors.get(key)
+        if tensor is None:
             import torch
 
-            # Made once per device and dtype: a term's step makes no
-            # tensor from host data.
-            shift = self._shift[key] = torch.as_tensor(self.offsets, dtype=xy.dtype, device=xy.device)
-        return xy - shift.view(shift.shape[0], *([1] * (xy.dim() - 2)), 2)
+            tensor = self._tensors[key] = torch.as_tensor(getattr(self, name), dtype=like.dtype, device=like.device)
+        return tensor
 
     def place(self, sim: Any, ids: list[int]) -> None:
         """Puts the view bodies of ``ids`` at their envs' places (a reset

@@ -94,14 +94,13 @@ class EnvTerrainsEvent:
         self._bounds = bounds.TerrainBounds(sim.wp_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
-        self._slot_size: dict[tuple[Any, Any], Any] = {}
         self._copy_out(list(range(env.num_envs)))
 
-    def device_tops(self, sim: Any) -> Any:
-        """The exact tops of every env on ``sim``'s device
+    def exact_tops(self) -> DeviceTops:
+        """The exact tops of every env on the simulation's device
         (``DeviceTops``), made on first use."""
         if self._tops is None:
-            self._tops = DeviceTops(sim, self.envs, self.name)
+            self._tops = DeviceTops(self._env.sim, self.envs, self.name)
         return self._tops
 
     def device_bytes(self) -> dict[str, int]:
@@ -109,19 +108,6 @@ class EnvTerrainsEvent:
         part, counted from the arrays (``pool.device_bytes``)."""
         sim = self._env.sim
         return device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
-
-    def slot_size(self, like: Any) -> Any:
-        """A slot's size ``[x, y]``, metres, as a tensor of ``like``'s
-        device and dtype, made once each (a term's step makes no tensor
-        from host data)."""
-        key = (like.device, like.dtype)
-        size = self._slot_size.get(key)
-        if size is None:
-            import torch
-
-            x, y, _ = self.envs.hfield_pos
-            size = self._slot_size[key] = torch.tensor([2.0 * x, 2.0 * y], device=like.device, dtype=like.dtype)
-        return size
 
     def _copy_out(self, ids: list[int]) -> None:
         """Copies the terrains of ``ids`` into the simulation's model and

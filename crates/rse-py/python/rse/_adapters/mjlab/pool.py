@@ -118,9 +118,9 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     (exact and coarse); on the device MuJoCo Warp's copy of the fields and
     each world's routing and bounds (its rows of ``geom_dataid`` and
     ``geom_aabb``, 28 bytes for each of the scene's ``geoms``, which mjlab
-    expands per world for rse), and with
-    camera sensors (``cameras``) their meshes (``RAY_BYTES_PER_SAMPLE``).
-    ``EnvTerrainsEvent.device_bytes`` counts the same from the arrays."""
+    expands per world for rse), and with camera sensors (``cameras``) their
+    meshes (``RAY_BYTES_PER_SAMPLE``). ``device_bytes`` counts the same
+    from the arrays."""
     nrow, ncol = probe.field_shape
     samples = nrow * ncol
     cells = probe.terrain(0).heights.size if contacts.oversample_of(probe) > 1 else 0

@@ -43,7 +43,7 @@ def exact_height_scan(
         return torch.full((env.num_envs, sensor.num_rays), float(miss_value), device=env.device)
     B = origins.shape[0]
     xy = event.apart.slot_xy(origins[..., :2].detach())
-    tops = event.device_tops(env.sim).tops(xy).to(origins.dtype)
+    tops = event.exact_tops().tops(xy).to(origins.dtype)
     F, N = sensor.num_frames, sensor.num_rays_per_frame
     frame_z = sensor.data.frame_pos_w[:, :, 2:3]
     reach = (frame_z - tops.view(B, F, N)).view(B, F * N)
@@ -58,5 +58,5 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     ``hfield_pos``: no terrain is copied out in a step)."""
     event = event_of(env, term)
     xy = event.apart.slot_xy(env.scene[asset_name].data.root_link_pos_w[:, :2])
-    size = event.slot_size(xy)
+    size = event.apart.slot_size(xy)
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
