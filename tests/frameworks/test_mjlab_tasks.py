@@ -354,7 +354,11 @@ def test_mjlabs_own_train_script_runs_an_rse_task_on_a_users_scheme_set_on_its_c
     done = subprocess.run(
         [sys.executable, "-m", "rse.mjlab_video", str(checkpoint), "--steps", "10", "--num-envs", "2"],
         cwd=tmp_path, capture_output=True, text=True, timeout=1200,
-        env={**os.environ, "CUDA_VISIBLE_DEVICES": "", "MUJOCO_GL": "osmesa"},
+        # PyOpenGL's platform too: mjlab sets MUJOCO_GL=egl when imported,
+        # and MuJoCo imported after it sets PYOPENGL_PLATFORM=egl in this
+        # process, which the child would read in place of osmesa (seen when
+        # a test module importing mjlab first ran before this one).
+        env={**os.environ, "CUDA_VISIBLE_DEVICES": "", "MUJOCO_GL": "osmesa", "PYOPENGL_PLATFORM": "osmesa"},
     )
     assert done.returncode == 0, done.stderr[-3000:]
     video = Path(done.stdout.strip().splitlines()[-1])
