@@ -77,11 +77,11 @@ copies the new samples up and reads nothing back."""
 
 def _once(owner: Any, read: Any) -> list[int]:
     """``read()``, kept for ``owner`` while it lives."""
-    kept = _OFFSETS.get(id(owner))
+    key = id(owner)
+    kept = _OFFSETS.get(key)
     if kept is not None and kept[0]() is owner:
         return kept[1]
     value = read()
-    key = id(owner)
     _OFFSETS[key] = (weakref.ref(owner, lambda _: _OFFSETS.pop(key, None)), value)
     return value
 
