@@ -165,9 +165,13 @@ impl MeshUnits {
             0
         } else {
             let k = ((f64::from(v[2]) - self.base) / self.step_height).round();
-            let ok = k >= 0.0 && k < f64::from(u16::MAX) + 1.0;
+            // Out of range (an infinite or huge quotient too) is no level:
+            // tested before the cast, which saturates, and the `+ 1`.
+            if !(k >= 0.0 && k < f64::from(u16::MAX) + 1.0) {
+                return None;
+            }
             let level = (k as u32) + 1;
-            (ok && (self.z(level) as f32).to_bits() == v[2].to_bits()).then_some(level)?
+            ((self.z(level) as f32).to_bits() == v[2].to_bits()).then_some(level)?
         };
         Some([x, y, level])
     }
