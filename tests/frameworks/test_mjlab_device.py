@@ -48,12 +48,13 @@ def step_terms(env: ManagerBasedRlEnv) -> list[tuple[str, object]]:
     """Every observation, reward and termination term of ``env``'s config
     whose function is rse's: what rse adds to each step (the curriculum
     term and the reset event run at resets, which copy a new terrain up by
-    design)."""
+    design; the step events run every step)."""
     found = []
     for group, cfg in env.cfg.observations.items():
         found += [(f"observations[{group}].{name}", term) for name, term in cfg.terms.items()]
     found += [(f"rewards.{name}", term) for name, term in env.cfg.rewards.items()]
     found += [(f"terminations.{name}", term) for name, term in env.cfg.terminations.items()]
+    found += [(f"events.{name}", term) for name, term in env.cfg.events.items() if term.mode == "step"]
     return [(name, term) for name, term in found if getattr(term.func, "__module__", "").startswith("rse.")]
 
 
@@ -62,12 +63,19 @@ def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> No
     device (``DeviceTops.device_tops``; the CPU device reads them with
     ``heights_at`` over the points' own memory, and both give the same)."""
     terms = step_terms(env)
-    assert {term.func.__name__ for _, term in terms} == {"exact_height_scan", "out_of_slot"}, terms
-    on_host = [term.func(env, **term.params) for _, term in terms]
+    assert {term.func.__name__ for _, term in terms} == {"exact_height_scan", "out_of_slot", "bound_near_robots"}, terms
+
+    def run(term) -> torch.Tensor:
+        # An event term returns nothing: what it wrote is its result.
+        args = (None,) if getattr(term, "mode", None) == "step" else ()
+        got = term.func(env, *args, **term.params)
+        return env.sim.model.geom_aabb.clone() if got is None else got
+
+    on_host = [run(term) for _, term in terms]
     with as_a_gpu_runs_them(event_of(env, "rse_terrain").exact_tops()):
         for (name, term), expected in zip(terms, on_host):
             with HostCopies() as copies:
-                got = term.func(env, **term.params)
+                got = run(term)
             assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
             assert torch.allclose(got.float(), expected.float(), atol=1e-5), name
 
@@ -168,5 +176,86 @@ def test_each_worlds_terrain_is_bounded_by_its_own_tops_so_only_the_feet_pair_wi
         env.reset(env_ids=torch.tensor([0]))
         top = bounded()
         assert top[0] > 0.1 and not top[1:].any(), top
+    finally:
+        env.close()
+
+
+def trajectory(near: bool, reach: float | None = None, steps: int = 40) -> tuple[torch.Tensor, float]:
+    """Every step's ``qpos`` of 8 Go1s under random actions on rse's
+    hardest stepfield, episodes of 0.5 s (two rounds of resets), and the
+    broadphase pairs per world: with the step event that bounds each
+    world's terrain around its robot (``near``, its reach replaced by
+    ``reach`` when given) or without it."""
+    torch.manual_seed(0)
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = 8
+    cfg.seed = 5
+    cfg.episode_length_s = 0.5
+    use_env_terrains(cfg, rse.Scheme.from_csv(STEPFIELD), seed=3, difficulty=1.0)
+    if not near:
+        del cfg.events["rse_terrain_near"]
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        env.reset()
+        square = event_of(env, "rse_terrain").near_robot
+        assert square is not None
+        if reach is not None:
+            square.reach = reach
+        actions = torch.Generator().manual_seed(1)
+        qpos, pairs = [], 0
+        for _ in range(steps):
+            env.step(torch.randn(env.action_space.shape, generator=actions))
+            qpos.append(env.sim.data.qpos.clone())
+            pairs += int(env.sim.wp_data.ncollision.numpy()[0])
+        return torch.stack(qpos), pairs / steps / 8
+    finally:
+        env.close()
+
+
+def test_the_terrain_bounded_around_each_robot_halves_the_pairs_and_changes_no_contact() -> None:
+    """The step event ``bound_near_robots`` narrows each world's terrain
+    box to the square its robot can reach before the next step: the
+    broadphase tests half the pairs, and the simulation is the same to the
+    bit (a dropped pair could not touch), through falls on 20 cm steps and
+    resets that put every robot somewhere new. A square that misses the
+    legs (a reach of 0.2 m) changes it: the comparison can fail."""
+    near, near_pairs = trajectory(True)
+    whole, whole_pairs = trajectory(False)
+    assert torch.equal(near, whole), (near - whole).abs().amax(dim=(1, 2))
+    assert near_pairs <= 0.6 * whole_pairs, (near_pairs, whole_pairs)
+    short, _ = trajectory(True, reach=0.2)
+    assert not torch.equal(short, whole)
+
+
+def test_the_reach_holds_every_collider_in_any_pose_of_the_legs() -> None:
+    """``near.reach`` bounds how far from the root any point of a geom that
+    may touch the terrain gets, over random poses within the joints'
+    ranges (MuJoCo's own kinematics), and is no more than 1.5x the
+    farthest seen."""
+    import mujoco
+    from rse._adapters.mjlab.near import free_root, reach, terrain_colliders
+
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = 1
+    use_env_terrains(cfg, rse.Scheme.from_csv(STEPFIELD), seed=3)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        mjm = env.sim.mj_model
+        terrain = [mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_GEOM, g) for g in ("rse_terrain", "rse_terrain_coarse")]
+        geoms = terrain_colliders(mjm, terrain)
+        root = free_root(mjm, geoms)
+        assert root is not None and len(geoms) > 4
+        bound = reach(mjm, root, geoms)
+        data = mujoco.MjData(mjm)
+        rng = np.random.default_rng(0)
+        farthest = 0.0
+        for _ in range(200):
+            for j in range(mjm.njnt):
+                if mjm.jnt_type[j] == mujoco.mjtJoint.mjJNT_HINGE:
+                    data.qpos[mjm.jnt_qposadr[j]] = rng.uniform(*mjm.jnt_range[j]) if mjm.jnt_limited[j] else rng.uniform(-np.pi, np.pi)
+            mujoco.mj_kinematics(mjm, data)
+            out = np.linalg.norm(data.geom_xpos[geoms] - data.xpos[root], axis=1) + mjm.geom_rbound[geoms] + mjm.geom_margin[geoms]
+            farthest = max(farthest, float(out.max()))
+        assert farthest <= bound <= 1.5 * farthest, (farthest, bound)
     finally:
         env.close()

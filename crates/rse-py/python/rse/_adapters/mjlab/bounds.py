@@ -21,22 +21,27 @@ size)`` in its frame."""
 class TerrainBounds:
     """The terrain geoms ``gids`` (the exact and coarse fields' geoms, in
     the field's frame: the samples go from 0 to ``elevation`` above it, the
-    base ``base`` below) of world ``w`` bounded by env ``w``'s tops. The
-    model's ``geom_aabb`` must be batched per world (mjlab's
-    ``expand_model_fields``)."""
+    base ``base`` below) of world ``w`` bounded by env ``w``'s tops, over
+    the whole field. The model's ``geom_aabb`` must be batched per world
+    (mjlab's ``expand_model_fields``)."""
 
-    def __init__(self, m: Any, gids: list[int], envs: EnvTerrains) -> None:
+    def __init__(self, m: Any, mjm: Any, gids: list[int], envs: EnvTerrains) -> None:
         self.gids = [g for g in gids if g >= 0]
         _, _, self.elevation, self.base = envs.hfield_size
         nworld, self.ngeom = m.geom_aabb.shape[:2]
         if nworld != envs.num_envs:
             raise ValueError(f"m: geom_aabb holds {nworld} worlds, expected one per env ({envs.num_envs})")
+        self.plan = [(float(mjm.geom_aabb[g, 0]), float(mjm.geom_aabb[g, 1]), float(mjm.geom_aabb[g, 3]), float(mjm.geom_aabb[g, 4])) for g in self.gids]
+        """Each geom's box in x and y as MuJoCo made it: its whole field
+        (centre x, y, half sides x, y)."""
 
     def sync(self, m: Any, envs: EnvTerrains, ids: list[int]) -> None:
         """Bounds the terrain geoms of the worlds ``ids`` by their envs'
-        current tops (``envs.samples``, after ``envs.reset(ids)``): the
-        box's centre and half height in z, each a float of ``geom_aabb``,
-        four per env with both geoms, in one upload."""
+        current tops (``envs.samples``, after ``envs.reset(ids)``) over the
+        whole field: the box (centre, half sides: six floats of
+        ``geom_aabb``) of each geom, in one upload. The whole box, as the
+        step's bounds around the robot (``near``) narrow it in x and y, and
+        a reset may put the robot anywhere on its terrain."""
         if not ids or not self.gids:
             return
         top = envs.samples[ids].reshape(len(ids), -1).max(axis=1).astype(np.float64) * self.elevation
@@ -44,9 +49,9 @@ class TerrainBounds:
         centre, half = 0.5 * (top - self.base), 0.5 * (top + self.base)
         rows, starts = [], []
         for i, w in enumerate(ids):
-            for g in self.gids:
+            for g, (cx, cy, sx, sy) in zip(self.gids, self.plan):
                 box = (w * self.ngeom + g) * 2  # the geom's (center, size) vec3s
-                rows += [centre[i], half[i]]
-                starts += [box * 3 + 2, (box + 1) * 3 + 2]
+                rows.append([cx, cy, centre[i], sx, sy, half[i]])
+                starts.append(box * 3)
         flat = m.geom_aabb.flatten().view(float).flatten()
-        copy_rows(flat, np.asarray(rows, dtype=np.float32).reshape(-1, 1), enumerate(starts))
+        copy_rows(flat, np.asarray(rows, dtype=np.float32), enumerate(starts))

@@ -10,7 +10,7 @@ from rse._adapters.mjlab.curriculum import initial_levels, terrain_difficulty
 from rse._adapters.mjlab.event import TERM, EnvTerrainsEvent
 from rse._adapters.mjlab.pool import BODY
 from rse._adapters.mjlab.spec_fn import PoolScene, pool_scene
-from rse._adapters.mjlab.terms import out_of_slot
+from rse._adapters.mjlab.terms import bound_near_robots, out_of_slot
 from rse._adapters.mjlab.terrains import scheme_of, scheme_setting
 from rse._adapters.tiles import SchemeLike
 from rse._rse import EnvTerrains
@@ -65,6 +65,10 @@ def func_name(term: Any) -> str:
     return getattr(getattr(term, "func", None), "__name__", "")
 
 
+NEAR = "_near"
+"""The suffix of the step event term's name (``bound_near_robots``)."""
+
+
 def use_env_terrains(
     env_cfg: Any,
     scheme: Union[SchemeLike, dict[str, float]],
@@ -101,8 +105,10 @@ def use_env_terrains(
     - ``out_of_terrain_bounds`` by ``out_of_slot`` (the robot left its
       env's terrain);
 
-    and adds ``EnvTerrainsEvent`` as the first reset event ``term``. Every
-    other term is kept.
+    and adds ``EnvTerrainsEvent`` as the first reset event ``term``, and
+    ``bound_near_robots`` as the step event ``term + "_near"`` (each
+    world's terrain bounded, every step, by the square its robot can reach:
+    fewer broadphase pairs, the same contacts). Every other term is kept.
 
     ``scheme`` is one scheme (an ``rse.Scheme``, a CSV file's path or its
     text) or a mix, ``{scheme: proportion}`` (paths or CSV text), as
@@ -176,7 +182,9 @@ def use_env_terrains(
     # command line sets): none is copied here, where it would go stale.
     params = dict(env_offset=env_offset)
     event = EventTermCfg(func=EnvTerrainsEvent, mode="reset", params=params)
-    env_cfg.events = {term: event, **{k: v for k, v in env_cfg.events.items() if k != term}}
+    near = EventTermCfg(func=bound_near_robots, mode="step", params={"term": term})
+    kept = {k: v for k, v in env_cfg.events.items() if k not in (term, f"{term}{NEAR}")}
+    env_cfg.events = {term: event, f"{term}{NEAR}": near, **kept}
     levels = {k: c for k, c in env_cfg.curriculum.items() if func_name(c) == "terrain_levels_vel"}
     for k in levels:
         del env_cfg.curriculum[k]

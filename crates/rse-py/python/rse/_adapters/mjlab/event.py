@@ -12,6 +12,7 @@ from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.mjlab import bounds
 from rse._adapters.mjlab.apart import Apart
 from rse._adapters.mjlab.coarse import CoarsePool
+from rse._adapters.mjlab.near import NearRobotBounds, free_root, reach, terrain_colliders
 from rse._adapters.mjlab.pool import GEOM_GROUP, device_bytes
 from rse._adapters.mjlab.rays import RayMeshes, cast_on_each_worlds_field
 from rse._adapters.mjlab.terrains import (
@@ -91,9 +92,13 @@ class EnvTerrainsEvent:
         sim.expand_model_fields(("geom_dataid", bounds.FIELD))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
-        self._bounds = bounds.TerrainBounds(sim.wp_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
+        self._bounds = bounds.TerrainBounds(sim.wp_model, sim.mj_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
+        self.near_robot = self._near_robot(env)
+        """The terrain's bounds around each robot, renewed every step
+        (``bound_near_robots``), or None where the scene's geoms that may
+        touch the terrain are not all on one free body's tree."""
         self._copy_out(list(range(env.num_envs)))
 
     def exact_tops(self) -> DeviceTops:
@@ -102,6 +107,23 @@ class EnvTerrainsEvent:
         if self._tops is None:
             self._tops = DeviceTops(self._env.sim, self.envs, self.name)
         return self._tops
+
+    def _near_robot(self, env: Any) -> Optional[NearRobotBounds]:
+        mjm = env.sim.mj_model
+        colliders = terrain_colliders(mjm, self._bounds.gids)
+        root = free_root(mjm, colliders)
+        if root is None:
+            return None
+        horizon = env.step_dt + env.physics_dt
+        return NearRobotBounds(env.sim, self._bounds.gids, root, reach(mjm, root, colliders), horizon, self.exact_tops(), self.apart)
+
+    def bound_near_robots(self) -> None:
+        """Bounds each world's terrain by the square its robot can reach
+        before the next step (``NearRobotBounds``), where the scene allows;
+        the envs that reset after it in a step get their whole terrain's
+        bounds back from the reset."""
+        if self.near_robot is not None:
+            self.near_robot.update(self._env.sim)
 
     def device_bytes(self) -> dict[str, int]:
         """What rse's terrains hold on the simulation's device, bytes, by

@@ -60,3 +60,13 @@ def out_of_slot(env: Any, term: str = TERM, asset_name: str = "robot", margin: f
     xy = event.apart.slot_xy(env.scene[asset_name].data.root_link_pos_w[:, :2])
     size = event.apart.slot_size(xy)
     return ((xy < -margin) | (xy > size + margin)).any(dim=1)
+
+
+def bound_near_robots(env: Any, env_ids: Any = None, term: str = TERM) -> None:
+    """mjlab event term of mode ``"step"``: each world's terrain geoms
+    bounded by the square its robot can reach before the next step, up to
+    the highest top in it (``EnvTerrainsEvent.bound_near_robots``), so that
+    the broadphase pairs a robot geom with the terrain only near a top
+    that comes up to it. ``use_env_terrains`` adds it. It changes no
+    contact: a pair it drops could not touch."""
+    event_of(env, term).bound_near_robots()
