@@ -141,7 +141,8 @@ def step_parts(env, episode_s: float, repeats: int) -> dict[str, float]:
     on a GPU as mjlab captures the step), the sensors (``sim.sense``: ray
     casting), the managers' terms (observations, rewards, terminations),
     and the resets at the episodes' rate (``env.reset`` of the envs one
-    step resets on average: rse's new terrains among them)."""
+    step resets on average: rse's new terrains among them), and the step
+    events (rse's ``bound_near_robots``; mjlab's task has none)."""
     import mujoco_warp as mjw
     import warp as wp
 
@@ -154,6 +155,7 @@ def step_parts(env, episode_s: float, repeats: int) -> dict[str, float]:
         collision = lambda: wp.capture_launch(graph)  # noqa: E731
     per_step = max(1, round(env.num_envs * env.step_dt / episode_s))
     ids = torch.arange(per_step, device=env.device)
+    step_events = lambda: env.event_manager.apply(mode="step", dt=env.step_dt)  # noqa: E731
     return {
         "physics": 1e3 * decimation * timed(env, sim.step, repeats),
         "of it collision": 1e3 * decimation * timed(env, collision, repeats),
@@ -161,6 +163,7 @@ def step_parts(env, episode_s: float, repeats: int) -> dict[str, float]:
         "terms": 1e3
         * timed(env, lambda: (env.observation_manager.compute(), env.reward_manager.compute(dt=env.step_dt), env.termination_manager.compute()), repeats),
         "resets": 1e3 * timed(env, lambda: env.reset(env_ids=ids), max(1, repeats // 2)),
+        "step events": 1e3 * timed(env, step_events, repeats) if "step" in env.event_manager.available_modes else 0.0,
     }
 
 
@@ -172,6 +175,7 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     import sys
 
     from rse._adapters.mjlab.event import event_of
+    from rse._adapters.mjlab.terms import bound_near_robots
     from rse.mjlab import exact_height_scan, out_of_slot
 
     sys.path.insert(0, str(REPO / "tests" / "frameworks"))
@@ -187,6 +191,7 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     with as_a_gpu_runs_them(event.exact_tops()), HostCopies() as copies:
         exact_height_scan(env, "terrain_scan")
         out_of_slot(env)
+        bound_near_robots(env)
     # What the allocator gave the arrays that hold them: the model's
     # height fields (the Go1 scene has none but rse's) and the per-world
     # routing and bounds, less the one row each had before rse expanded it.
@@ -198,8 +203,9 @@ def proxies(env, episode_s: float) -> dict[str, float]:
         "allocated bytes/env": held / env.num_envs,
         "reset generate us/env": 1e6 * generate,
         "reset upload us/env": 1e6 * upload,
-        # The samples, each field's start (4 bytes) and the origin (12).
-        "uploaded bytes/env": cells / env.num_envs + 2 * 4 + 12,
+        # The samples, each field's start (4 bytes), its box (24) and the
+        # origin (12).
+        "uploaded bytes/env": cells / env.num_envs + 2 * (4 + 24) + 12,
         "host copies in step terms": float(len(copies.found)),
     }
 

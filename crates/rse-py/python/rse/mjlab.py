@@ -42,7 +42,7 @@ from rse._adapters.mjlab.config import use_env_terrains
 from rse._adapters.mjlab.curriculum import terrain_difficulty
 from rse._adapters.mjlab.event import TERM, EnvTerrainsEvent, contact_sheet, env_terrains
 from rse._adapters.mjlab.pool import BODY, add_pool
-from rse._adapters.mjlab.terms import exact_height_scan, out_of_slot
+from rse._adapters.mjlab.terms import bound_near_robots, exact_height_scan, out_of_slot
 from rse._adapters.tiles import TileFields, framework_class, max_step, patches_in_ranges, tile_terrain
 
 
@@ -106,6 +106,7 @@ __all__ = [
     "EnvTerrainsEvent",
     "RseTerrainCfg",
     "add_pool",
+    "bound_near_robots",
     "contact_sheet",
     "env_terrains",
     "exact_height_scan",

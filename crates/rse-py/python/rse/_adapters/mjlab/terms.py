@@ -1,5 +1,6 @@
-"""The mjlab terms that read rse's terrains in a step: the exact height
-scan (an observation) and ``out_of_slot`` (a termination)."""
+"""The mjlab terms that run in a step on rse's terrains: the exact height
+scan (an observation), ``out_of_slot`` (a termination) and
+``bound_near_robots`` (a step event)."""
 
 from __future__ import annotations
 
