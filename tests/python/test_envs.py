@@ -6,6 +6,8 @@ of height fields (slots) and as one tiled field (tiles)."""
 
 from __future__ import annotations
 
+import io
+
 import mujoco
 import numpy as np
 import pytest
@@ -350,6 +352,33 @@ def test_rse_gen_contact_sheet_draws_the_picture_envterrains_draws(tmp_path) -> 
     pool = rse.EnvTerrains([rse.Scheme.load(p) for p in mix], 12, seed=9, proportions=[3, 1])
     assert set(pool.scheme_ids) == {0, 1}
     assert out.read_bytes() == pool.contact_sheet(cols=4, names=["mix_stairs", "mix_rough"])
+    # Each scheme on its own colour scale unless one is asked for: the
+    # rough ground (a few cm) is not one colour on the stairs' scale.
+    done = subprocess.run([str(rse_gen_path()), "contact-sheet", *map(str, mix), "--proportions", "3,1", "--envs", "12",
+                           "--seed", "9", "--cols", "4", "--one-scale", "-o", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    one = pool.contact_sheet(cols=4, names=["mix_stairs", "mix_rough"], one_scale=True)
+    assert out.read_bytes() == one != pool.contact_sheet(cols=4, names=["mix_stairs", "mix_rough"])
+
+
+def test_a_mix_sheet_draws_each_scheme_on_its_own_scale_with_a_legend_bar_each() -> None:
+    """In a mix each scheme has its colour scale (rse-core's tests check
+    the pixels) and a legend line of its own, 11 pixels; ``one_scale``
+    draws them on one. One scheme has one scale either way."""
+    from PIL import Image
+
+    mix = [rse.Scheme.load(SCHEMES / f"mix_{n}.csv") for n in ("stairs", "rough")]
+    pool = rse.EnvTerrains(mix, 8, seed=2, proportions=[1, 1], difficulty=1.0)
+    assert len(set(pool.scheme_ids)) == 2
+
+    def height(png: bytes) -> int:
+        return Image.open(io.BytesIO(png)).height
+
+    own, one = pool.contact_sheet(), pool.contact_sheet(one_scale=True)
+    assert own != one
+    assert height(own) == height(one) + 11
+    single = rse.EnvTerrains(mix[1], 4, seed=2, difficulty=1.0)
+    assert single.contact_sheet() == single.contact_sheet(one_scale=True)
 
 
 def test_a_mix_draws_each_envs_scheme_by_proportion_from_its_global_id() -> None:

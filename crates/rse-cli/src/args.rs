@@ -225,6 +225,11 @@ pub struct ContactSheetArgs {
     #[arg(long, value_name = "P", value_parser = clap::value_parser!(u32).range(1..=64))]
     pub cell_pixels: Option<u32>,
 
+    /// Draw a mix's schemes on one colour scale, to compare their heights
+    /// [default: each scheme on its own scale, with a legend bar each].
+    #[arg(long)]
+    pub one_scale: bool,
+
     #[command(flatten)]
     pub overrides: SchemeOverrides,
 }

@@ -540,13 +540,15 @@ impl EnvTerrains {
 
     /// A contact sheet of the current terrains as PNG bytes: one top-down
     /// preview per env (`env_ids`, default every env, in the order given),
-    /// all on one colour scale, each labelled with its env id, episode and
-    /// difficulty, a legend of the scale below; written to `path` too when
-    /// given. `cols` tiles per row (default about square), `cell_pixels`
-    /// pixels per cell (default: tiles about 120 pixels wide). A mix's
-    /// tiles name their scheme: `names[j]` for scheme `j` (default
-    /// `scheme j+1`).
-    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None, names=None))]
+    /// each labelled with its env id, episode and difficulty, a legend of
+    /// the colour scale below; written to `path` too when given. `cols`
+    /// tiles per row (default about square), `cell_pixels` pixels per cell
+    /// (default: tiles about 120 pixels wide). A mix's tiles name their
+    /// scheme (`names[j]` for scheme `j`, default `scheme j+1`) and each
+    /// scheme has a colour scale of its own (from 0 to its highest cell
+    /// shown; a legend bar each), unless `one_scale`.
+    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None, names=None, one_scale=false))]
+    #[allow(clippy::too_many_arguments)] // Python's keyword arguments
     fn contact_sheet<'py>(
         &self,
         py: Python<'py>,
@@ -555,6 +557,7 @@ impl EnvTerrains {
         cols: Option<u32>,
         cell_pixels: Option<u32>,
         names: Option<Vec<String>>,
+        one_scale: bool,
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
         let envs = match env_ids {
             Some(ids) => self::env_ids(ids, self.fixed.num_envs)?,
@@ -568,7 +571,11 @@ impl EnvTerrains {
                 "cols and cell_pixels: expected a number above 0",
             ));
         }
-        let options = rse_core::SheetOptions { cols, cell_pixels };
+        let options = rse_core::SheetOptions {
+            cols,
+            cell_pixels,
+            one_scale,
+        };
         let guard = self.reading()?;
         let inner: &rse_core::EnvTerrains = &guard;
         let png = py

@@ -66,15 +66,19 @@ pub fn run(args: &ContactSheetArgs, overrides: &SchemeOverrides) -> anyhow::Resu
     let tiles: Vec<SheetTile<'_>> = terrains
         .iter()
         .zip(&labels)
-        .map(|(terrain, (title, caption))| SheetTile {
+        .zip(&drawn)
+        .map(|((terrain, (title, caption)), &s)| SheetTile {
             terrain,
             title,
             caption,
+            // A mix: each scheme on its own colour scale.
+            scale: (schemes.len() > 1).then(|| names[s].as_str()),
         })
         .collect();
     let options = SheetOptions {
         cols: args.cols,
         cell_pixels: args.cell_pixels,
+        one_scale: args.one_scale,
     };
     let sheet = rse_core::tiles_sheet(&tiles, options)?;
     let png = preview::encode_png(&sheet)?;

@@ -1,6 +1,8 @@
 //! A contact sheet of a pool's current terrains: one top-down preview per
-//! env in a grid, all on one colour scale, each labelled with its env id,
-//! episode and difficulty, and a legend of the scale below.
+//! env in a grid, each labelled with its env id, episode and difficulty, on
+//! one colour scale, or in a mix one scale per scheme (a 5 cm wall beside
+//! 70 cm stairs would be one colour on theirs), and a legend of each scale
+//! below.
 
 use font8x8::legacy::BASIC_LEGACY;
 
@@ -29,6 +31,9 @@ pub struct SheetOptions {
     /// Pixels per cell; default the fewest that make a tile at least
     /// 120 pixels wide (and at most 16).
     pub cell_pixels: Option<u32>,
+    /// Every tile on one colour scale, whatever [`SheetTile::scale`] says:
+    /// to compare heights across the schemes of a mix.
+    pub one_scale: bool,
 }
 
 /// One tile of a contact sheet: a terrain and the two lines above it.
@@ -40,6 +45,10 @@ pub struct SheetTile<'a> {
     pub title: &'a str,
     /// Its second line (e.g. `ep 2 D 0.500`).
     pub caption: &'a str,
+    /// The colour scale it is drawn on, by name (a mix's scheme): tiles of
+    /// one name share a scale from 0 to their highest cell, and the legend
+    /// has a bar for each name. `None`: the sheet's common scale.
+    pub scale: Option<&'a str>,
 }
 
 /// The contact sheet of envs `envs` of `pool` (every env when empty), in
@@ -68,16 +77,21 @@ pub fn contact_sheet_named(
     } else {
         envs
     };
+    let mixed = pool.schemes().len() > 1;
+    let scheme_names: Vec<String> = (0..pool.schemes().len())
+        .map(|j| {
+            names
+                .get(j)
+                .cloned()
+                .unwrap_or_else(|| format!("scheme {}", j + 1))
+        })
+        .collect();
     let labels: Vec<(String, String)> = envs
         .iter()
         .map(|&e| {
             let difficulty = pool.terrain(e).difficulty().get();
-            let title = if pool.schemes().len() > 1 {
-                let j = pool.scheme_index(e);
-                match names.get(j) {
-                    Some(name) => format!("env {e} {name}"),
-                    None => format!("env {e} scheme {}", j + 1),
-                }
+            let title = if mixed {
+                format!("env {e} {}", scheme_names[pool.scheme_index(e)])
             } else {
                 format!("env {e}")
             };
@@ -91,17 +105,21 @@ pub fn contact_sheet_named(
             terrain: pool.terrain(e),
             title,
             caption,
+            scale: mixed.then(|| scheme_names[pool.scheme_index(e)].as_str()),
         })
         .collect();
     tiles_sheet(&tiles, options)
 }
 
 /// A contact sheet of any terrains, each with its label, in the order
-/// given, on one colour scale: from 0 to the highest cell shown, in metres
-/// (each terrain's steps mapped onto it). Terrains of other grids are drawn
-/// at the same pixels per cell, in tiles as large as the largest. Refused
-/// past [`MAX_PIXELS`] before anything is drawn.
+/// given, each on its colour scale ([`SheetTile::scale`]; one for all with
+/// [`SheetOptions::one_scale`]): from 0 to the highest cell of the tiles on
+/// it, in metres (each terrain's steps mapped onto it), with a legend bar
+/// per scale. Terrains of other grids are drawn at the same pixels per
+/// cell, in tiles as large as the largest. Refused past [`MAX_PIXELS`]
+/// before anything is drawn.
 pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Preview, Error> {
+    let scales = Scales::of(tiles, options.one_scale);
     let n = tiles.len() as u64;
     let widest = tiles.iter().map(|t| t.terrain.grid().nx).max().unwrap_or(1);
     let cols = u64::from(options.cols.unwrap_or(0));
@@ -127,7 +145,9 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
     let (cell_w, cell_h) = (tile_w.max(u64::from(MIN_TILE)), tile_h + label_h);
     let gap = u64::from(GAP);
     let width = gap + cols * (cell_w + gap);
-    let height = gap + rows * (cell_h + gap) + u64::from(2 * LINE) + gap;
+    // The legend: a line per scale and one of leading.
+    let legend_h = (scales.names.len() as u64 + 1) * u64::from(LINE);
+    let height = gap + rows * (cell_h + gap) + legend_h + gap;
     if width.saturating_mul(height) > MAX_PIXELS {
         return Err(Error::PreviewTooLarge {
             width,
@@ -137,14 +157,6 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
     }
     // Within MAX_PIXELS (2²⁸), so every coordinate fits a u32.
     let mut sheet = Canvas::new(width as u32, height as u32);
-    // One scale for every tile: 0 to the highest cell shown, in metres.
-    let step = |t: &SheetTile<'_>| t.terrain.step_height();
-    let top = |t: &SheetTile<'_>| f64::from(height_span(t.terrain).1) * step(t);
-    let hi_m = tiles.iter().map(top).fold(0.0, f64::max);
-    let one_step = tiles
-        .first()
-        .map(step)
-        .filter(|&s| tiles.iter().all(|t| step(t).to_bits() == s.to_bits()));
     let glyphs = (cell_w / u64::from(GLYPH)) as usize;
     for (i, tile) in tiles.iter().enumerate() {
         let (col, row) = (i as u64 % cols, i as u64 / cols);
@@ -152,13 +164,85 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
         let y0 = (gap + row * (cell_h + gap)) as u32;
         sheet.text(x0, y0, &clip(tile.title, glyphs));
         sheet.text(x0, y0 + LINE, &clip(tile.caption, glyphs));
-        // This terrain's steps that reach the scale's top (rounded).
-        let hi = steps_to(hi_m, step(tile));
+        // This terrain's steps that reach its scale's top (rounded).
+        let hi = steps_to(scales.top[scales.of_tile[i]], tile.terrain.step_height());
         sheet.blit(x0, y0 + 2 * LINE, &render_span(tile.terrain, cp, (0, hi)));
     }
     let legend_y = (gap + rows * (cell_h + gap)) as u32;
-    sheet.legend(GAP, legend_y, hi_m, one_step);
+    let named = scales.names.len() > 1;
+    // Names padded to the longest, so that the bars line up.
+    let longest = scales
+        .names
+        .iter()
+        .map(|n| n.chars().count())
+        .max()
+        .unwrap_or(0);
+    for (k, name) in scales.names.iter().enumerate() {
+        let label = if named {
+            format!("{:<width$}", format!("{name}:"), width = longest + 2)
+        } else {
+            String::new()
+        };
+        sheet.legend(
+            GAP,
+            legend_y + k as u32 * LINE,
+            &label,
+            scales.top[k],
+            scales.step[k],
+        );
+    }
     Ok(sheet.into_preview())
+}
+
+/// The colour scales of a sheet's tiles: each scale's name (in the order
+/// of its first tile), top (metres: its tiles' highest cell) and step
+/// height where all its tiles share one, and each tile's scale.
+struct Scales<'a> {
+    names: Vec<&'a str>,
+    top: Vec<f64>,
+    step: Vec<Option<f64>>,
+    of_tile: Vec<usize>,
+}
+
+impl<'a> Scales<'a> {
+    fn of(tiles: &[SheetTile<'a>], one_scale: bool) -> Scales<'a> {
+        let mut scales = Scales {
+            names: Vec::new(),
+            top: Vec::new(),
+            step: Vec::new(),
+            of_tile: Vec::with_capacity(tiles.len()),
+        };
+        for tile in tiles {
+            let name = if one_scale {
+                ""
+            } else {
+                tile.scale.unwrap_or("")
+            };
+            let k = match scales.names.iter().position(|&n| n == name) {
+                Some(k) => k,
+                None => {
+                    scales.names.push(name);
+                    scales.top.push(0.0);
+                    scales.step.push(Some(tile.terrain.step_height()));
+                    scales.names.len() - 1
+                }
+            };
+            let step = tile.terrain.step_height();
+            let top = f64::from(height_span(tile.terrain).1) * step;
+            scales.top[k] = scales.top[k].max(top);
+            if scales.step[k].is_some_and(|s| s.to_bits() != step.to_bits()) {
+                scales.step[k] = None;
+            }
+            scales.of_tile.push(k);
+        }
+        if scales.names.is_empty() {
+            // No tile: the legend still shows an empty scale.
+            scales.names.push("");
+            scales.top.push(0.0);
+            scales.step.push(None);
+        }
+        scales
+    }
 }
 
 /// `metres` in steps of `step` metres, rounded, within `u16`.
@@ -235,8 +319,11 @@ impl Canvas {
     }
 
     /// The colour scale from 0 to `hi_m` metres, as a bar and its ends
-    /// (in steps too where every terrain has the same step height, `step`).
-    fn legend(&mut self, x0: u32, y0: u32, hi_m: f64, step: Option<f64>) {
+    /// (in steps too where every terrain on it has the same step height,
+    /// `step`), after `label`.
+    fn legend(&mut self, x0: u32, y0: u32, label: &str, hi_m: f64, step: Option<f64>) {
+        self.text(x0, y0, label);
+        let x0 = x0 + label.chars().count() as u32 * GLYPH;
         let bar = 120;
         // The bar's colours in steps of the scale: the common step, else
         // millimetres.
@@ -314,12 +401,71 @@ mod tests {
         }
     }
 
+    fn terrain_of(csv: &str) -> Terrain {
+        let scheme = Scheme::from_csv(csv, None).unwrap();
+        crate::generate_at(&scheme, 1, 0, crate::Difficulty::FULL)
+    }
+
+    /// The pixel at `(x, y)` of an RGB image `width` wide.
+    fn pixel(rgb: &[u8], width: u32, x: u32, y: u32) -> [u8; 3] {
+        let i = 3 * (y * width + x) as usize;
+        [rgb[i], rgb[i + 1], rgb[i + 2]]
+    }
+
+    #[test]
+    fn each_scheme_of_a_mix_is_drawn_on_its_own_scale_unless_one_is_asked() {
+        let low = terrain_of("# size: 20x10\n# step_height: 0.05\ntype,height\nrandom,2\n");
+        let high = terrain_of("# size: 20x10\n# step_height: 0.05\ntype,height\nrandom,14\n");
+        let tiles = [
+            SheetTile {
+                terrain: &low,
+                title: "env 0 walls",
+                caption: "",
+                scale: Some("walls"),
+            },
+            SheetTile {
+                terrain: &high,
+                title: "env 1 stairs",
+                caption: "",
+                scale: Some("stairs"),
+            },
+        ];
+        let top = |t: &Terrain| height_span(t).1;
+        let (x0, y0) = (GAP, GAP + 2 * LINE);
+        for one_scale in [false, true] {
+            let options = SheetOptions {
+                cols: Some(2),
+                one_scale,
+                ..SheetOptions::default()
+            };
+            let sheet = tiles_sheet(&tiles, options).unwrap();
+            let hi = if one_scale { top(&high) } else { top(&low) };
+            let drawn = render_span(&low, 6, (0, hi));
+            for y in 0..drawn.height {
+                for x in 0..drawn.width {
+                    assert_eq!(
+                        pixel(&sheet.rgb, sheet.width, x0 + x, y0 + y),
+                        pixel(&drawn.rgb, drawn.width, x, y),
+                        "one_scale {one_scale}"
+                    );
+                }
+            }
+            // A legend line per scale.
+            let lines = if one_scale { 1 } else { 2 };
+            assert_eq!(
+                sheet.height,
+                GAP + (10 * 6 + 2 * LINE) + GAP + (lines + 1) * LINE + GAP
+            );
+        }
+        assert!(top(&low) < top(&high));
+    }
+
     #[test]
     fn a_sheet_too_large_is_refused() {
         let pool = pool(2);
         let options = SheetOptions {
-            cols: None,
             cell_pixels: Some(100_000),
+            ..SheetOptions::default()
         };
         assert!(matches!(
             contact_sheet(&pool, &[], options),
