@@ -65,7 +65,8 @@ def test_the_registered_config_is_taken_as_it_is() -> None:
     assert cfg.scene.terrain.scheme == SCHEME.to_csv() and cfg.scene.terrain.max_init_terrain_level == 5
     assert set(cfg.rewards) == before["rewards"] and set(cfg.commands) == before["commands"]
     assert [s.name for s in cfg.scene.sensors] == sensors
-    assert set(cfg.events) == before["events"] | {"rse_terrain"} and next(iter(cfg.events)) == "rse_terrain"
+    assert set(cfg.events) == before["events"] | {"rse_terrain", "rse_terrain_near"} and next(iter(cfg.events)) == "rse_terrain"
+    assert cfg.events["rse_terrain_near"].mode == "step"
     assert set(cfg.curriculum) == before["curriculum"] - {"terrain_levels"} | {"rse_terrain_difficulty"}
     term = cfg.curriculum["rse_terrain_difficulty"]
     assert term.func is terrain_difficulty and term.params["command_name"] == "twist"

@@ -218,15 +218,16 @@ impl<'a> Scales<'a> {
             } else {
                 tile.scale.unwrap_or("")
             };
-            let k = match scales.names.iter().position(|&n| n == name) {
-                Some(k) => k,
-                None => {
+            let k = scales
+                .names
+                .iter()
+                .position(|&n| n == name)
+                .unwrap_or_else(|| {
                     scales.names.push(name);
                     scales.top.push(0.0);
                     scales.step.push(Some(tile.terrain.step_height()));
                     scales.names.len() - 1
-                }
-            };
+                });
             let step = tile.terrain.step_height();
             let top = f64::from(height_span(tile.terrain).1) * step;
             scales.top[k] = scales.top[k].max(top);
