@@ -144,6 +144,11 @@ fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
     let kind = obstacle.kind();
     // Only a gaussian may have a sigma (validated); it always gets one here.
     let sigma = real(f.sigma).or((kind == ObstacleKind::Gaussian).then_some(DEFAULT_SIGMA));
+    // Drawn last, so the kinds before the stairs draw what they always did.
+    let tread = f.tread.map(|p| match p {
+        Param::Fixed(v) => v,
+        Param::Range(lo, hi) => rng.int_in(lo, hi),
+    });
     DrawnObstacle {
         kind,
         height,
@@ -151,5 +156,6 @@ fn draw(obstacle: &Obstacle, rng: &mut WorldRng) -> DrawnObstacle {
         p1,
         p2,
         sigma,
+        tread,
     }
 }

@@ -1,4 +1,6 @@
-//! The six obstacle types of the paper (§3.2) and the fields each one uses.
+//! The six obstacle types of the paper (§3.2), the stairs researchers train
+//! on beside them (a straight flight, a pyramid and its inverse), and the
+//! fields each one uses.
 
 use std::fmt;
 use std::str::FromStr;
@@ -25,17 +27,30 @@ pub enum ObstacleKind {
     Wall,
     /// A wall that is subtracted.
     LongPit,
+    /// A straight flight of stairs over a rectangle of cells, climbing one
+    /// step a tread from one side to the other.
+    Stairs,
+    /// Pyramid stairs over a rectangle of cells: rings of `tread` cells,
+    /// each a step above the one around it, up to `H` (mjlab's and Isaac
+    /// Lab's pyramid stairs).
+    Pyramid,
+    /// A pyramid that is subtracted: stairs down into a pit (the inverted
+    /// pyramid stairs).
+    PyramidPit,
 }
 
 impl ObstacleKind {
-    /// All kinds, in the order of the paper.
-    pub const ALL: [ObstacleKind; 6] = [
+    /// All kinds: the paper's, in its order, then the stairs.
+    pub const ALL: [ObstacleKind; 9] = [
         ObstacleKind::Random,
         ObstacleKind::Gaussian,
         ObstacleKind::Peak,
         ObstacleKind::Pit,
         ObstacleKind::Wall,
         ObstacleKind::LongPit,
+        ObstacleKind::Stairs,
+        ObstacleKind::Pyramid,
+        ObstacleKind::PyramidPit,
     ];
 
     /// The canonical name, as written in scheme files.
@@ -47,25 +62,46 @@ impl ObstacleKind {
             ObstacleKind::Pit => "pit",
             ObstacleKind::Wall => "wall",
             ObstacleKind::LongPit => "long_pit",
+            ObstacleKind::Stairs => "stairs",
+            ObstacleKind::Pyramid => "pyramid",
+            ObstacleKind::PyramidPit => "pyramid_pit",
         }
     }
 
-    /// `true` for pit and long pit, which subtract instead of taking the maximum.
+    /// `true` for pit, long pit and pyramid pit, which subtract instead of
+    /// taking the maximum.
     pub fn lowers(self) -> bool {
-        matches!(self, ObstacleKind::Pit | ObstacleKind::LongPit)
+        matches!(
+            self,
+            ObstacleKind::Pit | ObstacleKind::LongPit | ObstacleKind::PyramidPit
+        )
     }
 
     /// Whether this kind needs, may have, or must not have `field`.
     pub fn usage(self, field: Field) -> Usage {
-        use ObstacleKind::{Gaussian, LongPit, Peak, Pit, Random, Wall};
+        use ObstacleKind::{
+            Gaussian, LongPit, Peak, Pit, Pyramid, PyramidPit, Random, Stairs, Wall,
+        };
         match (field, self) {
             (Field::Type | Field::Height, _)
-            | (Field::Angle | Field::X1 | Field::Y1, Peak | Pit | Wall | LongPit)
-            | (Field::X2 | Field::Y2, Wall | LongPit) => Usage::Required,
+            | (Field::Angle, Peak | Pit | Wall | LongPit)
+            | (
+                Field::X1 | Field::Y1,
+                Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit,
+            )
+            | (Field::X2 | Field::Y2, Wall | LongPit | Stairs | Pyramid | PyramidPit)
+            | (Field::Tread, Pyramid | PyramidPit) => Usage::Required,
             (Field::Sigma, Gaussian) => Usage::Optional,
-            (Field::Angle | Field::X1 | Field::Y1, Random | Gaussian)
+            (Field::Angle, Random | Gaussian | Stairs | Pyramid | PyramidPit)
+            | (Field::X1 | Field::Y1, Random | Gaussian)
             | (Field::X2 | Field::Y2, Random | Gaussian | Peak | Pit)
-            | (Field::Sigma, Random | Peak | Pit | Wall | LongPit) => Usage::Unused,
+            | (
+                Field::Sigma,
+                Random | Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit,
+            )
+            | (Field::Tread, Random | Gaussian | Peak | Pit | Wall | LongPit | Stairs) => {
+                Usage::Unused
+            }
         }
     }
 }
@@ -79,7 +115,8 @@ impl fmt::Display for ObstacleKind {
 impl FromStr for ObstacleKind {
     type Err = SchemeErrorKind;
 
-    /// Case-insensitive; `long pit`, `long-pit`, `longpit` and `normal` are accepted too.
+    /// Case-insensitive; `long pit`, `long-pit`, `longpit`, `normal`,
+    /// `pyramid stairs` and `inverted pyramid` are accepted too.
     fn from_str(text: &str) -> Result<Self, Self::Err> {
         let key: String = text
             .trim()
@@ -94,6 +131,9 @@ impl FromStr for ObstacleKind {
             "pit" => ObstacleKind::Pit,
             "wall" => ObstacleKind::Wall,
             "longpit" => ObstacleKind::LongPit,
+            "stairs" => ObstacleKind::Stairs,
+            "pyramid" | "pyramidstairs" => ObstacleKind::Pyramid,
+            "pyramidpit" | "invertedpyramid" => ObstacleKind::PyramidPit,
             _ => return Err(SchemeErrorKind::UnknownType(text.trim().to_owned())),
         })
     }
@@ -118,11 +158,13 @@ pub enum Field {
     Y2,
     /// `sigma`, standard deviation in steps (gaussian)
     Sigma,
+    /// `tread`, cells per step of a pyramid's rings
+    Tread,
 }
 
 impl Field {
     /// All columns in the order the writer emits them.
-    pub const ALL: [Field; 8] = [
+    pub const ALL: [Field; 9] = [
         Field::Type,
         Field::Height,
         Field::Angle,
@@ -131,6 +173,7 @@ impl Field {
         Field::X2,
         Field::Y2,
         Field::Sigma,
+        Field::Tread,
     ];
 
     /// The header name.
@@ -144,6 +187,7 @@ impl Field {
             Field::X2 => "x2",
             Field::Y2 => "y2",
             Field::Sigma => "sigma",
+            Field::Tread => "tread",
         }
     }
 
@@ -153,7 +197,7 @@ impl Field {
             Field::Type => None,
             Field::Height | Field::Sigma => Some("steps"),
             Field::Angle => Some("degrees"),
-            Field::X1 | Field::Y1 | Field::X2 | Field::Y2 => Some("cells"),
+            Field::X1 | Field::Y1 | Field::X2 | Field::Y2 | Field::Tread => Some("cells"),
         }
     }
 
@@ -162,14 +206,27 @@ impl Field {
     /// test in rse-edit holds the two together).
     pub const fn doc(self) -> &'static str {
         match self {
-            Field::Type => "the obstacle: random, gaussian, peak, pit, wall or long_pit",
+            Field::Type => {
+                "the obstacle: random, gaussian, peak, pit, wall, long_pit, stairs, pyramid or pyramid_pit"
+            }
             Field::Height => "height H in whole steps (the depth of a pit or long pit)",
             Field::Angle => "slope of its sides from the ground, 0 to 90 (90: straight sides)",
-            Field::X1 => "column of the point (the first end of a wall or long pit), from 0",
-            Field::Y1 => "row of the point (the first end of a wall or long pit), from 0",
-            Field::X2 => "column of the second end of a wall or long pit",
-            Field::Y2 => "row of the second end of a wall or long pit",
+            Field::X1 => {
+                "column of the point (the first end of a wall or long pit, the first corner of stairs or a pyramid), from 0"
+            }
+            Field::Y1 => {
+                "row of the point (the first end of a wall or long pit, the first corner of stairs or a pyramid), from 0"
+            }
+            Field::X2 => {
+                "column of the second end of a wall or long pit (the opposite corner of stairs or a pyramid)"
+            }
+            Field::Y2 => {
+                "row of the second end of a wall or long pit (the opposite corner of stairs or a pyramid)"
+            }
             Field::Sigma => "spread of a gaussian's heights, in steps (default 1)",
+            Field::Tread => {
+                "cells from one step to the next of a pyramid or pyramid pit, 1 or more"
+            }
         }
     }
 
@@ -208,6 +265,8 @@ pub struct ObstacleFields {
     pub y2: Option<Param<u32>>,
     /// Standard deviation in steps (gaussian; default [`DEFAULT_SIGMA`](crate::DEFAULT_SIGMA)).
     pub sigma: Option<Param<f64>>,
+    /// Cells per step of a pyramid's rings, `1..`.
+    pub tread: Option<Param<u32>>,
 }
 
 impl ObstacleFields {
@@ -221,6 +280,7 @@ impl ObstacleFields {
             Field::X2 => self.x2.is_some(),
             Field::Y2 => self.y2.is_some(),
             Field::Sigma => self.sigma.is_some(),
+            Field::Tread => self.tread.is_some(),
         }
     }
 
@@ -284,6 +344,18 @@ impl Obstacle {
             }
             check_order(sigma, Field::Sigma)?;
         }
+        if let Some(tread) = fields.tread {
+            if tread.lo() == 0 {
+                return fail(
+                    Field::Tread,
+                    SchemeErrorKind::NotANumber {
+                        value: "0".into(),
+                        expected: "a whole number ≥ 1 (cells from one step to the next)",
+                    },
+                );
+            }
+            check_order(tread, Field::Tread)?;
+        }
         for (field, _, coordinate) in fields.coordinates() {
             if let Some(c) = coordinate {
                 check_order(c, field)?;
@@ -292,7 +364,7 @@ impl Obstacle {
         Ok(Obstacle { kind, fields })
     }
 
-    /// Which of the six obstacle types the row is.
+    /// Which obstacle type the row is.
     pub fn kind(&self) -> ObstacleKind {
         self.kind
     }
@@ -320,7 +392,7 @@ fn check_order<T: Copy + PartialOrd + fmt::Display>(
 /// An obstacle as drawn for one world: every range resolved to a value.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DrawnObstacle {
-    /// Which of the six obstacle types it was.
+    /// Which obstacle type it was.
     pub kind: ObstacleKind,
     /// Height in steps.
     pub height: u32,
@@ -336,4 +408,7 @@ pub struct DrawnObstacle {
     /// Standard deviation in steps (gaussian).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub sigma: Option<f64>,
+    /// Cells per step (pyramid, pyramid pit).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub tread: Option<u32>,
 }

@@ -303,6 +303,7 @@ fn set_cell(
         Field::Y1 => fields.y1 = Some(parse_cell(text)?),
         Field::X2 => fields.x2 = Some(parse_cell(text)?),
         Field::Y2 => fields.y2 = Some(parse_cell(text)?),
+        Field::Tread => fields.tread = Some(parse_tread(text)?),
     }
     Ok(())
 }
@@ -346,6 +347,7 @@ pub(crate) fn cells_of(obstacle: &Obstacle) -> Vec<(Field, String)> {
                 Field::X2 => whole(f.x2),
                 Field::Y2 => whole(f.y2),
                 Field::Sigma => real(f.sigma),
+                Field::Tread => whole(f.tread),
             };
             text.map(|t| (field, t))
         })
@@ -373,6 +375,13 @@ fn parse_cell(text: &str) -> Result<Param<u32>, SchemeErrorKind> {
     Param::<u32>::parse_text(text).map_err(|_| SchemeErrorKind::NotANumber {
         value: text.to_owned(),
         expected: "a cell index (a whole number ≥ 0) or a range lo..hi",
+    })
+}
+
+fn parse_tread(text: &str) -> Result<Param<u32>, SchemeErrorKind> {
+    Param::<u32>::parse_text(text).map_err(|_| SchemeErrorKind::NotANumber {
+        value: text.to_owned(),
+        expected: "a whole number of cells ≥ 1 or a range lo..hi",
     })
 }
 
@@ -413,14 +422,20 @@ pub(crate) fn write(scheme: &Scheme) -> String {
         writeln!(out, "# {key}: {text}").expect(FMT);
     }
 
-    let with_sigma = scheme
-        .obstacles()
-        .iter()
-        .any(|o| o.fields().sigma.is_some());
-    let columns: Vec<Field> = Field::ALL
-        .into_iter()
-        .filter(|&f| f != Field::Sigma || with_sigma)
-        .collect();
+    // The optional columns only where a row fills them: a scheme without
+    // them is written as it always was.
+    let used = |f: Field| match f {
+        Field::Sigma => scheme
+            .obstacles()
+            .iter()
+            .any(|o| o.fields().sigma.is_some()),
+        Field::Tread => scheme
+            .obstacles()
+            .iter()
+            .any(|o| o.fields().tread.is_some()),
+        _ => true,
+    };
+    let columns: Vec<Field> = Field::ALL.into_iter().filter(|&f| used(f)).collect();
     let mut writer = csv::WriterBuilder::new()
         .terminator(csv::Terminator::Any(b'\n'))
         .from_writer(Vec::new());

@@ -2,7 +2,7 @@
 //!
 //! Every obstacle yields a height per cell, quantised to whole steps, which is
 //! combined with the map by the maximum rule (raising obstacles) or subtracted
-//! with a floor at 0 (pit, long pit).
+//! with a floor at 0 (pit, long pit, pyramid pit).
 
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
@@ -68,7 +68,83 @@ pub(crate) fn apply(
             let slope = Slope::new(height, angle, units);
             apply_segment(map, from, to, &slope, obstacle.kind.lowers());
         }
+        ObstacleKind::Stairs | ObstacleKind::Pyramid | ObstacleKind::PyramidPit => {
+            let from = obstacle.p1.expect("validated stairs and pyramids have p1");
+            let to = obstacle.p2.expect("validated stairs and pyramids have p2");
+            let rect = Rect::new(from, to, map.nx(), map.ny());
+            let lowers = obstacle.kind.lowers();
+            let steps = |x: u32, y: u32| match obstacle.kind {
+                ObstacleKind::Stairs => flight_steps(height, from, to, x, y),
+                _ => {
+                    let tread = obstacle.tread.expect("a validated pyramid has a tread");
+                    pyramid_steps(height, tread, rect, x, y)
+                }
+            };
+            for y in rect.y0..=rect.y1.min(map.ny().saturating_sub(1)) {
+                let row = map.row_mut(y);
+                for x in rect.x0..=rect.x1.min(row.len().saturating_sub(1) as u32) {
+                    let cell = &mut row[x as usize];
+                    if lowers {
+                        lower(cell, steps(x, y));
+                    } else {
+                        raise(cell, steps(x, y));
+                    }
+                }
+            }
+        }
     }
+}
+
+/// The cells of a stairs' or pyramid's rectangle: its two corners' box,
+/// inclusive (the corners lie in the grid: `Scheme::new` checks them).
+#[derive(Debug, Clone, Copy)]
+struct Rect {
+    x0: u32,
+    y0: u32,
+    x1: u32,
+    y1: u32,
+}
+
+impl Rect {
+    fn new(a: [u32; 2], b: [u32; 2], nx: u32, ny: u32) -> Rect {
+        let last = |v: u32, n: u32| v.min(n.saturating_sub(1));
+        Rect {
+            x0: last(a[0].min(b[0]), nx),
+            y0: last(a[1].min(b[1]), ny),
+            x1: last(a[0].max(b[0]), nx),
+            y1: last(a[1].max(b[1]), ny),
+        }
+    }
+}
+
+/// The steps of cell `(x, y)` of a straight flight of `height` steps over
+/// the rectangle of corners `from` and `to`, climbing from `from`'s side to
+/// `to`'s along the longer side (along x when they are equal): the `i`-th
+/// cell of the run (of `run` cells, from 0 at `from`'s side) has
+/// `ceil((i + 1)·H / run)` steps, so the last tread is `H` and each riser
+/// is `H / run` steps, rounded.
+fn flight_steps(height: u32, from: [u32; 2], to: [u32; 2], x: u32, y: u32) -> u32 {
+    let (dx, dy) = (from[0].abs_diff(to[0]), from[1].abs_diff(to[1]));
+    let (i, run) = if dx >= dy {
+        (x.abs_diff(from[0]), dx + 1)
+    } else {
+        (y.abs_diff(from[1]), dy + 1)
+    };
+    // In u64: (i + 1)·H reaches 2³² · 2¹⁶.
+    let (i, run, h) = (u64::from(i), u64::from(run), u64::from(height));
+    ((i + 1) * h).div_ceil(run) as u32
+}
+
+/// The steps of cell `(x, y)` of pyramid stairs of `height` steps over
+/// `rect`: rings `tread` cells wide from the rectangle's edge in, the
+/// outermost 1 step, each ring a step above the one around it, up to `H`
+/// (a plateau at the top where the rectangle is wide enough).
+fn pyramid_steps(height: u32, tread: u32, rect: Rect, x: u32, y: u32) -> u32 {
+    let ring = (x - rect.x0)
+        .min(rect.x1 - x)
+        .min(y - rect.y0)
+        .min(rect.y1 - y);
+    (ring / tread.max(1) + 1).min(height)
 }
 
 #[inline]
@@ -131,6 +207,19 @@ impl Slope {
 pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
     let f = obstacle.fields();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
+    if let (Some(x1), Some(y1), Some(x2), Some(y2), None) = (f.x1, f.y1, f.x2, f.y2, f.angle) {
+        // Stairs and pyramids: the box of their corners' ranges.
+        let side = |a: Param<u32>, b: Param<u32>, n: u32| {
+            let (lo, hi) = (
+                a.lo().min(b.lo()),
+                a.hi().max(b.hi()).min(n.saturating_sub(1)),
+            );
+            u64::from(hi.saturating_sub(lo)) + 1
+        };
+        return side(x1, x2, grid.nx)
+            .saturating_mul(side(y1, y2, grid.ny))
+            .min(cells);
+    }
     let (Some(height), Some(angle), Some(x1), Some(y1)) = (f.height, f.angle, f.x1, f.y1) else {
         return cells; // random
     };

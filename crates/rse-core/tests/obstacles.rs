@@ -228,3 +228,91 @@ fn empty_table_gives_a_flat_zero_map() {
     let map = heights("# size: 3x2\ntype,height\n");
     assert_eq!(map.cells(), [0; 6]);
 }
+
+const STAIRS: &str = "type,height,angle,x1,y1,x2,y2,tread\n";
+
+fn stairs_grid(nx: u32, ny: u32, rows: &str) -> String {
+    format!("# size: {nx}x{ny}\n{STAIRS}{rows}")
+}
+
+#[test]
+fn stairs_climb_one_tread_at_a_time_from_the_first_corner() {
+    // A run of 8 cells, 4 steps: treads of 2 cells, the last at H.
+    let map = heights(&stairs_grid(10, 4, "stairs,4,,1,1,8,2,\n"));
+    assert_eq!(
+        picture(&map),
+        ["0000000000", "0112233440", "0112233440", "0000000000"]
+    );
+    // From the other corner: the same flight, down along x.
+    let down = heights(&stairs_grid(10, 4, "stairs,4,,8,2,1,1,\n"));
+    assert_eq!(
+        picture(&down),
+        ["0000000000", "0443322110", "0443322110", "0000000000"]
+    );
+    // Along the longer side: y here; a run shorter than H makes risers of
+    // several steps (ceil((i + 1)·H / run): 2, 4, 6).
+    let tall = heights(&stairs_grid(2, 3, "stairs,6,,0,0,1,2,\n"));
+    assert_eq!(picture(&tall), ["66", "44", "22"]); // y up: the first row printed is the last
+}
+
+#[test]
+fn pyramids_rise_a_step_a_ring_to_a_plateau_and_pyramid_pits_go_down() {
+    let map = heights(&stairs_grid(9, 7, "pyramid,2,,0,0,8,6,2\n"));
+    assert_eq!(
+        picture(&map),
+        [
+            "111111111",
+            "111111111",
+            "112222211",
+            "112222211",
+            "112222211",
+            "111111111",
+            "111111111"
+        ]
+    );
+    // Down into raised ground: each ring a step deeper, to H.
+    let pit = heights(&stairs_grid(
+        7,
+        7,
+        "peak,4,0,0,0,,,\npyramid_pit,3,,0,0,6,6,1\n",
+    ));
+    assert_eq!(pit.row(3), [3, 2, 1, 1, 1, 2, 3]);
+    assert_eq!(pit.get(3, 3), 1);
+}
+
+#[test]
+fn a_tread_of_zero_is_refused_naming_its_column() {
+    let error =
+        rse_core::Scheme::from_csv(&stairs_grid(5, 5, "pyramid,2,,0,0,4,4,0\n"), None).unwrap_err();
+    assert_eq!(error.field.as_deref(), Some("tread"), "{error}");
+    let error =
+        rse_core::Scheme::from_csv(&stairs_grid(5, 5, "stairs,2,30,0,0,4,4,\n"), None).unwrap_err();
+    assert_eq!(error.field.as_deref(), Some("angle"), "{error}");
+    let error =
+        rse_core::Scheme::from_csv(&stairs_grid(5, 5, "pyramid,2,,0,0,4,4,\n"), None).unwrap_err();
+    assert_eq!(error.field.as_deref(), Some("tread"), "{error}");
+}
+
+#[test]
+fn stairs_and_pyramids_read_back_as_written() {
+    let text = stairs_grid(
+        12,
+        9,
+        "stairs,3..5,,0,0,11,2..4,\npyramid_pit,2,,1,1,9..11,8,1..3\n",
+    );
+    let scheme = scheme(&text);
+    let again = rse_core::Scheme::from_csv(&scheme.to_csv(), None).unwrap();
+    assert_eq!(again.obstacles(), scheme.obstacles());
+    assert!(scheme.to_csv().contains(",tread\n"), "{}", scheme.to_csv());
+    // A scheme without stairs is written without the column, as before.
+    assert!(
+        !rse_core::Scheme::from_csv(&grid(5, 5, "peak,1,45,2,2,,\n"), None)
+            .unwrap()
+            .to_csv()
+            .contains("tread")
+    );
+    assert_eq!(
+        generate(&scheme, 3, 1).drawn()[1].kind,
+        ObstacleKind::PyramidPit
+    );
+}

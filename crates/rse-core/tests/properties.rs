@@ -32,18 +32,25 @@ fn obstacle(nx: u32, ny: u32) -> impl Strategy<Value = Obstacle> {
             int_param(ny - 1),
         ),
         prop::option::of(real_param(0.0, 3.0)),
+        prop_oneof![
+            (1u32..=4).prop_map(Param::Fixed),
+            (1u32..=4, 1u32..=4).prop_map(|(a, b)| Param::Range(a.min(b), a.max(b))),
+        ],
     )
-        .prop_map(|(kind, height, angle, (x1, y1, x2, y2), sigma)| {
+        .prop_map(|(kind, height, angle, (x1, y1, x2, y2), sigma, tread)| {
+            use ObstacleKind::{LongPit, Peak, Pit, Pyramid, PyramidPit, Stairs, Wall};
             let geometric = !matches!(kind, ObstacleKind::Random | ObstacleKind::Gaussian);
-            let segment = matches!(kind, ObstacleKind::Wall | ObstacleKind::LongPit);
+            let sloped = matches!(kind, Peak | Pit | Wall | LongPit);
+            let two_points = matches!(kind, Wall | LongPit | Stairs | Pyramid | PyramidPit);
             let fields = ObstacleFields {
                 height: Some(height),
-                angle: geometric.then_some(angle),
+                angle: sloped.then_some(angle),
                 x1: geometric.then_some(x1),
                 y1: geometric.then_some(y1),
-                x2: segment.then_some(x2),
-                y2: segment.then_some(y2),
+                x2: two_points.then_some(x2),
+                y2: two_points.then_some(y2),
                 sigma: sigma.filter(|_| kind == ObstacleKind::Gaussian),
+                tread: matches!(kind, Pyramid | PyramidPit).then_some(tread),
             };
             Obstacle::new(kind, fields).expect("the strategy builds valid rows")
         })

@@ -48,6 +48,7 @@ impl Obstacle {
                 Field::X2 => param_to_py(py, f.x2)?,
                 Field::Y2 => param_to_py(py, f.y2)?,
                 Field::Sigma => param_to_py(py, f.sigma)?,
+                Field::Tread => param_to_py(py, f.tread)?,
             };
             keywords.push((field.name(), value));
         }
@@ -90,6 +91,7 @@ impl Obstacle {
                 Some(Field::X2) => fields.x2 = args::whole_param("x2", value)?,
                 Some(Field::Y2) => fields.y2 = args::whole_param("y2", value)?,
                 Some(Field::Sigma) => fields.sigma = args::real_param("sigma", value)?,
+                Some(Field::Tread) => fields.tread = args::whole_param("tread", value)?,
                 Some(Field::Type) | None => {
                     return Err(keywords::unexpected(
                         "Obstacle",
@@ -109,7 +111,8 @@ impl Obstacle {
         keywords::signature(py, &["type"], &[&column_keywords()])
     }
 
-    /// The type: `random`, `gaussian`, `peak`, `pit`, `wall` or `long_pit`.
+    /// The type: `random`, `gaussian`, `peak`, `pit`, `wall`, `long_pit`,
+    /// `stairs`, `pyramid` or `pyramid_pit`.
     #[getter]
     fn r#type(&self) -> &'static str {
         self.inner.kind().name()
@@ -155,6 +158,13 @@ impl Obstacle {
     #[getter]
     fn sigma(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         param_to_py(py, self.inner.fields().sigma)
+    }
+
+    /// Cells from one step to the next of a pyramid or pyramid pit (a
+    /// value, a `(lo, hi)` range, or None).
+    #[getter]
+    fn tread(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        param_to_py(py, self.inner.fields().tread)
     }
 
     /// `rse.Obstacle('wall', height=3, ...)`: the call that makes it.

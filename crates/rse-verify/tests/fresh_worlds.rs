@@ -1,6 +1,6 @@
 //! A world `batch` has just written always passes `check`: random extreme
 //! schemes inside every documented limit (slender walls, millimetre steps
-//! and blocks, tall bases, every obstacle type, every target, both mesh
+//! and blocks, tall bases, every obstacle type (stairs and pyramids too), every target, both mesh
 //! modes), seeded so that a failure comes back the same on any machine.
 
 use proptest::prelude::*;
@@ -21,7 +21,15 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
     let rows = prop::collection::vec(
         (
             prop::sample::select(vec![
-                "random", "gaussian", "peak", "pit", "wall", "long_pit",
+                "random",
+                "gaussian",
+                "peak",
+                "pit",
+                "wall",
+                "long_pit",
+                "stairs",
+                "pyramid",
+                "pyramid_pit",
             ]),
             prop_oneof![1u32..=4, 1u32..=65_535, Just(9_999)],
             prop::sample::select(vec![0.0, 1.0, 30.0, 45.0, 89.0, 90.0]),
@@ -37,15 +45,19 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
         let mut text = format!(
             "# size: {nx}x{ny}\n# block_size: {block}\n# step_height: {step}\n# base: {base}\n"
         );
-        text.push_str("type,height,angle,x1,y1,x2,y2\n");
+        text.push_str("type,height,angle,x1,y1,x2,y2,tread\n");
         for (kind, height, angle, (a, b, c, d)) in rows {
             let h = height.min(tallest);
             let at = |f: f64, n: u32| ((f * f64::from(n)) as u32).min(n - 1);
             let (x1, y1, x2, y2) = (at(a, nx), at(b, ny), at(c, nx), at(d, ny));
+            // A pyramid's tread from the angle's draw: 1 to 4 cells.
+            let tread = 1 + (angle as u32) % 4;
             let row = match kind {
-                "random" | "gaussian" => format!("{kind},{h},,,,,"),
-                "peak" | "pit" => format!("{kind},{h},{angle},{x1},{y1},,"),
-                _ => format!("{kind},{h},{angle},{x1},{y1},{x2},{y2}"),
+                "random" | "gaussian" => format!("{kind},{h},,,,,,"),
+                "peak" | "pit" => format!("{kind},{h},{angle},{x1},{y1},,,"),
+                "stairs" => format!("{kind},{h},,{x1},{y1},{x2},{y2},"),
+                "pyramid" | "pyramid_pit" => format!("{kind},{h},,{x1},{y1},{x2},{y2},{tread}"),
+                _ => format!("{kind},{h},{angle},{x1},{y1},{x2},{y2},"),
             };
             text.push_str(&row);
             text.push('\n');
