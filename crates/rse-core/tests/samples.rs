@@ -37,7 +37,7 @@ fn there_is_a_sample_of_every_obstacle_type() {
             kinds.insert(o.kind().name());
         }
     }
-    assert_eq!(kinds.len(), 6, "{kinds:?}");
+    assert_eq!(kinds.len(), rse_core::ObstacleKind::ALL.len(), "{kinds:?}");
 }
 
 #[test]

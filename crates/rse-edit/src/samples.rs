@@ -3,7 +3,7 @@
 //! list to the folder: a new sample is listed, or the test fails).
 
 /// `(file name, CSV text)` of each sample, by name.
-pub const SAMPLES: [(&str, &str); 15] = [
+pub const SAMPLES: [(&str, &str); 16] = [
     (
         "curriculum.csv",
         include_str!("../../../schemes/curriculum.csv"),
@@ -15,6 +15,10 @@ pub const SAMPLES: [(&str, &str); 15] = [
     (
         "gaussian.csv",
         include_str!("../../../schemes/gaussian.csv"),
+    ),
+    (
+        "mix_flights.csv",
+        include_str!("../../../schemes/mix_flights.csv"),
     ),
     (
         "mix_rough.csv",
