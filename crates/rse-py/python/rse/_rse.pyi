@@ -301,6 +301,7 @@ class EnvTerrains:
         cols: Optional[int] = None,
         cell_pixels: Optional[int] = None,
         names: Optional[Sequence[str]] = None,
+        one_scale: bool = False,
     ) -> bytes: ...
     def heights_at(
         self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike
