@@ -225,3 +225,43 @@ def test_the_3d_view_shares_the_maps_colours_has_no_holes_shows_frames_and_turns
             page.keyboard.press("ArrowLeft")
         page.keyboard.press("+")
         assert not np.array_equal(screenshot(page, "#blocks"), view)
+
+
+def test_a_drag_draws_a_flight_of_stairs_corner_to_corner_and_the_map_outlines_it(tmp_path: Path, page: Page) -> None:
+    """Stairs are drawn as walls are, by a drag from one corner to the
+    other: the flight climbs from the first corner's side, one step every
+    tread, and the overlay outlines its rectangle."""
+    scheme_file = tmp_path / "start.csv"
+    scheme_file.write_text("# size: 20x16\ntype,height,angle,x1,y1\npeak,1,90,19,15\n")
+    with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
+        wait_ready(page, url)
+        edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
+        edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("stairs"))
+        edit(page, lambda: page.get_by_label("height of obstacle 2", exact=True).fill("4"))
+        assert page.get_by_label("angle of obstacle 2", exact=True).is_disabled(), "stairs have no slope angle"
+        assert page.get_by_label("tread of obstacle 2", exact=True).is_disabled(), "a flight's tread follows from its run"
+        drag_on_map(page, (2, 3), (9, 6))
+        page.wait_for_function("window.rseEditor.preview.heights[6 * 20 + 9] === 4")
+        assert {k: table(page)[1][k] for k in ("x1.lo", "y1.lo", "x2.lo", "y2.lo")} == {"x1.lo": "2", "y1.lo": "3", "x2.lo": "9", "y2.lo": "6"}
+        heights = heights_on_page(page)
+        # A run of 8 cells, 4 steps: treads of 2 cells, every row of the flight alike.
+        assert (heights[3:7, 2:10] == [1, 1, 2, 2, 3, 3, 4, 4]).all()
+        assert heights[2].sum() == 0 and heights[7].sum() == 0 and heights[3:7, 10:].sum() == 0
+        # A pyramid with its tread, on the same rectangle.
+        edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("pyramid"))
+        edit(page, lambda: page.get_by_label("tread of obstacle 2", exact=True).fill("1"))
+        page.wait_for_function("window.rseEditor.preview.heights[4 * 20 + 4] === 2")
+        heights = heights_on_page(page)
+        assert (heights[3, 2:10] == 1).all() and (heights[4, 3:9] == 2).all()
+        assert page.locator("#error").inner_text() == ""
+        page.screenshot(path=str(tmp_path / "pyramid.png"))
+        # The overlay outlines the rectangle: white pixels on its border cells.
+        overlay = page.evaluate(
+            "(() => { const c = document.getElementById('map-overlay'); const d = c.getContext('2d').getImageData(0, 0, c.width, c.height);"
+            " return [c.width, c.height, Array.from(d.data)]; })()"
+        )
+        width, height, data = overlay
+        alpha = np.array(data, dtype=np.uint8).reshape(height, width, 4)[:, :, 3]
+        cp = width // 20
+        top, left = (16 - 1 - 6) * cp, 2 * cp  # the rectangle's top-left corner, pixels (north up)
+        assert alpha[top, left + 3 * cp] > 0 and alpha[top + 2 * cp, left] > 0, "the outline is drawn"
