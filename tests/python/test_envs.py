@@ -406,12 +406,45 @@ def test_a_mix_draws_each_envs_scheme_by_proportion_from_its_global_id() -> None
     assert envs.contact_sheet(names=["stairs", "rough"]) != envs.contact_sheet()
 
 
+def test_a_mix_of_other_step_heights_and_bases_holds_each_envs_tops_in_metres() -> None:
+    """Schemes of one grid mix whatever their step height and base: 1 cm
+    steps of a gentle hill beside 5 cm pyramid stairs on a 20 cm slab.
+    The field's scale is the highest top any can have, each env's samples
+    its own terrain's tops in metres on it, and MuJoCo's rays land on
+    them."""
+    fine = rse.Scheme.from_csv("# size: 20x16\n# step_height: 0.01\ntype,height,angle,x1,y1\npeak,30,20,10,8\n")
+    coarse = rse.Scheme.from_csv("# size: 20x16\n# step_height: 0.05\n# base: 0.2\ntype,height,angle,x1,y1,x2,y2,tread\npyramid,4,,2,2,17,13,2\n")
+    envs = rse.EnvTerrains([fine, coarse], 8, seed=1, oversample=2)
+    assert set(envs.scheme_ids) == {0, 1}
+    _, _, elevation, base = envs.hfield_size
+    assert elevation == pytest.approx(0.4) and base == pytest.approx(0.05)  # 0.2 + 4 steps of 5 cm; the deeper step
+    for e in range(8):
+        t = envs.terrain(e)
+        tops = np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base)
+        assert np.allclose(envs.samples[e, ::2, ::2] * elevation, tops, atol=1e-6), e
+        assert t.step_height == (0.01 if envs.scheme_ids[e] == 0 else 0.05)
+    # In MuJoCo: each env's field, cast on from above at every cell centre.
+    spec = mujoco.MjSpec()
+    gap = 3.0
+    for e, hfield in enumerate(rse.mujoco.add_env_hfields(spec, envs)):
+        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    rse.mujoco.sync_env_hfields(model, envs, range(8))
+    mujoco.mj_forward(model, data)
+    for e in range(8):
+        seen = np.array([ray_down(model, data, px + e * gap, py, e) for px, py in cell_centres(envs, e)])
+        assert np.allclose(seen, envs.heights_at([e], cell_centres(envs, e)[None])[0], atol=1e-5), e
+        t = envs.terrain(e)
+        assert np.allclose(seen, np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base).ravel(), atol=1e-5), e
+
+
 def test_a_mix_refuses_schemes_of_other_grids_and_bad_proportions() -> None:
     a = rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,2\n")
     with pytest.raises(ValueError, match="schemes: scheme 2 has 30x20 cells"):
         rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 30x20\ntype,height\nrandom,2\n")], 2)
-    with pytest.raises(ValueError, match="schemes: scheme 2 has .* steps of 0.05 m"):
-        rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 20x20\n# step_height: 0.05\ntype,height\nrandom,2\n")], 2)
+    with pytest.raises(ValueError, match="schemes: scheme 2 has 20x20 cells of 0.2 m"):
+        rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 20x20\n# block_size: 0.2\ntype,height\nrandom,2\n")], 2)
     with pytest.raises(ValueError, match="proportions: 1 given for 2 schemes"):
         rse.EnvTerrains([a, a], 2, proportions=[1])
     with pytest.raises(ValueError, match="proportions: every proportion is 0"):

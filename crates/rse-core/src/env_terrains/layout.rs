@@ -107,8 +107,9 @@ impl EnvTerrains {
 
     /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):
     /// `[radius_x, radius_y, elevation, base]`, the surface at sample 1
-    /// being the scheme's highest possible top above the geom (placed at
-    /// z = 0) and the box under it one step deep.
+    /// being the highest top any of its schemes can have above the geom
+    /// (placed at z = 0) and the box under it one step deep (the deepest
+    /// step of a mix).
     pub fn hfield_size(&self) -> [f64; 4] {
         self.geometry().0
     }
@@ -126,21 +127,25 @@ impl EnvTerrains {
         let globals = self.scheme.globals();
         let spacing = globals.block_size / f64::from(self.options.oversample);
         let (width, depth) = (self.shape.2 as f64 * spacing, self.shape.1 as f64 * spacing);
-        field_geometry(
-            width,
-            depth,
-            spacing,
-            self.elevation,
-            globals.step_height,
-            0.0,
-        )
+        let step = self
+            .schemes()
+            .iter()
+            .map(|s| s.globals().step_height)
+            .fold(globals.step_height, f64::max);
+        field_geometry(width, depth, spacing, self.elevation, step, 0.0)
     }
 
     /// The sample of a cell of height 0 (`base / elevation`): what the
     /// borders of a tile map hold, which [`write`](Self::write) never
-    /// touches; fill a new buffer with it first.
+    /// touches; fill a new buffer with it first. In a mix of bases, the
+    /// lowest: no border stands above a tile's ground.
     pub fn ground_sample(&self) -> f32 {
-        (self.scheme.globals().base / self.elevation) as f32
+        let base = self
+            .schemes()
+            .iter()
+            .map(|s| s.globals().base)
+            .fold(self.scheme.globals().base, f64::min);
+        (base / self.elevation) as f32
     }
 
     /// Environment `e`'s tile's first cell in the map, `(x0, y0)`; `(0, 0)`

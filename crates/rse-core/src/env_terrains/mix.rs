@@ -103,31 +103,22 @@ impl SchemeMix {
 }
 
 /// Whether `schemes` can be mixed in one pool: at least one, all sharing
-/// the first's grid (size, block size, pallets), step height and base, as
-/// one height field per slot needs. Refused naming the first that differs.
+/// the first's grid (size, block size, pallets), as one field shape per
+/// slot needs. Their step heights and bases may differ: a field's samples
+/// are tops in metres over one scale, the highest top any scheme can have.
+/// Refused naming the first that differs.
 pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
     let Some(first) = schemes.first() else {
         return Err(bad("schemes", "no scheme to draw terrains from"));
     };
-    // Bit for bit: one height field holds the same lattice for all.
-    let key = |s: &Scheme| {
-        let g = s.globals();
-        (
-            s.grid(),
-            g.block_size.to_bits(),
-            g.step_height.to_bits(),
-            g.base.to_bits(),
-        )
-    };
+    // Bit for bit: one field shape, one cell size.
+    let key = |s: &Scheme| (s.grid(), s.globals().block_size.to_bits());
     let describe = |s: &Scheme| {
-        let g = s.globals();
         format!(
-            "{}x{} cells of {} m, steps of {} m, base {} m",
+            "{}x{} cells of {} m",
             s.grid().nx,
             s.grid().ny,
-            g.block_size,
-            g.step_height,
-            g.base
+            s.globals().block_size
         )
     };
     match schemes.iter().position(|s| key(s) != key(first)) {
@@ -135,7 +126,7 @@ pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
         Some(i) => Err(bad(
             "schemes",
             format!(
-                "scheme {} has {}, scheme 1 {}: the schemes of a mix share their grid, step height and base",
+                "scheme {} has {}, scheme 1 {}: the schemes of a mix share their grid (size, block size, pallets); their step heights and bases may differ",
                 i + 1,
                 describe(&schemes[i]),
                 describe(first)
@@ -187,6 +178,21 @@ mod tests {
         ] {
             let err = SchemeMix::new(bad).unwrap_err();
             assert!(err.to_string().starts_with("proportions: "), "{err}");
+        }
+    }
+
+    #[test]
+    fn schemes_of_one_grid_mix_whatever_their_step_and_base() {
+        let scheme = |text: &str| Scheme::from_csv(text, None).unwrap();
+        let a = scheme("# size: 20x10\ntype,height\nrandom,2\n");
+        let steps = scheme("# size: 20x10\n# step_height: 0.01\n# base: 0.3\ntype,height\nrandom,9\n");
+        assert!(check_mixable(&[a.clone(), steps]).is_ok());
+        for other in [
+            "# size: 20x11\ntype,height\nrandom,2\n",
+            "# size: 20x10\n# block_size: 0.2\ntype,height\nrandom,2\n",
+        ] {
+            let err = check_mixable(&[a.clone(), scheme(other)]).unwrap_err();
+            assert!(err.to_string().starts_with("schemes: scheme 2 has "), "{err}");
         }
     }
 

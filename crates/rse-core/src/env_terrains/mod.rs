@@ -50,8 +50,8 @@ pub fn env_world(env: u64, episode: u64) -> Option<u64> {
 /// The terrains of many environments and their height-field samples.
 #[derive(Debug, Clone)]
 pub struct EnvTerrains {
-    /// The first scheme (one a pool of a single scheme): the grid, step
-    /// height and base every scheme of a mix shares.
+    /// The first scheme (one a pool of a single scheme): the grid every
+    /// scheme of a mix shares.
     scheme: Scheme,
     /// Every scheme of a mix (the first is `scheme`); empty for one.
     mix: Vec<Scheme>,
@@ -81,8 +81,9 @@ impl EnvTerrains {
     /// The terrains of episode 0 of every environment, each environment
     /// drawing its scheme from `schemes` by `proportions` ([`SchemeMix`],
     /// from its global id and the seed). The schemes share their grid
-    /// (size, block size, pallets), step height and base: a slot is one
-    /// height field; their obstacles differ. Refused as [`new`](Self::new)
+    /// (size, block size, pallets): a slot is one field shape; their
+    /// obstacles, step heights and bases may differ (the samples are tops
+    /// in metres on one scale, the highest top any scheme can have). Refused as [`new`](Self::new)
     /// refuses, and for a mix whose schemes differ there or whose
     /// proportions are not one per scheme, each 0 or more.
     pub fn mixed(
@@ -195,7 +196,7 @@ impl EnvTerrains {
     }
 
     /// The scheme every environment draws its terrains from; the first of
-    /// a mix (whose grid, step height and base they all share).
+    /// a mix (whose grid they all share).
     pub fn scheme(&self) -> &Scheme {
         &self.scheme
     }
