@@ -239,7 +239,7 @@ def test_a_drag_draws_a_flight_of_stairs_corner_to_corner_and_the_map_outlines_i
         edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("stairs"))
         edit(page, lambda: page.get_by_label("height of obstacle 2", exact=True).fill("4"))
         assert page.get_by_label("angle of obstacle 2", exact=True).is_disabled(), "stairs have no slope angle"
-        assert page.get_by_label("tread of obstacle 2", exact=True).is_disabled(), "a flight's tread follows from its run"
+        assert page.get_by_label("tread of obstacle 2", exact=True).count() == 0, "a flight's tread follows from its run: no column"
         drag_on_map(page, (2, 3), (9, 6))
         page.wait_for_function("window.rseEditor.preview.heights[6 * 20 + 9] === 4")
         assert {k: table(page)[1][k] for k in ("x1.lo", "y1.lo", "x2.lo", "y2.lo")} == {"x1.lo": "2", "y1.lo": "3", "x2.lo": "9", "y2.lo": "6"}
@@ -247,8 +247,10 @@ def test_a_drag_draws_a_flight_of_stairs_corner_to_corner_and_the_map_outlines_i
         # A run of 8 cells, 4 steps: treads of 2 cells, every row of the flight alike.
         assert (heights[3:7, 2:10] == [1, 1, 2, 2, 3, 3, 4, 4]).all()
         assert heights[2].sum() == 0 and heights[7].sum() == 0 and heights[3:7, 10:].sum() == 0
-        # A pyramid with its tread, on the same rectangle.
+        # A pyramid with its tread (the column shows with it), on the same rectangle.
         edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("pyramid"))
+        assert page.get_by_label("tread of obstacle 2", exact=True).is_enabled()
+        assert page.get_by_label("tread of obstacle 1", exact=True).is_disabled(), "the peak leaves it unused"
         edit(page, lambda: page.get_by_label("tread of obstacle 2", exact=True).fill("1"))
         page.wait_for_function("window.rseEditor.preview.heights[4 * 20 + 4] === 2")
         heights = heights_on_page(page)

@@ -312,6 +312,16 @@ function loadScheme(scheme, selected) {
   refresh();
 }
 
+// Columns shown only while a row uses them (or holds a value there): the
+// table keeps the width it has for the paper's obstacles, which leave them
+// unused, and gains them with a pyramid.
+const SHOWN_WHEN_USED = new Set(["tread"]);
+
+/** Whether the table shows column `c` now. */
+function shown(c) {
+  return !SHOWN_WHEN_USED.has(c) || state.rows.some((r) => TYPE_COLUMNS[r.type]?.[c] !== "unused" || r[`${c}.lo`] || r[`${c}.hi`]);
+}
+
 /** Whether `row` leaves column `c` unused (and empty: a value there stays
  * editable, so its error can be fixed). */
 function unused(row, c) {
@@ -325,6 +335,7 @@ function select(i) {
 }
 
 function renderTable() {
+  for (const th of document.querySelectorAll("#table thead th[data-column]")) th.hidden = !shown(th.dataset.column);
   const body = document.querySelector("#table tbody");
   body.replaceChildren();
   state.rows.forEach((row, i) => {
@@ -352,7 +363,7 @@ function renderTable() {
       document.querySelector(`#table tbody tr[data-row="${i}"] select`)?.focus();
     });
     typeCell.append(choice); tr.append(typeCell);
-    for (const c of COLUMNS) {
+    for (const c of COLUMNS.filter(shown)) {
       const td = document.createElement("td");
       for (const part of ["lo", "hi"]) {
         const input = document.createElement("input");
@@ -890,7 +901,7 @@ function buildFields(schema) {
   const head = document.querySelector("#table thead tr");
   for (const c of schema.column_docs.filter((c) => c.name !== "type")) {
     const th = document.createElement("th");
-    th.scope = "col"; th.title = c.doc; th.textContent = c.name;
+    th.scope = "col"; th.title = c.doc; th.textContent = c.name; th.dataset.column = c.name;
     const unit = document.createElement("span");
     unit.className = "unit"; unit.textContent = c.unit ?? "";
     // Each of the column's two fields is named above it: the value (or a
