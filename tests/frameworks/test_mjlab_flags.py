@@ -85,5 +85,7 @@ def test_help_lists_only_terrain_flags_that_work(tmp_path, monkeypatch, capsys) 
                   "--env.scene.terrain.env-spacing", "--env.scene.terrain.num-envs", "--env.scene.terrain.scheme-csv",
                   "--env.scene.terrain.init-state", "--env.scene.terrain.geoms", "--env.scene.terrain.debug-vis"):
         assert fixed not in done.stdout, fixed
+    # The other way to use rse in mjlab, named where the flags are.
+    assert "RseTerrainCfg" in done.stdout
     # Once rse's terrain fixes it, mjlab's generator cannot be asked for.
     assert train_main(capsys, "--env.scene.terrain.terrain-type", "generator").returncode == 2

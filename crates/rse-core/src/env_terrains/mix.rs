@@ -185,14 +185,18 @@ mod tests {
     fn schemes_of_one_grid_mix_whatever_their_step_and_base() {
         let scheme = |text: &str| Scheme::from_csv(text, None).unwrap();
         let a = scheme("# size: 20x10\ntype,height\nrandom,2\n");
-        let steps = scheme("# size: 20x10\n# step_height: 0.01\n# base: 0.3\ntype,height\nrandom,9\n");
+        let steps =
+            scheme("# size: 20x10\n# step_height: 0.01\n# base: 0.3\ntype,height\nrandom,9\n");
         assert!(check_mixable(&[a.clone(), steps]).is_ok());
         for other in [
             "# size: 20x11\ntype,height\nrandom,2\n",
             "# size: 20x10\n# block_size: 0.2\ntype,height\nrandom,2\n",
         ] {
             let err = check_mixable(&[a.clone(), scheme(other)]).unwrap_err();
-            assert!(err.to_string().starts_with("schemes: scheme 2 has "), "{err}");
+            assert!(
+                err.to_string().starts_with("schemes: scheme 2 has "),
+                "{err}"
+            );
         }
     }
 

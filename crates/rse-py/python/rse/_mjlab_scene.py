@@ -74,7 +74,10 @@ class EnvTerrainCfg(TerrainEntityCfg):
     debug_vis: Suppress[bool] = False  # mjlab's origins, not rse's spawn points
 
     scheme: str = ""
-    """The scheme: a CSV file's path, or the CSV text itself."""
+    """The scheme: a CSV file's path, or the CSV text itself. (rse as one
+    sub-terrain of mjlab's own generator instead, tiles made once beside
+    mjlab's: ``rse.mjlab.RseTerrainCfg`` in
+    ``terrain_generator.sub_terrains``, docs/frameworks.md.)"""
     schemes: dict[str, float] = field(default_factory=dict)
     """A mix of schemes, as mjlab's ``sub_terrains``: each scheme (a CSV
     file's path, or its text) and its proportion (its share of their sum).
