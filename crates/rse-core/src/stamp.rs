@@ -73,12 +73,11 @@ pub(crate) fn apply(
             let to = obstacle.p2.expect("validated stairs and pyramids have p2");
             let rect = Rect::new(from, to, map.nx(), map.ny());
             let lowers = obstacle.kind.lowers();
-            let steps = |x: u32, y: u32| match obstacle.kind {
-                ObstacleKind::Stairs => flight_steps(height, from, to, x, y),
-                _ => {
-                    let tread = obstacle.tread.expect("a validated pyramid has a tread");
-                    pyramid_steps(height, tread, rect, x, y)
-                }
+            // A flight's steps, or a pyramid's by its tread.
+            let tread = obstacle.tread;
+            let steps = |x: u32, y: u32| match tread {
+                None => flight_steps(height, from, to, x, y),
+                Some(tread) => pyramid_steps(height, tread, rect, x, y),
             };
             for y in rect.y0..=rect.y1.min(map.ny().saturating_sub(1)) {
                 let row = map.row_mut(y);
