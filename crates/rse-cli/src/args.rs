@@ -65,7 +65,8 @@ pub enum Command {
     #[command(name = "check-curriculum", after_help = examples::CHECK_CURRICULUM)]
     CheckCurriculum(CheckCurriculumArgs),
     /// Draw the terrains of N parallel envs in one PNG, as `rse.EnvTerrains.contact_sheet` does: one
-    /// tile per env, labelled with its env id (and scheme), episode and difficulty, on one colour scale.
+    /// tile per env, labelled with its env id (and scheme), episode and difficulty, on a colour
+    /// scale (one per scheme of a mix).
     #[command(name = "contact-sheet", after_help = examples::CONTACT_SHEET)]
     ContactSheet(ContactSheetArgs),
     /// Open the scheme editor, a local web page (prints its URL): table, live preview, save, generate.
