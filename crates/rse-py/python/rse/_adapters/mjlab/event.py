@@ -109,13 +109,22 @@ class EnvTerrainsEvent:
         return self._tops
 
     def _near_robot(self, env: Any) -> Optional[NearRobotBounds]:
+        """The bounds around the robot, or None where they cannot help: the
+        geoms that may touch the terrain on several trees or on none that
+        moves freely, or a reach without bound (an unlimited slide) or as
+        wide as the terrain."""
+        import math
+
         mjm = env.sim.mj_model
         colliders = terrain_colliders(mjm, self._bounds.gids)
         root = free_root(mjm, colliders)
         if root is None:
             return None
+        far = reach(mjm, root, colliders)
+        if not math.isfinite(far) or 2.0 * far >= float(min(self.apart.size)):
+            return None
         horizon = env.step_dt + env.physics_dt
-        return NearRobotBounds(env.sim, self._bounds.gids, root, reach(mjm, root, colliders), horizon, self.exact_tops(), self.apart)
+        return NearRobotBounds(env.sim, self._bounds.gids, root, far, horizon, self.exact_tops(), self.apart)
 
     def bound_near_robots(self) -> None:
         """Bounds each world's terrain by the square its robot can reach
