@@ -72,10 +72,14 @@ bench-robots:
 build:
 	cargo build --release --locked -p rse-cli
 
-## The Python wheel (distribution rse-gen, import rse, the rse-gen command inside) into dist/: one abi3 wheel for Python 3.9+.
+## The two wheels into dist/, for machines without Rust (pip install dist/rse_gen-*.whl dist/rse_gen_cli-*.whl): rse-gen (import rse; abi3, one for every Python 3.9+) and rse-gen-cli (the command). manylinux2014 (glibc 2.17+), linked by zig as maturin's own CI action builds them, so they are what a package index takes.
 wheel:
-	[ -x target/wheel-venv/bin/pip ] || python3 -m venv target/wheel-venv
-	target/wheel-venv/bin/pip wheel --quiet --disable-pip-version-check --no-deps -w dist ./crates/rse-cli ./crates/rse-py
+	[ -x target/wheel-venv/bin/maturin ] || { python3 -m venv target/wheel-venv && target/wheel-venv/bin/pip install --quiet --disable-pip-version-check maturin==1.16.0 ziglang==0.17.1; }
+	rm -f dist/rse_gen-*.whl dist/rse_gen_cli-*.whl
+	for crate in rse-py rse-cli; do \
+		PATH="$(CURDIR)/target/wheel-venv/bin:$$PATH" target/wheel-venv/bin/maturin build --quiet --release --locked \
+			--zig --compatibility manylinux2014 --manifest-path crates/$$crate/Cargo.toml -o dist || exit 1; \
+	done
 	@ls dist/rse_gen-*.whl dist/rse_gen_cli-*.whl
 
 ## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ for TARGETS (rse-gen batch; a rerun resumes).
