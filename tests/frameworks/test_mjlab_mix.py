@@ -95,12 +95,12 @@ def test_a_mix_from_trains_command_line_runs_logs_per_scheme_and_records_every_s
     assert "scheme from the run folder: a mix of" in done.stderr and "mix_flights.csv (2)" in done.stderr, done.stderr[-2000:]
 
 
-def test_a_mix_of_other_grids_or_a_bad_proportion_is_refused_at_the_flag(tmp_path, monkeypatch, capsys) -> None:
+def test_a_mix_of_other_block_sizes_or_a_bad_proportion_is_refused_at_the_flag(tmp_path, monkeypatch, capsys) -> None:
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("COLUMNS", "300")
-    other = tmp_path / "small.csv"
-    other.write_text("# size: 20x20\ntype,height\nrandom,2\n")
-    for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has 20x20 cells"),
+    other = tmp_path / "coarse.csv"
+    other.write_text("# size: 40x40\n# block_size: 0.2\ntype,height\nrandom,2\n")
+    for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has cells of 0.2 m"),
                        (f'{{"{STAIRS}": -1}}', "proportion is -1"),
                        (f'{{"{STAIRS}": 1, "missing.csv": 1}}', "missing.csv: cannot read it")):
         done = train_main(capsys, "--env.scene.terrain.schemes", mix)
@@ -144,3 +144,36 @@ def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_pat
     assert plays_checkpoint(["play", "T", "--wandb-run-path", "a/b/c"]) is None
     monkeypatch.delitem(sys.modules, "mjlab.scripts.play")
     assert plays_checkpoint(argv) is None, "not play: its flags mean nothing"
+
+
+def test_a_mix_of_grids_runs_every_slot_the_largest_and_the_exact_tops_agree_on_the_device() -> None:
+    """A 4 m stepfield beside the 8 m flights: every env's slot is 8 m, the
+    smaller terrain in its corner with ground around it; the exact tops a
+    GPU reads from the fields (tensor ops) are the host's, off the smaller
+    terrain too (0, the ground plane), and the Go1s step on it."""
+    import torch
+    from host_copies import as_a_gpu_runs_them
+    from rse._adapters.mjlab.event import event_of
+
+    small = rse.Scheme.from_csv("# size: 40x40\n# step_height: 0.05\ntype,height\nrandom,1..2\n")
+    cfg = load_env_cfg("Mjlab-Velocity-Rough-Unitree-Go1")
+    cfg.scene.num_envs = 6
+    use_env_terrains(cfg, {str(FLIGHTS): 1.0, small.to_csv(): 1.0}, seed=2, difficulty=1.0)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        envs = env_terrains(env)
+        assert set(envs.scheme_ids) == {0, 1} and envs.field_shape == (160, 160)
+        env.reset()
+        for _ in range(5):
+            env.step(torch.zeros(env.action_space.shape))
+        tops = event_of(env, "rse_terrain").exact_tops()
+        xy = torch.rand((6, 50, 2), generator=torch.Generator().manual_seed(0), dtype=torch.float64) * 8.0
+        on_host = tops.tops(xy)
+        with as_a_gpu_runs_them(tops):
+            on_device = tops.tops(xy)
+        assert torch.allclose(on_host, on_device, atol=1e-6)
+        smaller = [e for e in range(6) if envs.scheme_ids[e] == 1]
+        assert (on_device[smaller][xy[smaller].amax(dim=-1) > 4.05] == 0).all(), "the ground around a smaller terrain"
+        assert torch.isfinite(env.scene["robot"].data.root_link_pos_w).all()
+    finally:
+        env.close()

@@ -439,11 +439,38 @@ def test_a_mix_of_other_step_heights_and_bases_holds_each_envs_tops_in_metres() 
         assert np.allclose(seen, np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base).ravel(), atol=1e-5), e
 
 
-def test_a_mix_refuses_schemes_of_other_grids_and_bad_proportions() -> None:
+def test_a_mix_of_grids_gives_every_slot_the_largest_a_smaller_terrain_in_its_corner() -> None:
+    """A 12x8 stepfield beside a 20x16 hill: every slot is 20x16 cells, the
+    smaller terrain in its first cells (its origin, ``heights_at`` and
+    MuJoCo's rays agree), the ground plane at 0 around it."""
+    big = rse.Scheme.from_csv("# size: 20x16\ntype,height,angle,x1,y1\npeak,6,30,10,8\n")
+    small = rse.Scheme.from_csv("# size: 12x8\n# step_height: 0.05\ntype,height\nrandom,1..3\n")
+    envs = rse.EnvTerrains([big, small], 6, seed=2, oversample=2)
+    assert set(envs.scheme_ids) == {0, 1} and envs.field_shape == (32, 40) and envs.oversample == 2
+    spec = mujoco.MjSpec()
+    gap = 3.0
+    for e, hfield in enumerate(rse.mujoco.add_env_hfields(spec, envs)):
+        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    rse.mujoco.sync_env_hfields(model, envs, range(6))
+    mujoco.mj_forward(model, data)
+    s = 0.1
+    ys, xs = np.mgrid[0:16, 0:20]
+    centres = np.stack([(xs.ravel() + 0.5) * s, (ys.ravel() + 0.5) * s], axis=1)
+    for e in range(6):
+        seen = np.array([ray_down(model, data, px + e * gap, py, e) for px, py in centres])
+        tops = envs.heights_at([e], centres[None])[0]
+        on = np.isfinite(tops)
+        assert on.sum() == envs.terrain(e).heights.size, e
+        assert np.allclose(seen[on], tops[on], atol=1e-5) and np.allclose(seen[~on], 0.0, atol=1e-5), e
+        x, y, _ = envs.origins[e]
+        assert 0 < x < envs.terrain(e).heights.shape[1] * s and 0 < y < envs.terrain(e).heights.shape[0] * s, "its origin on its terrain"
+
+
+def test_a_mix_refuses_schemes_of_other_block_sizes_and_bad_proportions() -> None:
     a = rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,2\n")
-    with pytest.raises(ValueError, match="schemes: scheme 2 has 30x20 cells"):
-        rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 30x20\ntype,height\nrandom,2\n")], 2)
-    with pytest.raises(ValueError, match="schemes: scheme 2 has 20x20 cells of 0.2 m"):
+    with pytest.raises(ValueError, match="schemes: scheme 2 has cells of 0.2 m, scheme 1 of 0.1 m"):
         rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 20x20\n# block_size: 0.2\ntype,height\nrandom,2\n")], 2)
     with pytest.raises(ValueError, match="proportions: 1 given for 2 schemes"):
         rse.EnvTerrains([a, a], 2, proportions=[1])

@@ -48,6 +48,7 @@ struct Fixed {
     num_envs: usize,
     layout: &'static str,
     field_shape: (usize, usize),
+    oversample: u32,
     buffer_shape: (usize, usize, usize),
     hfield_size: [f64; 4],
     hfield_pos: [f64; 3],
@@ -333,6 +334,7 @@ impl EnvTerrains {
             num_envs,
             layout: rse_core::LayoutKind::from(inner.options().layout).name(),
             field_shape: inner.field_shape(),
+            oversample: inner.options().oversample,
             buffer_shape: inner.buffer_shape(),
             hfield_size: inner.hfield_size(),
             hfield_pos: inner.hfield_pos(),
@@ -438,10 +440,17 @@ impl EnvTerrains {
         self.fixed.layout
     }
 
-    /// One environment's field, `(nrow, ncol)`.
+    /// One environment's field, `(nrow, ncol)`: its slot's (or tile's)
+    /// cells, the largest grid of a mix, times `oversample`.
     #[getter]
     fn field_shape(&self) -> (usize, usize) {
         self.fixed.field_shape
+    }
+
+    /// Samples per cell along each axis of the fields.
+    #[getter]
+    fn oversample(&self) -> u32 {
+        self.fixed.oversample
     }
 
     /// MuJoCo's `size` of one slot's field (slots) or of the map (tiles):

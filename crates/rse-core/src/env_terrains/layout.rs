@@ -154,7 +154,7 @@ impl EnvTerrains {
         match self.options.layout {
             EnvLayout::Slots => (0, 0),
             EnvLayout::Tiles { cols, border } => {
-                let grid = self.scheme.grid();
+                let grid = self.slot;
                 let (row, col) = ((e / cols as usize) as u32, (e % cols as usize) as u32);
                 (
                     border + col * (grid.nx + border),
@@ -228,10 +228,20 @@ impl EnvTerrains {
         (b * self.options.oversample as usize + self.env_shape.0) * self.shape.2
     }
 
-    /// Writes `terrain` into a slot.
+    /// Writes `terrain` into a slot: a terrain smaller than the slot (a
+    /// mix of grids) in its first cells, the ground plane (0) around it.
     pub(super) fn write_slot(&self, terrain: &Terrain, slot: &mut [f32]) {
         let k = self.options.oversample;
+        if self.smaller(terrain) {
+            slot.fill(0.0);
+        }
         terrain.fill_hfield_rows(k, 0.0, self.elevation, slot, self.env_shape.1);
+    }
+
+    /// Whether `terrain` fills less than a slot (a mix of grids).
+    fn smaller(&self, terrain: &Terrain) -> bool {
+        let grid = terrain.grid();
+        (grid.nx, grid.ny) != (self.slot.nx, self.slot.ny)
     }
 
     /// Writes `terrain` as environment `e`'s tile into the band of its tile
@@ -242,6 +252,14 @@ impl EnvTerrains {
         let border_rows = band.len() / cols - self.env_shape.0;
         let (x0, _) = self.tile_origin(e);
         let at = border_rows * cols + x0 as usize * k;
+        if self.smaller(terrain) {
+            // The tile's cells past the terrain: ground, as the borders.
+            let ground = self.ground_sample();
+            let width = self.slot.nx as usize * k;
+            for row in band[at..].chunks_mut(cols).take(self.env_shape.0) {
+                row[..width].fill(ground);
+            }
+        }
         terrain.fill_hfield_rows(k as u32, 0.0, self.elevation, &mut band[at..], cols);
     }
 }

@@ -7,6 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{Rng, SeedableRng};
 
 use super::options::{EnvError, bad};
+use crate::globals::Grid;
 use crate::scheme::Scheme;
 
 /// Bytes 8‥16 of the `ChaCha8` key of the mix's draws ("rse mix\0"): the
@@ -103,35 +104,54 @@ impl SchemeMix {
 }
 
 /// Whether `schemes` can be mixed in one pool: at least one, all sharing
-/// the first's grid (size, block size, pallets), as one field shape per
-/// slot needs. Their step heights and bases may differ: a field's samples
-/// are tops in metres over one scale, the highest top any scheme can have.
-/// Refused naming the first that differs.
+/// the first's block size, as one field's sample spacing needs. Their
+/// grids, step heights and bases may differ: every slot fits the largest
+/// grid ([`largest_grid`]), and a field's samples are tops in metres over
+/// one scale, the highest top any scheme can have. Refused naming the
+/// first that differs.
 pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
     let Some(first) = schemes.first() else {
         return Err(bad("schemes", "no scheme to draw terrains from"));
     };
-    // Bit for bit: one field shape, one cell size.
-    let key = |s: &Scheme| (s.grid(), s.globals().block_size.to_bits());
-    let describe = |s: &Scheme| {
-        format!(
-            "{}x{} cells of {} m",
-            s.grid().nx,
-            s.grid().ny,
-            s.globals().block_size
-        )
-    };
+    // Bit for bit: one sample spacing.
+    let key = |s: &Scheme| s.globals().block_size.to_bits();
     match schemes.iter().position(|s| key(s) != key(first)) {
         None => Ok(()),
         Some(i) => Err(bad(
             "schemes",
             format!(
-                "scheme {} has {}, scheme 1 {}: the schemes of a mix share their grid (size, block size, pallets); their step heights and bases may differ",
+                "scheme {} has cells of {} m, scheme 1 of {} m: the schemes of a mix share their block size; their grids, step heights and bases may differ",
                 i + 1,
-                describe(&schemes[i]),
-                describe(first)
+                schemes[i].globals().block_size,
+                first.globals().block_size
             ),
         )),
+    }
+}
+
+/// The grid every slot of a mix of `schemes` has: the most cells along x
+/// and along y of any (no pallet frames of its own: each terrain keeps
+/// its own).
+pub(super) fn largest_grid(schemes: &[Scheme]) -> Grid {
+    let first = schemes
+        .first()
+        .map(Scheme::grid)
+        .expect("a mix has a scheme");
+    if schemes.iter().all(|s| s.grid() == first) {
+        return first;
+    }
+    Grid {
+        nx: schemes
+            .iter()
+            .map(|s| s.grid().nx)
+            .max()
+            .unwrap_or(first.nx),
+        ny: schemes
+            .iter()
+            .map(|s| s.grid().ny)
+            .max()
+            .unwrap_or(first.ny),
+        frame_period: None,
     }
 }
 
@@ -182,22 +202,23 @@ mod tests {
     }
 
     #[test]
-    fn schemes_of_one_grid_mix_whatever_their_step_and_base() {
+    fn schemes_of_one_block_size_mix_whatever_their_grid_step_and_base() {
         let scheme = |text: &str| Scheme::from_csv(text, None).unwrap();
         let a = scheme("# size: 20x10\ntype,height\nrandom,2\n");
         let steps =
             scheme("# size: 20x10\n# step_height: 0.01\n# base: 0.3\ntype,height\nrandom,9\n");
-        assert!(check_mixable(&[a.clone(), steps]).is_ok());
-        for other in [
-            "# size: 20x11\ntype,height\nrandom,2\n",
-            "# size: 20x10\n# block_size: 0.2\ntype,height\nrandom,2\n",
-        ] {
-            let err = check_mixable(&[a.clone(), scheme(other)]).unwrap_err();
-            assert!(
-                err.to_string().starts_with("schemes: scheme 2 has "),
-                "{err}"
-            );
-        }
+        let small = scheme("# size: 12x14\ntype,height\nrandom,2\n");
+        assert!(check_mixable(&[a.clone(), steps, small.clone()]).is_ok());
+        let slot = largest_grid(&[a.clone(), small]);
+        assert_eq!((slot.nx, slot.ny), (20, 14));
+        assert_eq!(largest_grid(std::slice::from_ref(&a)), a.grid());
+        let other = scheme("# size: 20x10\n# block_size: 0.2\ntype,height\nrandom,2\n");
+        let err = check_mixable(&[a, other]).unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("schemes: scheme 2 has cells of 0.2 m"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use crate::difficulty::Difficulty;
 use crate::generate::generate_at;
+use crate::globals::Grid;
 use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
@@ -50,8 +51,7 @@ pub fn env_world(env: u64, episode: u64) -> Option<u64> {
 /// The terrains of many environments and their height-field samples.
 #[derive(Debug, Clone)]
 pub struct EnvTerrains {
-    /// The first scheme (one a pool of a single scheme): the grid every
-    /// scheme of a mix shares.
+    /// The first scheme (one a pool of a single scheme).
     scheme: Scheme,
     /// Every scheme of a mix (the first is `scheme`); empty for one.
     mix: Vec<Scheme>,
@@ -66,6 +66,9 @@ pub struct EnvTerrains {
     env_shape: (usize, usize),
     /// The whole buffer: (slots, rows, columns).
     shape: (usize, usize, usize),
+    /// The cells of one slot (or tile): the largest grid of the mix; a
+    /// smaller terrain lies in its first cells, ground around it.
+    slot: Grid,
     elevation: f64,
 }
 
@@ -80,10 +83,11 @@ impl EnvTerrains {
 
     /// The terrains of episode 0 of every environment, each environment
     /// drawing its scheme from `schemes` by `proportions` ([`SchemeMix`],
-    /// from its global id and the seed). The schemes share their grid
-    /// (size, block size, pallets): a slot is one field shape; their
-    /// obstacles, step heights and bases may differ (the samples are tops
-    /// in metres on one scale, the highest top any scheme can have). Refused as [`new`](Self::new)
+    /// from its global id and the seed). The schemes share their block
+    /// size; their grids, obstacles, step heights and bases may differ:
+    /// every slot fits the largest grid (a smaller terrain in its first
+    /// cells, ground around it), the samples are tops in metres on one
+    /// scale (the highest top any scheme can have). Refused as [`new`](Self::new)
     /// refuses, and for a mix whose schemes differ there or whose
     /// proportions are not one per scheme, each 0 or more.
     pub fn mixed(
@@ -103,7 +107,6 @@ impl EnvTerrains {
             ));
         }
         mix::check_mixable(&schemes)?;
-        let first = &schemes[0];
         let mix = SchemeMix::new(proportions)?;
         if n == 0 {
             return Err(bad("num_envs", "expected 1 or more environments"));
@@ -121,7 +124,9 @@ impl EnvTerrains {
         if let Err(why) = crate::spawn::check_radius(options.spawn_radius) {
             return Err(bad("spawn_radius", why));
         }
-        let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(first.grid(), options)?;
+        // Every slot (or tile) fits the largest grid of the mix.
+        let slot = mix::largest_grid(&schemes);
+        let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(slot, options)?;
         // One scale for every scheme: the highest top any can have.
         let elevation = schemes.iter().map(Scheme::max_top).fold(0.0, f64::max);
         let drawn = if schemes.len() > 1 {
@@ -147,6 +152,7 @@ impl EnvTerrains {
             episodes: vec![0; n],
             env_shape,
             shape,
+            slot,
         };
         let made: Vec<Made> = (0..n)
             .into_par_iter()
@@ -196,7 +202,7 @@ impl EnvTerrains {
     }
 
     /// The scheme every environment draws its terrains from; the first of
-    /// a mix (whose grid they all share).
+    /// a mix.
     pub fn scheme(&self) -> &Scheme {
         &self.scheme
     }
@@ -468,6 +474,61 @@ mod tests {
             assert_eq!(a.terrain(e).heightmap(), alone.heightmap());
         }
         assert_eq!([a.episode(0), a.episode(1), a.episode(2)], [1, 1, 2]);
+    }
+
+    /// A mix of a 6x5 grid and a 3x4 one (the scheme of `scheme()` and a
+    /// smaller), every env's own layout.
+    fn mixed_grids(n: usize, layout: EnvLayout) -> EnvTerrains {
+        let small = Scheme::from_csv("# size: 3x4\ntype,height\nrandom,1..4\n", None).unwrap();
+        let options = EnvOptions {
+            num_envs: n,
+            seed: 3,
+            layout,
+            ..default_options()
+        };
+        EnvTerrains::mixed(vec![scheme(), small], &[1.0, 1.0], options).unwrap()
+    }
+
+    #[test]
+    fn a_mix_of_grids_puts_a_smaller_terrain_in_its_slots_first_cells_ground_around_it() {
+        let e = mixed_grids(6, EnvLayout::Slots);
+        let (n, rows, cols) = e.buffer_shape();
+        assert_eq!((rows, cols), (10, 12), "the larger grid, oversampled 2");
+        assert!((0..n).any(|i| e.scheme_index(i) == 1) && (0..n).any(|i| e.scheme_index(i) == 0));
+        let mut out = vec![-1.0f32; n * rows * cols];
+        e.write(&(0..n).collect::<Vec<_>>(), &mut out).unwrap();
+        let elevation = e.hfield_size()[2];
+        for env in 0..n {
+            let t = e.terrain(env);
+            let (trows, tcols) = (t.grid().ny as usize * 2, t.grid().nx as usize * 2);
+            let mut want = vec![0.0f32; trows * tcols];
+            t.hfield_into(2, 0.0, elevation, &mut want).unwrap();
+            let slot = &out[env * rows * cols..(env + 1) * rows * cols];
+            for r in 0..rows {
+                for c in 0..cols {
+                    let expected = if r < trows && c < tcols {
+                        want[r * tcols + c]
+                    } else {
+                        0.0
+                    };
+                    assert_eq!(slot[r * cols + c], expected, "env {env} ({r}, {c})");
+                }
+            }
+            // Off the smaller terrain: no top, as off any terrain.
+            let s = t.block_size();
+            assert!(!e.height_at(env, 0.5 * s, 0.5 * s).is_nan());
+            assert!(e.height_at(env, 5.5 * s, 4.5 * s).is_nan() == (e.scheme_index(env) == 1));
+        }
+        let tiles = mixed_grids(6, EnvLayout::Tiles { cols: 3, border: 1 });
+        let (_, rows, cols) = tiles.buffer_shape();
+        let mut map = vec![-1.0f32; rows * cols];
+        tiles.write(&(0..6).collect::<Vec<_>>(), &mut map).unwrap();
+        let small = (0..6).find(|&i| tiles.scheme_index(i) == 1).unwrap();
+        let (x0, y0) = tiles.tile_origin(small);
+        // The small tile's cells past its terrain are ground, not left as they were.
+        let at = |x: u32, y: u32| map[(y as usize * 2) * cols + x as usize * 2];
+        assert_eq!(at(x0 + 5, y0), tiles.ground_sample());
+        assert_eq!(at(x0 + 1, y0 + 4), tiles.ground_sample());
     }
 
     #[test]

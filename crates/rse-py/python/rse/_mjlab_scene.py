@@ -83,8 +83,9 @@ class EnvTerrainCfg(TerrainEntityCfg):
     file's path, or its text) and its proportion (its share of their sum).
     Each env draws its scheme by its global id and the seed, for the whole
     run (``rse.scheme_mix``); the curriculum is logged per scheme, by file
-    name. Given, it replaces ``scheme``. The schemes share their grid (a
-    slot is one field shape); their step heights and bases may differ."""
+    name. Given, it replaces ``scheme``. The schemes share their block size;
+    their grids (every slot fits the largest), step heights and bases may
+    differ."""
     seed: Optional[int] = None
     """The base seed of every env's terrains; None: the scheme's ``# seed:``."""
     difficulty: Optional[float] = None

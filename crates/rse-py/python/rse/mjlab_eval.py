@@ -45,6 +45,8 @@ from typing import Any, Optional
 
 import numpy as np
 
+from rse._adapters import contacts
+
 __all__ = ["LevelResult", "evaluate", "main", "table"]
 
 
@@ -140,7 +142,7 @@ def evaluate(
         # Every env's evaluated terrain: its next episode, at its level.
         wrapped.reset()
         # Half a terrain ahead: its far edge, from its centre.
-        half = 0.5 * event.envs.terrain(0).block_size * event.envs.terrain(0).heights.shape[1]
+        half = 0.5 * event.envs.terrain(0).block_size * contacts.slot_cells(event.envs)[1]
         episodes = _run(env, wrapped, policy, event, seconds, half)
     finally:
         env.close()

@@ -42,15 +42,22 @@ COARSE = "_coarse"
 
 def oversample_of(envs: EnvTerrains) -> int:
     """Samples per cell along each axis of ``envs``' fields."""
-    return envs.field_shape[1] // envs.terrain(0).heights.shape[1]
+    return int(envs.oversample)
+
+
+def slot_cells(envs: EnvTerrains) -> tuple[int, int]:
+    """The cells of one env's slot (or tile), ``(ny, nx)``: the largest grid
+    of a mix (a smaller terrain lies in its first cells)."""
+    k = oversample_of(envs)
+    nrow, ncol = envs.field_shape
+    return nrow // k, ncol // k
 
 
 def coarse_size(envs: EnvTerrains) -> list[float]:
     """MuJoCo's ``size`` of an env's coarse field: one sample at each cell's
     centre, centred where the exact field is (``hfield_pos``)."""
-    heights = envs.terrain(0).heights
-    s = envs.terrain(0).block_size
-    ny, nx = heights.shape
+    s = envs.terrain(0).block_size  # one block size in a mix
+    ny, nx = slot_cells(envs)
     _, _, elevation, base = envs.hfield_size
     return [0.5 * (nx - 1) * s, 0.5 * (ny - 1) * s, elevation, base]
 

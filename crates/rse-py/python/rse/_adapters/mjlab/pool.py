@@ -103,7 +103,7 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
         spec.add_hfield(name=f"{name}{e}", nrow=nrow, ncol=ncol, size=list(probe.hfield_size), userdata=zeros)
     if not large:
         return
-    cy, cx = probe.terrain(0).heights.shape
+    cy, cx = contacts.slot_cells(probe)
     coarse_zeros = np.zeros(cy * cx, dtype=np.float32)
     for e in range(num_envs):
         spec.add_hfield(name=f"{name}{contacts.COARSE}{e}", nrow=cy, ncol=cx, size=contacts.coarse_size(probe), userdata=coarse_zeros)
@@ -123,7 +123,7 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     from the arrays."""
     nrow, ncol = probe.field_shape
     samples = nrow * ncol
-    cells = probe.terrain(0).heights.size if contacts.oversample_of(probe) > 1 else 0
+    cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
     host = num_envs * 4 * (2 * samples + cells)
     on_device = num_envs * (4 * (samples + cells) + 28 * geoms + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
     if str(device).startswith("cpu"):

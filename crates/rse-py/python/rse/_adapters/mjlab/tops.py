@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from rse._adapters import contacts
 from rse._rse import EnvTerrains
 
 
@@ -27,8 +28,8 @@ class DeviceTops:
         first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
         n = envs.num_envs
         t = envs.terrain(0)
-        self.cells = t.heights.shape  # (ny, nx)
-        self.k = envs.field_shape[1] // self.cells[1]
+        self.cells = contacts.slot_cells(envs)  # (ny, nx): a slot's, the largest grid of a mix
+        self.k = contacts.oversample_of(envs)
         self.ncol = int(mjm.hfield_ncol[first])
         self.block = float(t.block_size)
         _, _, self.elevation, _ = envs.hfield_size
