@@ -304,7 +304,8 @@ impl EnvTerrains {
         };
         let options = request.resolve(&scheme).map_err(value_error)?;
         // Python's episode, difficulty and origin arrays: 40 bytes an env.
-        let bytes = rse_core::env_pool_bytes(&scheme, options, 40).map_err(value_error)?;
+        let all: Vec<rse_core::Scheme> = schemes.iter().map(|s| (**s).clone()).collect();
+        let bytes = rse_core::mix_pool_bytes(&all, options, 40).map_err(value_error)?;
         crate::memory::fits(
             "num_envs",
             bytes,

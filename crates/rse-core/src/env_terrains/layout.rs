@@ -74,17 +74,39 @@ pub fn env_pool_bytes(
     options: EnvOptions,
     extra_per_env: u64,
 ) -> Result<u64, EnvError> {
-    let Shapes { shape, .. } = buffer_shape_of(scheme.grid(), options)?;
+    mix_pool_bytes(std::slice::from_ref(scheme), options, extra_per_env)
+}
+
+/// [`env_pool_bytes`] of a mix of `schemes` ([`EnvTerrains::mixed`]): the
+/// slots of the largest grid, each environment's terrain as large as the
+/// largest scheme's.
+pub fn mix_pool_bytes(
+    schemes: &[crate::Scheme],
+    options: EnvOptions,
+    extra_per_env: u64,
+) -> Result<u64, EnvError> {
+    if schemes.is_empty() {
+        return Err(bad("schemes", "no scheme to draw terrains from"));
+    }
+    let Shapes { shape, .. } = buffer_shape_of(super::mix::largest_grid(schemes), options)?;
     let samples = (shape.0 as u64)
         .saturating_mul(shape.1 as u64)
         .saturating_mul(shape.2 as u64)
         .saturating_mul(4);
-    let cells = scheme.grid().cells() as u64;
+    let cells = schemes
+        .iter()
+        .map(|s| s.grid().cells() as u64)
+        .max()
+        .unwrap_or(0);
+    let obstacles = schemes
+        .iter()
+        .map(|s| s.obstacles().len() as u64)
+        .max()
+        .unwrap_or(0);
     let terrain = (std::mem::size_of::<Terrain>() as u64)
         .saturating_add(cells.saturating_mul(std::mem::size_of::<u16>() as u64))
         .saturating_add(
-            (scheme.obstacles().len() as u64)
-                .saturating_mul(std::mem::size_of::<crate::obstacle::DrawnObstacle>() as u64),
+            obstacles.saturating_mul(std::mem::size_of::<crate::obstacle::DrawnObstacle>() as u64),
         );
     let per_env = terrain
         .saturating_mul(2)

@@ -29,7 +29,7 @@ use layout::chunks_at;
 
 use options::bad;
 
-pub use layout::env_pool_bytes;
+pub use layout::{env_pool_bytes, mix_pool_bytes};
 pub use mix::{SchemeMix, check_mixable};
 pub use options::{EnvError, EnvLayout, EnvOptions};
 pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
@@ -529,6 +529,25 @@ mod tests {
         let at = |x: u32, y: u32| map[(y as usize * 2) * cols + x as usize * 2];
         assert_eq!(at(x0 + 5, y0), tiles.ground_sample());
         assert_eq!(at(x0 + 1, y0 + 4), tiles.ground_sample());
+    }
+
+    #[test]
+    fn a_mix_pool_is_priced_by_its_largest_grid() {
+        let options = EnvOptions {
+            num_envs: 8,
+            ..default_options()
+        };
+        let small = Scheme::from_csv("# size: 3x4\ntype,height\nrandom,1..4\n", None).unwrap();
+        let wide = Scheme::from_csv("# size: 9x2\ntype,height\nrandom,1\n", None).unwrap();
+        let one = env_pool_bytes(&scheme(), options, 0).unwrap();
+        assert_eq!(mix_pool_bytes(&[scheme()], options, 0).unwrap(), one);
+        assert_eq!(
+            mix_pool_bytes(&[small.clone(), scheme()], options, 0).unwrap(),
+            one
+        );
+        // 9x5 slots: more than either grid alone.
+        let both = mix_pool_bytes(&[scheme(), wide.clone()], options, 0).unwrap();
+        assert!(both > one && both > env_pool_bytes(&wide, options, 0).unwrap());
     }
 
     #[test]
