@@ -106,7 +106,7 @@ impl SchemeMix {
 /// Whether `schemes` can be mixed in one pool: at least one, all sharing
 /// the first's block size, as one field's sample spacing needs. Their
 /// grids, step heights and bases may differ: every slot fits the largest
-/// grid ([`largest_grid`]), and a field's samples are tops in metres over
+/// grid, and a field's samples are tops in metres over
 /// one scale, the highest top any scheme can have. Refused naming the
 /// first that differs.
 pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
