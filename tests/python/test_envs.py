@@ -406,6 +406,28 @@ def test_a_mix_draws_each_envs_scheme_by_proportion_from_its_global_id() -> None
     assert envs.contact_sheet(names=["stairs", "rough"]) != envs.contact_sheet()
 
 
+GAP = 3.0
+"""Metres between two envs' geoms in a model of the pool."""
+
+
+def pool_in_mujoco(envs: rse.EnvTerrains, gap: float) -> tuple[mujoco.MjModel, mujoco.MjData]:
+    """A MuJoCo model of ``envs``' pool, env ``e``'s geom ``e · gap`` along
+    x, every field synced and forward run."""
+    spec = mujoco.MjSpec()
+    for e, hfield in enumerate(rse.mujoco.add_env_hfields(spec, envs)):
+        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    rse.mujoco.sync_env_hfields(model, envs, range(envs.num_envs))
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+def tops_of(t: rse.Terrain) -> np.ndarray:
+    """Each cell's top, metres: the slab (``base``) plus its steps."""
+    return np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base)
+
+
 def test_a_mix_of_other_step_heights_and_bases_holds_each_envs_tops_in_metres() -> None:
     """Schemes of one grid mix whatever their step height and base: 1 cm
     steps of a gentle hill beside 5 cm pyramid stairs on a 20 cm slab.
@@ -420,23 +442,14 @@ def test_a_mix_of_other_step_heights_and_bases_holds_each_envs_tops_in_metres() 
     assert elevation == pytest.approx(0.4) and base == pytest.approx(0.05)  # 0.2 + 4 steps of 5 cm; the deeper step
     for e in range(8):
         t = envs.terrain(e)
-        tops = np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base)
-        assert np.allclose(envs.samples[e, ::2, ::2] * elevation, tops, atol=1e-6), e
+        assert np.allclose(envs.samples[e, ::2, ::2] * elevation, tops_of(t), atol=1e-6), e
         assert t.step_height == (0.01 if envs.scheme_ids[e] == 0 else 0.05)
     # In MuJoCo: each env's field, cast on from above at every cell centre.
-    spec = mujoco.MjSpec()
-    gap = 3.0
-    for e, hfield in enumerate(rse.mujoco.add_env_hfields(spec, envs)):
-        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
-    model = spec.compile()
-    data = mujoco.MjData(model)
-    rse.mujoco.sync_env_hfields(model, envs, range(8))
-    mujoco.mj_forward(model, data)
+    model, data = pool_in_mujoco(envs, GAP)
     for e in range(8):
-        seen = np.array([ray_down(model, data, px + e * gap, py, e) for px, py in cell_centres(envs, e)])
+        seen = np.array([ray_down(model, data, px + e * GAP, py, e) for px, py in cell_centres(envs, e)])
         assert np.allclose(seen, envs.heights_at([e], cell_centres(envs, e)[None])[0], atol=1e-5), e
-        t = envs.terrain(e)
-        assert np.allclose(seen, np.where(t.heights > 0, t.base + t.heights * t.step_height, t.base).ravel(), atol=1e-5), e
+        assert np.allclose(seen, tops_of(envs.terrain(e)).ravel(), atol=1e-5), e
 
 
 def test_a_mix_of_grids_gives_every_slot_the_largest_a_smaller_terrain_in_its_corner() -> None:
@@ -447,19 +460,12 @@ def test_a_mix_of_grids_gives_every_slot_the_largest_a_smaller_terrain_in_its_co
     small = rse.Scheme.from_csv("# size: 12x8\n# step_height: 0.05\ntype,height\nrandom,1..3\n")
     envs = rse.EnvTerrains([big, small], 6, seed=2, oversample=2)
     assert set(envs.scheme_ids) == {0, 1} and envs.field_shape == (32, 40) and envs.oversample == 2
-    spec = mujoco.MjSpec()
-    gap = 3.0
-    for e, hfield in enumerate(rse.mujoco.add_env_hfields(spec, envs)):
-        rse.mujoco.add_env_geom(spec, envs, hfield, offset=(e * gap, 0.0, 0.0))
-    model = spec.compile()
-    data = mujoco.MjData(model)
-    rse.mujoco.sync_env_hfields(model, envs, range(6))
-    mujoco.mj_forward(model, data)
+    model, data = pool_in_mujoco(envs, GAP)
     s = 0.1
     ys, xs = np.mgrid[0:16, 0:20]
     centres = np.stack([(xs.ravel() + 0.5) * s, (ys.ravel() + 0.5) * s], axis=1)
     for e in range(6):
-        seen = np.array([ray_down(model, data, px + e * gap, py, e) for px, py in centres])
+        seen = np.array([ray_down(model, data, px + e * GAP, py, e) for px, py in centres])
         tops = envs.heights_at([e], centres[None])[0]
         on = np.isfinite(tops)
         assert on.sum() == envs.terrain(e).heights.size, e

@@ -74,14 +74,16 @@ pub(crate) fn apply(
             let rect = Rect::new(from, to, map.nx(), map.ny());
             let lowers = obstacle.kind.lowers();
             // A flight's steps, or a pyramid's by its tread.
-            let tread = obstacle.tread;
+            let tread = (obstacle.kind != ObstacleKind::Stairs)
+                .then(|| obstacle.tread.expect("a validated pyramid has a tread"));
             let steps = |x: u32, y: u32| match tread {
                 None => flight_steps(height, from, to, x, y),
                 Some(tread) => pyramid_steps(height, tread, rect, x, y),
             };
-            for y in rect.y0..=rect.y1.min(map.ny().saturating_sub(1)) {
+            // `Rect::new` kept the corners on the grid.
+            for y in rect.y0..=rect.y1 {
                 let row = map.row_mut(y);
-                for x in rect.x0..=rect.x1.min(row.len().saturating_sub(1) as u32) {
+                for x in rect.x0..=rect.x1 {
                     let cell = &mut row[x as usize];
                     if lowers {
                         lower(cell, steps(x, y));
@@ -206,7 +208,11 @@ impl Slope {
 pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
     let f = obstacle.fields();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
-    if let (Some(x1), Some(y1), Some(x2), Some(y2), None) = (f.x1, f.y1, f.x2, f.y2, f.angle) {
+    let rectangle = matches!(
+        obstacle.kind(),
+        ObstacleKind::Stairs | ObstacleKind::Pyramid | ObstacleKind::PyramidPit
+    );
+    if let (true, Some(x1), Some(y1), Some(x2), Some(y2)) = (rectangle, f.x1, f.y1, f.x2, f.y2) {
         // Stairs and pyramids: the box of their corners' ranges.
         let side = |a: Param<u32>, b: Param<u32>, n: u32| {
             let (lo, hi) = (

@@ -52,9 +52,7 @@ def _inherited(name: str) -> Any:
 class EnvTerrainCfg(TerrainEntityCfg):
     """Every env its own rse terrain, new every episode; mjlab's terrain
     fields keep their meaning (``max_init_terrain_level``: envs start at
-    levels 0 … it). rse as one sub-terrain of mjlab's own generator
-    instead (tiles made once, beside mjlab's): ``rse.mjlab.RseTerrainCfg``
-    in ``terrain_generator.sub_terrains`` (docs/frameworks.md)."""
+    levels 0 … it)."""
 
     # mjlab's fields that rse's terrain fixes, or that would move or
     # change its geoms behind rse's back (its pose, geoms, collisions):

@@ -18,6 +18,13 @@ FIELD = "geom_aabb"
 size)`` in its frame."""
 
 
+def z_extent(top: Any, base: float) -> tuple[Any, Any]:
+    """The centre and half height in z of a terrain geom's box reaching up
+    to ``top`` (metres above the field, an array or a tensor) and down to
+    the prisms' bottom, ``base`` below it."""
+    return 0.5 * (top - base), 0.5 * (top + base)
+
+
 class TerrainBounds:
     """The terrain geoms ``gids`` (the exact and coarse fields' geoms, in
     the field's frame: the samples go from 0 to ``elevation`` above it, the
@@ -45,8 +52,7 @@ class TerrainBounds:
         if not ids or not self.gids:
             return
         top = envs.samples[ids].reshape(len(ids), -1).max(axis=1).astype(np.float64) * self.elevation
-        # z from -base (the prisms' bottom) to the highest top.
-        centre, half = 0.5 * (top - self.base), 0.5 * (top + self.base)
+        centre, half = z_extent(top, self.base)
         rows, starts = [], []
         for i, w in enumerate(ids):
             for g, (cx, cy, sx, sy) in zip(self.gids, self.plan):

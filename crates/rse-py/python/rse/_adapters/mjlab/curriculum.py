@@ -39,10 +39,10 @@ def terrain_difficulty(
     if env.common_step_counter > 0 and ids:
         index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
         walked = torch.norm(env.scene[asset_name].data.root_link_pos_w[index, :2] - env.scene.env_origins[index, :2], dim=1)
-        # Half of each env's own terrain (a mix may hold smaller grids).
-        half = torch.as_tensor(
-            [0.5 * envs.terrain(e).block_size * min(envs.terrain(e).heights.shape) for e in ids], dtype=walked.dtype, device=walked.device
-        )
+        # Half of each env's own terrain (a mix may hold smaller grids),
+        # from its scheme's grid: no terrain is read.
+        halves = np.array([0.5 * s.block_size * min(s.grid) for s in envs.schemes])
+        half = torch.as_tensor(halves[envs.scheme_ids[ids]], dtype=walked.dtype, device=walked.device)
         up = walked > half
         if command_name is None:
             down = walked < half / 2

@@ -21,6 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._adapters.mjlab.apart import Apart
+from rse._adapters.mjlab.bounds import z_extent
 from rse._adapters.mjlab.tops import DeviceTops
 
 SLACK = 0.02
@@ -112,8 +113,8 @@ class NearRobotBounds:
         # Cells a square of half side `cap` touches, and one more each side.
         self.span = int(math.ceil(2.0 * self.cap / tops.block)) + 4
         self.steps = torch.arange(self.span, device=sim.device)
-        half = 0.5 * apart.size
-        self.centre = torch.as_tensor(half, dtype=torch.float32, device=sim.device)
+        self.centre = torch.as_tensor(0.5 * apart.size, dtype=torch.float32, device=sim.device)
+        _, _, _, self.base = tops.envs.hfield_size
 
     def update(self, sim: Any) -> None:
         """Bounds every world's terrain geoms by the square around its
@@ -138,11 +139,11 @@ class NearRobotBounds:
         top = samples.amax(dim=(1, 2)).to(torch.float32)
         # Faster than the gather covers: up to the highest top there is.
         top = torch.where(half <= self.cap, top, 1.0) * t.elevation
-        _, _, _, base = t.envs.hfield_size
+        z, half_z = z_extent(top, self.base)
         box = torch.stack(
             [
-                torch.stack([xy[:, 0] - self.centre[0], xy[:, 1] - self.centre[1], 0.5 * (top - base)], dim=1),
-                torch.stack([half, half, 0.5 * (top + base)], dim=1),
+                torch.stack([xy[:, 0] - self.centre[0], xy[:, 1] - self.centre[1], z], dim=1),
+                torch.stack([half, half, half_z], dim=1),
             ],
             dim=1,
         )
