@@ -54,9 +54,11 @@ def make(task: str, num_envs: int, device: str, episode_s: float, rse: bool):
 
 def steps_per_second(env, steps: int) -> float:
     action = torch.zeros(env.action_space.shape, device=env.device)
+    sync(env)
     start = time.perf_counter()
     for _ in range(steps):
         env.step(action)
+    sync(env)
     return steps * env.num_envs / (time.perf_counter() - start)
 
 
@@ -107,13 +109,10 @@ def scan_cost(env, repeats: int) -> tuple[float, float]:
     from mjlab.envs import mdp as envs_mdp
     from rse.mjlab import exact_height_scan
 
-    def timed(f) -> float:
-        start = time.perf_counter()
-        for _ in range(repeats):
-            f(env, "terrain_scan")
-        return (time.perf_counter() - start) / repeats
-
-    return timed(envs_mdp.height_scan), timed(exact_height_scan)
+    return (
+        timed(env, lambda: envs_mdp.height_scan(env, "terrain_scan"), repeats),
+        timed(env, lambda: exact_height_scan(env, "terrain_scan"), repeats),
+    )
 
 
 def sync(env) -> None:
@@ -239,15 +238,52 @@ def ppo_iteration(task: str, env) -> float:
         return time.perf_counter() - start
 
 
+def device_used(device: str) -> int:
+    """Bytes in use on the whole device (every allocator, the CUDA
+    context), as ``cudaMemGetInfo`` tells them: what a card must have."""
+    free, total = torch.cuda.mem_get_info(torch.device(device))
+    return total - free
+
+
+def memory_only(args) -> None:
+    """Builds rse's task alone at ``--num-envs`` and steps it through
+    resets: what Warp's and torch's allocators hold and what the whole
+    device has in use (does it fit a 24 GB card?)."""
+    before, used_before = allocated(args.device), device_used(args.device)
+    env = make(args.task, args.num_envs, args.device, args.episode_s[0], True)
+    steps_per_second(env, 2 * round(args.episode_s[0] / env.step_dt))
+    warp_held = allocated(args.device) - before
+    used = device_used(args.device)
+    print(
+        f"rse's task alone, {args.num_envs} envs on {args.device} after {2 * round(args.episode_s[0] / env.step_dt)} steps (every env reset): "
+        f"Warp's allocator {warp_held / 2**30:.2f} GiB ({warp_held / args.num_envs / 1024:.1f} KiB an env), "
+        f"torch's {torch.cuda.max_memory_allocated(args.device) / 2**30:.2f} GiB at most, "
+        f"the device {used / 2**30:.2f} GiB in use ({(used - used_before) / 2**30:.2f} GiB more than before the build)",
+        flush=True,
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--task", default="Mjlab-Velocity-Rough-Unitree-Go1")
     parser.add_argument("--num-envs", type=int, default=32)
     parser.add_argument("--steps", type=int, default=30, help="steps per round")
     parser.add_argument("--rounds", type=int, default=7, help="alternating rounds of each terrain")
-    parser.add_argument("--episode-s", type=float, default=1.0, help="episode length: resets every so many seconds")
+    parser.add_argument(
+        "--episode-s",
+        type=float,
+        nargs="+",
+        default=[1.0],
+        help="episode lengths, each measured in turn on the same envs (a GPU builds them once): resets every so many seconds",
+    )
     parser.add_argument("--device", default="cpu")
+    parser.add_argument("--memory-only", action="store_true", help="build rse's task alone and report the device memory it holds")
     args = parser.parse_args()
+    if args.memory_only:
+        if not args.device.startswith("cuda"):
+            parser.error("--memory-only reads a CUDA device's allocators: give --device cuda")
+        memory_only(args)
+        return
 
     # Both envs live side by side and are measured in alternating rounds:
     # on a small machine one long run of each is at the mercy of whatever
@@ -255,53 +291,52 @@ def main() -> None:
     envs, held = {}, {}
     for rse in (False, True):
         before = allocated(args.device)
-        envs[rse] = make(args.task, args.num_envs, args.device, args.episode_s, rse)
+        start = time.perf_counter()
+        envs[rse] = make(args.task, args.num_envs, args.device, args.episode_s[0], rse)
         held[rse] = allocated(args.device) - before
+        print(f"{'rse' if rse else 'mjlab'}'s env built in {time.perf_counter() - start:.1f} s", flush=True)
+    labels = (("mjlab's terrain", False), ("rse, new terrain per episode", True))
+    print(f"{args.task}, {args.num_envs} envs on {args.device}, {args.rounds} alternating rounds of {args.steps} steps", flush=True)
     # At the task's starting levels, before the rounds' short episodes let
     # the curriculum lower the standing robots' terrains.
     # The robots land in the first steps after a reset: 10 to settle.
     for env in envs.values():
         steps_per_second(env, 10)
     load = {rse: solver_load(env, 20) for rse, env in envs.items()}
-    rates: dict[bool, list[float]] = {False: [], True: []}
-    for _ in range(args.rounds):
-        for rse, env in envs.items():
-            rates[rse].append(steps_per_second(env, args.steps))
-    rays, exact = scan_cost(envs[True], 20)
-    shares = {rse: step_parts(env, args.episode_s, 10) for rse, env in envs.items()}
-    proxy = proxies(envs[True], args.episode_s)
-    # One runner per env (a second runner on an env the first used meets
-    # its inference-mode tensors): a warm-up iteration, then one timed.
-    ppo = {rse: [ppo_iteration(args.task, env)] for rse, env in envs.items()}
-    rows = [
-        (label, statistics.median(rates[rse]), min(rates[rse]), max(rates[rse]), statistics.median(ppo[rse]), load[rse])
-        for label, rse in (("mjlab's terrain", False), ("rse, new terrain per episode", True))
-    ]
-    for env in envs.values():
-        env.close()
-    print(
-        f"{args.task}, {args.num_envs} envs on {args.device}, episodes of {args.episode_s} s, "
-        f"{args.rounds} alternating rounds of {args.steps} steps"
-    )
-    print(f"{'terrain':32} {'env steps/s (median, min-max)':>30} {'PPO iteration s':>16}")
-    for label, median, low, high, ppo_s, _ in rows:
-        print(f"{label:32} {median:12.1f} ({low:6.1f}-{high:6.1f}) {ppo_s:16.2f}")
-    base, ours = rows[0][1], rows[1][1]
-    print(f"rse/mjlab time per step (medians): {base / ours:.3f}, rse's overhead {100 * (base / ours - 1):+.1f} % (aim: at most 5 %)")
     print(f"what the contact solver is given and does, per world (steps 10-30 standing from the start; nconmax {envs[True].sim.cfg.nconmax} on rse):")
     print(f"{'terrain':32} {'contacts/foot':>13} {'rows':>6} {'iterations':>10} {'pairs':>6} {'p99 mm':>7} {'overflows':>9}")
-    for label, *_, stats in rows:
+    for label, rse in labels:
+        stats = load[rse]
         print(
             f"{label:32} {stats['contacts/foot']:13.2f} {stats['rows']:6.1f} {stats['iterations']:10.2f} "
-            f"{stats['pairs']:6.1f} {stats['p99 mm']:7.1f} {stats['overflows']:9.0f}"
+            f"{stats['pairs']:6.1f} {stats['p99 mm']:7.1f} {stats['overflows']:9.0f}",
+            flush=True,
         )
-    print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms")
-    print("each part of a step, ms per env step (share of the parts' sum):")
-    names = list(shares[False])
-    print(f"{'terrain':32} " + " ".join(f"{n:>17}" for n in names))
-    for label, rse in (("mjlab's terrain", False), ("rse, new terrain per episode", True)):
-        total = sum(v for k, v in shares[rse].items() if not k.startswith("of it"))
-        print(f"{label:32} " + " ".join(f"{v:9.3f} ({100 * v / total:3.0f} %)" for v in shares[rse].values()))
+    for episode_s in args.episode_s:
+        # The managers read the episode's length from the config at each
+        # step: envs past a shorter one end at the next step.
+        for env in envs.values():
+            env.cfg.episode_length_s = episode_s
+        rates: dict[bool, list[float]] = {False: [], True: []}
+        for _ in range(args.rounds):
+            for rse, env in envs.items():
+                rates[rse].append(steps_per_second(env, args.steps))
+        print(f"episodes of {episode_s} s:")
+        print(f"{'terrain':32} {'env steps/s (median, min-max)':>30}")
+        for label, rse in labels:
+            print(f"{label:32} {statistics.median(rates[rse]):12.1f} ({min(rates[rse]):6.1f}-{max(rates[rse]):6.1f})")
+        base, ours = statistics.median(rates[False]), statistics.median(rates[True])
+        print(f"rse/mjlab time per step (medians): {base / ours:.3f}, rse's overhead {100 * (base / ours - 1):+.1f} % (aim: at most 5 %)", flush=True)
+        shares = {rse: step_parts(env, episode_s, 10) for rse, env in envs.items()}
+        print("each part of a step, ms per env step (share of the parts' sum):")
+        names = list(shares[False])
+        print(f"{'terrain':32} " + " ".join(f"{n:>17}" for n in names))
+        for label, rse in labels:
+            total = sum(v for k, v in shares[rse].items() if not k.startswith("of it"))
+            print(f"{label:32} " + " ".join(f"{v:9.3f} ({100 * v / total:3.0f} %)" for v in shares[rse].values()), flush=True)
+    rays, exact = scan_cost(envs[True], 20)
+    print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms", flush=True)
+    proxy = proxies(envs[True], args.episode_s[-1])
     import rse as rse_pkg
     from rse._adapters.mjlab.pool import pool_memory
     from rse._adapters.mjlab.terrains import probe_envs
@@ -316,8 +351,19 @@ def main() -> None:
     )
     print(
         f"a reset, per env: generation {proxy['reset generate us/env']:.0f} us, upload {proxy['reset upload us/env']:.0f} us "
-        f"of the host's time, {proxy['uploaded bytes/env'] / 1024:.1f} KiB uploaded; host copies in rse's step terms: {proxy['host copies in step terms']:.0f}"
+        f"of the host's time, {proxy['uploaded bytes/env'] / 1024:.1f} KiB uploaded; host copies in rse's step terms: {proxy['host copies in step terms']:.0f}",
+        flush=True,
     )
+    # One runner per env (a second runner on an env the first used meets
+    # its inference-mode tensors): a warm-up iteration, then one timed.
+    ppo = {rse: ppo_iteration(args.task, env) for rse, env in envs.items()}
+    print(
+        f"one PPO iteration (24 steps, episodes of {args.episode_s[-1]} s): mjlab's terrain {ppo[False]:.2f} s, rse {ppo[True]:.2f} s, "
+        f"rse/mjlab {ppo[True] / ppo[False]:.3f}",
+        flush=True,
+    )
+    for env in envs.values():
+        env.close()
 
 
 if __name__ == "__main__":

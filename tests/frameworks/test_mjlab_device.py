@@ -8,6 +8,8 @@ sensors read each env's own field with no mesh per env."""
 
 from __future__ import annotations
 
+import functools
+
 import mjlab.tasks  # noqa: F401  (registers the tasks)
 import numpy as np
 import pytest
@@ -19,7 +21,7 @@ from mjlab.managers.observation_manager import ObservationTermCfg
 from mjlab.tasks.registry import load_env_cfg
 from rse._adapters.mjlab.event import event_of
 from rse._adapters.mjlab.pool import pool_memory
-from rse._adapters.mjlab.rays import DirectRays
+from rse._adapters.mjlab.rays import DirectRays, FieldRays, seen_geoms
 from rse._adapters.mjlab.terrains import probe_envs
 from rse.mjlab import env_terrains, exact_height_scan, use_env_terrains
 from rse.mjlab_tasks import STEPFIELD
@@ -109,11 +111,16 @@ def test_the_terrains_take_at_most_128_kib_an_env_on_the_device_as_estimated(env
 
 def test_the_ray_sensors_read_each_envs_own_field_with_no_mesh_per_env(env) -> None:
     """Both ray sensors of the task (``terrain_scan``, the feet's
-    ``foot_height_scan``) cast with ``DirectRays``, and the rays of each
-    env land on its own tops."""
+    ``foot_height_scan``) cast one thread a ray on rse's terrain's geoms
+    and the ground (``FieldRays``), and the rays of each env land on its
+    own tops."""
     ctx = env.scene.sensor_context
     assert ctx is not None and not ctx.has_cameras
-    assert all(isinstance(s.raycast_kernel, DirectRays) for s in ctx.raycast_sensors), ctx.raycast_sensors
+    assert all(isinstance(s.raycast_kernel, FieldRays) for s in ctx.raycast_sensors), ctx.raycast_sensors
+    # The terrain's geoms in group 0 alone: mjlab's ground plane, rse's
+    # field and (laid out apart) its view; none of the robot's.
+    names = [[env.sim.mj_model.geom(g).name for g in s.raycast_kernel.candidates] for s in ctx.raycast_sensors]
+    assert all(n == ["terrain", "rse_terrain", "rse_terrain_view"] for n in names), names
     assert event_of(env, "rse_terrain").direct_rays == 2
     envs = env_terrains(env)
     sensor = env.scene["terrain_scan"]
@@ -136,6 +143,51 @@ def test_the_ray_sensors_read_each_envs_own_field_with_no_mesh_per_env(env) -> N
         # Two terrains may agree under a scan (both at ground level there):
         # some other env must differ.
         assert np.abs(z - tops[inside]).mean() < max(others), e
+
+
+def cast(env: ManagerBasedRlEnv, kernel) -> list[np.ndarray]:
+    """The distances, geom ids and normals ``kernel`` casts for the
+    ``terrain_scan`` sensor's current rays."""
+    sensor = env.scene["terrain_scan"]
+    for out in (sensor._ray_dist, sensor._ray_geomid, sensor._ray_normal):
+        out.fill_(7)
+    kernel(rc=None)
+    return [sensor._ray_dist.numpy().copy(), sensor._ray_geomid.numpy().copy(), sensor._ray_normal.numpy().copy()]
+
+
+def test_field_rays_hit_what_mujoco_warps_direct_kernel_hits_bit_for_bit(env) -> None:
+    """``FieldRays`` (one thread a ray over the geoms a sensor sees) and
+    MuJoCo Warp's own direct kernel give the same distances, geom ids and
+    normals, to the bit: on the terrain the task's sensor sees, and with
+    every geom of the scene visible (the robot's geoms of all types, ties
+    and misses among them), through random poses."""
+    import mujoco_warp
+    import warp as wp
+
+    sensor = env.scene["terrain_scan"]
+    direct = DirectRays(functools.partial(type(sensor).raycast_kernel, sensor))
+    groups = sensor._geomgroup
+    everything = type(groups)(*([-1.0] * 6))
+    gen = torch.Generator().manual_seed(5)
+    hits: set[int] = set()
+    try:
+        for step in range(6):
+            env.step(2 * torch.rand(env.action_space.shape, generator=gen) - 1)
+            mujoco_warp.kinematics(env.sim.wp_model, env.sim.wp_data)
+            for geomgroup in (groups, everything):
+                sensor._geomgroup = geomgroup
+                seen = seen_geoms(env.sim.mj_model, geomgroup)
+                ours, theirs = cast(env, FieldRays(sensor, seen)), cast(env, direct)
+                for a, b in zip(ours, theirs):
+                    assert np.array_equal(a.view(np.uint8), b.view(np.uint8)), (step, len(seen))
+                assert (theirs[1] >= 0).any(), step
+                hits.update(np.unique(theirs[1]).tolist())
+    finally:
+        sensor._geomgroup = groups
+        wp.synchronize()
+    # The robot's own geoms were hit too, not the terrain alone.
+    robot = {g for g in hits if g >= 0 and not env.sim.mj_model.geom(g).name.startswith(("terrain", "rse_"))}
+    assert robot, hits
 
 
 def test_each_worlds_terrain_is_bounded_by_its_own_tops_so_only_the_feet_pair_with_flat_ground() -> None:

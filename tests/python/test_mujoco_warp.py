@@ -124,3 +124,32 @@ def test_the_gpus_one_upload_writes_what_the_cpus_view_writes() -> None:
     for r, start in pairs:
         expected[start : start + 7] = rows[r]
     assert np.array_equal(written[0], expected) and np.array_equal(written[1], expected)
+
+
+def test_a_resets_runs_go_into_two_arrays_the_same_either_way() -> None:
+    """``Uploads`` (mjlab's reset: samples into ``hfield_data``, boxes
+    into ``geom_aabb``) writes each run at its start in its own target,
+    and nothing else: the GPU's way (one upload of the runs and their
+    places, one kernel), forced on the CPU device, writes what the CPU's
+    numpy views write, over calls that grow its buffers and reuse them."""
+    from rse._adapters.warp_fields import Uploads
+
+    rng = np.random.default_rng(4)
+    calls = [
+        [(0, 40, rng.random(7, dtype=np.float32)), (1, 3, rng.random(6, dtype=np.float32)), (0, 2, rng.random(25, dtype=np.float32))],
+        [(1, 20, rng.random(6, dtype=np.float32))],
+        [(0, 100, rng.random(90, dtype=np.float32)), (1, 0, rng.random(3, dtype=np.float32)), (1, 30, rng.random(6, dtype=np.float32))],
+    ]
+    written = []
+    for kernel in (False, True):
+        targets = [wp.array(np.full(200, -1.0, dtype=np.float32), device="cpu"), wp.array(np.full(40, -2.0, dtype=np.float32), device="cpu")]
+        uploads = Uploads(kernel=kernel)
+        for runs in calls:
+            uploads.write(targets, runs)
+        written.append([t.numpy().copy() for t in targets])
+    expected = [np.full(200, -1.0, dtype=np.float32), np.full(40, -2.0, dtype=np.float32)]
+    for runs in calls:
+        for t, start, values in runs:
+            expected[t][start : start + len(values)] = values
+    for got in written:
+        assert all(np.array_equal(a, b) for a, b in zip(got, expected))

@@ -47,9 +47,18 @@ __all__ = [
 def env_hfield_names(envs: EnvTerrains, name: str = POOL) -> list[str]:
     """The height-field assets ``add_env_hfields`` makes: ``name0`` …
     ``name{n-1}`` for slots, ``name`` for tiles."""
-    if envs.layout == "tiles":
-        return [name]
-    return [f"{name}{e}" for e in range(envs.num_envs)]
+    return [env_hfield_name(envs, e, name) for e in range(pool_count(envs))]
+
+
+def env_hfield_name(envs: EnvTerrains, e: int, name: str = POOL) -> str:
+    """The height-field asset of field ``e`` of ``env_hfield_names``."""
+    return name if envs.layout == "tiles" else f"{name}{e}"
+
+
+def pool_count(envs: EnvTerrains) -> int:
+    """How many height fields ``add_env_hfields`` makes: one an env for
+    slots, the map for tiles."""
+    return 1 if envs.layout == "tiles" else envs.num_envs
 
 
 def add_env_hfields(spec: Any, envs: EnvTerrains, *, name: str = POOL) -> list[str]:
@@ -112,10 +121,13 @@ def env_pool(model: Any, envs: EnvTerrains, name: str, argument: str = "model") 
     ``hfield_data`` and the samples of each. They were added one after the
     other, so the first and last names bound them; ``ValueError`` naming
     ``argument`` when they are not there, not one run, or of another size."""
-    names = env_hfield_names(envs, name)
+    # The first and last names only: every reset asks, and a list of all
+    # 4096 names took 0.37 ms.
+    count = pool_count(envs)
+    names = [env_hfield_name(envs, 0, name), env_hfield_name(envs, count - 1, name)]
     hint = "add them with add_env_hfields"
     first, last = (hfield_id(model, n, argument, hint) for n in (names[0], names[-1]))
-    if last - first != len(names) - 1:
+    if last - first != count - 1:
         raise ValueError(f"{argument}: the height fields {names[0]} … {names[-1]} are not one pool ({hint})")
     size = field_size(model, first)
     if size != envs.samples[0].size:

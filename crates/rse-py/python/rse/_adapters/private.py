@@ -75,6 +75,28 @@ USES = (
     # mjlab: the ray sensors' state.
     Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", "_cached_world_origins", "rse.mjlab.exact_height_scan",
         "where the scan's rays start this step", instance=True),
+    # mjlab's ray sensors' buffers and model, which rse.mjlab's FieldRays
+    # casts into with one thread a ray (the kernel mjlab calls in its graph).
+    *(
+        Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", name, "rse.mjlab FieldRays", why, instance=True)
+        for name, why in (
+            ("_model", "the device model the sensor casts in"),
+            ("_data", "the device data (the geoms' poses)"),
+            ("_mj_model", "the host model: which geoms the sensor's groups see"),
+            ("_ray_pnt", "the rays' origins"),
+            ("_ray_vec", "the rays' directions"),
+            ("_geomgroup", "the sensor's geom groups"),
+            ("_ray_bodyexclude", "each ray's excluded body"),
+            ("_ray_dist", "the distances cast"),
+            ("_ray_geomid", "the geoms hit"),
+            ("_ray_normal", "the normals at the hits"),
+        )
+    ),
+    # MuJoCo Warp's per-geom ray test, which FieldRays calls for the few
+    # geoms a terrain sensor sees (its direct kernel tries them all).
+    Use("mujoco_warp", "mujoco_warp._src.ray", "_ray_geom_mesh", "rse.mjlab FieldRays", "the ray test of one geom in one world"),
+    Use("mujoco_warp", "mujoco_warp._src.types", "MJ_MAXVAL", "rse.mjlab FieldRays", "the distance of a miss"),
+    Use("mujoco_warp", "mujoco_warp._src.types", "vec6", "rse.mjlab FieldRays", "the geom groups' type"),
     # MuJoCo Warp's render context (mjlab's camera sensors): per-field
     # BVHs, fields of a public class that MuJoCo Warp fills and reads itself.
     Use("mujoco_warp", "mujoco_warp:RenderContext", "hfield_registry", "rse.mjlab.EnvTerrainsEvent",

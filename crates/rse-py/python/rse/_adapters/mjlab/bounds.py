@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from rse._adapters.warp_fields import copy_rows
+from rse._adapters.warp_fields import Run
 from rse._rse import EnvTerrains
 
 FIELD = "geom_aabb"
@@ -42,22 +42,28 @@ class TerrainBounds:
         """Each geom's box in x and y as MuJoCo made it: its whole field
         (centre x, y, half sides x, y)."""
 
-    def sync(self, m: Any, envs: EnvTerrains, ids: list[int]) -> None:
-        """Bounds the terrain geoms of the worlds ``ids`` by their envs'
-        current tops (``envs.samples``, after ``envs.reset(ids)``) over the
-        whole field: the box (centre, half sides: six floats of
-        ``geom_aabb``) of each geom, in one upload. The whole box, as the
-        step's bounds around the robot (``near``) narrow it in x and y, and
-        a reset may put the robot anywhere on its terrain."""
+    def runs(self, envs: EnvTerrains, ids: list[int], target: int) -> list[Run]:
+        """The boxes of the terrain geoms of the worlds ``ids``, bounded by
+        their envs' current tops (``envs.samples``, after
+        ``envs.reset(ids)``) over the whole field, as ``Uploads`` runs (six
+        floats of ``geom_aabb``, centre and half sides, a geom) into the
+        flat float view of the model's ``geom_aabb`` (``flat_boxes``),
+        which the caller names ``target``. The whole box, as the step's
+        bounds around the robot (``near``) narrow it in x and y, and a
+        reset may put the robot anywhere on its terrain."""
         if not ids or not self.gids:
-            return
+            return []
         top = envs.samples[ids].reshape(len(ids), -1).max(axis=1).astype(np.float64) * self.elevation
         centre, half = z_extent(top, self.base)
-        rows, starts = [], []
+        runs = []
         for i, w in enumerate(ids):
             for g, (cx, cy, sx, sy) in zip(self.gids, self.plan):
                 box = (w * self.ngeom + g) * 2  # the geom's (center, size) vec3s
-                rows.append([cx, cy, centre[i], sx, sy, half[i]])
-                starts.append(box * 3)
-        flat = m.geom_aabb.flatten().view(float).flatten()
-        copy_rows(flat, np.asarray(rows, dtype=np.float32), enumerate(starts))
+                runs.append((target, box * 3, np.array([cx, cy, centre[i], sx, sy, half[i]], dtype=np.float32)))
+        return runs
+
+
+def flat_boxes(m: Any) -> Any:
+    """The device model ``m``'s ``geom_aabb`` as one flat float32 Warp
+    array over the same memory."""
+    return m.geom_aabb.flatten().view(float).flatten()

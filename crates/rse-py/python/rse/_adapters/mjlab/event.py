@@ -24,7 +24,8 @@ from rse._adapters.mjlab.terrains import (
     terrain_settings,
 )
 from rse._adapters.mjlab.tops import DeviceTops
-from rse._adapters.pool import GEOM, POOL, sync_env_hfields
+from rse._adapters.pool import GEOM, POOL, env_pool, sync_env_hfields
+from rse._adapters.warp_fields import Uploads
 from rse._rse import EnvTerrains
 
 TERM = "rse_terrain"
@@ -92,6 +93,8 @@ class EnvTerrainsEvent:
         sim.expand_model_fields(("geom_dataid", bounds.FIELD))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
+        _, self._adr, _ = env_pool(sim.mj_model, self.envs, self.name, "env.sim.mj_model")
+        self._uploads = Uploads()
         self._bounds = bounds.TerrainBounds(sim.wp_model, sim.mj_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
@@ -141,18 +144,20 @@ class EnvTerrainsEvent:
         return device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
 
     def _copy_out(self, ids: list[int]) -> None:
-        """Copies the terrains of ``ids`` into the simulation's model and
-        the host model, their meshes into the cameras' render context (if
-        any), and their origins into ``env_origins``."""
+        """Copies the terrains of ``ids`` into the simulation's model (their
+        exact and coarse samples and their geoms' boxes, in one upload:
+        ``Uploads``) and the host model, their meshes into the cameras'
+        render context (if any), and their origins into ``env_origins``."""
         import torch
 
-        from rse.mujoco_warp import sync
-
         sim = self._env.sim
-        sync(sim.wp_model, sim.mj_model, self.envs, ids, name=self.name)
+        m = sim.wp_model
         sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
-        self._coarse.sync(sim.wp_model, sim.mj_model, self.envs, ids)
-        self._bounds.sync(sim.wp_model, self.envs, ids)
+        rows = self.envs.samples.reshape(self.envs.num_envs, -1)
+        runs = [(0, int(self._adr[e]), rows[e]) for e in ids]
+        runs += self._coarse.runs(sim.mj_model, self.envs, ids, 0)
+        runs += self._bounds.runs(self.envs, ids, 1)
+        self._uploads.write([m.hfield_data, bounds.flat_boxes(m)], runs)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
