@@ -4,12 +4,12 @@ against the few geoms the sensor can see (``FieldRays``): MuJoCo Warp's
 own per-geom test (``_ray_geom_mesh``, which reads the field each world's
 geom points at), so the hits are its direct test's, bit for bit. Imported
 only where Warp and MuJoCo Warp are (mjlab's envs), once ``rays.terrain_rays``
-has checked the private names it imports (``rse._adapters.private``).
-Warp's array annotations are calls, which mypy cannot read (the file-level
-comment above)."""
+has checked the private names it imports (``rse._adapters.private``)."""
 
 from __future__ import annotations
 
+# Warp's array annotations are calls, which mypy cannot read: the first
+# line of this file.
 import warp as wp
 from mujoco_warp._src.ray import _ray_geom_mesh
 from mujoco_warp._src.types import MJ_MAXVAL, vec6
