@@ -68,21 +68,25 @@ class FieldRays:
 
         from rse._adapters.mjlab.field_rays import cast_on_candidates
 
-        for name in SENSOR_BUFFERS:
-            private.getattr_checked(sensor, name, "mjlab")
         self.sensor = sensor
         self.candidates = list(candidates)
         self._kernel = cast_on_candidates
-        self._ids: Any = wp.array(np.asarray(candidates, dtype=np.int32), dtype=wp.int32, device=sensor._ray_pnt.device)
+        pnt = self._get("_ray_pnt")
+        self._ids: Any = wp.array(np.asarray(candidates, dtype=np.int32), dtype=wp.int32, device=pnt.device)
+
+    def _get(self, name: str) -> Any:
+        """The sensor's private ``name`` (one of ``SENSOR_BUFFERS``), read
+        at each cast: mjlab may replace a buffer."""
+        return private.getattr_checked(self.sensor, name, "mjlab")
 
     def __call__(self, rc: Any = None) -> None:
         import warp as wp
 
-        s = self.sensor
-        m, d = s._model.struct, s._data.struct
+        b = {name: self._get(name) for name in SENSOR_BUFFERS if name != "_mj_model"}
+        m, d, pnt = b["_model"].struct, b["_data"].struct, b["_ray_pnt"]
         wp.launch(
             self._kernel,
-            dim=(d.nworld, s._ray_pnt.shape[1]),
+            dim=(d.nworld, pnt.shape[1]),
             inputs=[
                 m.nmeshface,
                 m.body_weldid,
@@ -106,20 +110,20 @@ class FieldRays:
                 d.geom_xpos,
                 d.geom_xmat,
                 self._ids,
-                s._ray_pnt,
-                s._ray_vec,
-                s._geomgroup,
+                pnt,
+                b["_ray_vec"],
+                b["_geomgroup"],
                 True,  # mjlab's sensors hit static geoms (flg_static)
-                s._ray_bodyexclude,
+                b["_ray_bodyexclude"],
             ],
-            outputs=[s._ray_dist, s._ray_geomid, s._ray_normal],
-            device=s._ray_pnt.device,
+            outputs=[b["_ray_dist"], b["_ray_geomid"], b["_ray_normal"]],
+            device=pnt.device,
         )
 
 
 SENSOR_BUFFERS = ("_model", "_data", "_mj_model", "_ray_pnt", "_ray_vec", "_geomgroup", "_ray_bodyexclude", "_ray_dist", "_ray_geomid", "_ray_normal")
 """The private names of mjlab's ``RayCastSensor`` that ``FieldRays`` reads
-(checked once, when it is made)."""
+(each through ``private.getattr_checked``)."""
 
 FIELD_RAY_TEST = ("_ray_geom_mesh", "MJ_MAXVAL", "vec6")
 """MuJoCo Warp's private names ``FieldRays``' kernel calls."""
