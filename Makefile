@@ -7,7 +7,7 @@ OUT ?= out
 TARGETS ?= gazebo,webots,mujoco,urdf,usd
 RSE_GEN := target/release/rse-gen
 
-.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks test-cluster test-gazebo-classic wheel
+.PHONY: test test-quick lint bench bench-robots bench-frameworks demo build fuzz test-frameworks test-cluster test-gazebo-classic wheel publish
 
 ## Run every test (format, lint, docs, Rust unit/property/golden/CLI tests, the README command).
 test:
@@ -81,6 +81,11 @@ wheel:
 			--zig --compatibility manylinux2014 --manifest-path crates/$$crate/Cargo.toml -o dist || exit 1; \
 	done
 	@ls dist/rse_gen-*.whl dist/rse_gen_cli-*.whl
+
+## Publish, in one step, the two wheels `make wheel` built (dist/): maturin upload to PyPI with the token in MATURIN_PYPI_TOKEN, or to MATURIN_REPOSITORY_URL (MATURIN_USERNAME, MATURIN_PASSWORD); a version already there is skipped, so a rerun after a failure finishes the job.
+publish:
+	@ls dist/rse_gen-*.whl dist/rse_gen_cli-*.whl >/dev/null 2>&1 || { echo "make publish: no wheels in dist/ (make wheel builds them)" >&2; exit 2; }
+	target/wheel-venv/bin/maturin upload --non-interactive --skip-existing dist/rse_gen-*.whl dist/rse_gen_cli-*.whl
 
 ## Generate AMOUNT worlds of SCHEME into OUT/world_NNNN/ for TARGETS (rse-gen batch; a rerun resumes).
 demo: build

@@ -41,6 +41,8 @@ def test_the_wheel_installs_rse_and_the_rse_gen_command(tmp_path: Path) -> None:
         assert scripts == [f"rse_gen_cli-{rse.__version__}.data/scripts/rse-gen"], z.namelist()
         assert z.read(scripts[0])[:4] == b"\x7fELF", "a plain binary, no Python launcher"
 
+    published_from_an_index(tmp_path / "index", [wheel, cli_wheel])
+
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     # No Rust toolchain on the PATH: the wheels need none.
@@ -90,6 +92,50 @@ def test_the_wheel_installs_rse_and_the_rse_gen_command(tmp_path: Path) -> None:
     assert bad.returncode == 2 and bad.stderr.startswith("rse-gen: cannot read ") and "missing.csv" in bad.stderr
     usage = subprocess.run([str(command), "no-such-command"], capture_output=True, text=True)
     assert usage.returncode == 2 and "unrecognized subcommand" in usage.stderr
+
+
+def published_from_an_index(folder: Path, wheels: list[Path]) -> None:
+    """`make publish` uploads the two wheels in one step to a package index
+    (a local pypiserver, as PyPI takes them through maturin), which then
+    serves them byte for byte; a second run skips what is there."""
+    import socket
+    import time
+    import urllib.request
+
+    folder.mkdir()
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    server = subprocess.Popen(
+        [str(Path(sys.executable).parent / "pypi-server"), "run", "-i", "127.0.0.1", "-p", str(port), "-a", ".", "-P", ".", str(folder)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    url = f"http://127.0.0.1:{port}/"
+    try:
+        for _ in range(100):
+            try:
+                urllib.request.urlopen(url, timeout=1).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        env = {**os.environ, "MATURIN_REPOSITORY_URL": url, "MATURIN_USERNAME": "rse", "MATURIN_PASSWORD": "rse"}
+        for _ in range(2):
+            done = subprocess.run(["make", "--no-print-directory", "publish"], cwd=REPO, capture_output=True, text=True, env=env)
+            assert done.returncode == 0, done.stdout + done.stderr
+        got = folder.parent / "downloaded"
+        names = [f"rse-gen=={rse.__version__}", f"rse-gen-cli=={rse.__version__}"]
+        pip = subprocess.run(
+            [sys.executable, "-m", "pip", "download", "--quiet", "--no-deps", "--disable-pip-version-check", "--index-url", f"{url}simple/", "-d", str(got), *names],
+            capture_output=True,
+            text=True,
+        )
+        assert pip.returncode == 0, pip.stderr
+        for wheel in wheels:
+            assert (got / wheel.name).read_bytes() == wheel.read_bytes(), wheel.name
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
 
 
 def cargo_features(package: str) -> dict[str, str]:
