@@ -197,6 +197,18 @@ impl Generated<'_> {
     pub fn rebuild(self, templates: &Templates) -> Result<Rebuilt, RebuildError> {
         let manifest = self.manifest;
         let same_version = manifest.version == rse_core::VERSION;
+        // Another version's built-in templates are not this build's to
+        // render: its files cannot be rebuilt, and taking their hashes
+        // alone would let a world that claims a version pass with any
+        // edit (a forged "0.1.1" with its collision boxes removed did).
+        if manifest.templates == TemplateSet::Builtin && !same_version {
+            return Err(RebuildError::Templates(format!(
+                "made by rse {} with its built-in templates, which rse {} cannot rebuild: check it with rse {}",
+                manifest.version,
+                rse_core::VERSION,
+                manifest.version
+            )));
+        }
         // This version's own templates have one digest: any other is a
         // forged claim, not a world to check by hashes alone.
         if manifest.templates == TemplateSet::Builtin

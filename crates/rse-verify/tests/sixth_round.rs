@@ -1,0 +1,44 @@
+//! The sixth hardening round (hostile worlds VI): each hole built here as
+//! the red team built it, and closed by its cause.
+
+mod common;
+
+use common::*;
+use rse_verify::FaultKind;
+
+/// Hole 1: a fresh world with every collision box removed from
+/// `mujoco/rse.xml`, its hashes forged and `"version": "0.1.1"` claimed
+/// (templates still built-in) passed as "1 good (1 only by hash)": another
+/// version's built-in templates turned the rendered files into hash-only
+/// ones. This build renders only its own built-in templates; a world that
+/// claims another version's is refused, naming both versions.
+#[test]
+fn a_world_claiming_another_versions_built_in_templates_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let xml = world.join("mujoco/rse.xml");
+    let text = std::fs::read_to_string(&xml).unwrap();
+    let stripped: String = text
+        .lines()
+        .filter(|line| !line.contains("type=\"box\""))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    assert!(stripped.len() < text.len(), "the world has boxes to remove");
+    std::fs::write(&xml, stripped).unwrap();
+    forge(&world);
+    edit_manifest(&world, |m| m.version = "0.1.1".to_owned());
+
+    let report = check(&world);
+    assert!(report.hashed_only.is_empty(), "{report:#?}");
+    assert_fault(&report, Some("rse.json"), |k| {
+        matches!(k, FaultKind::BadManifest { reason }
+            if reason.contains("rse 0.1.1") && reason.contains(&format!("rse {}", rse_core::VERSION)))
+    });
+
+    // The same forgery under this build's own version is rebuilt and
+    // found: the file differs from what the recipe writes.
+    edit_manifest(&world, |m| m.version = rse_core::VERSION.to_owned());
+    assert_fault(&check(&world), Some("mujoco/rse.xml"), |k| {
+        matches!(k, FaultKind::Differs { .. })
+    });
+}
