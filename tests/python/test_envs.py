@@ -484,5 +484,7 @@ def test_a_mix_refuses_schemes_of_other_block_sizes_and_bad_proportions() -> Non
         rse.EnvTerrains([a, a], 2, proportions=[0, 0])
     with pytest.raises(ValueError, match="proportions: scheme 2's proportion is -1"):
         rse.scheme_mix([1, -1], 4, seed=0)
+    # Shares whose sum overflows are still shares (hostile worlds VI).
+    assert sorted(set(rse.scheme_mix([1e308, 1e308], 64, seed=0))) == [0, 1]
     with pytest.raises(TypeError, match="scheme: expected an rse.Scheme"):
         rse.EnvTerrains(["not a scheme"], 2)  # type: ignore[list-item]

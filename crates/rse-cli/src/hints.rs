@@ -19,6 +19,7 @@ pub fn hint(error: &anyhow::Error) -> Option<&'static str> {
 fn core_hint(error: &rse_core::Error) -> Option<&'static str> {
     match error {
         rse_core::Error::PreviewTooLarge { .. } => Some("use fewer --cell-pixels"),
+        rse_core::Error::SheetTooLarge { .. } => Some("use fewer --cols or --cell-pixels"),
         _ => None,
     }
 }

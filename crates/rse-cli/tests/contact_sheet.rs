@@ -124,3 +124,42 @@ fn bad_flags_are_refused_naming_them_and_nothing_is_written() {
         stderr(&missing)
     );
 }
+
+/// Hostile worlds VI, hole 7: a sheet too wide for its columns names the
+/// flag that sets them, and proportions whose sum overflows are shares,
+/// not "every proportion is 0".
+#[test]
+fn a_sheet_too_large_names_its_columns_and_huge_proportions_mix() {
+    let dir = tempfile::tempdir().unwrap();
+    let scheme = write_scheme(dir.path(), "# size: 10x10\ntype,height\nrandom,2\n");
+    let out = dir.path().join("sheet.png");
+    let out = out.to_str().unwrap();
+    let wide = rse_gen(&[
+        "contact-sheet",
+        scheme.as_str(),
+        "-o",
+        out,
+        "--cols",
+        "1000000000",
+    ]);
+    assert_ne!(wide.status.code(), Some(0));
+    assert!(
+        stderr(&wide).contains("1000000000 columns") && stderr(&wide).contains("use fewer --cols"),
+        "{}",
+        stderr(&wide)
+    );
+    assert!(!std::path::Path::new(out).exists());
+    let other = dir.path().join("other.csv");
+    std::fs::write(&other, "# size: 10x10\ntype,height\nrandom,3\n").unwrap();
+    let huge = rse_gen(&[
+        "contact-sheet",
+        scheme.as_str(),
+        other.to_str().unwrap(),
+        "-o",
+        out,
+        "--envs",
+        "4",
+        "--proportions=1e308,1e308",
+    ]);
+    assert_eq!(huge.status.code(), Some(0), "{}", stderr(&huge));
+}

@@ -30,6 +30,23 @@ pub enum Error {
         /// The cap, pixels.
         max: u64,
     },
+    /// A contact sheet larger than [`preview::MAX_PIXELS`](crate::preview::MAX_PIXELS):
+    /// its columns and the pixels a cell set its size.
+    #[error(
+        "a {width}x{height} pixel contact sheet ({cols} columns, {cell_pixels} pixels a cell) is more than the {max} pixels drawn at most"
+    )]
+    SheetTooLarge {
+        /// Width asked for, pixels.
+        width: u64,
+        /// Height asked for, pixels.
+        height: u64,
+        /// Columns of tiles.
+        cols: u64,
+        /// Pixels a cell's side.
+        cell_pixels: u64,
+        /// The cap, pixels.
+        max: u64,
+    },
     /// An image could not be encoded.
     #[error("cannot encode the preview")]
     Image(#[from] png::EncodingError),

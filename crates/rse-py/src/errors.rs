@@ -58,6 +58,9 @@ pub fn core_error(py: Python<'_>, e: &rse_core::Error) -> PyErr {
         rse_core::Error::PreviewTooLarge { .. } => {
             PyValueError::new_err(format!("{e}: pass a smaller cell_pixels"))
         }
+        rse_core::Error::SheetTooLarge { .. } => {
+            PyValueError::new_err(format!("{e}: pass a smaller cols or cell_pixels"))
+        }
         _ => PyValueError::new_err(error_chain(e)),
     }
 }

@@ -43,18 +43,28 @@ impl SchemeMix {
                 ),
             ));
         }
-        let total: f64 = proportions.iter().sum();
-        if !(total > 0.0 && total.is_finite()) {
+        let largest = proportions.iter().copied().fold(0.0, f64::max);
+        if largest == 0.0 {
             return Err(bad(
                 "proportions",
                 "every proportion is 0; give at least one scheme a share above 0",
             ));
         }
+        // Shares of the sum; where the sum overflows (1e308 twice), shares
+        // of the largest first, which sum to no more than their count.
+        // Sums that fit are divided as they are, so every mix that drew
+        // before draws the same.
+        let total: f64 = proportions.iter().sum();
+        let (scale, total) = if total.is_finite() {
+            (1.0, total)
+        } else {
+            (largest, proportions.iter().map(|p| p / largest).sum())
+        };
         let mut sum = 0.0;
         let mut cumulative: Vec<f64> = proportions
             .iter()
             .map(|p| {
-                sum += p;
+                sum += p / scale;
                 sum / total
             })
             .collect();
@@ -194,11 +204,25 @@ mod tests {
             &[1.0, -1.0],
             &[f64::NAN],
             &[f64::INFINITY, 1.0],
-            &[f64::MAX, f64::MAX],
         ] {
             let err = SchemeMix::new(bad).unwrap_err();
             assert!(err.to_string().starts_with("proportions: "), "{err}");
         }
+    }
+
+    #[test]
+    fn proportions_whose_sum_overflows_are_shares_all_the_same() {
+        // 1e308 twice sums to infinity: each is still half, not "0".
+        for huge in [[1e308, 1e308, 0.0], [f64::MAX, f64::MAX, 0.0]] {
+            let mix = SchemeMix::new(&huge).unwrap();
+            assert_eq!(mix.cumulative, [0.5, 1.0, 1.0]);
+        }
+        let mix = SchemeMix::new(&[f64::MAX, 1e307]).unwrap();
+        assert!(
+            mix.cumulative[0] > 0.9 && mix.cumulative[1] == 1.0,
+            "{:?}",
+            mix.cumulative
+        );
     }
 
     #[test]

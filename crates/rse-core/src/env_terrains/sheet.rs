@@ -149,9 +149,11 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
     let legend_h = (scales.names.len() as u64 + 1) * u64::from(LINE);
     let height = gap + rows * (cell_h + gap) + legend_h + gap;
     if width.saturating_mul(height) > MAX_PIXELS {
-        return Err(Error::PreviewTooLarge {
+        return Err(Error::SheetTooLarge {
             width,
             height,
+            cols,
+            cell_pixels: u64::from(cp),
             max: MAX_PIXELS,
         });
     }
@@ -470,7 +472,7 @@ mod tests {
         };
         assert!(matches!(
             contact_sheet(&pool, &[], options),
-            Err(Error::PreviewTooLarge { .. })
+            Err(Error::SheetTooLarge { .. })
         ));
     }
 }
