@@ -299,10 +299,24 @@ def test_a_terrain_from_forged_state_is_refused_not_a_later_panic() -> None:
         "no block": ({**fields, "globals": {**fields["globals"], "block_size": 0.0}}, cells),
         "negative step": ({**fields, "globals": {**fields["globals"], "step_height": -0.1}}, cells),
         "frames every 0 cells": ({**fields, "grid": {**fields["grid"], "frame_period": 0}}, cells),
+        # Hostile worlds VI: units or heights the recipe cannot give.
+        "a step of 1e300 m": ({**fields, "globals": {**fields["globals"], "step_height": 1e300}}, cells),
+        "heights of 65535": (fields, b"\xff\xff" * 12),
     }
-    for forged, forged_cells in forgeries.values():
+    for name, (forged, forged_cells) in forgeries.items():
         with pytest.raises(ValueError, match="not the state of a pickled rse.Terrain"):
             rse.Terrain(json.dumps(forged), forged_cells, scheme)
+        if name == "a step of 1e300 m":
+            # Refused with no scheme to regenerate from, too.
+            with pytest.raises(ValueError, match="not the state of a pickled rse.Terrain"):
+                rse.Terrain(json.dumps(forged), forged_cells)
+    # A terrain of a pool (at its difficulty, in its episode) restores.
+    envs = rse.EnvTerrains(rse.Scheme.from_csv("# size: 4x3\ntype,height\nrandom,2\n"), 3, difficulty=0.4)
+    envs.reset([1])
+    for e in range(3):
+        t = envs.terrain(e)
+        constructor, args = t.__reduce__()
+        assert constructor(*args).heights.tolist() == t.heights.tolist()
 
 
 def test_flat_patches_never_pad_past_what_a_terrain_holds() -> None:

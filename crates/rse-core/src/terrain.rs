@@ -97,7 +97,9 @@ impl Terrain {
             && length(terrain.step_height())
             && (terrain.base() == 0.0 || length(terrain.base()))
             && f64::from(nx.max(ny)) * terrain.block_size() <= MAX_EXTENT
-            && terrain.base() / terrain.step_height() + 1.0 <= MAX_LATTICE_UNITS as f64;
+            && terrain.base() / terrain.step_height() + 1.0 <= MAX_LATTICE_UNITS as f64
+            // Units a scheme could give (a step of 1e300 m cannot).
+            && terrain.globals.validate().is_ok();
         if !sound {
             return None;
         }

@@ -91,7 +91,8 @@ fn rows<T: numpy::Element, const N: usize>(
 impl Terrain {
     /// For pickle only: make terrains with `Scheme.generate`. `state` is
     /// the terrain's JSON, `cells` its heights (little-endian uint16, row by
-    /// row), `scheme` the scheme's CSV.
+    /// row), `scheme` the scheme's CSV; with a scheme, the terrain must be
+    /// the one it generates for the state's seed, index and difficulty.
     #[new]
     #[pyo3(signature = (state, cells, scheme=None))]
     fn restore(state: &str, cells: &[u8], scheme: Option<&str>) -> PyResult<Self> {
@@ -109,6 +110,18 @@ impl Terrain {
             .map(|csv| rse_core::Scheme::from_csv(csv, None).map_err(|_| not_ours()))
             .transpose()?
             .map(Arc::new);
+        // A terrain with its scheme is that scheme's world of its seed,
+        // index and difficulty, and `write_world` builds its folder from
+        // them: heights or units it cannot have generated are a forgery.
+        if let Some(scheme) = &scheme {
+            let again =
+                rse_core::generate_at(scheme, inner.seed(), inner.index(), inner.difficulty());
+            if again.to_json() != inner.to_json()
+                || again.heightmap().cells() != inner.heightmap().cells()
+            {
+                return Err(not_ours());
+            }
+        }
         Ok(Terrain { inner, scheme })
     }
 
