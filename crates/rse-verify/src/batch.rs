@@ -218,6 +218,11 @@ pub fn check_paths(
     progress: &(dyn Fn() + Sync),
 ) -> Result<CheckReport, DiscoverError> {
     let (worlds, mut batch_faults) = discover(paths)?;
+    // No more worlds share the memory than are checked at once.
+    let options = &CheckOptions {
+        at_once: Some(options.sharing().min(worlds.len()).max(1)),
+        ..options.clone()
+    };
     let reports: Vec<WorldReport> = worlds
         .par_iter()
         .map(|world| {

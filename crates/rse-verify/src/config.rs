@@ -55,6 +55,7 @@ impl CheckConfig {
             strict: self.strict.unwrap_or(false),
             templates,
             budget: self.budget.unwrap_or_default(),
+            at_once: None,
         })
     }
 }

@@ -45,6 +45,21 @@ pub struct CheckOptions {
     /// the memory available per world checked at once): a world whose
     /// recipe costs more is a fault, not rebuilt.
     pub budget: Budget,
+    /// How many worlds are checked at once, sharing the memory available
+    /// between their rebuilds: `None`, one a thread of rayon's current
+    /// pool. [`check_paths`](crate::check_paths) sets it to the worlds it
+    /// has where they are fewer than the threads: one world on 128 threads
+    /// has all the memory, not a 128th of it.
+    pub at_once: Option<usize>,
+}
+
+impl CheckOptions {
+    /// The worlds whose rebuilds share the memory available (at least 1).
+    pub(crate) fn sharing(&self) -> usize {
+        self.at_once
+            .unwrap_or_else(rayon::current_num_threads)
+            .max(1)
+    }
 }
 
 impl Default for CheckOptions {
@@ -54,6 +69,7 @@ impl Default for CheckOptions {
             strict: false,
             templates: None,
             budget: Budget::DEFAULT,
+            at_once: None,
         }
     }
 }
@@ -295,7 +311,7 @@ fn generate_within_budget<'m>(
             cost.visits = cost.visits.saturating_add(visits);
             cost.bytes = cost.bytes.saturating_add(bytes);
         }
-        if let Some(kind) = over_budget(cost, options.budget) {
+        if let Some(kind) = over_budget(cost, options.budget, options.sharing()) {
             faults.push(Fault::of(MANIFEST, kind));
             return false;
         }
@@ -376,13 +392,9 @@ fn check_against_manifest(
     // manifest can claim any number of them, each up to the rendered-file
     // cap. One that names other files is then read for its references, one
     // at a time and no larger than the memory budget.
-    let text_cap = file_cap(cells).min(
-        options
-            .budget
-            .scale(rebuild_bytes(rayon::current_num_threads())),
-    );
+    let text_cap = file_cap(cells).min(options.budget.scale(rebuild_bytes(options.sharing())));
     let hashed = HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap);
-    if !hashed.within_budget(cells, options.budget, report, faults) {
+    if !hashed.within_budget(cells, options, report, faults) {
         return;
     }
     let mut referenced = Vec::new();
@@ -512,14 +524,14 @@ const REFERENCE_VISITS_PER_BYTE: u64 = 4;
 const REFERENCE_BYTES_PER_BYTE: u64 = 3;
 
 impl HashedCost {
-    /// Adds this to the world's estimate and holds the whole to `budget`
+    /// Adds this to the world's estimate and holds the whole to the budget
     /// before a byte is hashed (8 sparse files of 4 GB once hashed for
     /// 175 s against an estimate of half a second); `false`, with the
     /// fault pushed, when it is over.
     fn within_budget(
         &self,
         cells: u64,
-        budget: Budget,
+        options: &CheckOptions,
         report: &mut WorldReport,
         faults: &mut Vec<Fault>,
     ) -> bool {
@@ -533,7 +545,7 @@ impl HashedCost {
         };
         (estimate.bytes, estimate.visits, estimate.seconds) =
             (cost.bytes, cost.visits, cost.seconds());
-        match over_budget(cost, budget) {
+        match over_budget(cost, options.budget, options.sharing()) {
             Some(kind) => {
                 faults.push(Fault::of(MANIFEST, kind));
                 false
@@ -562,8 +574,8 @@ impl HashedCost {
 
 /// The fault of a world whose rebuild would cost more than `scale` times
 /// the default budget, or `None` when it is within it.
-fn over_budget(cost: RebuildCost, budget: Budget) -> Option<FaultKind> {
-    let bytes_budget = budget.scale(rebuild_bytes(rayon::current_num_threads()));
+fn over_budget(cost: RebuildCost, budget: Budget, sharing: usize) -> Option<FaultKind> {
+    let bytes_budget = budget.scale(rebuild_bytes(sharing));
     let visits_budget = budget.scale(REBUILD_VISITS);
     (cost.bytes > bytes_budget || cost.visits > visits_budget).then_some(FaultKind::OverBudget {
         cells: cost.cells,

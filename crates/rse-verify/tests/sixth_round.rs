@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use rse_verify::FaultKind;
+use rse_verify::{Budget, CheckOptions, FaultKind, check_paths, check_world};
 
 /// Hole 1: a fresh world with every collision box removed from
 /// `mujoco/rse.xml`, its hashes forged and `"version": "0.1.1"` claimed
@@ -39,5 +39,39 @@ fn a_world_claiming_another_versions_built_in_templates_is_refused() {
     edit_manifest(&world, |m| m.version = rse_core::VERSION.to_owned());
     assert_fault(&check(&world), Some("mujoco/rse.xml"), |k| {
         matches!(k, FaultKind::Differs { .. })
+    });
+}
+
+/// Hole 2: with 128 threads one fresh world failed `check` as over a
+/// budget of the memory available divided by the threads. The worlds
+/// checked at once share it: one world has all of it, however many
+/// threads the pool has.
+#[test]
+fn one_world_on_many_threads_has_all_the_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = good_world(dir.path());
+    let bytes = check(&world).estimate.expect("priced").bytes;
+    // A budget 4 times this world's memory when it is alone, a 32nd of
+    // that shared 128 ways.
+    let all = rse_verify::limits::rebuild_bytes(1) as f64;
+    let options = CheckOptions {
+        budget: Budget::new(4.0 * bytes as f64 / all).unwrap(),
+        ..CheckOptions::default()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(128)
+        .build()
+        .unwrap();
+    let report = pool
+        .install(|| check_paths(std::slice::from_ref(&world), &options, &|| {}))
+        .unwrap();
+    assert!(report.ok(), "{:#?}", report.worlds[0].faults);
+    // Checked as one of 128 at once, the same world is over the budget.
+    let shared = CheckOptions {
+        at_once: Some(128),
+        ..options
+    };
+    assert_fault(&check_world(&world, &shared), Some("rse.json"), |k| {
+        matches!(k, FaultKind::OverBudget { .. })
     });
 }
