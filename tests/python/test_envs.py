@@ -325,7 +325,7 @@ def test_a_contact_sheet_shows_every_env_on_one_scale_with_its_label(tmp_path) -
         envs.contact_sheet(env_ids=[9])
     with pytest.raises(ValueError, match="cols and cell_pixels"):
         envs.contact_sheet(cols=0)
-    with pytest.raises(ValueError, match="pixel preview is more than"):
+    with pytest.raises(ValueError, match=r"pixel contact sheet \(3 columns, 100000 pixels a cell\) is more than"):
         envs.contact_sheet(cell_pixels=100_000)
 
 
