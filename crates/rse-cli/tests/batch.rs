@@ -582,3 +582,52 @@ fn bad_batch_options_exit_2_with_a_reason() {
         stderr(&into_file)
     );
 }
+
+/// Hostile worlds VI, hole 5: under an address-space limit a batch of
+/// 1000×1000 worlds aborted in an allocation (exit 134), leaving its lock
+/// (here 500×500 worlds under 500 MB).
+/// The room the limit leaves is memory available like any other: the
+/// batch is refused before it starts, naming what to reduce, with nothing
+/// left behind, and runs once the limit is lifted.
+#[test]
+fn a_batch_under_an_address_space_limit_is_refused_cleanly_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scheme = dir.path().join("big.csv");
+    std::fs::write(&scheme, "# size: 500x500\ntype,height\nrandom,2\n").unwrap();
+    let out = dir.path().join("out");
+    let args = [
+        "batch",
+        scheme.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--amount",
+        "1",
+        "--target",
+        "mujoco",
+    ];
+    let limited = Command::new("prlimit")
+        .arg("--as=500000000")
+        .arg(env!("CARGO_BIN_EXE_rse-gen"))
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .expect("prlimit runs");
+    let said = stderr(&limited);
+    assert!(
+        matches!(limited.status.code(), Some(1 | 2)),
+        "{:?}: {said}",
+        limited.status
+    );
+    assert!(
+        said.contains("250000 cells") && said.contains("MiB are available"),
+        "{said}"
+    );
+    let left = if out.exists() {
+        rse_world::list_files(&out).unwrap()
+    } else {
+        Vec::new()
+    };
+    assert!(left.is_empty(), "left behind: {left:?}");
+    let done = rse_gen(&args);
+    assert_eq!(done.status.code(), Some(0), "{}", stderr(&done));
+}

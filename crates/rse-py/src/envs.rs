@@ -14,7 +14,7 @@ use numpy::{
     Element, PyArray, PyArray1, PyArray2, PyArray3, PyArrayDescrMethods, PyArrayDyn,
     PyArrayMethods, PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyMemoryError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -322,7 +322,23 @@ impl EnvTerrains {
         // Allocated by numpy, not Rust: numpy asks the kernel for huge
         // pages for large arrays, which makes the writes of a reset ~10%
         // faster (fewer TLB misses across a pool of hundreds of MiB).
-        let samples = PyArray3::<f32>::zeros(py, [n, rows, cols], false);
+        // Through numpy's own call: where the allocation fails anyway (an
+        // address-space limit tighter than its room once read), numpy
+        // raises MemoryError, where `PyArray3::zeros` panicked on the null.
+        let samples = py
+            .import("numpy")?
+            .call_method1("zeros", ((n, rows, cols), "float32"))
+            .map_err(|e| {
+                if e.is_instance_of::<PyMemoryError>(py) {
+                    PyMemoryError::new_err(format!(
+                        "num_envs: a pool of {num_envs} environments at oversample {} does not fit ({e}); ask for fewer or a lower oversample",
+                        options.oversample
+                    ))
+                } else {
+                    e
+                }
+            })?
+            .cast_into::<PyArray3<f32>>()?;
         if matches!(inner.options().layout, rse_core::EnvLayout::Tiles { .. }) {
             // Tile borders are cells of height 0: the slab's top, as in an
             // atlas. (Slots are all written below.)

@@ -63,11 +63,46 @@ pub(crate) fn batch_world_bytes(cells: u64, options: &WorldOptions) -> u64 {
         .saturating_add(hfield_samples(options, cells).saturating_mul(BYTES_PER_SAMPLE))
 }
 
-/// `MemAvailable` of `/proc/meminfo`, bytes; `None` where it cannot be
-/// read (not Linux).
+/// The memory this process may still take, bytes: `MemAvailable` of
+/// `/proc/meminfo`, or less where an address-space limit (`ulimit -v`,
+/// `prlimit --as`) leaves less room above what the process maps already
+/// (a batch under `--as=1e9` was refused nothing, then aborted in an
+/// allocation); `None` where neither can be read (not Linux).
 pub fn available_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    parse_meminfo(&text)
+    let free = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|text| parse_meminfo(&text));
+    let room = address_space_room();
+    match (free, room) {
+        (Some(free), Some(room)) => Some(free.min(room)),
+        (free, room) => free.or(room),
+    }
+}
+
+/// What the soft address-space limit leaves above the process's mapped
+/// size (`VmSize`), bytes; `None` without a limit or where it cannot be read.
+fn address_space_room() -> Option<u64> {
+    let limit = parse_address_space_limit(&std::fs::read_to_string("/proc/self/limits").ok()?)?;
+    let mapped = parse_vm_size(&std::fs::read_to_string("/proc/self/status").ok()?)?;
+    Some(limit.saturating_sub(mapped))
+}
+
+/// The soft limit of "Max address space" in `/proc/self/limits`, bytes;
+/// `None` when unlimited.
+fn parse_address_space_limit(text: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with("Max address space"))?;
+    line.trim_start_matches("Max address space")
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// `VmSize` of `/proc/self/status`, bytes.
+fn parse_vm_size(text: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with("VmSize:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib.saturating_mul(1024))
 }
 
 fn parse_meminfo(text: &str) -> Option<u64> {
@@ -85,5 +120,17 @@ mod tests {
         let text = "MemTotal:       24000000 kB\nMemFree:  100 kB\nMemAvailable:   20000000 kB\n";
         assert_eq!(parse_meminfo(text), Some(20_000_000 * 1024));
         assert_eq!(parse_meminfo("MemTotal: 1 kB\n"), None);
+    }
+
+    #[test]
+    fn an_address_space_limit_and_the_mapped_size_are_read_in_bytes() {
+        let limited = "Limit                     Soft Limit           Hard Limit           Units\nMax stack size            8388608              unlimited            bytes\nMax address space         1000000000           unlimited            bytes\n";
+        assert_eq!(parse_address_space_limit(limited), Some(1_000_000_000));
+        let free = limited.replace("1000000000  ", "unlimited   ");
+        assert_eq!(parse_address_space_limit(&free), None);
+        assert_eq!(
+            parse_vm_size("Name:\trse-gen\nVmPeak:\t  9 kB\nVmSize:\t  2048 kB\n"),
+            Some(2048 * 1024)
+        );
     }
 }
