@@ -322,23 +322,7 @@ impl EnvTerrains {
         // Allocated by numpy, not Rust: numpy asks the kernel for huge
         // pages for large arrays, which makes the writes of a reset ~10%
         // faster (fewer TLB misses across a pool of hundreds of MiB).
-        // Through numpy's own call: where the allocation fails anyway (an
-        // address-space limit tighter than its room once read), numpy
-        // raises MemoryError, where `PyArray3::zeros` panicked on the null.
-        let samples = py
-            .import("numpy")?
-            .call_method1("zeros", ((n, rows, cols), "float32"))
-            .map_err(|e| {
-                if e.is_instance_of::<PyMemoryError>(py) {
-                    PyMemoryError::new_err(format!(
-                        "num_envs: a pool of {num_envs} environments at oversample {} does not fit ({e}); ask for fewer or a lower oversample",
-                        options.oversample
-                    ))
-                } else {
-                    e
-                }
-            })?
-            .cast_into::<PyArray3<f32>>()?;
+        let samples = pool_samples(py, [n, rows, cols], num_envs, options.oversample)?;
         if matches!(inner.options().layout, rse_core::EnvLayout::Tiles { .. }) {
             // Tile borders are cells of height 0: the slab's top, as in an
             // atlas. (Slots are all written below.)
@@ -709,4 +693,31 @@ impl EnvTerrains {
         let inner: &rse_core::EnvTerrains = &guard;
         py.detach(|| inner.write(&envs, slice)).map_err(value_error)
     }
+}
+
+/// The pool's samples, zeros of `shape`, allocated by numpy (which asks
+/// the kernel for huge pages for large arrays) through its own call: where
+/// the allocation fails anyway (an address-space limit tighter than its
+/// room once read), numpy raises `MemoryError`, named here for
+/// `num_envs`, where `PyArray3::zeros` panicked on the null.
+fn pool_samples(
+    py: Python<'_>,
+    shape: [usize; 3],
+    num_envs: usize,
+    oversample: u32,
+) -> PyResult<Bound<'_, PyArray3<f32>>> {
+    let [n, rows, cols] = shape;
+    py.import("numpy")?
+        .call_method1("zeros", ((n, rows, cols), "float32"))
+        .map_err(|e| {
+            if e.is_instance_of::<PyMemoryError>(py) {
+                PyMemoryError::new_err(format!(
+                    "num_envs: a pool of {num_envs} environments at oversample {oversample} does not fit ({e}); ask for fewer or a lower oversample"
+                ))
+            } else {
+                e
+            }
+        })?
+        .cast_into::<PyArray3<f32>>()
+        .map_err(PyErr::from)
 }
