@@ -73,6 +73,8 @@ class FieldRays:
         self._kernel = cast_on_candidates
         pnt = self._get("_ray_pnt")
         self._ids: Any = wp.array(np.asarray(candidates, dtype=np.int32), dtype=wp.int32, device=pnt.device)
+        # Compiled now: mjlab launches it inside the sense graph it captures.
+        wp.load_module(cast_on_candidates.module, device=pnt.device)
 
     def _get(self, name: str) -> Any:
         """The sensor's private ``name`` (one of ``SENSOR_BUFFERS``), read
