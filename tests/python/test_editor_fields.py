@@ -388,6 +388,9 @@ def test_every_error_is_said_in_the_users_words_naming_the_control_and_the_fix(e
 
     # Open of a file that is not there, then Save as into a new folder.
     page.get_by_role("button", name="Save", exact=True).click()
+    # Saved before Open: an Open while the save is on its way asks about
+    # the edits not yet saved, as it should (a loaded machine showed it).
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
     page.get_by_role("button", name="Open path").click()
     page.get_by_label("file path").fill(str(folder / "missing.csv"))
     page.get_by_role("button", name="OK").click()
