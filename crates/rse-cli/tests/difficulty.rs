@@ -218,3 +218,52 @@ fn check_curriculum_refuses_bad_counts_and_names_the_scheme_line() {
         stderr(&out)
     );
 }
+
+/// Hostile worlds VI, hole 4: with four schemes and `--budget 0.035` the
+/// budget held each scheme apart and the run took four times it. It holds
+/// the whole run now, priced before a world is made.
+#[test]
+fn check_curriculums_budget_holds_every_scheme_of_the_run_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "# size: 60x60\ntype,height\nrandom,3\n";
+    let paths: Vec<String> = (0..4)
+        .map(|i| {
+            let path = dir.path().join(format!("s{i}.csv"));
+            std::fs::write(&path, text).unwrap();
+            path.to_str().unwrap().to_owned()
+        })
+        .collect();
+    let scheme = rse_core::Scheme::from_csv(text, None).unwrap();
+    let options = rse_core::CurriculumOptions {
+        levels: 2,
+        draws: 2,
+        seed: 0,
+    };
+    // One scheme fits the budget with a third to spare; four do not.
+    let factor = 1.5 * options.visits(&scheme) as f64 / rse_core::CURRICULUM_VISITS as f64;
+    let budget = format!("{factor:e}");
+    let args = |schemes: &[String]| {
+        let mut all = vec![
+            "check-curriculum",
+            "--levels",
+            "2",
+            "--draws",
+            "2",
+            "--budget",
+            budget.as_str(),
+        ];
+        all.extend(schemes.iter().map(String::as_str));
+        rse_gen(&all)
+    };
+    let one = args(&paths[..1]);
+    assert_eq!(one.status.code(), Some(0), "{}", stderr(&one));
+    let four = args(&paths);
+    assert_eq!(four.status.code(), Some(2), "{}", stderr(&four));
+    assert!(
+        stderr(&four).contains("the 4 schemes together")
+            && stderr(&four).contains("over the budget"),
+        "{}",
+        stderr(&four)
+    );
+    assert!(four.stdout.is_empty(), "nothing checked before the refusal");
+}

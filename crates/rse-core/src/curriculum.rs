@@ -187,18 +187,15 @@ pub fn check_curriculum(
     check_curriculum_within(scheme, options, 1.0, &|| false)
 }
 
-/// [`check_curriculum`] held to `budget` times [`CURRICULUM_VISITS`]
-/// (refused before a world is generated when the price is over it), and
-/// stopped between worlds once `stop` says so. Memory stays one world a
-/// thread: each is measured and dropped.
-pub fn check_curriculum_within(
-    scheme: &Scheme,
+/// `visits` (what [`CurriculumOptions::visits`] prices: one scheme's, or
+/// the sum of several checked in one run) held to `budget` times
+/// [`CURRICULUM_VISITS`]: [`CurriculumOptionsError::OverBudget`] naming
+/// `options`' levels and draws when it is over.
+pub fn within_curriculum_budget(
+    visits: u64,
     options: CurriculumOptions,
     budget: f64,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> Result<CurriculumReport, CurriculumOptionsError> {
-    let options = options.validate()?;
-    let visits = options.visits(scheme);
+) -> Result<(), CurriculumOptionsError> {
     let allowed = (CURRICULUM_VISITS as f64 * budget).min(u64::MAX as f64);
     if visits as f64 > allowed {
         let seconds = |v: f64| v * crate::VISIT_NANOS * 1e-9;
@@ -210,6 +207,21 @@ pub fn check_curriculum_within(
             factor: (visits as f64 / CURRICULUM_VISITS as f64 * 10.0).ceil() / 10.0,
         });
     }
+    Ok(())
+}
+
+/// [`check_curriculum`] held to `budget` times [`CURRICULUM_VISITS`]
+/// (refused before a world is generated when the price is over it), and
+/// stopped between worlds once `stop` says so. Memory stays one world a
+/// thread: each is measured and dropped.
+pub fn check_curriculum_within(
+    scheme: &Scheme,
+    options: CurriculumOptions,
+    budget: f64,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<CurriculumReport, CurriculumOptionsError> {
+    let options = options.validate()?;
+    within_curriculum_budget(options.visits(scheme), options, budget)?;
     let mut levels = Vec::with_capacity(options.levels as usize);
     for level in 0..options.levels {
         let difficulty = options.difficulty(level);

@@ -64,7 +64,7 @@ pub use color::Color;
 pub use curriculum::{
     CURRICULUM_VISITS, CurriculumOptions, CurriculumOptionsError, CurriculumProblem,
     CurriculumReport, DEFAULT_DRAWS, DEFAULT_LEVELS, LevelStats, MAX_DRAWS, MAX_LEVELS,
-    check_curriculum, check_curriculum_within,
+    check_curriculum, check_curriculum_within, within_curriculum_budget,
 };
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{

@@ -6,7 +6,9 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 
 use anyhow::Context as _;
-use rse_core::{CurriculumOptions, CurriculumReport, check_curriculum_within};
+use rse_core::{
+    CurriculumOptions, CurriculumReport, check_curriculum_within, within_curriculum_budget,
+};
 use serde_json::json;
 
 use crate::ExitStatus;
@@ -14,17 +16,28 @@ use crate::args::{CheckCurriculumArgs, SchemeOverrides};
 
 pub fn run(args: &CheckCurriculumArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let schemes = super::load_schemes(&args.schemes, overrides)?;
+    let budget = args.budget.unwrap_or_default().factor();
+    let options_of = |scheme: &rse_core::Scheme| CurriculumOptions {
+        levels: args.levels,
+        draws: args.draws,
+        seed: scheme.seed_or(args.seed),
+    };
+    // The budget holds the whole run, priced before a world is made: four
+    // schemes at --budget 0.035 each ran within it and took 11 s.
+    if let Some(first) = schemes.first() {
+        let options = options_of(first).validate()?;
+        let visits = schemes
+            .iter()
+            .fold(0u64, |sum, s| sum.saturating_add(options.visits(s)));
+        within_curriculum_budget(visits, options, budget)
+            .with_context(|| format!("check-curriculum: the {} schemes together", schemes.len()))?;
+    }
     let mut tables = Vec::new();
     let mut reports = Vec::new();
     let mut ok = true;
     for (scheme, path) in schemes.iter().zip(&args.schemes) {
-        let options = CurriculumOptions {
-            levels: args.levels,
-            draws: args.draws,
-            seed: scheme.seed_or(args.seed),
-        };
+        let options = options_of(scheme);
         let name = path.display().to_string();
-        let budget = args.budget.unwrap_or_default().factor();
         // Ctrl-C ends the process as ever: nothing is written until the end.
         let report = check_curriculum_within(scheme, options, budget, &|| false)
             .with_context(|| format!("check-curriculum {name}"))?;
