@@ -319,6 +319,16 @@ def test_a_terrain_from_forged_state_is_refused_not_a_later_panic() -> None:
         assert constructor(*args).heights.tolist() == t.heights.tolist()
 
 
+def under_3_gb(script: str) -> subprocess.CompletedProcess[str]:
+    """``script`` (``rse`` imported) run by this Python in a process of its
+    own under a 3 GB address-space limit, as the hostile reports ran theirs;
+    it must exit 0."""
+    limit = "import resource, rse\nresource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))\n"
+    done = subprocess.run([sys.executable, "-c", limit + script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
 def test_flat_patches_never_pad_past_what_a_terrain_holds() -> None:
     """A caller's n sizes no allocation past one patch a cell: 10**8 asked
     for 9.6 GB and aborted the interpreter under an address-space limit."""
@@ -329,14 +339,10 @@ def test_flat_patches_never_pad_past_what_a_terrain_holds() -> None:
     tiled = atlas.flat_patches(2**32 - 1, radius=0.05)
     assert tiled.shape[:2] == (2, 3) and 16 <= tiled.shape[2] <= 64, tiled.shape
     # As the report had it: under a 3 GB address-space limit, in a process of its own.
-    script = (
-        "import resource, rse\n"
-        "resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))\n"
+    done = under_3_gb(
         "s = rse.Scheme.from_csv('# size: 50x50\\ntype,height\\nrandom,1\\n')\n"
         "print(rse.Atlas([s], rows=4, cols=4).flat_patches(10**8, radius=0.05).shape)\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("(4, 4, "), done.stdout
 
 
@@ -345,17 +351,13 @@ def test_a_pool_past_an_address_space_limit_is_a_memory_error_naming_num_envs() 
     envs of 300×300 cells at oversample 4 (5.8 GB of samples) raised
     ``PanicException: PyObject pointer is null``. The limit's room counts
     as the memory available: a ``MemoryError`` naming ``num_envs``."""
-    script = (
-        "import resource, rse\n"
-        "resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))\n"
+    done = under_3_gb(
         "s = rse.Scheme.from_csv('# size: 300x300\\ntype,height\\nrandom,3\\n')\n"
         "try:\n"
         "    rse.EnvTerrains(s, 1000, oversample=4)\n"
         "except MemoryError as e:\n"
         "    print('MemoryError', e)\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("MemoryError num_envs: "), done.stdout
 
 

@@ -100,15 +100,19 @@ fn parse_address_space_limit(text: &str) -> Option<u64> {
 
 /// `VmSize` of `/proc/self/status`, bytes.
 fn parse_vm_size(text: &str) -> Option<u64> {
-    let line = text.lines().find(|l| l.starts_with("VmSize:"))?;
+    kib_field(text, "VmSize:")
+}
+
+/// The line of `text` that starts with `key` (`/proc`'s `Key:  N kB`), its
+/// number in bytes.
+fn kib_field(text: &str, key: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with(key))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib.saturating_mul(1024))
 }
 
 fn parse_meminfo(text: &str) -> Option<u64> {
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib.saturating_mul(1024))
+    kib_field(text, "MemAvailable:")
 }
 
 #[cfg(test)]

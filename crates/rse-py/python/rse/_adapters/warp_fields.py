@@ -43,11 +43,7 @@ def copy_rows(dst: Any, rows: np.ndarray, pairs: Iterable[tuple[int, int]], *, s
     if scatter is None:
         scatter = not dst.device.is_cpu
     if not scatter:
-        full = dst.numpy()
-        view = full.reshape(-1)
-        if not np.shares_memory(view, full):
-            raise ValueError("dst: a Warp array of one contiguous block was expected")
-        write_rows(view, rows.astype(np.float32, copy=False), pairs)
+        write_rows(_flat_view(dst, "dst"), rows.astype(np.float32, copy=False), pairs)
         return
     gathered = np.ascontiguousarray(rows[[r for r, _ in pairs]], dtype=np.float32)
     device = dst.device
@@ -79,9 +75,10 @@ Run = tuple[int, int, np.ndarray]
 class Uploads:
     """A reset's runs of float32 values (its envs' samples, their geoms'
     boxes) written into up to ``TARGETS`` flat float32 Warp arrays of one
-    device at once, in the order of Warp's stream (the simulation's). On a GPU the runs and their places go up
-    in two copies from pinned host buffers kept from call to call (so the
-    host does not wait for them, and allocates nothing), and one kernel
+    device at once, in the order of Warp's stream (the simulation's). On a
+    GPU the runs and their places go up in two copies from pinned host
+    buffers kept from call to call (so the host does not wait for them,
+    and allocates nothing), and one kernel
     writes every run in place; before, each array took its own two
     uploads from pageable memory and a kernel (at 4096 envs on an H200 a
     reset of 4 envs took 3.5 ms of the host's time). On the CPU device the
@@ -111,7 +108,7 @@ class Uploads:
             raise ValueError(f"targets: at most {self.TARGETS} arrays, got {len(targets)}")
         device = targets[0].device
         if not (device.is_cuda if self.kernel is None else self.kernel):
-            views = [_flat_view(t) for t in targets]
+            views = [_flat_view(t, "targets") for t in targets]
             for t, start, values in runs:
                 views[t][start : start + len(values)] = values
             return
@@ -148,12 +145,13 @@ class Uploads:
             self._sent = None
 
 
-def _flat_view(array: Any) -> np.ndarray:
-    """A numpy view of a CPU Warp array's memory, one dimension."""
+def _flat_view(array: Any, argument: str) -> np.ndarray:
+    """A numpy view of a CPU Warp array's memory, one dimension; a
+    ``ValueError`` naming ``argument`` where it is not one block."""
     full = array.numpy()
     view = full.reshape(-1)
     if not np.shares_memory(view, full):
-        raise ValueError("targets: Warp arrays of one contiguous block were expected")
+        raise ValueError(f"{argument}: a Warp array of one contiguous block was expected")
     return view
 
 

@@ -24,7 +24,7 @@ from rse._adapters.mjlab.terrains import (
     terrain_settings,
 )
 from rse._adapters.mjlab.tops import DeviceTops
-from rse._adapters.pool import GEOM, POOL, env_pool, sync_env_hfields
+from rse._adapters.pool import GEOM, POOL, copy_env_samples, env_pool
 from rse._adapters.warp_fields import Uploads
 from rse._rse import EnvTerrains
 
@@ -93,7 +93,9 @@ class EnvTerrainsEvent:
         sim.expand_model_fields(("geom_dataid", bounds.FIELD))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
-        _, self._adr, _ = env_pool(sim.mj_model, self.envs, self.name, "env.sim.mj_model")
+        # The pool's addresses, read once: the host model and the device's
+        # hold the fields at the same addresses.
+        _, self._adr, self._size = env_pool(sim.mj_model, self.envs, self.name, "env.sim.mj_model")
         self._uploads = Uploads()
         self._bounds = bounds.TerrainBounds(sim.wp_model, sim.mj_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
@@ -152,7 +154,7 @@ class EnvTerrainsEvent:
 
         sim = self._env.sim
         m = sim.wp_model
-        sync_env_hfields(sim.mj_model, self.envs, ids, name=self.name)
+        copy_env_samples(sim.mj_model.hfield_data, self.envs, ids, self._adr, self._size)
         rows = self.envs.samples.reshape(self.envs.num_envs, -1)
         runs = [(0, int(self._adr[e]), rows[e]) for e in ids]
         runs += self._coarse.runs(sim.mj_model, self.envs, ids, 0)
