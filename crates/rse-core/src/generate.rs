@@ -6,6 +6,7 @@ use crate::heightmap::Heightmap;
 use crate::limits::DEFAULT_SIGMA;
 use crate::obstacle::{DrawnObstacle, Obstacle, ObstacleKind};
 use crate::param::Param;
+use crate::ramp::Ramp;
 use crate::rng::WorldRng;
 use crate::scheme::Scheme;
 use crate::stamp::{self, Units};
@@ -67,23 +68,48 @@ pub fn generate_by(
     let mut tables = crate::rng::GaussianTables::default();
     for obstacle in scheme.obstacles() {
         let resolved = draw(obstacle, &mut rng);
+        // Ramps are laid after every other obstacle, on the scaled map.
         stamp::apply(&resolved, &mut heightmap, &mut rng, units, &mut tables);
         drawn.push(resolved);
     }
-    if !difficulty.is_full() {
-        // Before the frames, which stay one step at any difficulty.
-        match rule {
-            DifficultyRule::Nearest => heightmap
+    // Before the frames, which stay one step at any difficulty; the
+    // offset the cells were rounded with, which a ramp's rise is too.
+    let offset = (!difficulty.is_full()).then(|| match rule {
+        DifficultyRule::Nearest => {
+            heightmap
                 .cells_mut()
                 .iter_mut()
-                .for_each(|h| *h = difficulty.scale(*h)),
-            DifficultyRule::Drawn => {
-                // The next draw of the world's stream, after every obstacle's:
-                // the same at every difficulty.
-                let offset = unit_offset(rng.next_u32());
-                scale_drawn(&mut heightmap, &grid, difficulty, offset);
-            }
+                .for_each(|h| *h = difficulty.scale(*h));
+            0.5 // `Difficulty::scale`'s
         }
+        DifficultyRule::Drawn => {
+            // The next draw of the world's stream, after every obstacle's:
+            // the same at every difficulty.
+            let offset = unit_offset(rng.next_u32());
+            scale_drawn(&mut heightmap, &grid, difficulty, offset);
+            offset
+        }
+    });
+    // A ramp's rise scales as a cell of its height does (heights are
+    // validated to fit a cell), at least a step above D = 0 (a ramp is
+    // never flat there, as no world with an obstacle is).
+    let scaled = |h: u32| {
+        offset.map_or(h, |o| {
+            let rise = u32::from(difficulty.scale_offset(h as u16, o));
+            if difficulty.get() > 0.0 {
+                rise.max(h.min(1))
+            } else {
+                rise
+            }
+        })
+    };
+    let ramps: Vec<Ramp> = drawn
+        .iter()
+        .filter(|d| d.kind.is_ramp())
+        .flat_map(|d| Ramp::of(d, grid, scaled(d.height)))
+        .collect();
+    for ramp in &ramps {
+        ramp.stamp(&mut heightmap);
     }
     if let Some(period) = grid.frame_period {
         // Frames are exactly one step, whatever the obstacles did (docs/schemes.md).
@@ -96,7 +122,7 @@ pub fn generate_by(
             }
         }
     }
-    Terrain::new(grid, heightmap, globals, (seed, index), difficulty, drawn)
+    Terrain::new(grid, heightmap, globals, (seed, index), difficulty, drawn).with_ramps(ramps)
 }
 
 /// [`DifficultyRule::Drawn`]: every cell `floor(D·h + offset)`, and the

@@ -106,7 +106,7 @@ impl Terrain {
     /// buffer)` it fills a caller's buffer with the same samples.
     pub fn hfield_layout(&self, oversample: u32) -> Result<HField, HFieldError> {
         let (nrow, ncol) = self.hfield_shape(oversample)?;
-        let (lowest, highest) = self.top_range();
+        let (lowest, highest) = self.top_range(oversample);
         // A flat terrain: all samples 0, any positive elevation.
         let elevation = if highest <= lowest {
             self.step_height()
@@ -156,7 +156,7 @@ impl Terrain {
                 found: out.len(),
             });
         }
-        let (lowest, highest) = self.top_range();
+        let (lowest, highest) = self.top_range(oversample);
         // A micrometre of slack: z0 and elevation come back from f32 and
         // from sums of f64.
         let slack = 1e-6;
@@ -173,15 +173,21 @@ impl Terrain {
         Ok(())
     }
 
-    /// Lowest and highest top, metres.
-    fn top_range(&self) -> (f64, f64) {
+    /// Lowest and highest sample of the field with `k` samples a cell,
+    /// metres: the cells' tops, and a ramp's plane at its highest sample
+    /// (half a sample below its top edge).
+    fn top_range(&self, k: u32) -> (f64, f64) {
         let map = self.heightmap();
         let (lo, hi) = map
             .cells()
             .iter()
             .fold((u16::MAX, 0u16), |(lo, hi), &h| (lo.min(h), hi.max(h)));
         let top = |h: u16| self.base() + f64::from(h) * self.step_height();
-        (top(lo.min(hi)), top(hi))
+        let ramps = self.ramps().iter().map(|r| {
+            let samples = f64::from(r.run()) * f64::from(k);
+            self.base() + f64::from(r.rise) * self.step_height() * (samples - 0.5) / samples
+        });
+        (top(lo.min(hi)), ramps.fold(top(hi), f64::max))
     }
 
     /// `out[r·ncol + c] = (top of the cell under sample (r, c) − z0) / elevation`,
@@ -232,6 +238,33 @@ impl Terrain {
             // The other k − 1 sample rows of this cell row are copies.
             for j in 1..k {
                 out.copy_within(start..start + ncol, start + j * stride);
+            }
+        }
+        for ramp in self.ramps() {
+            self.fill_ramp(ramp, k, (z0, elevation), out, stride);
+        }
+    }
+
+    /// Raises the samples over `ramp` to its plane where it is above them
+    /// (the maximum rule of the heightmap, on the plane): sample `j` of a
+    /// cell `(j + ½)/k` of the way across it, as everywhere.
+    fn fill_ramp(
+        &self,
+        ramp: &crate::Ramp,
+        k: usize,
+        (z0, elevation): (f64, f64),
+        out: &mut [f32],
+        stride: usize,
+    ) {
+        let [x0, y0, x1, y1] = ramp.cells.map(|c| c as usize);
+        let height = f64::from(ramp.rise) * self.step_height();
+        let across = |i: usize| (i as f64 + 0.5) / k as f64;
+        for r in y0 * k..(y1 + 1) * k {
+            let row = &mut out[r * stride..];
+            for (c, sample) in row.iter_mut().enumerate().take((x1 + 1) * k).skip(x0 * k) {
+                let top = self.base() + height * ramp.fraction_at(across(c), across(r));
+                let value = (((top - z0) / elevation).clamp(0.0, 1.0)) as f32;
+                *sample = sample.max(value);
             }
         }
     }
@@ -355,6 +388,26 @@ mod tests {
         assert!((hf.size[2] - (hi - lo) * 0.1).abs() < 1e-12);
         assert!((hf.pos[0] - 0.15).abs() < 1e-12 && (hf.pos[1] - 0.1).abs() < 1e-12);
         assert!((hf.pos[2] - lo * 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn samples_over_a_ramp_lie_on_its_plane_and_the_highest_is_one() {
+        // 8 cells climbing 4 steps of 5 cm along x, on a 1 cm slab.
+        let t = terrain(
+            "# size: 8x2\n# step_height: 0.05\n# base: 0.01\ntype,height,angle,x1,y1,x2,y2\nramp,4,,0,0,7,1\n",
+        );
+        let hf = t.hfield(2).unwrap();
+        let (z0, elevation) = (hf.pos[2], hf.size[2]);
+        assert_eq!(z0, 0.01, "the foot's cell is the lowest top");
+        for r in 0..4 {
+            for c in 0..16 {
+                // Sample c sits (c + ½)/2 cells along: the plane's height there.
+                let plane = 0.01 + 0.2 * (f64::from(c) + 0.5) / 16.0;
+                let z = z0 + f64::from(hf.data[(r * 16 + c) as usize]) * elevation;
+                assert!((z - plane).abs() < 1e-6, "sample ({r}, {c}): {z} vs {plane}");
+            }
+        }
+        assert_eq!(hf.data.iter().copied().fold(0.0, f32::max), 1.0);
     }
 
     #[test]

@@ -50,6 +50,7 @@ mod param;
 mod png_rows;
 pub mod preview;
 mod probe;
+mod ramp;
 mod request;
 mod rng;
 mod scheme;
@@ -86,6 +87,7 @@ pub use limits::{
 };
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};
+pub use ramp::Ramp;
 pub use request::{WorldAt, WorldRequest};
 pub use scheme::{BUDGET_VISITS, Scheme, VISIT_NANOS};
 pub use scheme_file::{MAX_SCHEME_BYTES, read_scheme_file};

@@ -1,6 +1,7 @@
 //! The six obstacle types of the paper (§3.2), the stairs researchers train
-//! on beside them (a straight flight, a pyramid and its inverse), and the
-//! fields each one uses.
+//! on beside them (a straight flight, a pyramid and its inverse), the
+//! inclined planes of the NIST test methods (a ramp, crossing ramps), and
+//! the fields each one uses.
 
 use std::fmt;
 use std::str::FromStr;
@@ -37,11 +38,18 @@ pub enum ObstacleKind {
     /// A pyramid that is subtracted: stairs down into a pit (the inverted
     /// pyramid stairs).
     PyramidPit,
+    /// An inclined plane over a rectangle of cells, rising `H` steps from
+    /// one side to the other: a wedge lying on the terrain (docs/schemes.md,
+    /// "Ramps").
+    Ramp,
+    /// Two ramps side by side over a rectangle, climbing opposite ways
+    /// (NIST's crossing ramps).
+    CrossingRamps,
 }
 
 impl ObstacleKind {
-    /// All kinds: the paper's, in its order, then the stairs.
-    pub const ALL: [ObstacleKind; 9] = [
+    /// All kinds: the paper's, in its order, then the stairs, then the ramps.
+    pub const ALL: [ObstacleKind; 11] = [
         ObstacleKind::Random,
         ObstacleKind::Gaussian,
         ObstacleKind::Peak,
@@ -51,6 +59,8 @@ impl ObstacleKind {
         ObstacleKind::Stairs,
         ObstacleKind::Pyramid,
         ObstacleKind::PyramidPit,
+        ObstacleKind::Ramp,
+        ObstacleKind::CrossingRamps,
     ];
 
     /// The canonical name, as written in scheme files.
@@ -65,6 +75,8 @@ impl ObstacleKind {
             ObstacleKind::Stairs => "stairs",
             ObstacleKind::Pyramid => "pyramid",
             ObstacleKind::PyramidPit => "pyramid_pit",
+            ObstacleKind::Ramp => "ramp",
+            ObstacleKind::CrossingRamps => "crossing_ramps",
         }
     }
 
@@ -77,31 +89,59 @@ impl ObstacleKind {
         )
     }
 
+    /// `true` for the ramps: wedges laid on the terrain after every other
+    /// obstacle, not cells combined in table order.
+    pub fn is_ramp(self) -> bool {
+        matches!(self, ObstacleKind::Ramp | ObstacleKind::CrossingRamps)
+    }
+
+    /// `true` for the kinds over the rectangle of two corners: stairs,
+    /// pyramids and ramps.
+    pub fn is_rectangle(self) -> bool {
+        matches!(
+            self,
+            ObstacleKind::Stairs
+                | ObstacleKind::Pyramid
+                | ObstacleKind::PyramidPit
+                | ObstacleKind::Ramp
+                | ObstacleKind::CrossingRamps
+        )
+    }
+
     /// Whether this kind needs, may have, or must not have `field`.
     pub fn usage(self, field: Field) -> Usage {
         use ObstacleKind::{
-            Gaussian, LongPit, Peak, Pit, Pyramid, PyramidPit, Random, Stairs, Wall,
+            CrossingRamps, Gaussian, LongPit, Peak, Pit, Pyramid, PyramidPit, Ramp, Random, Stairs,
+            Wall,
         };
         match (field, self) {
             (Field::Type | Field::Height, _)
             | (Field::Angle, Peak | Pit | Wall | LongPit)
             | (
                 Field::X1 | Field::Y1,
-                Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit,
+                Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit | Ramp | CrossingRamps,
             )
-            | (Field::X2 | Field::Y2, Wall | LongPit | Stairs | Pyramid | PyramidPit)
+            | (
+                Field::X2 | Field::Y2,
+                Wall | LongPit | Stairs | Pyramid | PyramidPit | Ramp | CrossingRamps,
+            )
             | (Field::Tread, Pyramid | PyramidPit) => Usage::Required,
             (Field::Sigma, Gaussian) => Usage::Optional,
-            (Field::Angle, Random | Gaussian | Stairs | Pyramid | PyramidPit)
+            (
+                Field::Angle,
+                Random | Gaussian | Stairs | Pyramid | PyramidPit | Ramp | CrossingRamps,
+            )
             | (Field::X1 | Field::Y1, Random | Gaussian)
             | (Field::X2 | Field::Y2, Random | Gaussian | Peak | Pit)
             | (
                 Field::Sigma,
-                Random | Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit,
+                Random | Peak | Pit | Wall | LongPit | Stairs | Pyramid | PyramidPit | Ramp
+                | CrossingRamps,
             )
-            | (Field::Tread, Random | Gaussian | Peak | Pit | Wall | LongPit | Stairs) => {
-                Usage::Unused
-            }
+            | (
+                Field::Tread,
+                Random | Gaussian | Peak | Pit | Wall | LongPit | Stairs | Ramp | CrossingRamps,
+            ) => Usage::Unused,
         }
     }
 }
@@ -116,7 +156,8 @@ impl FromStr for ObstacleKind {
     type Err = SchemeErrorKind;
 
     /// Case-insensitive; `long pit`, `long-pit`, `longpit`, `normal`,
-    /// `pyramid stairs` and `inverted pyramid` are accepted too.
+    /// `pyramid stairs`, `inverted pyramid`, `slope`, `inclined plane` and
+    /// `crossing ramp` are accepted too.
     fn from_str(text: &str) -> Result<Self, Self::Err> {
         let key: String = text
             .trim()
@@ -134,6 +175,8 @@ impl FromStr for ObstacleKind {
             "stairs" => ObstacleKind::Stairs,
             "pyramid" | "pyramidstairs" => ObstacleKind::Pyramid,
             "pyramidpit" | "invertedpyramid" => ObstacleKind::PyramidPit,
+            "ramp" | "slope" | "inclinedplane" => ObstacleKind::Ramp,
+            "crossingramps" | "crossingramp" => ObstacleKind::CrossingRamps,
             _ => return Err(SchemeErrorKind::UnknownType(text.trim().to_owned())),
         })
     }
@@ -207,21 +250,23 @@ impl Field {
     pub const fn doc(self) -> &'static str {
         match self {
             Field::Type => {
-                "the obstacle: random, gaussian, peak, pit, wall, long_pit, stairs, pyramid or pyramid_pit"
+                "the obstacle: random, gaussian, peak, pit, wall, long_pit, stairs, pyramid, pyramid_pit, ramp or crossing_ramps"
             }
-            Field::Height => "height H in whole steps (the depth of a pit or long pit)",
+            Field::Height => {
+                "height H in whole steps (the depth of a pit or long pit, a ramp's rise)"
+            }
             Field::Angle => "slope of its sides from the ground, 0 to 90 (90: straight sides)",
             Field::X1 => {
-                "column of the point (the first end of a wall or long pit, the first corner of stairs or a pyramid), from 0"
+                "column of the point (the first end of a wall or long pit, the first corner of stairs, a pyramid or a ramp), from 0"
             }
             Field::Y1 => {
-                "row of the point (the first end of a wall or long pit, the first corner of stairs or a pyramid), from 0"
+                "row of the point (the first end of a wall or long pit, the first corner of stairs, a pyramid or a ramp), from 0"
             }
             Field::X2 => {
-                "column of the second end of a wall or long pit (the opposite corner of stairs or a pyramid)"
+                "column of the second end of a wall or long pit (the opposite corner of stairs, a pyramid or a ramp)"
             }
             Field::Y2 => {
-                "row of the second end of a wall or long pit (the opposite corner of stairs or a pyramid)"
+                "row of the second end of a wall or long pit (the opposite corner of stairs, a pyramid or a ramp)"
             }
             Field::Sigma => "spread of a gaussian's heights, in steps (default 1)",
             Field::Tread => {

@@ -68,6 +68,9 @@ pub(crate) fn apply(
             let slope = Slope::new(height, angle, units);
             apply_segment(map, from, to, &slope, obstacle.kind.lowers());
         }
+        // Laid by `Ramp::stamp`, after every other obstacle and the
+        // difficulty: nothing in table order.
+        ObstacleKind::Ramp | ObstacleKind::CrossingRamps => {}
         ObstacleKind::Stairs | ObstacleKind::Pyramid | ObstacleKind::PyramidPit => {
             let from = obstacle.p1.expect("validated stairs and pyramids have p1");
             let to = obstacle.p2.expect("validated stairs and pyramids have p2");
@@ -208,12 +211,9 @@ impl Slope {
 pub(crate) fn visits(obstacle: &Obstacle, grid: Grid, units: Units) -> u64 {
     let f = obstacle.fields();
     let cells = u64::from(grid.nx) * u64::from(grid.ny);
-    let rectangle = matches!(
-        obstacle.kind(),
-        ObstacleKind::Stairs | ObstacleKind::Pyramid | ObstacleKind::PyramidPit
-    );
+    let rectangle = obstacle.kind().is_rectangle();
     if let (true, Some(x1), Some(y1), Some(x2), Some(y2)) = (rectangle, f.x1, f.y1, f.x2, f.y2) {
-        // Stairs and pyramids: the box of their corners' ranges.
+        // Stairs, pyramids and ramps: the box of their corners' ranges.
         let side = |a: Param<u32>, b: Param<u32>, n: u32| {
             let (lo, hi) = (
                 a.lo().min(b.lo()),

@@ -9,6 +9,7 @@ use crate::difficulty::Difficulty;
 use crate::globals::{Globals, Grid};
 use crate::heightmap::Heightmap;
 use crate::obstacle::DrawnObstacle;
+use crate::ramp::Ramp;
 
 /// One generated RSE: the heightmap, its units, and what was drawn for it.
 ///
@@ -27,6 +28,10 @@ pub struct Terrain {
     index: u64,
     difficulty: Difficulty,
     drawn: Vec<DrawnObstacle>,
+    /// The ramps laid on it, in table order (none: no key, so a terrain
+    /// without ramps serialises as before they were).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    ramps: Vec<Ramp>,
 }
 
 /// The heightmap of a deserialised terrain until its cells are put in.
@@ -53,7 +58,15 @@ impl Terrain {
             index,
             difficulty,
             drawn,
+            ramps: Vec::new(),
         }
+    }
+
+    /// The terrain with `ramps` laid on it (their staircases already in
+    /// its heightmap).
+    pub(crate) fn with_ramps(mut self, ramps: Vec<Ramp>) -> Terrain {
+        self.ramps = ramps;
+        self
     }
 
     /// A terrain of given heights (an atlas's map): no obstacles drawn,
@@ -169,5 +182,10 @@ impl Terrain {
     /// The obstacles as drawn for this world, in table order.
     pub fn drawn(&self) -> &[DrawnObstacle] {
         &self.drawn
+    }
+
+    /// The ramps laid on it, in table order (crossing ramps as two).
+    pub fn ramps(&self) -> &[Ramp] {
+        &self.ramps
     }
 }

@@ -2,8 +2,15 @@
 //! flat but for the frames, every cell is `floor(D·h + u)` of its D = 1
 //! height with one `u` per world (`floor(D·h + 0.5)` by the old rule), so
 //! the layout is kept, heights grow with D, and no level above 0 is flat.
+//! Cells under a ramp are its staircase at its scaled rise instead (a
+//! plane scales by its rise: tested on its own below).
 
 use rse_core::{Difficulty, DifficultyRule, Scheme, Terrain, generate, generate_at, generate_by};
+
+/// Whether cell `(x, y)` lies under one of `terrain`'s ramps.
+fn under_ramp(terrain: &Terrain, x: u32, y: u32) -> bool {
+    terrain.ramps().iter().any(|r| r.covers(x, y))
+}
 
 use crate::util::sample_paths;
 
@@ -41,6 +48,9 @@ fn the_nearest_rule_rounds_every_cell_half_up() {
         let grid = full.grid();
         for y in 0..grid.ny {
             for x in 0..grid.nx {
+                if under_ramp(full, x, y) && !grid.is_frame(x, y) {
+                    continue;
+                }
                 let want = if grid.is_frame(x, y) {
                     1
                 } else {
@@ -79,7 +89,7 @@ fn assert_one_offset(full: &Terrain, terrain: &Terrain, d: Difficulty, what: &st
     let (mut up, mut down) = (f64::INFINITY, f64::NEG_INFINITY);
     let cells = (0..grid.ny)
         .flat_map(|y| (0..grid.nx).map(move |x| (x, y)))
-        .filter(|&(x, y)| !grid.is_frame(x, y));
+        .filter(|&(x, y)| !grid.is_frame(x, y) && !under_ramp(full, x, y));
     let highest = cells.clone().map(|(x, y)| full.heightmap().get(x, y)).max();
     // The first cell of the highest height: the one kept at a step.
     let anchor = cells
@@ -90,6 +100,9 @@ fn assert_one_offset(full: &Terrain, terrain: &Terrain, d: Difficulty, what: &st
             let got = terrain.heightmap().get(x, y);
             if grid.is_frame(x, y) {
                 assert_eq!(got, 1, "{what}");
+                continue;
+            }
+            if under_ramp(full, x, y) {
                 continue;
             }
             let h = full.heightmap().get(x, y);
@@ -160,4 +173,36 @@ fn over_many_worlds_a_cell_averages_d_times_its_height() {
     let mean = f64::from(total) / worlds as f64;
     // 0.9 expected; the standard error of 2000 draws of {0, 1} is 0.007.
     assert!((mean - 0.9).abs() < 0.05, "mean {mean}");
+}
+
+#[test]
+fn a_ramp_scales_by_its_rise_and_keeps_a_step_above_zero() {
+    let scheme = Scheme::from_csv(
+        "# size: 12x3\ntype,height,angle,x1,y1,x2,y2\nramp,8,,0,0,11,2\n",
+        None,
+    )
+    .unwrap();
+    for index in 0..10 {
+        let mut previous = 0;
+        for level in 0..=10 {
+            let d = Difficulty::new(f64::from(level) / 10.0).unwrap();
+            let terrain = generate_at(&scheme, 3, index, d);
+            let [ramp] = terrain.ramps() else {
+                panic!("one ramp")
+            };
+            let rise = ramp.rise;
+            // floor(8·D + u) for one u, and a step at least above D = 0.
+            let scaled = 8.0 * d.get();
+            assert!(
+                f64::from(rise) >= scaled.floor() && f64::from(rise) <= scaled.floor() + 1.0,
+                "world {index} D {d}: rise {rise}"
+            );
+            assert_eq!(rise == 0, level == 0, "world {index} D {d}");
+            assert!(rise >= previous, "world {index}: rises grow with D");
+            previous = rise;
+            for x in 0..12 {
+                assert_eq!(u32::from(terrain.heightmap().get(x, 1)), x * rise / 12);
+            }
+        }
+    }
 }

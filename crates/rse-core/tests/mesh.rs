@@ -3,13 +3,14 @@
 
 use proptest::prelude::*;
 use rse_core::mesh::{MeshUnits, TriMesh, build_mesh, invariants};
-use rse_core::{Heightmap, Scheme, generate};
+use rse_core::{Heightmap, Ramp, Scheme, generate};
 
 use crate::util::{repo, sample_paths};
 
 /// Asserts closedness, orientation, area, no T-junction (exactly, on the
-/// lattice), exact volume and box.
-fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
+/// lattice), exact volume and box: the cells' solid and a wedge for each
+/// of `ramps` (of any rise: a ramp of none adds nothing).
+fn assert_exact(map: &Heightmap, ramps: &[Ramp], units: MeshUnits, mesh: &TriMesh) {
     let faults = mesh.faults();
     assert!(
         faults.is_empty(),
@@ -22,7 +23,16 @@ fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
         .cells()
         .iter()
         .map(|&h| units.base + f64::from(h) * units.step_height);
-    let expected: f64 = tops.clone().map(|z| z * cell_area).sum();
+    let wedges = ramps.iter().filter(|r| r.rise > 0);
+    let expected: f64 = tops.clone().map(|z| z * cell_area).sum::<f64>()
+        + wedges
+            .clone()
+            .map(|r| {
+                let [x0, y0, x1, y1] = r.cells;
+                let cells = f64::from((x1 - x0 + 1) * (y1 - y0 + 1));
+                cells * cell_area * (units.base + f64::from(r.rise) * units.step_height / 2.0)
+            })
+            .sum::<f64>();
     let volume = invariants::volume(mesh.vertices(), mesh.triangles());
     assert!(
         (volume - expected).abs() <= 1e-5 * expected.max(1e-9),
@@ -39,6 +49,11 @@ fn assert_exact(map: &Heightmap, units: MeshUnits, mesh: &TriMesh) {
             )
         })
         .filter(|&(_, _, z)| z > 0.0)
+        .chain(wedges.flat_map(|r| {
+            let [x0, y0, x1, y1] = r.cells;
+            let top = units.base + f64::from(r.rise) * units.step_height;
+            [(x0, y0, top), (x1, y1, top)]
+        }))
         .collect();
     let found = invariants::bounding_box(mesh.vertices());
     if solid.is_empty() {
@@ -86,7 +101,7 @@ fn map(nx: u32, ny: u32, cells: Vec<u16>) -> Heightmap {
 fn single_cell() {
     let m = map(1, 1, vec![3]);
     let mesh = build_mesh(&m, UNITS);
-    assert_exact(&m, UNITS, &mesh);
+    assert_exact(&m, &[], UNITS, &mesh);
     assert_eq!(mesh.triangles().len(), 12);
     assert_eq!(mesh.vertices().len(), 8);
 }
@@ -100,7 +115,7 @@ fn all_zero_is_empty_and_base_makes_a_slab() {
         ..UNITS
     };
     let mesh = build_mesh(&m, slab);
-    assert_exact(&m, slab, &mesh);
+    assert_exact(&m, &[], slab, &mesh);
     assert_eq!(mesh.triangles().len(), 12);
 }
 
@@ -110,20 +125,20 @@ fn checkerboard_has_saddles_everywhere() {
         .map(|i| u16::from((i % 8 + i / 8) % 2 == 0) * 2)
         .collect();
     let m = map(8, 8, cells);
-    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+    assert_exact(&m, &[], UNITS, &build_mesh(&m, UNITS));
     let slab = MeshUnits {
         base: 0.02,
         ..UNITS
     };
-    assert_exact(&m, slab, &build_mesh(&m, slab));
+    assert_exact(&m, &[], slab, &build_mesh(&m, slab));
 }
 
 #[test]
 fn saddle_with_different_diagonal_heights() {
     let m = map(2, 2, vec![1, 3, 4, 0]);
-    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+    assert_exact(&m, &[], UNITS, &build_mesh(&m, UNITS));
     let m = map(3, 3, vec![2, 0, 5, 0, 3, 0, 1, 0, 4]);
-    assert_exact(&m, UNITS, &build_mesh(&m, UNITS));
+    assert_exact(&m, &[], UNITS, &build_mesh(&m, UNITS));
 }
 
 #[test]
@@ -131,7 +146,7 @@ fn flat_1000_by_1000_is_12_triangles() {
     let m = map(1000, 1000, vec![2; 1_000_000]);
     let mesh = build_mesh(&m, UNITS);
     assert_eq!(mesh.triangles().len(), 12);
-    assert_exact(&m, UNITS, &mesh);
+    assert_exact(&m, &[], UNITS, &mesh);
 }
 
 #[test]
@@ -148,7 +163,12 @@ fn a_large_mesh_is_the_same_on_one_thread_and_on_several() {
     };
     let one = on(1);
     assert_eq!(one, on(3));
-    assert_exact(terrain.heightmap(), terrain.mesh_units(), &one);
+    assert_exact(
+        terrain.heightmap(),
+        terrain.ramps(),
+        terrain.mesh_units(),
+        &one,
+    );
 }
 
 /// The mesh and the box set of three worlds of every sample are exact.
@@ -159,7 +179,7 @@ fn every_sample_meshes_and_boxes_exactly() {
         for index in 0..3 {
             let terrain = generate(&scheme, 0, index);
             let units = terrain.mesh_units();
-            assert_exact(terrain.heightmap(), units, &terrain.mesh());
+            assert_exact(terrain.heightmap(), terrain.ramps(), units, &terrain.mesh());
             assert_boxes_fill(terrain.heightmap(), units);
         }
     }
@@ -194,7 +214,7 @@ proptest! {
     #[test]
     fn random_heightmaps_mesh_exactly((m, units) in heightmaps()) {
         let mesh = build_mesh(&m, units);
-        assert_exact(&m, units, &mesh);
+        assert_exact(&m, &[], units, &mesh);
         prop_assert_eq!(build_mesh(&m, units), mesh, "deterministic");
     }
 }

@@ -38,10 +38,10 @@ fn obstacle(nx: u32, ny: u32) -> impl Strategy<Value = Obstacle> {
         ],
     )
         .prop_map(|(kind, height, angle, (x1, y1, x2, y2), sigma, tread)| {
-            use ObstacleKind::{LongPit, Peak, Pit, Pyramid, PyramidPit, Stairs, Wall};
+            use ObstacleKind::{LongPit, Peak, Pit, Pyramid, PyramidPit, Wall};
             let geometric = !matches!(kind, ObstacleKind::Random | ObstacleKind::Gaussian);
             let sloped = matches!(kind, Peak | Pit | Wall | LongPit);
-            let two_points = matches!(kind, Wall | LongPit | Stairs | Pyramid | PyramidPit);
+            let two_points = matches!(kind, Wall | LongPit) || kind.is_rectangle();
             let fields = ObstacleFields {
                 height: Some(height),
                 angle: sloped.then_some(angle),

@@ -3,7 +3,7 @@
 //! list to the folder: a new sample is listed, or the test fails).
 
 /// `(file name, CSV text)` of each sample, by name.
-pub const SAMPLES: [(&str, &str); 16] = [
+pub const SAMPLES: [(&str, &str); 17] = [
     (
         "curriculum.csv",
         include_str!("../../../schemes/curriculum.csv"),
@@ -19,6 +19,10 @@ pub const SAMPLES: [(&str, &str); 16] = [
     (
         "mix_flights.csv",
         include_str!("../../../schemes/mix_flights.csv"),
+    ),
+    (
+        "mix_ramps.csv",
+        include_str!("../../../schemes/mix_ramps.csv"),
     ),
     (
         "mix_rough.csv",

@@ -1,5 +1,6 @@
-//! Wavefront OBJ: `v` positions, the six axis normals as `vn`, faces as
-//! `f v//vn` (Gazebo's loader drops a mesh without normals), and a material.
+//! Wavefront OBJ: `v` positions, the six axis normals as `vn` (then each
+//! ramp plane's), faces as `f v//vn` (Gazebo's loader drops a mesh without
+//! normals), and a material.
 
 use std::fmt::Write as _;
 
@@ -38,7 +39,15 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
         coordinates.push_point(&mut out, point, " ");
         out.push('\n');
     }
-    for normal in Normal::ALL {
+    // The six axis normals, then each tilted one in the order of its
+    // first face: a mesh without ramps writes what it always did.
+    let mut normals: Vec<Normal> = Normal::ALL.to_vec();
+    for normal in mesh.face_normals() {
+        if !normals.contains(normal) {
+            normals.push(*normal);
+        }
+    }
+    for normal in &normals {
         let [x, y, z] = normal.vector();
         writeln!(out, "vn {x} {y} {z}").expect(FMT);
     }
@@ -46,15 +55,20 @@ pub fn obj(mesh: &TriMesh, mtl_file: Option<&str>) -> String {
         writeln!(out, "usemtl {MATERIAL}").expect(FMT);
     }
     for (t, normal) in mesh.triangles().iter().zip(mesh.face_normals()) {
-        let n = Normal::ALL
+        let n = normals
             .iter()
             .position(|m| m == normal)
-            .expect("one of six");
+            .expect("every face's normal is listed");
         out.push('f');
         for v in t {
             out.push(' ');
             push_int(&mut out, v + 1);
-            out.push_str(NORMAL_REFS[n]);
+            if let Some(text) = NORMAL_REFS.get(n) {
+                out.push_str(text);
+            } else {
+                out.push_str("//");
+                push_int(&mut out, n as u32 + 1);
+            }
         }
         out.push('\n');
     }

@@ -12,7 +12,7 @@ use crate::heightmap::Heightmap;
 /// A lattice point `[x, y, level]`.
 pub(crate) type LatticePoint = [u32; 3];
 
-/// The outward normal of a face; all faces are axis-aligned.
+/// The outward normal of a face: axis-aligned, but for a ramp's plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Normal {
     /// +x
@@ -27,10 +27,14 @@ pub enum Normal {
     PosZ,
     /// −z (the bottom)
     NegZ,
+    /// A ramp's plane: the unit vector's `f32` bits (`Eq` by its bits, as
+    /// writers compare it).
+    Tilted([u32; 3]),
 }
 
 impl Normal {
-    /// All six, in the order writers number them.
+    /// The six axis-aligned ones, in the order writers number them (a
+    /// ramp's planes follow them, in the order of their faces).
     pub const ALL: [Normal; 6] = [
         Normal::PosX,
         Normal::NegX,
@@ -49,7 +53,14 @@ impl Normal {
             Normal::NegY => [0.0, -1.0, 0.0],
             Normal::PosZ => [0.0, 0.0, 1.0],
             Normal::NegZ => [0.0, 0.0, -1.0],
+            Normal::Tilted(bits) => bits.map(f32::from_bits),
         }
+    }
+
+    /// The unit vector along `v` (not zero), as a tilted normal.
+    pub(crate) fn tilted(v: [f64; 3]) -> Normal {
+        let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        Normal::Tilted(v.map(|c| ((c / length) as f32).to_bits()))
     }
 }
 

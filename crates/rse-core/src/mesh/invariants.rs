@@ -246,8 +246,29 @@ fn checked(
             faults.push(MeshFault::Degenerate { triangle: i });
         }
     }
-    faults.extend(t_junctions(positions, margin, &edges, on_edge));
+    // A vertex on another shell's edge opens no crack: each shell (a
+    // ramp's wedge beside the blocks') is closed on its own.
+    let shell = shells(positions.len(), triangles);
+    let same_shell_on_edge =
+        |v: u32, a: u32, b: u32| shell[v as usize] == shell[a as usize] && on_edge(v, a, b);
+    faults.extend(t_junctions(positions, margin, &edges, &same_shell_on_edge));
     faults
+}
+
+/// The shell of each of `vertices` vertices: the root of the vertices its
+/// triangles join to it.
+fn shells(vertices: usize, triangles: &[[u32; 3]]) -> Vec<usize> {
+    let mut parent: Vec<usize> = (0..vertices).collect();
+    for t in triangles {
+        for k in 1..3 {
+            let (a, b) = (
+                find(&mut parent, t[0] as usize),
+                find(&mut parent, t[k] as usize),
+            );
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    (0..vertices).map(|v| find(&mut parent, v)).collect()
 }
 
 /// A directed edge `(a, b)` and the corner (3·triangle + slot) holding `a`.

@@ -8,6 +8,7 @@ pub mod naive;
 mod segment_buckets;
 mod staircase;
 mod stitch;
+mod wedge;
 mod weld;
 
 pub use boxes::{Block, boxes};
@@ -44,7 +45,8 @@ impl TriMesh {
         &self.triangles
     }
 
-    /// The outward normal of each triangle (all faces are axis-aligned).
+    /// The outward normal of each triangle (axis-aligned, but for ramps'
+    /// planes).
     pub fn face_normals(&self) -> &[Normal] {
         &self.normals
     }
@@ -197,9 +199,14 @@ impl Terrain {
         }
     }
 
-    /// The single mesh of this terrain (docs/meshes.md).
+    /// The single mesh of this terrain (docs/meshes.md): the blocks' shell,
+    /// then a closed wedge for each ramp.
     pub fn mesh(&self) -> TriMesh {
-        build_mesh(self.heightmap(), self.mesh_units())
+        let mut mesh = build_mesh(self.heightmap(), self.mesh_units());
+        for ramp in self.ramps() {
+            mesh.add_wedge(ramp);
+        }
+        mesh
     }
 
     /// The block model of this terrain: boxes whose union is the solid.
@@ -227,18 +234,42 @@ pub fn build_mesh(heights: &Heightmap, units: MeshUnits) -> TriMesh {
     let levels = faces::Levels::new(heights, units.base > 0.0);
     let triangles = stitch::triangulate(&levels, |emit| faces::faces(&levels, emit));
     let (keys, ids, normals) = weld::split_saddles(triangles, &levels);
-    let position = |&[x, y, level]: &LatticePoint| {
-        [
-            (f64::from(x) * units.block_size) as f32,
-            (f64::from(y) * units.block_size) as f32,
-            units.z(level) as f32,
-        ]
-    };
     TriMesh {
-        vertices: keys.iter().map(position).collect(),
+        vertices: keys.iter().map(|&p| units.vertex(p)).collect(),
         triangles: ids,
         normals,
         lattice: keys,
         units,
+    }
+}
+
+impl TriMesh {
+    /// Appends `ramp`'s wedge as a shell of its own (vertices shared with
+    /// nothing before it).
+    fn add_wedge(&mut self, ramp: &crate::Ramp) {
+        let Some((points, triangles, normals)) = wedge::wedge(ramp, self.units) else {
+            return;
+        };
+        // Fewer than 2^32 vertices: a wedge has 8, the blocks' mesh is
+        // indexed by u32.
+        let first = self.lattice.len() as u32;
+        self.vertices
+            .extend(points.iter().map(|&p| self.units.vertex(p)));
+        self.lattice.extend(points);
+        self.triangles
+            .extend(triangles.into_iter().map(|t| t.map(|v| v + first)));
+        self.normals.extend(normals);
+    }
+}
+
+impl MeshUnits {
+    /// A lattice point's vertex in metres, rounded to `f32` as every
+    /// writer stores it.
+    fn vertex(self, [x, y, level]: LatticePoint) -> [f32; 3] {
+        [
+            (f64::from(x) * self.block_size) as f32,
+            (f64::from(y) * self.block_size) as f32,
+            self.z(level) as f32,
+        ]
     }
 }
