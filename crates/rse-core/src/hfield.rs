@@ -404,7 +404,10 @@ mod tests {
                 // Sample c sits (c + ½)/2 cells along: the plane's height there.
                 let plane = 0.01 + 0.2 * (f64::from(c) + 0.5) / 16.0;
                 let z = z0 + f64::from(hf.data[(r * 16 + c) as usize]) * elevation;
-                assert!((z - plane).abs() < 1e-6, "sample ({r}, {c}): {z} vs {plane}");
+                assert!(
+                    (z - plane).abs() < 1e-6,
+                    "sample ({r}, {c}): {z} vs {plane}"
+                );
             }
         }
         assert_eq!(hf.data.iter().copied().fold(0.0, f32::max), 1.0);

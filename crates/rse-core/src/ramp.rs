@@ -99,6 +99,12 @@ impl Ramp {
         }
     }
 
+    /// Cells it covers.
+    pub fn cell_count(&self) -> u64 {
+        let [x0, y0, x1, y1] = self.cells;
+        u64::from(x1 - x0 + 1) * u64::from(y1 - y0 + 1)
+    }
+
     /// Whether cell `(x, y)` lies under it.
     pub fn covers(&self, x: u32, y: u32) -> bool {
         let [x0, y0, x1, y1] = self.cells;

@@ -3,7 +3,7 @@
 
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{Rng as _, SeedableRng as _};
-use rse_core::Terrain;
+use rse_core::{Ramp, Terrain};
 
 /// A body's shape, metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,6 +98,17 @@ pub fn drop_set(terrain: &Terrain, count: usize) -> Vec<Body> {
             let x = uniform(margin, size[0] - margin);
             let y = uniform(margin, size[1] - margin);
             let rotation = [uniform(-0.5, 0.5), uniform(-0.5, 0.5), uniform(-3.1, 3.1)];
+            // A ball or a capsule dropped on a ramp rolls down it and on
+            // across the floor, as it should (nothing in rapier slows a
+            // roll): over a ramp, a box as wide stands in for it.
+            let shape = match shape {
+                Shape::Sphere(r) | Shape::Capsule { radius: r, .. }
+                    if over_ramp(terrain, x, y, shape.reach()) =>
+                {
+                    Shape::Box([r, r, 0.75 * r])
+                }
+                shape => shape,
+            };
             let reach = shape.reach();
             let highest = highest_within(terrain, x, y, reach);
             let drop_over = 0.05 + reach;
@@ -111,15 +122,59 @@ pub fn drop_set(terrain: &Terrain, count: usize) -> Vec<Body> {
         .collect()
 }
 
-/// The highest top of the cells within `reach` of `(x, y)` (0: the ground).
-fn highest_within(terrain: &Terrain, x: f64, y: f64, reach: f64) -> f64 {
+/// The cells within `reach` of `(x, y)`, inclusive corners.
+fn cells_within(terrain: &Terrain, x: f64, y: f64, reach: f64) -> [u32; 4] {
     let grid = terrain.grid();
     let s = terrain.block_size();
     let cell = |v: f64, n: u32| ((v / s).floor().max(0.0) as u32).min(n - 1);
-    let (x0, x1) = (cell(x - reach, grid.nx), cell(x + reach, grid.nx));
-    let (y0, y1) = (cell(y - reach, grid.ny), cell(y + reach, grid.ny));
+    [
+        cell(x - reach, grid.nx),
+        cell(y - reach, grid.ny),
+        cell(x + reach, grid.nx),
+        cell(y + reach, grid.ny),
+    ]
+}
+
+/// Whether `ramp` lies under one of `cells` (inclusive corners).
+fn overlaps(ramp: &Ramp, [x0, y0, x1, y1]: [u32; 4]) -> bool {
+    let [rx0, ry0, rx1, ry1] = ramp.cells;
+    rx0 <= x1 && x0 <= rx1 && ry0 <= y1 && y0 <= ry1
+}
+
+/// Whether a ramp lies under a cell within `reach` of `(x, y)`.
+fn over_ramp(terrain: &Terrain, x: f64, y: f64, reach: f64) -> bool {
+    let cells = cells_within(terrain, x, y, reach);
+    terrain.ramps().iter().any(|r| overlaps(r, cells))
+}
+
+/// The highest top of the cells within `reach` of `(x, y)` (0: the
+/// ground), or of a ramp's plane over them.
+fn highest_within(terrain: &Terrain, x: f64, y: f64, reach: f64) -> f64 {
+    let near = cells_within(terrain, x, y, reach);
+    let [x0, y0, x1, y1] = near;
     // An empty cell without a slab has elevation 0: the ground.
-    (y0..=y1)
+    let cells = (y0..=y1)
         .flat_map(|cy| (x0..=x1).map(move |cx| terrain.elevation(cx, cy)))
-        .fold(0.0, f64::max)
+        .fold(0.0, f64::max);
+    // A plane is highest at a corner of the cells (its own top at most).
+    let corners = [x0, x1 + 1]
+        .into_iter()
+        .flat_map(|u| [y0, y1 + 1].map(move |v| (u, v)));
+    let ramps = terrain
+        .ramps()
+        .iter()
+        .filter(|r| r.rise > 0 && overlaps(r, near))
+        .map(|r| {
+            let [rx0, ry0, rx1, ry1] = r.cells;
+            let clamp = |c: u32, lo: u32, hi: u32| f64::from(c.clamp(lo, hi + 1));
+            corners
+                .clone()
+                .map(|(u, v)| r.fraction_at(clamp(u, rx0, rx1), clamp(v, ry0, ry1)))
+                .fold(0.0, f64::max)
+                * f64::from(r.rise)
+                * terrain.step_height()
+                + terrain.base()
+        })
+        .fold(0.0, f64::max);
+    cells.max(ramps)
 }

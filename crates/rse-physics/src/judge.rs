@@ -50,7 +50,8 @@ impl Moved {
 /// How far past the RSE's edge a body may roll or slide, metres.
 const EDGE_MARGIN: f64 = 0.5;
 /// The physics errors of the bodies at the end of the run; `moved` is how
-/// each moved in the last `window` seconds.
+/// each moved in the last `window` seconds; `planes` when the model has
+/// the ramps' planes (the mesh), not only their staircases (the boxes).
 pub(crate) fn judge(
     world: &PhysicsWorld,
     handles: &[(RigidBodyHandle, ColliderHandle)],
@@ -58,8 +59,9 @@ pub(crate) fn judge(
     window: f64,
     drops: &[Body],
     terrain: &Terrain,
+    planes: bool,
 ) -> Vec<PhysicsError> {
-    let solid = Solid::of(terrain);
+    let solid = Solid::of(terrain, planes);
     let grid = terrain.grid();
     let s = terrain.block_size();
     let size = [f64::from(grid.nx) * s, f64::from(grid.ny) * s];
@@ -68,8 +70,11 @@ pub(crate) fn judge(
         if cx < 0.0 || cy < 0.0 || cx >= f64::from(grid.nx) || cy >= f64::from(grid.ny) {
             return 0.0;
         }
-        // `base + h·step`: 0, the ground, for an empty cell without a slab.
-        terrain.elevation(cx as u32, cy as u32)
+        // `base + h·step`: 0, the ground, for an empty cell without a slab;
+        // a ramp's plane over it where the model has planes.
+        let cell = terrain.elevation(cx as u32, cy as u32);
+        let plane = planes.then(|| terrain.ramp_top_at(x / s, y / s)).flatten();
+        plane.map_or(cell, |z| z.max(cell))
     };
     let mut errors = Vec::new();
     for (i, ((&(handle, collider), drop), &moved)) in
@@ -129,19 +134,45 @@ pub(crate) fn judge(
 /// contact manifolds can lag behind (a sphere resting on a top was
 /// reported 21 mm deep).
 pub(crate) struct Solid {
-    parts: Vec<(Pose, Cuboid)>,
+    parts: Vec<(Pose, SharedShape)>,
 }
 
 impl Solid {
-    pub(crate) fn of(terrain: &Terrain) -> Self {
-        let cuboid = |c: Vector, h: Vector| (Pose::from_translation(c), Cuboid::new(h));
+    /// The solid of `terrain`'s box set and floor, and its ramps' wedges
+    /// when `planes` (a wedge is convex: its hull is exactly its solid).
+    pub(crate) fn of(terrain: &Terrain, planes: bool) -> Self {
+        let vector = |v: [f64; 3]| Vector::new(v[0] as f32, v[1] as f32, v[2] as f32);
+        let cuboid = |c: Vector, h: Vector| {
+            (
+                Pose::from_translation(c),
+                SharedShape::cuboid(h.x, h.y, h.z),
+            )
+        };
         let (centre, half) = floor(terrain);
         let mut parts = vec![cuboid(centre, half)];
-        parts.extend(terrain.boxes().iter().map(|b| {
-            let [c, h] =
-                [b.center, b.half_size].map(|v| Vector::new(v[0] as f32, v[1] as f32, v[2] as f32));
-            cuboid(c, h)
-        }));
+        parts.extend(
+            terrain
+                .boxes()
+                .iter()
+                .map(|b| cuboid(vector(b.center), vector(b.half_size))),
+        );
+        if planes {
+            let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
+            for ramp in terrain.ramps().iter().filter(|r| r.rise > 0) {
+                let [x0, y0, x1, y1] = ramp.cells.map(|c| f64::from(c) * s);
+                let (x1, y1) = (x1 + s, y1 + s);
+                let top = base + f64::from(ramp.rise) * step;
+                // The corners of its rectangle, on the ground and on its plane.
+                let mut points = Vec::with_capacity(8);
+                for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
+                    let z = base + (top - base) * ramp.fraction_at(x / s, y / s);
+                    points.extend([vector([x, y, 0.0]), vector([x, y, z])]);
+                }
+                if let Some(hull) = SharedShape::convex_hull(&points) {
+                    parts.push((Pose::IDENTITY, hull));
+                }
+            }
+        }
         Solid { parts }
     }
 
@@ -151,9 +182,9 @@ impl Solid {
         let near = body.compute_aabb();
         self.parts
             .iter()
-            .filter(|(pose, part)| part.aabb(pose).intersects(&near))
+            .filter(|(pose, part)| part.compute_aabb(pose).intersects(&near))
             .filter_map(|(pose, part)| {
-                rapier3d::parry::query::contact(pose, part, body.position(), body.shape(), 0.0)
+                rapier3d::parry::query::contact(pose, &**part, body.position(), body.shape(), 0.0)
                     .ok()
                     .flatten()
             })
@@ -172,7 +203,7 @@ mod tests {
     #[test]
     fn depth_is_how_far_a_body_is_inside_the_solid() {
         let solid = Solid {
-            parts: vec![(Pose::IDENTITY, Cuboid::new(Vector::new(1.0, 1.0, 0.5)))],
+            parts: vec![(Pose::IDENTITY, SharedShape::cuboid(1.0, 1.0, 0.5))],
         };
         let depth_at = |z: f32| {
             let mut world = PhysicsWorld::new();

@@ -134,7 +134,8 @@ impl<'a> Run<'a> {
             })
             .collect();
         let window = last_second as f64 / rate_hz;
-        let mut errors = judge(&world, &handles, &moved, window, drops, terrain);
+        let planes = model.kind() == crate::report::ColliderKind::Mesh;
+        let mut errors = judge(&world, &handles, &moved, window, drops, terrain, planes);
         for (i, drop) in drops.iter().enumerate() {
             if gain[i] > 0.0 {
                 errors.push(PhysicsError {

@@ -188,8 +188,7 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
         .flat_map(|y| (0..map.nx()).map(move |x| (x, y)))
         .filter(|&(x, y)| top(x, y) > 0)
         .collect();
-    let steps: u64 = solid.iter().map(|&(x, y)| u64::from(map.get(x, y))).sum();
-    let expected = LatticeVolume::of_solid(solid.len() as u64, steps);
+    let expected = terrain.lattice_volume();
     let measured = LatticeVolume::of(&levels, &mesh.triangles);
     if !measured.same_as(expected, units) {
         faults.push(FaultKind::VolumeDiffers {
@@ -197,7 +196,7 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
             expected: expected.cubic_metres(units),
         });
     }
-    if let Some(fault) = bounds_fault(&levels, &solid, &top, units) {
+    if let Some(fault) = bounds_fault(&levels, &solid, &top, terrain.ramps(), units) {
         faults.push(fault);
         return faults; // tops beyond the grid would be looked up off the map
     }
@@ -231,12 +230,13 @@ pub fn mesh_faults_against(mesh: &ObjMesh, terrain: &Terrain) -> Vec<FaultKind> 
 }
 
 /// The fault of a mesh (`levels`, one per vertex) whose bounding box is not
-/// that of the `solid` cells (their tops by `top`), decided in lattice
-/// units; `None` when they agree.
+/// that of the `solid` cells (their tops by `top`) and the wedges of
+/// `ramps`, decided in lattice units; `None` when they agree.
 fn bounds_fault(
     levels: &[[u32; 3]],
     solid: &[(u32, u32)],
     top: &dyn Fn(u32, u32) -> u32,
+    ramps: &[rse_core::Ramp],
     units: MeshUnits,
 ) -> Option<FaultKind> {
     let grow = |acc: Option<[[u32; 3]; 2]>, lo: [u32; 3], hi: [u32; 3]| {
@@ -248,8 +248,14 @@ fn bounds_fault(
             ],
         })
     };
-    let want = solid.iter().fold(None, |acc, &(x, y)| {
+    let cells = solid.iter().fold(None, |acc, &(x, y)| {
         grow(acc, [x, y, 0], [x + 1, y + 1, top(x, y)])
+    });
+    let want = ramps.iter().filter(|r| r.rise > 0).fold(cells, |acc, r| {
+        let [x0, y0, x1, y1] = r.cells;
+        // A rise fits a cell's height (validated as one).
+        let top = units.top_level(r.rise as u16);
+        grow(acc, [x0, y0, 0], [x1 + 1, y1 + 1, top])
     });
     let got = levels.iter().fold(None, |acc, &p| grow(acc, p, p));
     if got == want {

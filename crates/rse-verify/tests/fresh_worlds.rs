@@ -1,6 +1,6 @@
 //! A world `batch` has just written always passes `check`: random extreme
 //! schemes inside every documented limit (slender walls, millimetre steps
-//! and blocks, tall bases, every obstacle type (stairs and pyramids too), every target, both mesh
+//! and blocks, tall bases, every obstacle type (stairs, pyramids and ramps too), every target, both mesh
 //! modes), seeded so that a failure comes back the same on any machine.
 
 use proptest::prelude::*;
@@ -30,6 +30,8 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
                 "stairs",
                 "pyramid",
                 "pyramid_pit",
+                "ramp",
+                "crossing_ramps",
             ]),
             prop_oneof![1u32..=4, 1u32..=65_535, Just(9_999)],
             prop::sample::select(vec![0.0, 1.0, 30.0, 45.0, 89.0, 90.0]),
@@ -55,7 +57,7 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
             let row = match kind {
                 "random" | "gaussian" => format!("{kind},{h},,,,,,"),
                 "peak" | "pit" => format!("{kind},{h},{angle},{x1},{y1},,,"),
-                "stairs" => format!("{kind},{h},,{x1},{y1},{x2},{y2},"),
+                "stairs" | "ramp" | "crossing_ramps" => format!("{kind},{h},,{x1},{y1},{x2},{y2},"),
                 "pyramid" | "pyramid_pit" => format!("{kind},{h},,{x1},{y1},{x2},{y2},{tread}"),
                 _ => format!("{kind},{h},{angle},{x1},{y1},{x2},{y2},"),
             };

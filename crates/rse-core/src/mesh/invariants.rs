@@ -470,6 +470,23 @@ impl LatticeVolume {
         }
     }
 
+    /// The volume of a wedge over `cells` cells rising `rise` steps from
+    /// its foot (on the slab when `slab`): a ramp's shell.
+    pub fn of_wedge(cells: u64, slab: bool, rise: u32) -> Self {
+        LatticeVolume {
+            slab: 6 * i128::from(cells) * i128::from(slab),
+            steps: 3 * i128::from(cells) * i128::from(rise),
+        }
+    }
+
+    /// The sum of two volumes (a terrain's blocks and its ramps' wedges).
+    pub fn plus(self, other: LatticeVolume) -> Self {
+        LatticeVolume {
+            slab: self.slab + other.slab,
+            steps: self.steps + other.steps,
+        }
+    }
+
     /// Whether the two volumes are the same number of cubic metres for
     /// `units`, exactly: `base·Δslab + step·Δsteps = 0` with `base` and
     /// `step` as whole multiples of their binary unit, reduced by their

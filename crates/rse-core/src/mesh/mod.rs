@@ -209,6 +209,22 @@ impl Terrain {
         mesh
     }
 
+    /// The volume its single mesh encloses, exactly: the cells' solid and
+    /// each ramp's wedge (shells of their own, each counted whole).
+    pub fn lattice_volume(&self) -> LatticeVolume {
+        let map = self.heightmap();
+        let units = self.mesh_units();
+        let (cells, steps) = map.cells().iter().fold((0u64, 0u64), |(c, s), &h| {
+            let solid = units.top_level(h) > 0;
+            (c + u64::from(solid), s + u64::from(h))
+        });
+        self.ramps()
+            .iter()
+            .filter(|r| r.rise > 0)
+            .map(|r| LatticeVolume::of_wedge(r.cell_count(), units.base > 0.0, r.rise))
+            .fold(LatticeVolume::of_solid(cells, steps), LatticeVolume::plus)
+    }
+
     /// The block model of this terrain: boxes whose union is the solid.
     pub fn boxes(&self) -> Vec<Block> {
         boxes(self.heightmap(), self.mesh_units())
