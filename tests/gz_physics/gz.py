@@ -74,14 +74,27 @@ class Drop:
         return " ".join([self.shape, *map(repr, [*size, *self.start, self.flat_z])])
 
 
-def drops(elevation: np.ndarray, block_size: float, count: int, seed: int) -> list[Drop]:
+def drops(
+    elevation: np.ndarray, block_size: float, count: int, seed: int, ramps: list[dict] | None = None
+) -> list[Drop]:
     """`count` spheres and boxes (in turn) over distinct seeded cells, each
     5 cm above the top it must land on; the same bodies 5 cm above the
     ground for the flat control. Both fit inside a cell (radius 3 cm, half
-    size 2 cm, cells of 5 cm half size), so they land on one top."""
+    size 2 cm, cells of 5 cm half size), so they land on one top. Never
+    over `ramps` (`Terrain.ramps`), and not beside one, where a body
+    rolls or slides down a plane instead of resting (tested apart)."""
     ny, nx = elevation.shape
     rng = np.random.default_rng(seed)
-    cells = rng.choice(nx * ny, size=min(count, nx * ny), replace=False)
+    allowed = np.ones((ny, nx), dtype=bool)
+    for ramp in ramps or []:
+        x0, y0, x1, y1 = ramp["cells"]
+        allowed[max(y0 - 1, 0) : y1 + 2, max(x0 - 1, 0) : x1 + 2] = False
+    if allowed.all():
+        # The draws of every terrain without ramps, as they always were.
+        cells = rng.choice(nx * ny, size=min(count, nx * ny), replace=False)
+    else:
+        free = np.flatnonzero(allowed)
+        cells = rng.choice(free, size=min(count, free.size), replace=False)
     out = []
     for i, c in enumerate(cells):
         y, x = divmod(int(c), nx)

@@ -71,3 +71,23 @@ def units(scheme: Path) -> dict:
         if line.startswith("#") and key.strip() in found:
             found[key.strip()] = float(value)
     return found
+
+
+def wedges_volume(terrain) -> float:
+    """The volume of `terrain`'s ramps' wedges (`rse.Terrain`): shells of
+    their own in the single mesh, each from the ground to its plane."""
+    s, step, base = terrain.block_size, terrain.step_height, terrain.base
+    total = 0.0
+    for ramp in terrain.ramps:
+        if ramp["rise"] > 0:
+            x0, y0, x1, y1 = ramp["cells"]
+            total += (x1 - x0 + 1) * (y1 - y0 + 1) * s * s * (base + ramp["rise"] * step / 2)
+    return total
+
+
+def ramps_top(terrain) -> float:
+    """The highest top of `terrain`'s ramps (0 without any)."""
+    return max(
+        (terrain.base + r["rise"] * terrain.step_height for r in terrain.ramps if r["rise"] > 0),
+        default=0.0,
+    )

@@ -89,7 +89,7 @@ def rest_in_pybullet(urdf: Path, bodies: list[gz.Drop]) -> dict:
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
 def test_mujoco_bodies_rest_on_the_tops(scheme: Path, tmp_path: Path) -> None:
     terrain, folder = world(scheme, tmp_path, "mujoco")
-    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7, ramps=terrain.ramps)
     assert gz.errors(rest_in_mujoco(folder / "mujoco" / "rse.xml", bodies), bodies) == []
 
 
@@ -98,7 +98,7 @@ def test_mujoco_bodies_rest_on_the_tops(scheme: Path, tmp_path: Path) -> None:
 def test_pybullet_bodies_rest_on_the_tops(scheme: Path, mesh: str, tmp_path: Path) -> None:
     """The URDF's box set (the default) and its concave mesh alike."""
     terrain, folder = world(scheme, tmp_path, "urdf", mesh)
-    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7, ramps=terrain.ramps)
     assert gz.errors(rest_in_pybullet(folder / "urdf" / "rse.urdf", bodies), bodies) == []
 
 

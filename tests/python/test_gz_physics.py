@@ -42,7 +42,7 @@ def world(scheme: Path, out: Path, mesh: str) -> tuple[rse.Terrain, Path]:
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
 def test_bodies_rest_on_the_tops(harness: Path, scheme: Path, engine: str, mesh: str, tmp_path: Path) -> None:
     terrain, model = world(scheme, tmp_path, mesh)
-    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7)
+    bodies = gz.drops(terrain.elevation, terrain.block_size, 20, seed=7, ramps=terrain.ramps)
     report = gz.run(harness, engine, model, bodies, seconds=5.0)
     assert len(report["bodies"]) == len(bodies)
     assert gz.errors(report, bodies) == []

@@ -44,6 +44,20 @@ def away_from_steps(h: np.ndarray, x: float, y: float, s: float, r: float) -> bo
     return bool((block == block[0, 0]).all())
 
 
+def away_from_ramp_edges(ramps: list[dict], x: float, y: float, s: float, r: float) -> bool:
+    """Whether no edge of a ramp's rectangle lies within `r` of (x, y)
+    along x or y: where a plane meets the cells around it, the field
+    interpolates between the two."""
+    for ramp in ramps:
+        x0, y0, x1, y1 = ramp["cells"]
+        lo, hi = (x0 * s, y0 * s), ((x1 + 1) * s, (y1 + 1) * s)
+        near_x = lo[1] - r <= y <= hi[1] + r and min(abs(x - lo[0]), abs(x - hi[0])) <= r
+        near_y = lo[0] - r <= x <= hi[0] + r and min(abs(y - lo[1]), abs(y - hi[1])) <= r
+        if near_x or near_y:
+            return False
+    return True
+
+
 @pytest.mark.parametrize("scheme", SAMPLES, ids=lambda s: s.stem)
 def test_the_file_mujoco_loads_obeys_the_bound_of_the_docs(scheme: Path, tmp_path: Path) -> None:
     """`rse-gen hfield` → MuJoCo: exact at every cell centre, and at random
@@ -55,15 +69,19 @@ def test_the_file_mujoco_loads_obeys_the_bound_of_the_docs(scheme: Path, tmp_pat
     assert (model.hfield_nrow[0], model.hfield_ncol[0]) == (info["nrow"], info["ncol"])
     h = heights(scheme, index=1)
     terrain = rse.Scheme.load(scheme).generate(index=1)
-    s, top = terrain.block_size, terrain.elevation
+    s = terrain.block_size
+    # The surface: a cell's top, or a ramp's plane over it (a plane's
+    # samples interpolate to the plane itself).
     for y in range(h.shape[0]):
         for x in range(h.shape[1]):
-            assert ray_down(model, data, (x + 0.5) * s, (y + 0.5) * s) == pytest.approx(top[y, x], abs=1e-5)
+            centre = ((x + 0.5) * s, (y + 0.5) * s)
+            assert ray_down(model, data, *centre) == pytest.approx(terrain.height_at(*centre), abs=1e-5)
     rng = np.random.default_rng(0)
     checked = 0
+    margin = s / k / 2 + 1e-6
     for x, y in rng.uniform(0, 1, (3000, 2)) * [h.shape[1] * s, h.shape[0] * s]:
-        if away_from_steps(h, x, y, s, s / k / 2 + 1e-6):
-            assert ray_down(model, data, x, y) == pytest.approx(top[int(y // s), int(x // s)], abs=1e-5)
+        if away_from_steps(h, x, y, s, margin) and away_from_ramp_edges(terrain.ramps, x, y, s, margin):
+            assert ray_down(model, data, x, y) == pytest.approx(terrain.height_at(x, y), abs=1e-5)
             checked += 1
     assert checked > 300
 

@@ -9,19 +9,24 @@ import pybullet as p
 import pygltflib
 import pytest
 import trimesh
-from conftest import SCHEMES, heights, run, units
+import rse
+from conftest import SCHEMES, heights, ramps_top, run, units, wedges_volume
 
 SAMPLES = sorted(SCHEMES.glob("*.csv"))
 
 
 def expected_volume(scheme: Path, base: float | None = None) -> float:
+    """The cells' solid and the ramps' wedges of world 0 (the wedges only
+    when the scheme's own base is asked for)."""
     u = units(scheme)
+    wedges = wedges_volume(rse.Scheme.load(scheme).generate(index=0)) if base is None else 0.0
     base = u["base"] if base is None else base
-    return float(np.sum(base + heights(scheme) * u["step_height"]) * u["block_size"] ** 2)
+    return float(np.sum(base + heights(scheme) * u["step_height"]) * u["block_size"] ** 2) + wedges
 
 
 def top(scheme: Path) -> float:
-    return float(heights(scheme).max() * units(scheme)["step_height"])
+    cells = float(heights(scheme).max() * units(scheme)["step_height"])
+    return max(cells, ramps_top(rse.Scheme.load(scheme).generate(index=0)))
 
 
 def load_obj(path: Path) -> trimesh.Trimesh:

@@ -15,7 +15,7 @@ import pytest
 import rse
 import rse._rse as _rse
 import trimesh
-from conftest import REPO, SCHEMES, heights, run
+from conftest import REPO, SCHEMES, heights, run, wedges_volume
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -84,7 +84,8 @@ def test_mesh_arrays_are_a_closed_volume_in_trimesh(scheme: Path) -> None:
     vertices, faces = terrain.mesh()
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     assert mesh.is_watertight and mesh.is_winding_consistent and mesh.is_volume
-    assert mesh.volume == pytest.approx(np.sum(terrain.elevation) * terrain.block_size**2, rel=1e-5)
+    cells = np.sum(terrain.elevation) * terrain.block_size**2
+    assert mesh.volume == pytest.approx(cells + wedges_volume(terrain), rel=1e-5)
 
 
 def test_save_writes_each_format(tmp_path: Path) -> None:

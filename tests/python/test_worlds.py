@@ -20,7 +20,7 @@ from pxr import Usd, UsdGeom, UsdPhysics
 
 ALL_TARGETS = ",".join(rse.TARGETS)
 MODES = ["single", "blocks"]
-WORLD_SCHEMES = ["six_obstacles", "wall", "paper_pallets", "gaussian", "nist_diagonal_hill"]
+WORLD_SCHEMES = ["six_obstacles", "wall", "paper_pallets", "gaussian", "nist_diagonal_hill", "mix_ramps"]
 AMOUNT = 2
 
 
@@ -57,6 +57,21 @@ def worlds(batches: dict[tuple[str, str], Path], mode: str | None = None) -> lis
 
 def manifest(world: Path) -> dict:
     return json.loads((world / "rse.json").read_text())
+
+
+def ramp_tops(world: Path) -> list[float]:
+    """The top of each ramp of a world of full difficulty, from its
+    manifest (crossing ramps are two, of one height), metres."""
+    m = manifest(world)
+    base, step = m["globals"]["base"], m["globals"]["step_height"]
+    tops = []
+    for d in m["drawn"]:
+        if d["kind"] in ("ramp", "crossing_ramps") and d["height"] > 0:
+            (x1, y1), (x2, y2) = d["p1"], d["p2"]
+            along_y = abs(y2 - y1) > abs(x2 - x1)
+            pair = d["kind"] == "crossing_ramps" and (x1 != x2 if along_y else y1 != y2)
+            tops += [base + d["height"] * step] * (2 if pair else 1)
+    return tops
 
 
 GAZEBOS = {"gazebo": 1.9, "gazebo-classic": 1.7}
@@ -251,7 +266,11 @@ def test_mujoco_loads_every_world_with_one_box_geom_per_box(batches, mode: str) 
         assert boxes == expected
         solid = (np.loadtxt(world / "heightmap.csv", delimiter=",", ndmin=2) > 0).any()
         assert (boxes > 0) == solid
-        assert model.nmesh == (1 if mode == "single" and solid else 0)
+        # A convex mesh geom for each ramp's wedge, beside the drawn mesh.
+        ramps = [i for i in range(model.ngeom) if model.geom(i).name.startswith("rse_ramp_")]
+        assert all(model.geom(i).type[0] == mujoco.mjtGeom.mjGEOM_MESH for i in ramps)
+        assert len(ramps) == len(ramp_tops(world))
+        assert model.nmesh == (1 if mode == "single" and solid else 0) + len(ramps)
 
 
 @pytest.mark.parametrize("mode", MODES)
@@ -329,7 +348,7 @@ def test_usd_stage_opens_with_valid_meshes_and_collision(batches, mode: str) -> 
         )
         assert ok, why
         step = manifest(world)["globals"]["step_height"]
-        assert points[:, 2].max() == pytest.approx(h.max() * step, abs=1e-6)
+        assert points[:, 2].max() == pytest.approx(max([h.max() * step, *ramp_tops(world)]), abs=1e-6)
         assert UsdPhysics.MeshCollisionAPI(terrain).GetApproximationAttr().Get() == "none"
 
 

@@ -7,7 +7,9 @@ impl Terrain {
     /// The top under the point `(x, y)` (metres, the terrain's frame: cell
     /// `(i, j)` covers `[i·s, (i+1)·s] × [j·s, (j+1)·s]`), or `None` off
     /// the terrain. On an edge or corner shared by cells, the highest of
-    /// them: where a foot set there rests.
+    /// them: where a foot set there rests. Over a ramp, its plane where it
+    /// is above the cells (the staircase it leaves in the heightmap lies
+    /// under it).
     ///
     /// ```
     /// let scheme = rse_core::Scheme::from_csv("# size: 5x5\ntype,height,angle,x1,y1\npeak,2,45,2,2\n", None)?;
@@ -38,7 +40,16 @@ impl Terrain {
         let top = (y_lo..=y_hi)
             .flat_map(|j| (x_lo..=x_hi).map(move |i| map.get(i, j)))
             .max()?;
-        Some(self.base() + f64::from(top) * self.step_height())
+        let cells = self.base() + f64::from(top) * self.step_height();
+        let touched = |r: &&crate::Ramp| {
+            let [x0, y0, x1, y1] = r.cells;
+            x0 <= x_hi && x_lo <= x1 && y0 <= y_hi && y_lo <= y1
+        };
+        let planes =
+            self.ramps().iter().filter(touched).map(|r| {
+                self.base() + f64::from(r.rise) * self.step_height() * r.fraction_at(u, v)
+            });
+        Some(planes.fold(cells, f64::max))
     }
 }
 
@@ -63,5 +74,22 @@ mod tests {
         assert_eq!(top(0.4, 0.3), Some(0.05), "far corner");
         assert_eq!(top(0.4001, 0.1), None);
         assert_eq!(top(0.1, f64::NAN), None);
+    }
+
+    #[test]
+    fn over_a_ramp_a_point_reads_its_plane() {
+        // 4 cells climbing 2 steps of 0.1 m along x from x = 0.1.
+        let scheme = Scheme::from_csv(
+            "# size: 6x2\ntype,height,angle,x1,y1,x2,y2\nramp,2,,1,0,4,1\n",
+            None,
+        )
+        .unwrap();
+        let t = generate(&scheme, 0, 0);
+        let top = |x, y| t.height_at(x, y).map(|z| (z * 1e9).round() / 1e9);
+        assert_eq!(top(0.1, 0.1), Some(0.0), "its foot");
+        assert_eq!(top(0.3, 0.05), Some(0.1), "halfway");
+        assert_eq!(top(0.45, 0.15), Some(0.175));
+        assert_eq!(top(0.5, 0.15), Some(0.2), "its top edge, beside the ground");
+        assert_eq!(top(0.55, 0.15), Some(0.0), "past it");
     }
 }

@@ -389,6 +389,16 @@ impl Terrain {
         py.import("json")?.call_method1("loads", (json,))
     }
 
+    /// The ramps laid on this world (crossing ramps as two), one dict each:
+    /// `cells` (`[x0, y0, x1, y1]`, inclusive), `along_y`, `ascending`
+    /// (climbing toward larger coordinates), `rise` (steps, after the
+    /// difficulty).
+    #[getter]
+    fn ramps<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let json = serde_json::to_string(self.inner.ramps()).expect("ramps serialise");
+        py.import("json")?.call_method1("loads", (json,))
+    }
+
     /// The closed terrain mesh (docs/meshes.md): `(vertices, faces)`, float32
     /// `(n, 3)` metres and uint32 `(m, 3)`, counter-clockwise from outside.
     fn mesh<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {

@@ -41,6 +41,11 @@ pub(crate) struct WorldContext {
     /// as every target's render shares it (serializing the boxes again for
     /// each target was a tenth of a batch's time).
     pub boxes: minijinja::Value,
+    /// Each ramp's wedge as its corners, `[x, y, z]` in metres (the ground's
+    /// four, then those on its plane where they are above the ground): a
+    /// convex solid, so `MuJoCo` collides with it exactly as a mesh geom
+    /// (the box set holds only the staircase under it).
+    pub ramps: Vec<Vec<[f64; 3]>>,
     /// What `MuJoCo` collides with: `boxes` or `hfield`.
     pub collider: &'static str,
     /// The height field, when `collider` is `hfield`.
@@ -95,6 +100,7 @@ impl WorldContext {
                     .map(|b| BoxValue::value(b, tidy))
                     .collect::<Vec<_>>(),
             ),
+            ramps: wedge_corners(terrain),
             collider: "boxes",
             hfield: None,
             scheme: *terrain.globals(),
@@ -115,6 +121,35 @@ impl WorldContext {
             ..self
         }
     }
+}
+
+/// The corners of each of `terrain`'s ramps that rises ([`WorldContext::ramps`]).
+fn wedge_corners(terrain: &Terrain) -> Vec<Vec<[f64; 3]>> {
+    let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
+    terrain
+        .ramps()
+        .iter()
+        .filter(|r| r.rise > 0)
+        .map(|r| {
+            let [x0, y0, x1, y1] = r.cells.map(f64::from);
+            let corners = [
+                (x0, y0),
+                (x1 + 1.0, y0),
+                (x1 + 1.0, y1 + 1.0),
+                (x0, y1 + 1.0),
+            ];
+            let ground = corners.map(|(u, v)| [u * s, v * s, 0.0]);
+            let plane = corners.into_iter().filter_map(|(u, v)| {
+                let z = base + f64::from(r.rise) * step * r.fraction_at(u, v);
+                (z > 0.0).then_some([u * s, v * s, z])
+            });
+            ground
+                .into_iter()
+                .chain(plane)
+                .map(|p| p.map(tidy))
+                .collect()
+        })
+        .collect()
 }
 
 /// `v` rounded to the nanometre, so files read `0.15`, not
