@@ -267,3 +267,13 @@ def test_a_drag_draws_a_flight_of_stairs_corner_to_corner_and_the_map_outlines_i
         cp = width // 20
         top, left = (16 - 1 - 6) * cp, 2 * cp  # the rectangle's top-left corner, pixels (north up)
         assert alpha[top, left + 3 * cp] > 0 and alpha[top + 2 * cp, left] > 0, "the outline is drawn"
+        # A ramp on the same rectangle: its staircase under the plane, the
+        # tread column gone again, the rectangle still outlined.
+        edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("ramp"))
+        assert page.get_by_label("tread of obstacle 2", exact=True).count() == 0, "a ramp has no tread"
+        page.wait_for_function("window.rseEditor.preview.heights[4 * 20 + 9] === 3")
+        heights = heights_on_page(page)
+        # 8 cells rising 4 steps: floor(i·4/8), every row alike.
+        assert (heights[3:7, 2:10] == [0, 0, 1, 1, 2, 2, 3, 3]).all()
+        assert page.locator("#error").inner_text() == ""
+        page.screenshot(path=str(tmp_path / "ramp.png"))

@@ -112,7 +112,7 @@ impl Obstacle {
     }
 
     /// The type: `random`, `gaussian`, `peak`, `pit`, `wall`, `long_pit`,
-    /// `stairs`, `pyramid` or `pyramid_pit`.
+    /// `stairs`, `pyramid`, `pyramid_pit`, `ramp` or `crossing_ramps`.
     #[getter]
     fn r#type(&self) -> &'static str {
         self.inner.kind().name()

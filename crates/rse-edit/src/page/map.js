@@ -3,7 +3,7 @@
 // on), an overlay with every obstacle's points, walls and random ranges, a
 // legend, a readout of the cell under the pointer, and drawing: click to
 // place the selected peak or pit, drag to draw the selected wall, long pit,
-// stairs or pyramid (corner to corner), drag a point or a range's
+// stairs, pyramid or ramp (corner to corner), drag a point or a range's
 // rectangle to move it; another obstacle is
 // picked by its own point or with Shift, and a line under the map says
 // what a click will do. The keyboard does the same with the arrow keys and
@@ -13,9 +13,12 @@
 import { FRAME_RGB, isFrame, legendHeights, palette } from "./colours.js";
 
 // Which ends each type has on the map: a point, or a point and a second end.
-const ENDS = { peak: [1], pit: [1], wall: [1, 2], long_pit: [1, 2], stairs: [1, 2], pyramid: [1, 2], pyramid_pit: [1, 2] };
+const ENDS = {
+  peak: [1], pit: [1], wall: [1, 2], long_pit: [1, 2], stairs: [1, 2], pyramid: [1, 2], pyramid_pit: [1, 2],
+  ramp: [1, 2], crossing_ramps: [1, 2],
+};
 // The kinds whose two ends are the corners of a rectangle of cells.
-const BOXES = new Set(["stairs", "pyramid", "pyramid_pit"]);
+const BOXES = new Set(["stairs", "pyramid", "pyramid_pit", "ramp", "crossing_ramps"]);
 
 /** A row's end `k` as cell ranges `{x: [lo, hi], y: [lo, hi]}`, or null
  * when its fields are not all whole numbers. */
@@ -135,7 +138,8 @@ export class TopView {
         g.strokeRect(x0 * cp, (ny - 1 - y1) * cp, (x1 - x0 + 1) * cp, (y1 - y0 + 1) * cp);
       }
       if (ends.length === 2 && ends[0] && ends[1] && row.type !== "pyramid" && row.type !== "pyramid_pit") {
-        // A wall's or long pit's line; a flight's climb, first corner to second.
+        // A wall's or long pit's line; a flight's or a ramp's climb, first
+        // corner to second.
         g.beginPath();
         g.moveTo(px((ends[0].x[0] + ends[0].x[1]) / 2), py((ends[0].y[0] + ends[0].y[1]) / 2));
         g.lineTo(px((ends[1].x[0] + ends[1].x[1]) / 2), py((ends[1].y[0] + ends[1].y[1]) / 2));
@@ -223,7 +227,7 @@ export class TopView {
     }
     // Nothing to place: a click picks what is there, as Shift would.
     const e = first(others, true);
-    return e ? picked(e) : { act: "none", text: "select a peak, pit, wall, long pit, stairs or pyramid in the table to place it" };
+    return e ? picked(e) : { act: "none", text: "select a peak, pit, wall, long pit, stairs, pyramid or ramp in the table to place it" };
   }
 
   /** Says under the map (and by the pointer's shape) what a click or

@@ -75,9 +75,11 @@ impl WorldContext {
     pub(crate) fn new(world: String, terrain: &Terrain, mesh: MeshMode, boxes: &[Block]) -> Self {
         let s = terrain.block_size();
         let grid = terrain.grid();
+        let ramps = wedge_corners(terrain);
         let top = boxes
             .iter()
             .map(|b| 2.0 * b.half_size[2])
+            .chain(ramps.iter().flatten().map(|p| p[2]))
             .fold(0.0, f64::max);
         let extent = [f64::from(grid.nx) * s, f64::from(grid.ny) * s, top].map(tidy);
         WorldContext {
@@ -100,7 +102,7 @@ impl WorldContext {
                     .map(|b| BoxValue::value(b, tidy))
                     .collect::<Vec<_>>(),
             ),
-            ramps: wedge_corners(terrain),
+            ramps,
             collider: "boxes",
             hfield: None,
             scheme: *terrain.globals(),
