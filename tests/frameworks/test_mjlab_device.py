@@ -311,3 +311,36 @@ def test_the_reach_holds_every_collider_in_any_pose_of_the_legs() -> None:
         assert farthest <= bound <= 1.5 * farthest, (farthest, bound)
     finally:
         env.close()
+
+
+def test_the_devices_tops_read_a_ramps_plane_as_the_host_does() -> None:
+    """Over a ramp a cell's samples lie on its plane: the device's tops
+    (each cell's own samples, extended to the point) read the plane where
+    the host's ``heights_at`` does, not the staircase under it."""
+    from pathlib import Path
+
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = 2
+    ramps = rse.Scheme.load(Path(__file__).resolve().parents[2] / "schemes" / "mix_ramps.csv")
+    use_env_terrains(cfg, ramps, seed=1)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        tops = event_of(env, "rse_terrain").exact_tops()
+        rng = np.random.default_rng(0)
+        points = []
+        for e in range(2):
+            terrain = tops.envs.terrain(e)
+            s = terrain.block_size
+            here = []
+            for ramp in terrain.ramps * 20:
+                x0, y0, x1, y1 = ramp["cells"]
+                here.append(rng.uniform([x0 * s, y0 * s], [(x1 + 1) * s, (y1 + 1) * s]))
+            points.append(here[:100])
+        xy = np.array(points)
+        host = tops.envs.heights_at(np.arange(2), xy)
+        staircase = np.array([[tops.envs.terrain(e).elevation[int(y // s), int(x // s)] for x, y in xy[e]] for e in range(2)])
+        assert (host - staircase).max() > 0.02, "the plane stands above the staircase somewhere"
+        device = tops.device_tops(torch.from_numpy(xy)).numpy()
+        np.testing.assert_allclose(device, host, atol=1e-5)
+    finally:
+        env.close()

@@ -25,14 +25,7 @@ from rse.mjlab import contact_sheet, env_terrains, terrain_difficulty, use_env_t
 REPO = Path(__file__).resolve().parents[2]
 STAIRS, WALLS = REPO / "schemes" / "mix_stairs.csv", REPO / "schemes" / "mix_walls.csv"
 FLIGHTS, ROUGH = REPO / "schemes" / "mix_flights.csv", REPO / "schemes" / "mix_rough.csv"
-SLOPES = """# Gentle hills of 1 cm steps: slopes, beside 5 cm stairs in one mix.
-# size: 80x80
-# block_size: 0.1
-# step_height: 0.01
-type,height,angle,x1,y1,x2,y2
-peak,10..25,8..15,20..60,20..60,,
-wall,8..15,10..20,0,10..70,79,10..70
-"""
+RAMPS, NIST = REPO / "schemes" / "mix_ramps.csv", REPO / "schemes" / "nist_flat.csv"
 
 
 def test_each_env_draws_its_scheme_by_proportion_and_the_curriculum_is_logged_per_scheme() -> None:
@@ -58,24 +51,23 @@ def test_each_env_draws_its_scheme_by_proportion_and_the_curriculum_is_logged_pe
 
 
 def test_a_mix_from_trains_command_line_runs_logs_per_scheme_and_records_every_scheme(tmp_path) -> None:
-    """The usual mix — straight and pyramid stairs of 5 cm steps, rough
-    ground, and slopes of 1 cm steps (another step height in one mix) —
-    trains from ``train``'s command line; the run records every scheme."""
-    slopes = tmp_path / "slopes.csv"
-    slopes.write_text(SLOPES)
-    mix = ((FLIGHTS, 2.0), (ROUGH, 1.0), (slopes, 1.0))
+    """The usual mix — straight and pyramid stairs of 5 cm steps, ramps
+    (inclined planes), rough ground, and a NIST stepfield of 10 cm steps
+    on framed pallets (another step height and grid in one mix) — trains
+    from ``train``'s command line; the run records every scheme."""
+    mix = ((FLIGHTS, 2.0), (RAMPS, 1.0), (ROUGH, 1.0), (NIST, 1.0))
     train = Path(sys.executable).parent / "train"
     done = subprocess.run(
         [str(train), "Rse-Velocity-Rough-Unitree-Go1", "--env.scene.num-envs", "6", "--env.episode-length-s", "0.1",
          # mjlab's tyro reads collections in Python's syntax.
-         "--env.scene.terrain.schemes", "{" + ", ".join(f'"{p}": {w}' for p, w in mix) + "}", "--env.scene.terrain.seed", "4",
+         "--env.scene.terrain.schemes", "{" + ", ".join(f'"{p}": {w}' for p, w in mix) + "}", "--env.scene.terrain.seed", "2",
          "--agent.max-iterations", "1", "--agent.num-steps-per-env", "12", "--agent.logger", "tensorboard"],
         cwd=tmp_path, capture_output=True, text=True, timeout=1200,
         env={**os.environ, "CUDA_VISIBLE_DEVICES": ""},
     )
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
-    assert list(rse.scheme_mix([2, 1, 1], 6, seed=4)) == [1, 2, 2, 0, 0, 2], "every scheme among the 6 envs"
-    for name in ("mix_flights", "mix_rough", "slopes"):
+    assert list(rse.scheme_mix([2, 1, 1, 1], 6, seed=2)) == [3, 2, 2, 0, 0, 1], "every scheme among the 6 envs"
+    for name in ("mix_flights", "mix_ramps", "mix_rough", "nist_flat"):
         assert f"Curriculum/rse_terrain_difficulty/{name}" in done.stdout, done.stdout[-3000:]
     params = next(tmp_path.glob("logs/rsl_rl/rse_go1_velocity/*/params"))
     for path, _ in mix:
@@ -84,7 +76,7 @@ def test_a_mix_from_trains_command_line_runs_logs_per_scheme_and_records_every_s
     assert record["schemes"] == {
         p.stem: {"file": str(p), "sha256": hashlib.sha256(p.read_bytes()).hexdigest(), "proportion": w} for p, w in mix
     }
-    assert record["seed"] == 4 and not (params / "rse_scheme.csv").exists()
+    assert record["seed"] == 2 and not (params / "rse_scheme.csv").exists()
     # Evaluated on the same mix, found in the run.
     checkpoint = next(params.parent.glob("model_*.pt"))
     done = subprocess.run(

@@ -515,7 +515,7 @@ def test_add_and_copy_move_the_focus_to_the_new_rows_type(editor, page: Page) ->
     edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
     assert page.evaluate(focused) == "type of obstacle 2"
     page.keyboard.press("End")  # the last type of the list, by keyboard
-    page.wait_for_function("document.activeElement.value === 'pyramid_pit'")
+    page.wait_for_function("document.activeElement.value === 'crossing_ramps'")
     edit(page, lambda: page.get_by_role("button", name="Copy obstacle").click())
     assert page.evaluate(focused) == "type of obstacle 3"
-    assert [row["type"] for row in table(page)] == ["random", "pyramid_pit", "pyramid_pit"]
+    assert [row["type"] for row in table(page)] == ["random", "crossing_ramps", "crossing_ramps"]

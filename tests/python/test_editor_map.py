@@ -276,4 +276,7 @@ def test_a_drag_draws_a_flight_of_stairs_corner_to_corner_and_the_map_outlines_i
         # 8 cells rising 4 steps: floor(i·4/8), every row alike.
         assert (heights[3:7, 2:10] == [0, 0, 1, 1, 2, 2, 3, 3]).all()
         assert page.locator("#error").inner_text() == ""
+        # The 3D view gets the ramp to draw as a wedge over its staircase.
+        ramps = page.evaluate("window.rseEditor.preview.ramps")
+        assert ramps == [{"cells": [2, 3, 9, 6], "along_y": False, "ascending": True, "rise": 4}]
         page.screenshot(path=str(tmp_path / "ramp.png"))

@@ -51,7 +51,11 @@ impl Terrain {
         let s = self.block_size();
         let centre = region.centre();
         let top = highest_under_disc(self.heightmap(), centre, radius / s);
-        [centre[0] * s, centre[1] * s, self.top_of(top)]
+        [
+            centre[0] * s,
+            centre[1] * s,
+            self.top_under(top, centre, radius / s),
+        ]
     }
 
     /// Up to `count` flat patches of `region` ([`flat_patches`]) as
@@ -67,13 +71,23 @@ impl Terrain {
         let s = self.block_size();
         flat_patches(self.heightmap(), region, count, radius / s, max_step)
             .into_iter()
-            .map(|p| [p.at[0] * s, p.at[1] * s, self.top_of(p.top)])
+            .map(|p| {
+                [
+                    p.at[0] * s,
+                    p.at[1] * s,
+                    self.top_under(p.top, p.at, radius / s),
+                ]
+            })
             .collect()
     }
 
-    /// The top of a cell of `h` steps, metres.
-    fn top_of(&self, h: u16) -> f64 {
-        self.base() + f64::from(h) * self.step_height()
+    /// The top of a cell of `h` steps, metres, or a ramp's plane where it
+    /// is higher under the disc of radius `r` around `p` (cells): a body
+    /// set there starts inside no block and no ramp.
+    fn top_under(&self, h: u16, p: [f64; 2], r: f64) -> f64 {
+        let cells = self.base() + f64::from(h) * self.step_height();
+        self.highest_plane_under_disc(p, r)
+            .map_or(cells, |plane| plane.max(cells))
     }
 }
 

@@ -312,6 +312,8 @@ pub fn preview(body: &[u8]) -> Answer {
         "lo": lo,
         "hi": hi,
         "frame_period": grid.frame_period,
+        // Each ramp's cells, climb and rise, for the 3D view's wedges.
+        "ramps": terrain.ramps(),
         "cell_pixels": preview::auto_cell_pixels(grid.nx, grid.ny),
         "server_ms": start.elapsed().as_secs_f64() * 1e3,
     });

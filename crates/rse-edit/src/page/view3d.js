@@ -2,10 +2,12 @@
 // height·step), in WebGL, coloured by the top-down map's scale (colours.js)
 // with pallet frames in wood. Every cell has a top, zero-height ones too, so
 // the ground has no holes; a side is drawn only where a neighbour is lower.
+// A ramp is drawn as its wedge over the columns of its staircase: its plane
+// coloured from its foot's height to its top's, its sides and its head.
 // Orbit with the mouse (drag, wheel) or the keyboard (arrows, + and −).
 "use strict";
 
-import { cellColour } from "./colours.js";
+import { cellColour, palette } from "./colours.js";
 
 const VERTEX_BYTES = 16; // position: 3 floats; colour: 3 bytes; a byte for the face's normal
 
@@ -48,26 +50,45 @@ export class BlockView {
     const s = preview.block_size, step = preview.step_height, base = preview.base;
     const top = (x, y) => base + heights[y * nx + x] * step;
     const near = (x, y) => (x < 0 || y < 0 || x >= nx || y >= ny ? 0 : top(x, y));
+    // A ramp's staircase lies inside its wedge: its columns are not drawn
+    // (their sides would flicker through the wedge's, in one plane).
+    const ramps = (preview.ramps ?? []).filter((r) => r.rise > 0);
+    const hidden = new Uint8Array(nx * ny);
+    for (const r of ramps) {
+      const [x0, y0, x1, y1] = r.cells;
+      const run = r.along_y ? y1 - y0 + 1 : x1 - x0 + 1;
+      for (let y = y0; y <= y1; y++) for (let x = x0; x <= x1; x++) {
+        const i = r.along_y ? (r.ascending ? y - y0 : y1 - y) : (r.ascending ? x - x0 : x1 - x);
+        // The plane's lowest point on the cell: at its edge nearer the foot.
+        if (top(x, y) <= base + r.rise * step * i / run + 1e-9) hidden[y * nx + x] = 1;
+      }
+    }
     // Count first: one buffer, filled in place (a JS array grown by push
     // cost more than the server's whole answer).
-    let quads = nx * ny;
+    let quads = 0;
     for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) {
+      if (hidden[y * nx + x]) continue;
       const z = top(x, y);
+      quads += 1;
       quads += (near(x + 1, y) < z) + (near(x - 1, y) < z) + (near(x, y + 1) < z) + (near(x, y - 1) < z);
     }
+    quads += ramps.length * (base > 0 ? 5 : 4);
     const bytes = new ArrayBuffer(quads * 6 * VERTEX_BYTES);
     const f32 = new Float32Array(bytes), u8 = new Uint8Array(bytes);
     let v = 0;
+    // `colour`: one for the quad, or one per corner (a function of it).
     const quad = (corners, colour, face) => {
       for (const k of [0, 1, 2, 0, 2, 3]) {
         const [px, py, pz] = corners[k];
+        const c = typeof colour === "function" ? colour(k) : colour;
         const f = v * 4, b = v * VERTEX_BYTES + 12;
         f32[f] = px; f32[f + 1] = py; f32[f + 2] = pz;
-        u8[b] = colour[0]; u8[b + 1] = colour[1]; u8[b + 2] = colour[2]; u8[b + 3] = face;
+        u8[b] = c[0]; u8[b + 1] = c[1]; u8[b + 2] = c[2]; u8[b + 3] = face;
         v += 1;
       }
     };
     for (let y = 0; y < ny; y++) for (let x = 0; x < nx; x++) {
+      if (hidden[y * nx + x]) continue;
       const z = top(x, y), colour = cellColour(preview, x, y);
       const x0 = x * s, x1 = x0 + s, y0 = y * s, y1 = y0 + s;
       quad([[x0, y0, z], [x1, y0, z], [x1, y1, z], [x0, y1, z]], colour, 0);
@@ -80,6 +101,7 @@ export class BlockView {
       n = near(x, y - 1);
       if (n < z) quad([[x0, y0, n], [x1, y0, n], [x1, y0, z], [x0, y0, z]], colour, 4);
     }
+    for (const r of ramps) this.wedge(r, { s, step, base, preview, quad });
     this.count = v;
     this.size = Math.max(nx, ny) * s;
     this.centre = [nx * s / 2, ny * s / 2, 0];
@@ -87,6 +109,34 @@ export class BlockView {
     gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
     gl.bufferData(gl.ARRAY_BUFFER, bytes, gl.STATIC_DRAW);
     this.render();
+  }
+
+  /** A ramp's wedge (docs/schemes.md, "Ramps"): drawn in its own frame, u
+   * along its climb from the foot edge and v across, then placed. */
+  wedge(ramp, { s, step, base, preview, quad }) {
+    const [x0, y0, x1, y1] = ramp.cells;
+    const along = ramp.along_y;
+    const [lo, hi] = along ? [y0, y1 + 1] : [x0, x1 + 1];
+    const [across0, across1] = along ? [x0, x1 + 1] : [y0, y1 + 1];
+    const top = base + ramp.rise * step;
+    // (u, v) in cells, u from the foot edge: the point in metres.
+    const at = (u, v, z) => {
+      const c = ramp.ascending ? lo + u : hi - u;
+      return along ? [v * s, c * s, z] : [c * s, v * s, z];
+    };
+    const run = hi - lo, foot = palette(0, preview.lo, preview.hi), head = palette(ramp.rise, preview.lo, preview.hi);
+    const [a, b] = [across0, across1];
+    // The plane, foot to head (its colours as the map's at each end).
+    quad([at(0, a, base), at(run, a, top), at(run, b, top), at(0, b, base)], (k) => (k === 1 || k === 2 ? head : foot), 0);
+    // Which face index looks along +u, and along +v, once placed.
+    const sign = ramp.ascending ? 1 : -1;
+    const face = (dx, dy) => (dx > 0 ? 1 : dx < 0 ? 2 : dy > 0 ? 3 : 4);
+    const [plusU, plusV] = along ? [face(0, sign), face(1, 0)] : [face(sign, 0), face(0, 1)];
+    const minus = { 1: 2, 2: 1, 3: 4, 4: 3 };
+    quad([at(run, a, 0), at(run, b, 0), at(run, b, top), at(run, a, top)], head, plusU);
+    quad([at(0, a, 0), at(run, a, 0), at(run, a, top), at(0, a, base)], head, minus[plusV]);
+    quad([at(run, b, 0), at(0, b, 0), at(0, b, base), at(run, b, top)], head, plusV);
+    if (base > 0) quad([at(0, b, 0), at(0, a, 0), at(0, a, base), at(0, b, base)], foot, minus[plusU]);
   }
 
   /** Matches the canvas's pixels to its size on the page (it is as wide as

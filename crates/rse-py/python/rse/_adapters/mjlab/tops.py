@@ -60,25 +60,38 @@ class DeviceTops:
 
     def device_tops(self, xy: Any) -> Any:
         """``tops`` by tensor ops where ``xy`` is: the two cells a point
-        may touch along each axis, the four samples gathered from the
-        fields, their highest."""
+        may touch along each axis, each cell's top at the point from its
+        own samples, their highest. A cell's samples hold its top, or a
+        ramp's plane over it: the plane through its first sample and its
+        last along each axis, at the point, is either (a flat cell's
+        samples are equal: its top exactly)."""
         import torch
 
         ny, nx = self.cells
+        k = self.k
         u = xy.to(torch.float64) / self.block
         ux, uy = u[..., 0], u[..., 1]
-        row = self.k * self.ncol
-        xs = [(torch.ceil(ux) - 1.0).clamp_(0, nx - 1).long().mul_(self.k), torch.floor(ux).clamp_(0, nx - 1).long().mul_(self.k)]
-        ys = [(torch.ceil(uy) - 1.0).clamp_(0, ny - 1).long().mul_(row), torch.floor(uy).clamp_(0, ny - 1).long().mul_(row)]
+        row = k * self.ncol
         data, start = self.samples(), self.adr.view(-1, *([1] * (ux.dim() - 1)))
+        # Each cell's first sample sits (½)/k of the way across it, its
+        # last (k − ½)/k: a point's place in the cell, in sample spacings
+        # from the first, over the k − 1 between first and last.
+        span = float(max(k - 1, 1))
         top = None
-        for y in ys:
-            for x in xs:
-                sample = torch.take(data, start + y + x)
-                top = sample if top is None else torch.maximum(top, sample)
+        for cy in ((torch.ceil(uy) - 1.0).clamp_(0, ny - 1), torch.floor(uy).clamp_(0, ny - 1)):
+            for cx in ((torch.ceil(ux) - 1.0).clamp_(0, nx - 1), torch.floor(ux).clamp_(0, nx - 1)):
+                first = start + cy.long() * row + cx.long() * k
+                a = torch.take(data, first).to(torch.float64)
+                if k > 1:
+                    along_x = torch.take(data, first + (k - 1)).to(torch.float64) - a
+                    along_y = torch.take(data, first + (k - 1) * self.ncol).to(torch.float64) - a
+                    fx = ((ux - cx) * k - 0.5) / span
+                    fy = ((uy - cy) * k - 0.5) / span
+                    a = a + along_x * fx + along_y * fy
+                top = a if top is None else torch.maximum(top, a)
         assert top is not None
         on = (ux >= 0) & (ux <= nx) & (uy >= 0) & (uy <= ny)
-        return torch.where(on, top.to(torch.float64) * self.elevation + self.z0, 0.0)
+        return torch.where(on, top * self.elevation + self.z0, 0.0)
 
     def samples(self) -> Any:
         """The device model's ``hfield_data`` as a tensor sharing its memory,
