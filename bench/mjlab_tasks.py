@@ -19,6 +19,7 @@ new terrains, happen as often as in a long training run's worst case.
 Usage (make bench-frameworks, in .venv-frameworks):
     python bench/mjlab_tasks.py [--num-envs 32] [--steps 30] [--rounds 7] [--device cpu]
     python bench/mjlab_tasks.py --device cuda --num-envs 4096   # on a GPU
+    python bench/mjlab_tasks.py --schemes schemes/mix_flights.csv=2 schemes/mix_ramps.csv=1 ...   # a mix
 """
 
 from __future__ import annotations
@@ -33,20 +34,41 @@ import torch
 REPO = Path(__file__).resolve().parent.parent
 
 
+SCHEMES: dict[str, float] = {}
+"""``--schemes``: a mix's files and proportions; empty: the task's stepfield."""
+
+
+def rse_schemes():
+    """What rse's task runs on: the ``--schemes`` mix, or the stepfield."""
+    import rse as rse_pkg
+    from rse.mjlab_tasks import STEPFIELD
+
+    return dict(SCHEMES) if SCHEMES else rse_pkg.Scheme.from_csv(STEPFIELD)
+
+
+def probe():
+    """One env of rse's terrains (its slot's size, whatever the envs)."""
+    import rse as rse_pkg
+
+    if not SCHEMES:
+        from rse._adapters.mjlab.terrains import probe_envs
+
+        return probe_envs(rse_schemes(), None)
+    schemes = [rse_pkg.Scheme.load(path) for path in SCHEMES]
+    return rse_pkg.EnvTerrains(schemes, 1, proportions=list(SCHEMES.values()))
+
+
 def make(task: str, num_envs: int, device: str, episode_s: float, rse: bool):
     import mjlab.tasks  # noqa: F401
     from mjlab.envs import ManagerBasedRlEnv
     from mjlab.tasks.registry import load_env_cfg
     from rse.mjlab import use_env_terrains
-    from rse.mjlab_tasks import STEPFIELD
 
     cfg = load_env_cfg(task)
     cfg.scene.num_envs = num_envs
     cfg.episode_length_s = episode_s
     if rse:
-        import rse as rse_pkg
-
-        use_env_terrains(cfg, rse_pkg.Scheme.from_csv(STEPFIELD))
+        use_env_terrains(cfg, rse_schemes())
     env = ManagerBasedRlEnv(cfg, device=device)
     env.reset()
     return env
@@ -277,8 +299,18 @@ def main() -> None:
         help="episode lengths, each measured in turn on the same envs (a GPU builds them once): resets every so many seconds",
     )
     parser.add_argument("--device", default="cpu")
+    parser.add_argument(
+        "--schemes",
+        nargs="+",
+        default=[],
+        metavar="FILE=PROPORTION",
+        help="rse's task on a mix of these scheme files (default: the task's stepfield)",
+    )
     parser.add_argument("--memory-only", action="store_true", help="build rse's task alone and report the device memory it holds")
     args = parser.parse_args()
+    for item in args.schemes:
+        path, _, weight = item.partition("=")
+        SCHEMES[str(Path(path).resolve())] = float(weight or 1.0)
     if args.memory_only:
         if not args.device.startswith("cuda"):
             parser.error("--memory-only reads a CUDA device's allocators: give --device cuda")
@@ -337,12 +369,9 @@ def main() -> None:
     rays, exact = scan_cost(envs[True], 20)
     print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms", flush=True)
     proxy = proxies(envs[True], args.episode_s[-1])
-    import rse as rse_pkg
     from rse._adapters.mjlab.pool import pool_memory
-    from rse._adapters.mjlab.terrains import probe_envs
-    from rse.mjlab_tasks import STEPFIELD
 
-    host, on_device = pool_memory(probe_envs(rse_pkg.Scheme.from_csv(STEPFIELD), None), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
+    host, on_device = pool_memory(probe(), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
     print(
         f"terrain on the device per env: {proxy['device bytes/env'] / 1024:.1f} KiB counted from the arrays, "
         f"{proxy['allocated bytes/env'] / 1024:.1f} KiB allocated to them, "
