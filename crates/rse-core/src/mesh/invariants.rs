@@ -480,6 +480,7 @@ impl LatticeVolume {
     }
 
     /// The sum of two volumes (a terrain's blocks and its ramps' wedges).
+    #[must_use]
     pub fn plus(self, other: LatticeVolume) -> Self {
         LatticeVolume {
             slab: self.slab + other.slab,
