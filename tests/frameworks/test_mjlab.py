@@ -111,3 +111,39 @@ def test_bodies_spawned_at_the_origins_start_inside_no_block() -> None:
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     assert all(data.contact[k].dist > -1e-6 for k in range(data.ncon))
+
+
+RAMPS = """# size: 50x50
+# step_height: 0.05
+type,height,angle,x1,y1,x2,y2
+ramp,10..16,,2,2,30,20
+crossing_ramps,4..8,,34,2,47,47
+"""
+
+
+def test_a_ramps_tile_collides_with_its_planes(tmp_path) -> None:
+    """A ramp in mjlab's own generator: its wedge a convex mesh geom over
+    the boxes of its staircase, so a ray finds the plane."""
+    scheme = tmp_path / "ramps.csv"
+    scheme.write_text(RAMPS)
+    cfg = TerrainGeneratorCfg(
+        size=SIZE, num_rows=2, num_cols=1, curriculum=True, seed=SEED,
+        sub_terrains={"ramps": RseTerrainCfg(scheme=str(scheme))},
+    )  # fmt: skip
+    generator = TerrainGenerator(cfg)
+    spec = mujoco.MjSpec()
+    generator.compile(spec)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert model.nmesh == 3, "three wedges in the harder tile, none at difficulty 0 (no rise)"
+    rng = np.random.default_rng(SEED)
+    loaded = rse.Scheme.load(scheme)
+    for row in range(2):
+        terrain = loaded.generate(index=int(rng.integers(0, 2**62)), difficulty=float(row))
+        s = terrain.block_size
+        origin = np.array([-2 * SIZE[0] / 2 + row * SIZE[0], -SIZE[1] / 2])
+        for ramp in terrain.ramps:
+            x0, y0, x1, y1 = ramp["cells"]
+            for x, y in np.random.default_rng(row).uniform([x0 * s + 1e-3, y0 * s + 1e-3], [(x1 + 1) * s - 1e-3, (y1 + 1) * s - 1e-3], (30, 2)):
+                assert ray_down(model, data, *(origin + [x, y])) == pytest.approx(terrain.height_at(x, y), abs=1e-6)

@@ -63,10 +63,14 @@ def coarse_size(envs: EnvTerrains) -> list[float]:
 
 
 def coarse_samples(envs: EnvTerrains, ids: list[int]) -> np.ndarray:
-    """The coarse samples of the envs ``ids``, ``(len(ids), ny, nx)``: each
-    cell's k×k samples are its height, so one of them is the cell's."""
+    """The coarse samples of the envs ``ids``, ``(len(ids), ny, nx)``: at
+    each cell's centre, the mean of its first and last samples. A cell's
+    k×k samples are its height (the mean is that, exactly), or a ramp's
+    plane over it (the mean is the plane at the centre)."""
     k = oversample_of(envs)
-    return np.ascontiguousarray(envs.samples[ids, ::k, ::k])
+    samples = envs.samples[ids]
+    first, last = samples[:, ::k, ::k], samples[:, k - 1 :: k, k - 1 :: k]
+    return np.ascontiguousarray((first + last) * np.float32(0.5), dtype=np.float32)
 
 
 def footprint_cells(geom_type: int, size: Any, rbound: float, spacing: float) -> float:
