@@ -51,6 +51,18 @@ impl Terrain {
             });
         Some(planes.fold(cells, f64::max))
     }
+
+    /// Its plane's height in metres at `(u, v)` (cell units) over a ramp
+    /// that covers that point's cell, the highest where ramps meet; `None`
+    /// where no ramp lies.
+    pub fn ramp_top_at(&self, u: f64, v: f64) -> Option<f64> {
+        let (x, y) = (u.floor() as u32, v.floor() as u32);
+        self.ramps()
+            .iter()
+            .filter(|r| r.covers(x, y))
+            .map(|r| self.base() + f64::from(r.rise) * self.step_height() * r.fraction_at(u, v))
+            .reduce(f64::max)
+    }
 }
 
 #[cfg(test)]

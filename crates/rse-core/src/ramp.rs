@@ -152,48 +152,6 @@ impl Ramp {
     }
 }
 
-impl crate::terrain::Terrain {
-    /// Its plane's height in metres at `(u, v)` (cell units) over a ramp
-    /// that covers that point's cell, the highest where ramps meet; `None`
-    /// where no ramp lies.
-    pub fn ramp_top_at(&self, u: f64, v: f64) -> Option<f64> {
-        let (x, y) = (u.floor() as u32, v.floor() as u32);
-        self.ramps()
-            .iter()
-            .filter(|r| r.covers(x, y))
-            .map(|r| self.base() + f64::from(r.rise) * self.step_height() * r.fraction_at(u, v))
-            .reduce(f64::max)
-    }
-}
-
-impl crate::terrain::Terrain {
-    /// The highest point of a ramp's plane over the disc of radius `r`
-    /// around `p` (both in cells), metres; `None` where no ramp lies under
-    /// it. Planes are highest at the disc's farthest point along a climb,
-    /// kept to the ramp's rectangle.
-    pub(crate) fn highest_plane_under_disc(&self, p: [f64; 2], r: f64) -> Option<f64> {
-        self.ramps()
-            .iter()
-            .filter(|ramp| {
-                let [x0, y0, x1, y1] = ramp.cells.map(f64::from);
-                // The rectangle [x0, x1 + 1] × [y0, y1 + 1] meets the disc.
-                let dx = (x0 - p[0]).max(p[0] - (x1 + 1.0)).max(0.0);
-                let dy = (y0 - p[1]).max(p[1] - (y1 + 1.0)).max(0.0);
-                dx * dx + dy * dy < r * r || (dx == 0.0 && dy == 0.0)
-            })
-            .map(|ramp| {
-                let axis = usize::from(ramp.along_y);
-                let mut far = p;
-                far[axis] += if ramp.ascending { r } else { -r };
-                let [x0, y0, x1, y1] = ramp.cells.map(f64::from);
-                let far = [far[0].clamp(x0, x1 + 1.0), far[1].clamp(y0, y1 + 1.0)];
-                self.base()
-                    + f64::from(ramp.rise) * self.step_height() * ramp.fraction_at(far[0], far[1])
-            })
-            .reduce(f64::max)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,24 +198,5 @@ mod tests {
         assert!(ramps[0].along_y && ramps[0].ascending && !ramps[1].ascending);
         let one = Ramp::of(&drawn(ObstacleKind::CrossingRamps, [2, 0], [2, 9]), GRID, 3);
         assert_eq!(one.len(), 1, "a rectangle one cell wide is one ramp");
-    }
-
-    #[test]
-    fn a_spawn_on_a_ramp_stands_on_its_plane_not_its_staircase() {
-        // 10 cells rising 5 steps of 0.1 m along x: 0.05 m a cell.
-        let scheme = crate::Scheme::from_csv(
-            "# size: 10x10\ntype,height,angle,x1,y1,x2,y2\nramp,5,,0,0,9,9\n",
-            None,
-        )
-        .unwrap();
-        let terrain = crate::generate(&scheme, 0, 0);
-        let region = terrain.region();
-        // The centre (x = 5 cells), a disc of 0.1 m: its far point 6 cells along.
-        let [x, _, z] = terrain.spawn_origin(region, 0.1);
-        assert!((x - 0.5).abs() < 1e-12);
-        assert!((z - 0.3).abs() < 1e-12, "{z}");
-        // Without a radius, the plane under the centre.
-        let [_, _, z] = terrain.spawn_origin(region, 0.0);
-        assert!((z - 0.25).abs() < 1e-12, "{z}");
     }
 }

@@ -81,6 +81,32 @@ impl Terrain {
             .collect()
     }
 
+    /// The highest point of a ramp's plane over the disc of radius `r`
+    /// around `p` (both in cells), metres; `None` where no ramp lies under
+    /// it. Planes are highest at the disc's farthest point along a climb,
+    /// kept to the ramp's rectangle.
+    fn highest_plane_under_disc(&self, p: [f64; 2], r: f64) -> Option<f64> {
+        self.ramps()
+            .iter()
+            .filter(|ramp| {
+                let [x0, y0, x1, y1] = ramp.cells.map(f64::from);
+                // The rectangle [x0, x1 + 1] × [y0, y1 + 1] meets the disc.
+                let dx = (x0 - p[0]).max(p[0] - (x1 + 1.0)).max(0.0);
+                let dy = (y0 - p[1]).max(p[1] - (y1 + 1.0)).max(0.0);
+                dx * dx + dy * dy < r * r || (dx == 0.0 && dy == 0.0)
+            })
+            .map(|ramp| {
+                let axis = usize::from(ramp.along_y);
+                let mut far = p;
+                far[axis] += if ramp.ascending { r } else { -r };
+                let [x0, y0, x1, y1] = ramp.cells.map(f64::from);
+                let far = [far[0].clamp(x0, x1 + 1.0), far[1].clamp(y0, y1 + 1.0)];
+                self.base()
+                    + f64::from(ramp.rise) * self.step_height() * ramp.fraction_at(far[0], far[1])
+            })
+            .reduce(f64::max)
+    }
+
     /// The top of a cell of `h` steps, metres, or a ramp's plane where it
     /// is higher under the disc of radius `r` around `p` (cells): a body
     /// set there starts inside no block and no ramp.
@@ -418,5 +444,24 @@ mod tests {
         };
         assert!(flat_patches(&m, region, 3, 1.5, 0).is_empty());
         assert_eq!(flat_patches(&m, region, 9, 0.5, 0).len(), 4);
+    }
+
+    #[test]
+    fn a_spawn_on_a_ramp_stands_on_its_plane_not_its_staircase() {
+        // 10 cells rising 5 steps of 0.1 m along x: 0.05 m a cell.
+        let scheme = crate::Scheme::from_csv(
+            "# size: 10x10\ntype,height,angle,x1,y1,x2,y2\nramp,5,,0,0,9,9\n",
+            None,
+        )
+        .unwrap();
+        let terrain = crate::generate(&scheme, 0, 0);
+        let region = terrain.region();
+        // The centre (x = 5 cells), a disc of 0.1 m: its far point 6 cells along.
+        let [x, _, z] = terrain.spawn_origin(region, 0.1);
+        assert!((x - 0.5).abs() < 1e-12);
+        assert!((z - 0.3).abs() < 1e-12, "{z}");
+        // Without a radius, the plane under the centre.
+        let [_, _, z] = terrain.spawn_origin(region, 0.0);
+        assert!((z - 0.25).abs() < 1e-12, "{z}");
     }
 }
