@@ -5,8 +5,8 @@
 //! physics error — those `bench/robots.py` counts for robots (a state that
 //! is not finite, a body faster than 10 m/s), a body more than 1 cm inside
 //! the solid, and a dropped body's own: one that sank
-//! into the terrain, one still fast after settling, one that left the RSE
-//! without being pushed, one thrown.
+//! into the terrain, one still fast after settling, a box that slid off
+//! the RSE without being pushed (a ball rolls on), one thrown.
 
 mod bodies;
 mod judge;
