@@ -75,6 +75,9 @@ def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
         ("random,1000 300x300 gazebo-classic", ["batch", r1000, "--amount", "1", "--target", "gazebo-classic"], "world_0000"),
         ("physics: 60x60 of 1 cm blocks", ["batch", scheme(folder, "p1", "# size: 60x60\n# block_size: 0.01\ntype,height\nrandom,1\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
         ("physics: 60x60 of 2 cm blocks", ["batch", scheme(folder, "p2", "# size: 60x60\n# block_size: 0.02\ntype,height\nrandom,1\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
+        # The sixth round: physics priced from the models' triangles and
+        # boxes, not per cell (this world was priced 37x over).
+        ("physics: flat 1000x1000 of 1 cm blocks", ["batch", scheme(folder, "pflat", "# size: 1000x1000\n# block_size: 0.01\n# base: 0.01\ntype,height\nrandom,0\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
         ("hashed only: 4 sparse files of 400 MB", ["batch", scheme(folder, "r4s", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", "obj"], "world_0000 !sparse"),
         ("hashed only: a 60 MiB MJCF of references", ["batch", scheme(folder, "r4x", "# size: 300x300\ntype,height\nrandom,4\n"), "--amount", "1", "--target", "mujoco"], "world_0000 !references"),
         ("4000 unlisted long-named files, 15 deep", ["batch", str(REPO / "schemes/six_obstacles.csv"), "--amount", "1", "--target", "obj"], "world_0000 !files"),

@@ -2,7 +2,7 @@
 //! without the feature, asking for it is a fault that says so.
 
 use rse_core::Terrain;
-use rse_world::Manifest;
+use rse_world::{Manifest, RebuildCost};
 
 use crate::fault::{Fault, FaultKind};
 use crate::terrain::ObjMesh;
@@ -52,39 +52,80 @@ pub fn physics_refusal(block_size: f64) -> Option<String> {
     })
 }
 
+/// Triangles a cell of a random field's mesh has (6.0 on random fields of
+/// height 4, 60×60 to 300×300) and boxes a cell of its box set (0.45):
+/// the fields the smoke test's prices below were measured on.
+const RANDOM_TRIANGLES_PER_CELL: f64 = 6.0;
+const RANDOM_BOXES_PER_CELL: f64 = 0.45;
+
 /// The stepping time of the smoke test, microseconds a step, measured by
 /// bench/budget.py (20 bodies, 5 s at 1 kHz, 60×60 cells of random steps):
 /// the flat-plane reference ~40 µs, and per collider ~70 µs plus ~5 µs for
 /// each block a body's reach (~10 cm) spans — `(0.1 / s)²` for blocks of
 /// side `s`, no more than the cells there are: 75 µs at 10 cm, 90 at
-/// 5 cm, 220 at 2 cm, 575 at 1 cm.
-fn step_micros(models: u64, cells: u64, block_size: f64) -> f64 {
+/// 5 cm, 220 at 2 cm, 575 at 1 cm — on a random field. A model with fewer
+/// primitives a cell than a random field's (`density` below 1: a flat
+/// 1000×1000 world's mesh is 12 triangles) gives a body fewer to touch.
+fn step_micros(densities: &[f64], cells: u64, block_size: f64) -> f64 {
     let spanned = (0.1 / block_size.max(1e-6)).powi(2).min(cells as f64);
-    40.0 + models as f64 * (70.0 + 5.0 * spanned)
+    40.0 + densities
+        .iter()
+        .map(|d| 70.0 + 5.0 * spanned * d)
+        .sum::<f64>()
 }
 
-/// What the smoke test of a world of `manifest` with `cells` cells of side
-/// `block_size` costs, as `(cell visits, bytes)`: 5000 steps of
-/// [`step_micros`], and ~8 µs and ~300 bytes a cell for each collider's
-/// model. Priced in `check`'s estimate, so the test is held to the budget
-/// like the rebuild; it only ever runs on meshes that match their rebuild.
-pub(crate) fn cost(manifest: &Manifest, cells: u64, block_size: f64) -> (u64, u64) {
+/// What the smoke test of a world of `manifest` costs, as `(cell visits,
+/// bytes)`, once its terrain is generated and its models counted (`cost`'s
+/// [`rse_world::ModelCounts`]; nothing before: the test runs only after
+/// the rebuild, which the price without it allowed). Per collider's model:
+/// 5000 steps of [`step_micros`], and building it, ~1.3 µs and ~50 bytes a
+/// triangle of the mesh, ~18 µs and ~660 bytes a box (8 µs and 300 bytes a
+/// cell of a random field), and the judge's box set. Priced in `check`'s
+/// estimate, so the test is held to the budget like the rebuild; it only
+/// ever runs on meshes that match their rebuild.
+pub(crate) fn cost(manifest: &Manifest, cost: &RebuildCost, block_size: f64) -> (u64, u64) {
+    let Some(counts) = cost.models else {
+        return (0, 0);
+    };
     if !PHYSICS {
         return (0, 0);
     }
-    let models = colliders(manifest).len() as u64;
-    if models == 0 {
+    let models = colliders(manifest);
+    if models.is_empty() {
         return (0, 0);
     }
-    let visit_ns = rse_world::VISIT_NANOS;
+    let cells = cost.cells.max(1) as f64;
+    // The judge measures depth against the box set, whatever the model:
+    // counted where a target collides with it, else a random field's share
+    // of the mesh's triangles.
+    let boxes = if counts.boxes > 0 {
+        counts.boxes as f64
+    } else {
+        counts.triangles as f64 * RANDOM_BOXES_PER_CELL / RANDOM_TRIANGLES_PER_CELL
+    };
+    let mut densities = Vec::new();
+    let (mut build_ns, mut bytes) = (0.0, (2u64 << 20) as f64 + 100.0 * boxes);
+    for model in &models {
+        let (density, ns, held) = match model {
+            rse_world::Collider::Mesh => (
+                counts.triangles as f64 / cells / RANDOM_TRIANGLES_PER_CELL,
+                1_300.0 * counts.triangles as f64,
+                50.0 * counts.triangles as f64,
+            ),
+            _ => (
+                boxes / cells / RANDOM_BOXES_PER_CELL,
+                18_000.0 * boxes,
+                660.0 * boxes,
+            ),
+        };
+        densities.push(density);
+        build_ns += ns;
+        bytes += held;
+    }
     let steps = 5_000.0;
-    let seconds = steps * step_micros(models, cells, block_size) * 1e-6;
-    let visits = (seconds * 1e9 / visit_ns) as u64;
-    let per_cell_visits = (8_000.0 / visit_ns) as u64;
-    (
-        visits.saturating_add(models.saturating_mul(cells).saturating_mul(per_cell_visits)),
-        (2u64 << 20).saturating_add(models.saturating_mul(cells).saturating_mul(300)),
-    )
+    let seconds = steps * step_micros(&densities, cost.cells, block_size) * 1e-6;
+    let visits = (seconds * 1e9 + build_ns) / rse_world::VISIT_NANOS;
+    (visits as u64, bytes as u64)
 }
 
 #[cfg(feature = "physics")]

@@ -307,7 +307,7 @@ fn generate_within_budget<'m>(
     }
     let mut within = |mut cost: RebuildCost, report: &mut WorldReport| {
         if options.physics {
-            let (visits, bytes) = crate::physics::cost(manifest, cost.cells, block_size);
+            let (visits, bytes) = crate::physics::cost(manifest, &cost, block_size);
             cost.visits = cost.visits.saturating_add(visits);
             cost.bytes = cost.bytes.saturating_add(bytes);
         }
@@ -542,6 +542,7 @@ impl HashedCost {
             cells,
             bytes: estimate.bytes.max(self.bytes),
             visits: estimate.visits.saturating_add(self.visits),
+            models: None,
         };
         (estimate.bytes, estimate.visits, estimate.seconds) =
             (cost.bytes, cost.visits, cost.seconds());

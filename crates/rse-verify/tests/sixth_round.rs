@@ -75,3 +75,29 @@ fn one_world_on_many_threads_has_all_the_memory() {
         matches!(k, FaultKind::OverBudget { .. })
     });
 }
+
+/// Hole 4: `--physics` was priced per cell (8 µs, 300 bytes and a random
+/// field's contacts for each), so a fresh flat 2000×2000 world of 1 cm
+/// blocks (a 12-triangle mesh, one box; 0.8 s to write) was refused at
+/// "7171 MiB, 112 s". The smoke test is priced from the models' triangles
+/// and boxes once they are counted: that world passes, priced within a
+/// few seconds.
+#[test]
+fn a_flat_world_of_fine_blocks_passes_the_physics_check_priced_by_its_models() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = write_world(
+        dir.path(),
+        "flat",
+        "# size: 2000x2000\n# block_size: 0.01\n# base: 0.01\ntype,height\nrandom,0\n",
+        &rse_world::Templates::builtin(),
+    );
+    let physics = CheckOptions {
+        physics: true,
+        ..CheckOptions::default()
+    };
+    let report = check_world(&world, &physics);
+    assert!(report.faults.is_empty(), "{:?}", report.faults);
+    let estimate = report.estimate.expect("priced");
+    assert!(estimate.seconds < 10.0, "{estimate:?}");
+    assert!(estimate.bytes < 1 << 30, "{estimate:?}");
+}

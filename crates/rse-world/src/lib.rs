@@ -48,7 +48,7 @@ pub use files::tree::{inside, list_files};
 pub use files::write::{mesh_format, write_atomically, write_mesh};
 pub use memory::{WORLD_BYTES_PER_CELL, available_bytes};
 pub use record::atlas_record::{AtlasRecord, NamedScheme, PatchRecord, SchemeRecord};
-pub use record::cost::{RebuildCost, VISIT_NANOS};
+pub use record::cost::{ModelCounts, RebuildCost, VISIT_NANOS};
 pub use record::manifest::{MANIFEST, MAX_MANIFEST_BYTES, Manifest, TemplateSet, what_differs};
 pub use record::options::{
     Collider, MeshFiles, MeshMode, MujocoCollider, Target, Targets, WorldOptions,

@@ -22,6 +22,20 @@ pub struct RebuildCost {
     pub bytes: u64,
     /// Work, in cell visits ([`VISIT_NANOS`] each on one core).
     pub visits: u64,
+    /// The mesh's triangles and the box set's boxes, once the terrain is
+    /// generated and they are counted (`None` before): what a physics
+    /// engine is given, and so what its test costs.
+    pub models: Option<ModelCounts>,
+}
+
+/// The sizes of a world's collision models, counted after generating.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ModelCounts {
+    /// Triangles of the single mesh (0 when no file holds it).
+    pub triangles: u64,
+    /// Boxes of the box set (0 when no target collides with it and no
+    /// user's template counts them).
+    pub boxes: u64,
 }
 
 impl RebuildCost {
@@ -170,6 +184,7 @@ pub(crate) fn before_generating(
         cells: size.cells,
         bytes: recipe.bytes.saturating_add(bytes),
         visits: recipe.visits.saturating_add(visits).saturating_add(render),
+        models: None,
     }
 }
 
@@ -205,6 +220,7 @@ fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
             .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
             .saturating_add(size.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
             .saturating_add(size.patches.saturating_mul(VISITS_PER_PATCH)),
+        models: None,
     }
 }
 
@@ -284,6 +300,10 @@ pub(crate) fn after_generating(
             .saturating_add(visits)
             .saturating_add(mesh_check)
             .saturating_add(render),
+        models: Some(ModelCounts {
+            triangles,
+            boxes: counted,
+        }),
     }
 }
 
