@@ -389,7 +389,21 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
         ny,
         frame_period: None,
     };
-    let terrain = Terrain::from_heightmap(grid, heightmap, units, options.seed);
+    // Each tile's ramps, moved to where the tile lies on the map.
+    let ramps = tiles
+        .iter()
+        .flat_map(|(tile, terrain)| {
+            let r = tile.region;
+            terrain.ramps().iter().map(move |ramp| {
+                let [x0, y0, x1, y1] = ramp.cells;
+                crate::Ramp {
+                    cells: [x0 + r.x0, y0 + r.y0, x1 + r.x0, y1 + r.y0],
+                    ..*ramp
+                }
+            })
+        })
+        .collect();
+    let terrain = Terrain::from_heightmap(grid, heightmap, units, options.seed).with_ramps(ramps);
     let p = options.patches;
     let tiles: Vec<Tile> = tiles
         .into_par_iter()

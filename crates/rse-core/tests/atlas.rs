@@ -274,3 +274,41 @@ fn the_visit_estimate_counts_spawn_discs_across_tiles() {
     let tiles = 200 * 3;
     assert!(wide.visits(std::slice::from_ref(&scheme)) >= tiles * nx * ny);
 }
+
+#[test]
+fn a_tiles_ramps_are_the_maps_where_the_tile_lies() {
+    let schemes = [sample("mix_ramps.csv")];
+    let opts = AtlasOptions {
+        rows: 2,
+        cols: 1,
+        ..options()
+    };
+    let atlas = build_atlas(&schemes, &opts).unwrap();
+    let map = atlas.terrain();
+    let s = map.block_size();
+    let mut count = 0;
+    for tile in atlas.tiles() {
+        let world = generate_at(
+            &schemes[tile.scheme],
+            tile.seed,
+            tile.index,
+            tile.difficulty,
+        );
+        let r = tile.region;
+        for ramp in world.ramps() {
+            count += 1;
+            let [x0, y0, x1, y1] = ramp.cells;
+            // The plane at the ramp's centre, in the world and on the map.
+            let (u, v) = (f64::from(x0 + x1 + 1) / 2.0, f64::from(y0 + y1 + 1) / 2.0);
+            let on_map = map
+                .height_at((u + f64::from(r.x0)) * s, (v + f64::from(r.y0)) * s)
+                .unwrap();
+            let in_world = world.height_at(u * s, v * s).unwrap();
+            assert!((on_map - in_world).abs() < 1e-9, "{on_map} vs {in_world}");
+        }
+    }
+    assert_eq!(map.ramps().len(), count);
+    assert!(count > 0);
+    // Its mesh holds their wedges: the volume counts them.
+    assert!(map.mesh().faults().is_empty());
+}
