@@ -375,35 +375,15 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
         })
         .collect();
 
-    let mut heightmap = Heightmap::zeros(nx, ny);
-    for (tile, terrain) in &tiles {
-        let r = tile.region;
-        for y in 0..r.ny {
-            let dest = &mut heightmap.row_mut(r.y0 + y)[r.x0 as usize..(r.x0 + r.nx) as usize];
-            dest.copy_from_slice(terrain.heightmap().row(y));
-        }
-    }
+    let heightmap = map_of(&tiles, nx, ny);
 
     let grid = Grid {
         nx,
         ny,
         frame_period: None,
     };
-    // Each tile's ramps, moved to where the tile lies on the map.
-    let ramps = tiles
-        .iter()
-        .flat_map(|(tile, terrain)| {
-            let r = tile.region;
-            terrain.ramps().iter().map(move |ramp| {
-                let [x0, y0, x1, y1] = ramp.cells;
-                crate::Ramp {
-                    cells: [x0 + r.x0, y0 + r.y0, x1 + r.x0, y1 + r.y0],
-                    ..*ramp
-                }
-            })
-        })
-        .collect();
-    let terrain = Terrain::from_heightmap(grid, heightmap, units, options.seed).with_ramps(ramps);
+    let terrain =
+        Terrain::from_heightmap(grid, heightmap, units, options.seed).with_ramps(ramps_of(&tiles));
     let p = options.patches;
     let tiles: Vec<Tile> = tiles
         .into_par_iter()
@@ -418,6 +398,36 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
         tiles,
         options: *options,
     })
+}
+
+/// The map of `nx` × `ny` cells holding each tile's heights where it lies.
+fn map_of(tiles: &[(Tile, Terrain)], nx: u32, ny: u32) -> Heightmap {
+    let mut heightmap = Heightmap::zeros(nx, ny);
+    for (tile, terrain) in tiles {
+        let r = tile.region;
+        for y in 0..r.ny {
+            let dest = &mut heightmap.row_mut(r.y0 + y)[r.x0 as usize..(r.x0 + r.nx) as usize];
+            dest.copy_from_slice(terrain.heightmap().row(y));
+        }
+    }
+    heightmap
+}
+
+/// Each tile's ramps, moved to where the tile lies on the map.
+fn ramps_of(tiles: &[(Tile, Terrain)]) -> Vec<crate::Ramp> {
+    tiles
+        .iter()
+        .flat_map(|(tile, terrain)| {
+            let r = tile.region;
+            terrain.ramps().iter().map(move |ramp| {
+                let [x0, y0, x1, y1] = ramp.cells;
+                crate::Ramp {
+                    cells: [x0 + r.x0, y0 + r.y0, x1 + r.x0, y1 + r.y0],
+                    ..*ramp
+                }
+            })
+        })
+        .collect()
 }
 
 impl Atlas {
