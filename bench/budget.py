@@ -75,6 +75,9 @@ def worlds(folder: Path, quick: bool) -> list[tuple[str, list[str], str]]:
         ("random,1000 300x300 gazebo-classic", ["batch", r1000, "--amount", "1", "--target", "gazebo-classic"], "world_0000"),
         ("physics: 60x60 of 1 cm blocks", ["batch", scheme(folder, "p1", "# size: 60x60\n# block_size: 0.01\ntype,height\nrandom,1\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
         ("physics: 60x60 of 2 cm blocks", ["batch", scheme(folder, "p2", "# size: 60x60\n# block_size: 0.02\ntype,height\nrandom,1\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),
+        # Ramps: a height field writes each ramp's samples again, over its
+        # plane (200 ramps over the whole grid).
+        ("200 ramps over 300x300, hfield k=4", ["batch", scheme(folder, "ramps", "# size: 300x300\ntype,height,angle,x1,y1,x2,y2\n" + "ramp,20,,0,0,299,299\n" * 200), "--amount", "1", "--target", "mujoco", "--mujoco-collider", "hfield", "--oversample", "4"], "world_0000"),
         # The sixth round: physics priced from the models' triangles and
         # boxes, not per cell (this world was priced 37x over).
         ("physics: flat 1000x1000 of 1 cm blocks", ["batch", scheme(folder, "pflat", "# size: 1000x1000\n# block_size: 0.01\n# base: 0.01\ntype,height\nrandom,0\n"), "--amount", "1", "--target", "obj,urdf"], "world_0000 --physics"),

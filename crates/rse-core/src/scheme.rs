@@ -183,6 +183,22 @@ impl Scheme {
         self.globals.top(highest)
     }
 
+    /// At most how many cells its ramps cover in any world, counted once a
+    /// ramp (overlaps counted each time): the samples a height field
+    /// writes again over a ramp's plane are these cells' samples.
+    pub fn ramp_cells(&self) -> u64 {
+        let grid = self.grid();
+        let units = crate::stamp::Units {
+            block_size: self.globals.block_size,
+            step_height: self.globals.step_height,
+        };
+        self.obstacles
+            .iter()
+            .filter(|o| o.kind().is_ramp())
+            .map(|o| crate::stamp::visits(o, grid, units))
+            .fold(0, u64::saturating_add)
+    }
+
     /// At most how many cells generating one world of this scheme visits
     /// ([`VISIT_NANOS`] each),
     /// whatever its ranges draw: each obstacle's reach on the grid (every
