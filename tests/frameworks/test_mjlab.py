@@ -37,6 +37,12 @@ def built():
             )
         },
     )
+    return compiled(cfg)
+
+
+def compiled(cfg: TerrainGeneratorCfg):
+    """mjlab's generator of ``cfg`` compiled into a model, forwarded once:
+    ``(generator, model, data)``."""
     generator = TerrainGenerator(cfg)
     spec = mujoco.MjSpec()
     generator.compile(spec)
@@ -130,12 +136,7 @@ def test_a_ramps_tile_collides_with_its_planes(tmp_path) -> None:
         size=SIZE, num_rows=2, num_cols=1, curriculum=True, seed=SEED,
         sub_terrains={"ramps": RseTerrainCfg(scheme=str(scheme))},
     )  # fmt: skip
-    generator = TerrainGenerator(cfg)
-    spec = mujoco.MjSpec()
-    generator.compile(spec)
-    model = spec.compile()
-    data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
+    _, model, data = compiled(cfg)
     assert model.nmesh == 3, "three wedges in the harder tile, none at difficulty 0 (no rise)"
     rng = np.random.default_rng(SEED)
     loaded = rse.Scheme.load(scheme)

@@ -257,12 +257,12 @@ impl Terrain {
         stride: usize,
     ) {
         let [x0, y0, x1, y1] = ramp.cells.map(|c| c as usize);
-        let height = f64::from(ramp.rise) * self.step_height();
+        let (base, step) = (self.base(), self.step_height());
         let across = |i: usize| (i as f64 + 0.5) / k as f64;
         for r in y0 * k..(y1 + 1) * k {
             let row = &mut out[r * stride..];
             for (c, sample) in row.iter_mut().enumerate().take((x1 + 1) * k).skip(x0 * k) {
-                let top = self.base() + height * ramp.fraction_at(across(c), across(r));
+                let top = ramp.height_at(across(c), across(r), base, step);
                 let value = (((top - z0) / elevation).clamp(0.0, 1.0)) as f32;
                 *sample = sample.max(value);
             }

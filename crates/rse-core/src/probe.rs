@@ -45,23 +45,12 @@ impl Terrain {
             let [x0, y0, x1, y1] = r.cells;
             x0 <= x_hi && x_lo <= x1 && y0 <= y_hi && y_lo <= y1
         };
-        let planes =
-            self.ramps().iter().filter(touched).map(|r| {
-                self.base() + f64::from(r.rise) * self.step_height() * r.fraction_at(u, v)
-            });
-        Some(planes.fold(cells, f64::max))
-    }
-
-    /// Its plane's height in metres at `(u, v)` (cell units) over a ramp
-    /// that covers that point's cell, the highest where ramps meet; `None`
-    /// where no ramp lies.
-    pub fn ramp_top_at(&self, u: f64, v: f64) -> Option<f64> {
-        let (x, y) = (u.floor() as u32, v.floor() as u32);
-        self.ramps()
+        let planes = self
+            .ramps()
             .iter()
-            .filter(|r| r.covers(x, y))
-            .map(|r| self.base() + f64::from(r.rise) * self.step_height() * r.fraction_at(u, v))
-            .reduce(f64::max)
+            .filter(touched)
+            .map(|r| r.height_at(u, v, self.base(), self.step_height()));
+        Some(planes.fold(cells, f64::max))
     }
 }
 

@@ -150,6 +150,32 @@ impl Ramp {
         let t = if self.ascending { at - lo } else { hi - at };
         (t / f64::from(self.run())).clamp(0.0, 1.0)
     }
+
+    /// Its plane's height in metres at `(u, v)` (cell units), over a
+    /// terrain of `base` and `step_height`.
+    pub fn height_at(&self, u: f64, v: f64, base: f64, step_height: f64) -> f64 {
+        base + f64::from(self.rise) * step_height * self.fraction_at(u, v)
+    }
+
+    /// Its wedge's corners in metres, for blocks of `block_size` on a
+    /// terrain of `base` and `step_height`: its rectangle's four on the
+    /// ground, then those on its plane above the ground. A convex solid:
+    /// their hull is the wedge.
+    pub fn wedge_corners(&self, block_size: f64, base: f64, step_height: f64) -> Vec<[f64; 3]> {
+        let [x0, y0, x1, y1] = self.cells.map(f64::from);
+        let corners = [
+            (x0, y0),
+            (x1 + 1.0, y0),
+            (x1 + 1.0, y1 + 1.0),
+            (x0, y1 + 1.0),
+        ];
+        let ground = corners.map(|(u, v)| [u * block_size, v * block_size, 0.0]);
+        let plane = corners.into_iter().filter_map(|(u, v)| {
+            let z = self.height_at(u, v, base, step_height);
+            (z > 0.0).then_some([u * block_size, v * block_size, z])
+        });
+        ground.into_iter().chain(plane).collect()
+    }
 }
 
 #[cfg(test)]

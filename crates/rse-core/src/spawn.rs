@@ -85,7 +85,7 @@ impl Terrain {
     /// around `p` (both in cells), metres; `None` where no ramp lies under
     /// it. Planes are highest at the disc's farthest point along a climb,
     /// kept to the ramp's rectangle.
-    fn highest_plane_under_disc(&self, p: [f64; 2], r: f64) -> Option<f64> {
+    pub fn highest_plane_under_disc(&self, p: [f64; 2], r: f64) -> Option<f64> {
         self.ramps()
             .iter()
             .filter(|ramp| {
@@ -101,8 +101,7 @@ impl Terrain {
                 far[axis] += if ramp.ascending { r } else { -r };
                 let [x0, y0, x1, y1] = ramp.cells.map(f64::from);
                 let far = [far[0].clamp(x0, x1 + 1.0), far[1].clamp(y0, y1 + 1.0)];
-                self.base()
-                    + f64::from(ramp.rise) * self.step_height() * ramp.fraction_at(far[0], far[1])
+                ramp.height_at(far[0], far[1], self.base(), self.step_height())
             })
             .reduce(f64::max)
     }

@@ -148,33 +148,15 @@ fn over_ramp(terrain: &Terrain, x: f64, y: f64, reach: f64) -> bool {
 }
 
 /// The highest top of the cells within `reach` of `(x, y)` (0: the
-/// ground), or of a ramp's plane over them.
+/// ground), or of a ramp's plane under the disc of that reach.
 fn highest_within(terrain: &Terrain, x: f64, y: f64, reach: f64) -> f64 {
-    let near = cells_within(terrain, x, y, reach);
-    let [x0, y0, x1, y1] = near;
+    let [x0, y0, x1, y1] = cells_within(terrain, x, y, reach);
     // An empty cell without a slab has elevation 0: the ground.
     let cells = (y0..=y1)
         .flat_map(|cy| (x0..=x1).map(move |cx| terrain.elevation(cx, cy)))
         .fold(0.0, f64::max);
-    // A plane is highest at a corner of the cells (its own top at most).
-    let corners = [x0, x1 + 1]
-        .into_iter()
-        .flat_map(|u| [y0, y1 + 1].map(move |v| (u, v)));
-    let ramps = terrain
-        .ramps()
-        .iter()
-        .filter(|r| r.rise > 0 && overlaps(r, near))
-        .map(|r| {
-            let [rx0, ry0, rx1, ry1] = r.cells;
-            let clamp = |c: u32, lo: u32, hi: u32| f64::from(c.clamp(lo, hi + 1));
-            corners
-                .clone()
-                .map(|(u, v)| r.fraction_at(clamp(u, rx0, rx1), clamp(v, ry0, ry1)))
-                .fold(0.0, f64::max)
-                * f64::from(r.rise)
-                * terrain.step_height()
-                + terrain.base()
-        })
-        .fold(0.0, f64::max);
-    cells.max(ramps)
+    let s = terrain.block_size();
+    terrain
+        .highest_plane_under_disc([x / s, y / s], reach / s)
+        .map_or(cells, |plane| plane.max(cells))
 }

@@ -75,9 +75,10 @@ pub(crate) fn judge(
             return 0.0;
         }
         // `base + h·step`: 0, the ground, for an empty cell without a slab;
-        // a ramp's plane over it where the model has planes.
+        // a ramp's plane over it where the model has planes (the highest
+        // of the cells a point on a line between them touches).
         let cell = terrain.elevation(cx as u32, cy as u32);
-        let plane = planes.then(|| terrain.ramp_top_at(x / s, y / s)).flatten();
+        let plane = planes.then(|| terrain.height_at(x, y)).flatten();
         plane.map_or(cell, |z| z.max(cell))
     };
     let mut errors = Vec::new();
@@ -164,15 +165,11 @@ impl Solid {
         if planes {
             let (s, step, base) = (terrain.block_size(), terrain.step_height(), terrain.base());
             for ramp in terrain.ramps().iter().filter(|r| r.rise > 0) {
-                let [x0, y0, x1, y1] = ramp.cells.map(|c| f64::from(c) * s);
-                let (x1, y1) = (x1 + s, y1 + s);
-                let top = base + f64::from(ramp.rise) * step;
-                // The corners of its rectangle, on the ground and on its plane.
-                let mut points = Vec::with_capacity(8);
-                for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
-                    let z = base + (top - base) * ramp.fraction_at(x / s, y / s);
-                    points.extend([vector([x, y, 0.0]), vector([x, y, z])]);
-                }
+                let points: Vec<Vector> = ramp
+                    .wedge_corners(s, base, step)
+                    .into_iter()
+                    .map(vector)
+                    .collect();
                 if let Some(hull) = SharedShape::convex_hull(&points) {
                     parts.push((Pose::IDENTITY, hull));
                 }

@@ -71,17 +71,22 @@ fn extreme_scheme() -> impl Strategy<Value = String> {
 /// `amount` worlds of `scheme` written by `batch` with `world`'s options
 /// into a fresh folder, and `check`'s report on them.
 fn written_and_checked(scheme: &Scheme, amount: u64, world: WorldConfig) -> CheckReport {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("worlds");
-    let options = BatchConfig {
+    let batch = BatchConfig {
         amount: Some(amount),
         world,
         ..BatchConfig::default()
-    }
-    .resolve(scheme, out.clone())
-    .unwrap();
+    };
+    batch_checked(scheme, batch, &CheckOptions::default())
+}
+
+/// The worlds of `scheme` that `batch` writes into a fresh folder, and
+/// `check`'s report on them with `check`'s options.
+fn batch_checked(scheme: &Scheme, batch: BatchConfig, check: &CheckOptions) -> CheckReport {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("worlds");
+    let options = batch.resolve(scheme, out.clone()).unwrap();
     write_batch(scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
-    check_paths(&[out], &CheckOptions::default(), &|| {}).unwrap()
+    check_paths(&[out], check, &|| {}).unwrap()
 }
 
 proptest! {
@@ -142,10 +147,12 @@ fn balls_rolling_off_a_tiny_terrain_pass_the_physics_check() {
         None,
     )
     .unwrap();
+    let check = CheckOptions {
+        physics: true,
+        ..CheckOptions::default()
+    };
     for seed in [0, 1, 2] {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("worlds");
-        let options = BatchConfig {
+        let batch = BatchConfig {
             amount: Some(4),
             seed: Some(seed),
             world: WorldConfig {
@@ -153,15 +160,8 @@ fn balls_rolling_off_a_tiny_terrain_pass_the_physics_check() {
                 ..WorldConfig::default()
             },
             ..BatchConfig::default()
-        }
-        .resolve(&scheme, out.clone())
-        .unwrap();
-        write_batch(&scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
-        let check = CheckOptions {
-            physics: true,
-            ..CheckOptions::default()
         };
-        let report = check_paths(&[out], &check, &|| {}).unwrap();
+        let report = batch_checked(&scheme, batch, &check);
         assert!(
             report.first_fault().is_none(),
             "seed {seed}: {}",
@@ -250,22 +250,14 @@ proptest! {
     #[test]
     fn a_world_of_the_fifth_rounds_shapes_passes_check((text, physics) in fifth_round_scheme()) {
         let Ok(scheme) = Scheme::from_csv(&text, None) else { return Ok(()) };
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("worlds");
-        let options = BatchConfig {
-            amount: Some(2),
-            world: WorldConfig {
-                // The mesh and the box list (URDF's), every shape.
-                targets: Some(Targets::parse("obj,urdf").unwrap()),
-                ..WorldConfig::default()
-            },
-            ..BatchConfig::default()
-        }
-        .resolve(&scheme, out.clone())
-        .unwrap();
-        write_batch(&scheme, &Templates::builtin(), &options, &|_| {}).unwrap();
+        let world = WorldConfig {
+            // The mesh and the box list (URDF's), every shape.
+            targets: Some(Targets::parse("obj,urdf").unwrap()),
+            ..WorldConfig::default()
+        };
+        let batch = BatchConfig { amount: Some(2), world, ..BatchConfig::default() };
         let check = CheckOptions { physics, ..CheckOptions::default() };
-        let report = check_paths(&[out], &check, &|| {}).unwrap();
+        let report = batch_checked(&scheme, batch, &check);
         prop_assert!(
             report.first_fault().is_none(),
             "{}\nfirst fault: {}\nscheme:\n{text}",

@@ -133,21 +133,8 @@ fn wedge_corners(terrain: &Terrain) -> Vec<Vec<[f64; 3]>> {
         .iter()
         .filter(|r| r.rise > 0)
         .map(|r| {
-            let [x0, y0, x1, y1] = r.cells.map(f64::from);
-            let corners = [
-                (x0, y0),
-                (x1 + 1.0, y0),
-                (x1 + 1.0, y1 + 1.0),
-                (x0, y1 + 1.0),
-            ];
-            let ground = corners.map(|(u, v)| [u * s, v * s, 0.0]);
-            let plane = corners.into_iter().filter_map(|(u, v)| {
-                let z = base + f64::from(r.rise) * step * r.fraction_at(u, v);
-                (z > 0.0).then_some([u * s, v * s, z])
-            });
-            ground
+            r.wedge_corners(s, base, step)
                 .into_iter()
-                .chain(plane)
                 .map(|p| p.map(tidy))
                 .collect()
         })
