@@ -399,6 +399,23 @@ impl Terrain {
         py.import("json")?.call_method1("loads", (json,))
     }
 
+    /// Each rising ramp's wedge as its corners, float64 `(n, 3)` metres:
+    /// its rectangle's four on the ground, then those on its plane above
+    /// the ground (a convex solid: their hull is the wedge).
+    fn wedges<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
+        let t = &self.inner;
+        t.ramps()
+            .iter()
+            .filter(|r| r.rise > 0)
+            .map(|r| {
+                rows(
+                    py,
+                    r.wedge_corners(t.block_size(), t.base(), t.step_height()),
+                )
+            })
+            .collect()
+    }
+
     /// The closed terrain mesh (docs/meshes.md): `(vertices, faces)`, float32
     /// `(n, 3)` metres and uint32 `(m, 3)`, counter-clockwise from outside.
     fn mesh<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f32>>, Bound<'py, PyArray2<u32>>) {

@@ -64,7 +64,7 @@ def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) 
         geometries.append(TerrainGeometry(geom=geom, color=(shade, 0.45, 1.0 - shade, 1.0)))
     # Each ramp's wedge over its staircase of boxes: convex, so MuJoCo
     # collides with it exactly as a mesh geom (as the world files do).
-    for corners in _wedges(terrain):
+    for corners in terrain.wedges():
         mesh = spec.add_mesh(name=f"rse_ramp_{len(spec.meshes)}", uservert=corners.ravel().tolist())
         geom = body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=mesh.name)
         geometries.append(TerrainGeometry(geom=geom, color=(0.9, 0.45, 0.1, 1.0)))
@@ -77,28 +77,6 @@ def _function(cfg: Any, difficulty: float, spec: Any, rng: np.random.Generator) 
             flat_patches[name] = patches_in_ranges(found, p.num_patches, p.x_range, p.y_range, p.z_range)
     origin = np.asarray(terrain.spawn_origin(cfg.spawn_radius), dtype=np.float64)
     return TerrainOutput(origin=origin, geometries=geometries, flat_patches=flat_patches)
-
-
-def _wedges(terrain: Any) -> list[np.ndarray]:
-    """Each rising ramp's corners, ``(n, 3)`` metres: its rectangle on the
-    ground and on its plane (where that is above the ground)."""
-    s, step, base = terrain.block_size, terrain.step_height, terrain.base
-    found = []
-    for ramp in terrain.ramps:
-        if ramp["rise"] <= 0:
-            continue
-        x0, y0, x1, y1 = ramp["cells"]
-        lo, hi = (y0, y1 + 1) if ramp["along_y"] else (x0, x1 + 1)
-        corners = []
-        for u, v in ((x0, y0), (x1 + 1, y0), (x1 + 1, y1 + 1), (x0, y1 + 1)):
-            at = v if ramp["along_y"] else u
-            t = (at - lo if ramp["ascending"] else hi - at) / (hi - lo)
-            corners.append((u * s, v * s, 0.0))
-            z = base + ramp["rise"] * step * t
-            if z > 0:
-                corners.append((u * s, v * s, z))
-        found.append(np.array(corners, dtype=np.float64))
-    return found
 
 
 _SubTerrainCfg = framework_class("mjlab.terrains.terrain_generator", "SubTerrainCfg", "rse.mjlab")
