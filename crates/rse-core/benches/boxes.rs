@@ -32,11 +32,13 @@ fn row(name: &str, terrain: &Terrain, walk_too: bool) {
         )
     });
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let walls = terrain.heightmap().walls().count;
     println!(
-        "{name:<28} {cells:>9} {:>8} {:>10.1} {:>8.1} {:>12} {:>8}",
+        "{name:<28} {cells:>9} {walls:>9} {:>8} {:>10.1} {:>8.1} {:>8.1} {:>12} {:>8}",
         boxes.len(),
         ms(ours),
         ours.as_secs_f64() * 1e9 / cells as f64,
+        ours.as_secs_f64() * 1e9 / walls.max(1) as f64,
         walk.map_or("-".into(), |w| format!("{:.1}", ms(w))),
         walk.map_or("-".into(), |w| format!(
             "{:.1}x",
@@ -52,8 +54,16 @@ fn scheme(text: &str) -> Scheme {
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     println!(
-        "{:<28} {:>9} {:>8} {:>10} {:>8} {:>12} {:>8}",
-        "heightmap", "cells", "boxes", "cover ms", "ns/cell", "area walk ms", "faster"
+        "{:<28} {:>9} {:>9} {:>8} {:>10} {:>8} {:>8} {:>12} {:>8}",
+        "heightmap",
+        "cells",
+        "walls",
+        "boxes",
+        "cover ms",
+        "ns/cell",
+        "ns/wall",
+        "area walk ms",
+        "faster"
     );
     let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
     for name in ["six_obstacles", "nist_hill", "wall_long_pit"] {
@@ -68,6 +78,16 @@ fn main() {
         (
             "random,4 1000x1000 on a base",
             "# size: 1000x1000\n# base: 0.1\ntype,height\nrandom,4\n",
+        ),
+        // Flat fields: one box, or none; the indexes alone.
+        ("flat 1000x1000", "# size: 1000x1000\ntype,height\n"),
+        (
+            "flat 1000x1000 on a base",
+            "# size: 1000x1000\n# base: 0.01\ntype,height\n",
+        ),
+        (
+            "random,1 1000x1000",
+            "# size: 1000x1000\ntype,height\nrandom,1\n",
         ),
         (
             "random,1000 300x300",

@@ -28,6 +28,26 @@ pub enum HeightmapCsvError {
     },
 }
 
+/// The walls of a heightmap ([`Heightmap::walls`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Walls {
+    /// Pairs of neighbouring cells of different heights.
+    pub count: u64,
+    /// Their differences of height summed, in steps.
+    pub steps: u64,
+}
+
+impl Walls {
+    /// The mean height of a wall in steps (0 without walls).
+    pub fn mean(self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            self.steps as f64 / self.count as f64
+        }
+    }
+}
+
 /// Cell heights in steps, `nx × ny`, stored row by row from `y = 0`
 /// (`index = y·nx + x`), the layout of a numpy `(ny, nx)` array.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -92,6 +112,31 @@ impl Heightmap {
     pub(crate) fn row_mut(&mut self, y: u32) -> &mut [u16] {
         let start = self.index(0, y);
         &mut self.cells[start..start + self.nx as usize]
+    }
+
+    /// The walls between neighbouring cells: the pairs (along x or y) of
+    /// different heights, and their heights summed. What the block model
+    /// and the mesh cost follows: flat ground between them is cheap.
+    pub fn walls(&self) -> Walls {
+        let (mut count, mut steps) = (0u64, 0u64);
+        let mut wall = |a: u16, b: u16| {
+            if a != b {
+                count += 1;
+                steps += u64::from(a.abs_diff(b));
+            }
+        };
+        for y in 0..self.ny {
+            let row = self.row(y);
+            for pair in row.windows(2) {
+                wall(pair[0], pair[1]);
+            }
+            if y + 1 < self.ny {
+                for (&a, &b) in row.iter().zip(self.row(y + 1)) {
+                    wall(a, b);
+                }
+            }
+        }
+        Walls { count, steps }
     }
 
     /// The highest cell (0 for an empty map).

@@ -79,7 +79,7 @@ pub use global_key::GlobalKey;
 pub use global_value::{format_dims, parse_dims, parse_pallets};
 pub use globals::{Globals, Grid, Pallets};
 pub use globals_patch::GlobalsPatch;
-pub use heightmap::{Heightmap, HeightmapCsvError};
+pub use heightmap::{Heightmap, HeightmapCsvError, Walls};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use limits::{
     DEFAULT_PALLET_SIZE, DEFAULT_SIGMA, GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_HEIGHT,

@@ -55,7 +55,6 @@ impl CheckConfig {
             strict: self.strict.unwrap_or(false),
             templates,
             budget: self.budget.unwrap_or_default(),
-            at_once: None,
         })
     }
 }

@@ -44,10 +44,12 @@ pub const MAX_OBJ_OBJECTS: usize = 1024;
 pub const REBUILD_VISITS: u64 = rse_core::BUDGET_VISITS;
 
 /// The memory one world's rebuild may take under the default budget: the
-/// memory available (`MemAvailable`) shared by the worlds checked at once,
-/// the rule a batch starts by; 8 GiB where that cannot be read.
-pub fn rebuild_bytes(at_once: usize) -> u64 {
-    rse_world::available_bytes().unwrap_or(8 << 30) / at_once.max(1) as u64
+/// memory available (`MemAvailable`, or less under an address-space
+/// limit); 8 GiB where that cannot be read. A world has all of it: the
+/// worlds checked at once are as many as it holds together
+/// ([`check_paths`](crate::check_paths)), never a share of it each.
+pub fn rebuild_bytes() -> u64 {
+    rse_world::available_bytes().unwrap_or(8 << 30)
 }
 
 /// The byte cap of a file that cannot be regenerated, in a world of

@@ -42,24 +42,9 @@ pub struct CheckOptions {
     pub templates: Option<Arc<Templates>>,
     /// The rebuild budget, as a multiple of the default
     /// ([`REBUILD_VISITS`](crate::limits::REBUILD_VISITS) cell visits and
-    /// the memory available per world checked at once): a world whose
-    /// recipe costs more is a fault, not rebuilt.
+    /// the memory available): a world whose recipe costs more is a fault,
+    /// not rebuilt.
     pub budget: Budget,
-    /// How many worlds are checked at once, sharing the memory available
-    /// between their rebuilds: `None`, one a thread of rayon's current
-    /// pool. [`check_paths`](crate::check_paths) sets it to the worlds it
-    /// has where they are fewer than the threads: one world on 128 threads
-    /// has all the memory, not a 128th of it.
-    pub at_once: Option<usize>,
-}
-
-impl CheckOptions {
-    /// The worlds whose rebuilds share the memory available (at least 1).
-    pub(crate) fn sharing(&self) -> usize {
-        self.at_once
-            .unwrap_or_else(rayon::current_num_threads)
-            .max(1)
-    }
 }
 
 impl Default for CheckOptions {
@@ -69,7 +54,6 @@ impl Default for CheckOptions {
             strict: false,
             templates: None,
             budget: Budget::DEFAULT,
-            at_once: None,
         }
     }
 }
@@ -305,13 +289,9 @@ fn generate_within_budget<'m>(
         report.physics_refused = Some(reason);
         return None;
     }
-    let mut within = |mut cost: RebuildCost, report: &mut WorldReport| {
-        if options.physics {
-            let (visits, bytes) = crate::physics::cost(manifest, &cost, block_size);
-            cost.visits = cost.visits.saturating_add(visits);
-            cost.bytes = cost.bytes.saturating_add(bytes);
-        }
-        if let Some(kind) = over_budget(cost, options.budget, options.sharing()) {
+    let mut within = |cost: RebuildCost, report: &mut WorldReport| {
+        let cost = with_physics(cost, manifest, options, block_size);
+        if let Some(kind) = over_budget(cost, options.budget) {
             faults.push(Fault::of(MANIFEST, kind));
             return false;
         }
@@ -333,6 +313,37 @@ fn generate_within_budget<'m>(
             None
         }
     }
+}
+
+/// `cost` and, under `--physics`, the smoke test's.
+fn with_physics(
+    mut cost: RebuildCost,
+    manifest: &Manifest,
+    options: &CheckOptions,
+    block_size: f64,
+) -> RebuildCost {
+    if options.physics {
+        let (visits, bytes) = crate::physics::cost(manifest, &cost, block_size);
+        cost.visits = cost.visits.saturating_add(visits);
+        cost.bytes = cost.bytes.saturating_add(bytes);
+    }
+    cost
+}
+
+/// The memory the world at `path` is priced to take from its recipe alone
+/// (before anything is generated; 0 where it has no recipe to price):
+/// what [`check_paths`](crate::check_paths) counts to know how many
+/// worlds fit in memory at once.
+pub(crate) fn recipe_bytes(path: &Path, options: &CheckOptions) -> u64 {
+    let (folder, _) = Folder::list(path);
+    let Ok(manifest) = read_manifest(&folder) else {
+        return 0;
+    };
+    let Ok(recipe) = Recipe::of(&manifest) else {
+        return 0;
+    };
+    let cost = recipe.cost(templates_of(options));
+    with_physics(cost, &manifest, options, recipe.block_size()).bytes
 }
 
 /// The templates worlds are rebuilt with: the user's, or ours.
@@ -392,7 +403,7 @@ fn check_against_manifest(
     // manifest can claim any number of them, each up to the rendered-file
     // cap. One that names other files is then read for its references, one
     // at a time and no larger than the memory budget.
-    let text_cap = file_cap(cells).min(options.budget.scale(rebuild_bytes(options.sharing())));
+    let text_cap = file_cap(cells).min(options.budget.scale(rebuild_bytes()));
     let hashed = HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap);
     if !hashed.within_budget(cells, options, report, faults) {
         return;
@@ -546,7 +557,7 @@ impl HashedCost {
         };
         (estimate.bytes, estimate.visits, estimate.seconds) =
             (cost.bytes, cost.visits, cost.seconds());
-        match over_budget(cost, options.budget, options.sharing()) {
+        match over_budget(cost, options.budget) {
             Some(kind) => {
                 faults.push(Fault::of(MANIFEST, kind));
                 false
@@ -575,8 +586,8 @@ impl HashedCost {
 
 /// The fault of a world whose rebuild would cost more than `scale` times
 /// the default budget, or `None` when it is within it.
-fn over_budget(cost: RebuildCost, budget: Budget, sharing: usize) -> Option<FaultKind> {
-    let bytes_budget = budget.scale(rebuild_bytes(sharing));
+fn over_budget(cost: RebuildCost, budget: Budget) -> Option<FaultKind> {
+    let bytes_budget = budget.scale(rebuild_bytes());
     let visits_budget = budget.scale(REBUILD_VISITS);
     (cost.bytes > bytes_budget || cost.visits > visits_budget).then_some(FaultKind::OverBudget {
         cells: cost.cells,

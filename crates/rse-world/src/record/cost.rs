@@ -7,7 +7,7 @@
 //! the files, whose size follows the mesh's triangles and the box count,
 //! not the grid). `rebuild::Recipe` calls them with what it parsed once.
 
-use rse_core::{AtlasOptions, Scheme, Terrain};
+use rse_core::{AtlasOptions, Scheme, Terrain, Walls};
 
 use crate::memory::{BYTES_PER_SAMPLE, hfield_samples};
 use crate::record::options::{Collider, WorldOptions};
@@ -56,8 +56,10 @@ const BASE_BYTES: u64 = 8 << 20;
 /// then read back), the flat-patch and spawn fields.
 const BYTES_PER_CELL: u64 = 48;
 /// Per cell: the height-map CSV and preview written and compared, the
-/// wall count above.
-const VISITS_PER_CELL: u64 = 100;
+/// walls counted (`rse-gen heightmap` and `preview` take 20–30 ns a cell
+/// of a 1000×1000 field, a flat world's whole check 70 ns; once 100 visits,
+/// a flat world was priced 4.8 times what it took).
+const VISITS_PER_CELL: u64 = 12;
 
 /// A file's bytes are held three times at the peak: rebuilt, read from
 /// the folder, and parsed (meshes, XML).
@@ -98,15 +100,16 @@ const VISITS_PER_RAMP_SAMPLE: u64 = 1;
 const BYTES_PER_OBSTACLE: u64 = 640;
 /// Parsing, drawing and recording one obstacle (its stamp is counted
 /// apart, by [`Scheme::generation_visits`]): bench/budget.py's 200,000
-/// obstacles on 10×10 take ~2.5 µs each, stamp included (1000 visits, 5 µs,
-/// put that row at twice its measure).
-const VISITS_PER_OBSTACLE: u64 = 600;
+/// obstacles on 10×10 take ~1.2 µs each, stamp included (at 600 visits,
+/// 3 µs, that row was priced 2.9 times its measure).
+const VISITS_PER_OBSTACLE: u64 = 200;
 
 /// A flat patch of an atlas, as found and as written in `atlas.json`.
 const BYTES_PER_PATCH: u64 = 150;
 /// Finding (counted apart by [`AtlasOptions::visits`]), writing and
-/// comparing one flat patch.
-const VISITS_PER_PATCH: u64 = 800;
+/// comparing one flat patch: an atlas of 10x10 NIST hills listing 115,600
+/// took 0.44 s in all (at 800 visits a patch it was priced 2.4 times that).
+const VISITS_PER_PATCH: u64 = 300;
 
 /// What the recipe alone says of a world: its grid, its generation, and
 /// what its options ask beside the files.
@@ -183,7 +186,7 @@ pub(crate) fn before_generating(
     options: &WorldOptions,
     templates: &Templates,
 ) -> RebuildCost {
-    let recipe = recipe_part(size, options);
+    let recipe = recipe_part(size, options, BlockModel::at_most(size));
     // Counting the mesh and boxes (`after_generating`) builds them: priced
     // here at their most per cell, so that step is bounded too (the boxes
     // are in the recipe's part: every world builds them).
@@ -203,6 +206,43 @@ pub(crate) fn before_generating(
     }
 }
 
+/// What building the block model holds and takes.
+#[derive(Debug, Clone, Copy)]
+struct BlockModel {
+    bytes: u64,
+    visits: u64,
+}
+
+impl BlockModel {
+    /// At its most for the grid: a box a cell, a random field's work a
+    /// cell (before generating).
+    fn at_most(size: &RecipeSize) -> Self {
+        BlockModel {
+            bytes: size.boxes_bytes,
+            visits: size
+                .cells
+                .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL),
+        }
+    }
+
+    /// For the generated heights: its indexes a cell, its work and boxes
+    /// by the walls (a flat field's cover is next to free).
+    fn of(terrain: &Terrain, walls: Walls) -> Self {
+        let grid = terrain.grid();
+        let cells = grid.cells() as u64;
+        BlockModel {
+            bytes: rse_core::mesh::counted_boxes_bytes(grid.nx, grid.ny, walls),
+            visits: cells
+                .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_INDEXED_CELL)
+                .saturating_add(
+                    walls
+                        .count
+                        .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_WALL),
+                ),
+        }
+    }
+}
+
 /// What each target collides with.
 fn colliders(options: &WorldOptions) -> Vec<Collider> {
     options
@@ -215,14 +255,14 @@ fn colliders(options: &WorldOptions) -> Vec<Collider> {
 /// The recipe's part of the cost, nothing of the files: with the block
 /// model, which every world builds (a cone's cover was once unpriced and
 /// took 155 s on 1000×1000).
-fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
+fn recipe_part(size: &RecipeSize, options: &WorldOptions, blocks: BlockModel) -> RebuildCost {
     let samples = hfield_samples(options, size.cells);
     // Each ramp's samples are written again, over its plane.
     let ramp_samples = hfield_samples(options, size.ramp_cells);
     RebuildCost {
         cells: size.cells,
         bytes: BASE_BYTES
-            .saturating_add(size.boxes_bytes)
+            .saturating_add(blocks.bytes)
             .saturating_add(size.cells.saturating_mul(BYTES_PER_CELL))
             .saturating_add(samples.saturating_mul(BYTES_PER_SAMPLE))
             .saturating_add(size.obstacles.saturating_mul(BYTES_PER_OBSTACLE))
@@ -230,10 +270,7 @@ fn recipe_part(size: &RecipeSize, options: &WorldOptions) -> RebuildCost {
         visits: size
             .generation
             .saturating_add(size.cells.saturating_mul(VISITS_PER_CELL))
-            .saturating_add(
-                size.cells
-                    .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL),
-            )
+            .saturating_add(blocks.visits)
             .saturating_add(samples.saturating_mul(VISITS_PER_SAMPLE))
             .saturating_add(ramp_samples.saturating_mul(VISITS_PER_RAMP_SAMPLE))
             .saturating_add(size.obstacles.saturating_mul(VISITS_PER_OBSTACLE))
@@ -254,7 +291,9 @@ pub(crate) fn after_generating(
     terrain: &Terrain,
     templates: &Templates,
 ) -> RebuildCost {
-    let recipe_cost = recipe_part(size, options);
+    let walls = terrain.heightmap().walls();
+    let blocks = BlockModel::of(terrain, walls);
+    let recipe_cost = recipe_part(size, options, blocks);
     let colliders = colliders(options);
     // The mesh is built, written and checked wherever a file holds it: a
     // target colliding it, and MuJoCo and Gazebo classic drawing it over
@@ -296,13 +335,13 @@ pub(crate) fn after_generating(
         );
     // Copies of one mesh are checked once.
     let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
-        + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + mean_wall(terrain)).log2();
+        + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + walls.mean()).log2();
     let mesh_check = (triangles as f64 * per_triangle) as u64;
     // A user's templates at their fuel for this world's boxes, and the
     // count of them (a cover more than the rebuild's own, priced alike).
     let render = if user_templates > 0 {
-        size.cells
-            .saturating_mul(rse_core::mesh::BOXES_VISITS_PER_CELL)
+        blocks
+            .visits
             .saturating_add(render_visits(user_templates, counted))
     } else {
         0
@@ -322,31 +361,6 @@ pub(crate) fn after_generating(
             triangles,
             boxes: counted,
         }),
-    }
-}
-
-/// The mean height of a wall between two neighbouring cells, in steps
-/// (over the pairs that differ; 0 for a flat terrain).
-fn mean_wall(terrain: &Terrain) -> f64 {
-    let map = terrain.heightmap();
-    let (mut sum, mut walls) = (0u64, 0u64);
-    for y in 0..map.ny() {
-        for x in 0..map.nx() {
-            let h = map.get(x, y);
-            let right = (x + 1 < map.nx()).then(|| map.get(x + 1, y));
-            let up = (y + 1 < map.ny()).then(|| map.get(x, y + 1));
-            for other in [right, up].into_iter().flatten() {
-                if other != h {
-                    sum += u64::from(h.abs_diff(other));
-                    walls += 1;
-                }
-            }
-        }
-    }
-    if walls == 0 {
-        0.0
-    } else {
-        sum as f64 / walls as f64
     }
 }
 
@@ -528,28 +542,54 @@ mod tests {
     /// Every world builds its block model (its box lists, or only to know
     /// whether the terrain is empty), yet an OBJ-only world priced none of
     /// it: a cone of radius 500 took 155 s against an estimate of 7.7 s.
-    /// The cover's indexes and boxes are priced from the grid, for every
-    /// target.
+    /// The cover's indexes and boxes are priced for every target: from the
+    /// grid at their most, then from the walls of the generated terrain.
     #[test]
     fn the_block_model_is_priced_for_every_target() {
         let csv = "# size: 60x40\ntype,height,angle,x1,y1\npeak,20,45,30,20\n";
+        let scheme = Scheme::from_csv(csv, None).unwrap();
+        let walls = rse_core::generate(&scheme, 0, 0).heightmap().walls();
+        assert!(walls.count > 100, "{walls:?}");
         for target in ["obj", "urdf", "mujoco", "usd"] {
             let options = WorldOptions {
                 targets: Targets::parse(target).unwrap(),
                 ..WorldOptions::default()
             };
             let manifest = manifest_of(csv, &options);
-            for cost in [before(&manifest), after(&manifest)] {
-                assert!(
-                    cost.visits >= 2400 * (VISITS_PER_CELL + rse_core::mesh::BOXES_VISITS_PER_CELL),
-                    "{target}: {cost:?}"
-                );
-                assert!(
-                    cost.bytes >= BASE_BYTES + rse_core::mesh::boxes_bytes(60, 40),
-                    "{target}: {cost:?}"
-                );
-            }
+            let before = before(&manifest);
+            assert!(
+                before.visits >= 2400 * (VISITS_PER_CELL + rse_core::mesh::BOXES_VISITS_PER_CELL),
+                "{target}: {before:?}"
+            );
+            assert!(
+                before.bytes >= BASE_BYTES + rse_core::mesh::boxes_bytes(60, 40),
+                "{target}: {before:?}"
+            );
+            let after = after(&manifest);
+            assert!(
+                after.visits >= walls.count * rse_core::mesh::BOXES_VISITS_PER_WALL,
+                "{target}: {after:?}"
+            );
+            assert!(
+                after.bytes >= BASE_BYTES + rse_core::mesh::counted_boxes_bytes(60, 40, walls),
+                "{target}: {after:?}"
+            );
         }
+    }
+
+    /// A flat 1000×1000 world was priced 0.91 s and 127 MiB, and took
+    /// 0.19 s and 52 MiB: its block model was priced as a random field's,
+    /// a box and a random field's work a cell. Generated, a world is priced
+    /// by its walls: the flat one at a fraction of a field of steps.
+    #[test]
+    fn a_flat_world_is_priced_by_its_walls_not_its_cells() {
+        let cost = |csv: &str| after(&manifest_of(csv, &WorldOptions::default()));
+        let flat = cost("# size: 300x300\ntype,height\n");
+        let steps = cost("# size: 300x300\ntype,height\nrandom,1\n");
+        assert!(flat.visits * 10 < steps.visits, "{flat:?} {steps:?}");
+        assert!(flat.bytes * 2 < steps.bytes, "{flat:?} {steps:?}");
+        let cells = 90_000;
+        assert!(flat.visits < cells * 40, "{flat:?}");
     }
 
     /// MuJoCo and Gazebo classic collide boxes but draw the mesh, which
