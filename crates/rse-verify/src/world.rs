@@ -404,7 +404,17 @@ fn check_against_manifest(
     // cap. One that names other files is then read for its references, one
     // at a time and no larger than the memory budget.
     let text_cap = file_cap(cells).min(options.budget.scale(rebuild_bytes()));
-    let hashed = HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap);
+    // A user's files that name others are read for their references too:
+    // priced now they are rendered, by their size (a copied MJCF of 65,000
+    // long paths took 3 s priced at nothing).
+    let users_outputs = templates.user_outputs(&manifest.options.targets);
+    let users_naming = users_outputs
+        .iter()
+        .filter(|path| references::names_files(path))
+        .filter_map(|path| expected.get(path))
+        .map(|bytes| bytes.len() as u64);
+    let hashed =
+        HashedCost::of(&hashed_only, folder, file_cap(cells), text_cap).and_read(users_naming);
     if !hashed.within_budget(cells, options, report, faults) {
         return;
     }
@@ -518,7 +528,7 @@ fn difference(path: &str, bytes: &[u8], want: &[u8], terrain: &Terrain) -> Optio
 
 /// What `check` pays for the files it can only hash: reading and hashing
 /// every byte, and parsing those that name other files for their
-/// references.
+/// references; and for a user's files it rebuilt, their references.
 struct HashedCost {
     visits: u64,
     bytes: u64,
@@ -581,6 +591,20 @@ impl HashedCost {
             }
         }
         HashedCost { visits, bytes }
+    }
+
+    /// This, and files of these `sizes`, already in memory, read for their
+    /// references.
+    fn and_read(mut self, sizes: impl Iterator<Item = u64>) -> Self {
+        for size in sizes {
+            self.visits = self
+                .visits
+                .saturating_add(size.saturating_mul(REFERENCE_VISITS_PER_BYTE));
+            self.bytes = self
+                .bytes
+                .max(size.saturating_mul(REFERENCE_BYTES_PER_BYTE));
+        }
+        self
     }
 }
 

@@ -4,6 +4,9 @@
 mod common;
 
 use common::*;
+use std::fmt::Write as _;
+use std::path::Path;
+
 use rse_verify::{Budget, CheckOptions, FaultKind, check_paths, check_world};
 
 /// Hole 1: a fresh world with every collision box removed from
@@ -100,4 +103,77 @@ fn a_flat_world_of_fine_blocks_passes_the_physics_check_priced_by_its_models() {
     let estimate = report.estimate.expect("priced");
     assert!(estimate.seconds < 10.0, "{estimate:?}");
     assert!(estimate.bytes < 1 << 30, "{estimate:?}");
+}
+
+/// A user's template folder under `dir/name` holding `files` (path inside
+/// the folder, bytes), and the world written with it, checked with it.
+fn checked_with_templates(dir: &Path, name: &str, files: &[(&str, &[u8])]) -> rse_verify::Estimate {
+    let folder = dir.join(format!("{name}-templates"));
+    for (path, bytes) in files {
+        let path = folder.join(path);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, bytes).unwrap();
+    }
+    let templates = std::sync::Arc::new(rse_world::Templates::with_overrides(&folder).unwrap());
+    let world = write_world(dir, name, SCHEME, &templates);
+    let options = CheckOptions {
+        templates: Some(templates),
+        ..CheckOptions::default()
+    };
+    let report = check_world(&world, &options);
+    report
+        .estimate
+        .unwrap_or_else(|| panic!("{name}: not priced: {:?}", report.faults))
+}
+
+/// Hole 3: costs a user's templates hid. Nested `replace`s built a 117 MB
+/// string inside the fuel, priced 8 MiB (minijinja's fuel pays for an
+/// instruction or 64 bytes alike: a template is priced at the bytes its
+/// fuel lets it create); a 240 MB file copied as it is was priced at
+/// nothing (it is held three times, as every file is); a copied MJCF of
+/// 65,000 long paths was read for its references priced at nothing (it
+/// is priced by its size once rebuilt, before it is read).
+#[test]
+fn a_users_templates_are_priced_at_what_they_may_create_copy_and_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let plain = checked_with_templates(dir.path(), "plain", &[("urdf/note.txt", b"")]);
+    let nested = "{% set s = 'aaaaaaaaaa' %}".to_owned()
+        + &"{% set s = s|replace('a', 'aaaaaaaaaa') %}".repeat(5)
+        + "{{ s|length }}\n";
+    let replacing = checked_with_templates(
+        dir.path(),
+        "replacing",
+        &[("urdf/extra.txt.j2", nested.as_bytes())],
+    );
+    // The string it builds is 10^6 bytes; its fuel lets it build more.
+    assert!(
+        replacing.bytes >= plain.bytes + rse_world::FIXED_FUEL * rse_world::BYTES_PER_FUEL,
+        "{plain:?} {replacing:?}"
+    );
+    let big = vec![1u8; 20 << 20];
+    let copied = checked_with_templates(dir.path(), "copied", &[("urdf/big.bin", &big)]);
+    assert!(
+        copied.bytes >= plain.bytes + 3 * (20 << 20),
+        "{plain:?} {copied:?}"
+    );
+    assert!(
+        copied.visits >= plain.visits + (20 << 20),
+        "{plain:?} {copied:?}"
+    );
+    let deep = "d".repeat(86);
+    let mut xml = "<mujoco>".to_owned();
+    for i in 0..20_000 {
+        write!(xml, "<a file=\"{deep}/{deep}/{i:05}.obj\"/>").unwrap();
+    }
+    xml += "</mujoco>";
+    let naming = checked_with_templates(
+        dir.path(),
+        "naming",
+        &[("mujoco/extra.xml", xml.as_bytes())],
+    );
+    let size = xml.len() as u64;
+    assert!(
+        naming.visits >= plain.visits + size + 4 * size,
+        "{plain:?} {naming:?} ({size} bytes)"
+    );
 }

@@ -55,7 +55,7 @@ pub use record::options::{
 };
 pub use record::rebuild::{Generated, RebuildError, Rebuilt, Recipe};
 pub use render::templates::{
-    FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX, MAX_TEMPLATE_BYTES,
-    MAX_TEMPLATE_FILE_BYTES, Templates, VISITS_PER_FUEL, rendered_file_cap,
+    BYTES_PER_FUEL, FILE_BYTES_PER_CELL, FIXED_FILE_BYTES, FIXED_FUEL, FUEL_PER_BOX,
+    MAX_TEMPLATE_BYTES, MAX_TEMPLATE_FILE_BYTES, Templates, VISITS_PER_FUEL, rendered_file_cap,
 };
 pub use render::world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};

@@ -11,7 +11,7 @@ use rse_core::{AtlasOptions, Scheme, Terrain, Walls};
 
 use crate::memory::{BYTES_PER_SAMPLE, hfield_samples};
 use crate::record::options::{Collider, WorldOptions};
-use crate::render::templates::{Templates, render_visits};
+use crate::render::templates::{Templates, render_bytes, render_visits};
 
 /// What rebuilding and checking a world costs, estimated before it is done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,13 +196,46 @@ pub(crate) fn before_generating(
         bytes = triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE);
         visits = triangles.saturating_mul(MESH_BUILD_VISITS_PER_TRIANGLE);
     }
-    // A user's templates at their fuel, for as many boxes as cells.
-    let render = render_visits(templates.user_templates(&options.targets), size.cells);
+    // A user's files, their templates at their fuel for as many boxes as
+    // cells.
+    let users = UsersFiles::of(templates, options, size.cells);
     RebuildCost {
         cells: size.cells,
-        bytes: recipe.bytes.saturating_add(bytes),
-        visits: recipe.visits.saturating_add(visits).saturating_add(render),
+        bytes: recipe
+            .bytes
+            .saturating_add(bytes)
+            .saturating_add(users.bytes),
+        visits: recipe
+            .visits
+            .saturating_add(visits)
+            .saturating_add(users.visits),
         models: None,
+    }
+}
+
+/// What a user's files cost a world: their templates at their fuel (in
+/// time and in the bytes it lets them create), and the files copied as
+/// they are, held as every file is ([`FILE_COPIES`]) and compared.
+#[derive(Debug, Clone, Copy)]
+struct UsersFiles {
+    bytes: u64,
+    visits: u64,
+}
+
+/// Cloning, reading back and comparing a byte of a file copied from a
+/// user's folder: a 200 MB file took 0.97 s of its world's check.
+const VISITS_PER_COPIED_BYTE: u64 = 1;
+
+impl UsersFiles {
+    /// For a world of `boxes` boxes.
+    fn of(templates: &Templates, options: &WorldOptions, boxes: u64) -> Self {
+        let rendered = templates.user_templates(&options.targets);
+        let copied = templates.copied_bytes(&options.targets);
+        UsersFiles {
+            bytes: render_bytes(rendered, boxes).saturating_add(copied.saturating_mul(FILE_COPIES)),
+            visits: render_visits(rendered, boxes)
+                .saturating_add(copied.saturating_mul(VISITS_PER_COPIED_BYTE)),
+        }
     }
 }
 
@@ -337,26 +370,24 @@ pub(crate) fn after_generating(
     let per_triangle = MESH_CHECK_VISITS_PER_TRIANGLE as f64
         + MESH_CHECK_VISITS_PER_WALL_DOUBLING * (1.0 + walls.mean()).log2();
     let mesh_check = (triangles as f64 * per_triangle) as u64;
-    // A user's templates at their fuel for this world's boxes, and the
-    // count of them (a cover more than the rebuild's own, priced alike).
-    let render = if user_templates > 0 {
-        blocks
-            .visits
-            .saturating_add(render_visits(user_templates, counted))
-    } else {
-        0
-    };
+    // A user's files, their templates at their fuel for this world's
+    // boxes, and the count of them (a cover more than the rebuild's own,
+    // priced alike).
+    let users = UsersFiles::of(templates, options, counted);
+    let count = if user_templates > 0 { blocks.visits } else { 0 };
     RebuildCost {
         cells: recipe_cost.cells,
         bytes: recipe_cost
             .bytes
             .saturating_add(file_bytes.saturating_mul(FILE_COPIES))
-            .saturating_add(triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE)),
+            .saturating_add(triangles.saturating_mul(MESH_BYTES_PER_TRIANGLE))
+            .saturating_add(users.bytes),
         visits: recipe_cost
             .visits
             .saturating_add(visits)
             .saturating_add(mesh_check)
-            .saturating_add(render),
+            .saturating_add(count)
+            .saturating_add(users.visits),
         models: Some(ModelCounts {
             triangles,
             boxes: counted,

@@ -2,7 +2,7 @@
 //! every world as they are, and `.j2` files rendered with minijinja (the
 //! suffix dropped) with the world's values.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 use minijinja::{AutoEscape, Environment, UndefinedBehavior};
@@ -295,8 +295,8 @@ impl Templates {
         let value = minijinja::Value::from(minijinja::value::Serde(context));
         // Fuel per file, for this world's box count: a user's template's
         // loops cannot run on without bound (three nested `range(100000)`).
-        // Ours loop over the boxes only and need a hundredth of it
-        // (`our_templates_need_a_tenth_of_the_fuel`): they run without
+        // Ours loop over the boxes only and need a fifth of it
+        // (`our_templates_need_a_fifth_of_the_fuel`): they run without
         // the count, which cost a fifth of their time. Cloning an
         // environment shares its compiled templates.
         let counted = |file: &TemplateFile| fueled == Fueled::All || !file.ours;
@@ -350,19 +350,25 @@ enum Fueled {
     All,
 }
 
-/// The instructions one template may run for a world of `boxes` boxes:
-/// our templates take under 100 a box (`our_templates_need_a_tenth_of_the_fuel`);
-/// a user's gets ten times that, and a fixed part for loops of their own
-/// (a third of a second). `check --template` prices a user's template at
-/// this bound (it cannot know less before rendering), so the bound is kept
-/// near what templates need: at a hundred times ours a 300×300 field
-/// priced 14 s a file.
-pub const FUEL_PER_BOX: u64 = 1_000;
+/// The fuel one template may spend for a world of `boxes` boxes: our
+/// templates spend 24–48 a box, bytes included (minijinja counts an
+/// instruction as a fuel and a byte it creates as a 64th:
+/// `our_templates_need_a_fifth_of_the_fuel`); a user's gets four times our
+/// most, and a fixed part for loops and text of their own (some 70 ms of
+/// loops, or 128 MB of text). `check --template` prices a user's template
+/// at this bound, in time and in memory (it cannot know less before
+/// rendering), so the bound is kept near what templates need: at 1000 a
+/// box and 10⁷ fixed, a 1000×1000 field priced 29 GB a file.
+pub const FUEL_PER_BOX: u64 = 200;
 /// See [`FUEL_PER_BOX`].
-pub const FIXED_FUEL: u64 = 10_000_000;
+pub const FIXED_FUEL: u64 = 2_000_000;
+
+/// Bytes a template may create for one fuel: minijinja 3.1 charges one
+/// 64th of a fuel for each byte of a string, list or output it makes.
+pub const BYTES_PER_FUEL: u64 = 64;
 
 fn render_fuel(boxes: usize) -> u64 {
-    FIXED_FUEL.saturating_add((boxes as u64).saturating_mul(FUEL_PER_BOX))
+    render_fuel_of(boxes as u64)
 }
 
 /// One instruction of minijinja's, in cell visits ([`crate::VISIT_NANOS`]
@@ -371,23 +377,66 @@ fn render_fuel(boxes: usize) -> u64 {
 pub const VISITS_PER_FUEL: u64 = 7;
 
 impl Templates {
+    /// The user's files of `targets`' folders, with their targets.
+    fn users_files<'a>(
+        &'a self,
+        targets: &'a crate::Targets,
+    ) -> impl Iterator<Item = (Target, &'a TemplateFile)> + 'a {
+        targets
+            .iter()
+            .filter_map(|target| Some((target, self.files.get(&target)?)))
+            .flat_map(|(target, list)| list.iter().map(move |file| (target, file)))
+            .filter(|(_, file)| !file.ours)
+    }
+
     /// How many of the files `targets` render are a user's templates (run
     /// under fuel; ours are priced with the files they write).
     pub(crate) fn user_templates(&self, targets: &crate::Targets) -> u64 {
-        targets
-            .iter()
-            .filter_map(|target| self.files.get(&target))
-            .flatten()
-            .filter(|file| !file.ours && file.path.ends_with(TEMPLATE_SUFFIX))
+        self.users_files(targets)
+            .filter(|(_, file)| file.path.ends_with(TEMPLATE_SUFFIX))
             .count() as u64
+    }
+
+    /// The bytes of the user's files `targets` copy as they are (not
+    /// templates): each world holds them (a 240 MB one was priced at
+    /// nothing).
+    pub(crate) fn copied_bytes(&self, targets: &crate::Targets) -> u64 {
+        self.users_files(targets)
+            .filter(|(_, file)| !file.path.ends_with(TEMPLATE_SUFFIX))
+            .map(|(_, file)| file.bytes.len() as u64)
+            .fold(0, u64::saturating_add)
+    }
+
+    /// Where in a world of `targets` the user's files land (rendered or
+    /// copied): `target/path`, as `rse.json` lists them.
+    pub fn user_outputs(&self, targets: &crate::Targets) -> BTreeSet<String> {
+        self.users_files(targets)
+            .map(|(target, file)| format!("{target}/{}", output_path(&file.path)))
+            .collect()
     }
 }
 
 /// The most work rendering `users` of a user's templates for a world of
 /// `boxes` boxes may take, in cell visits: each at its fuel.
 pub(crate) fn render_visits(users: u64, boxes: u64) -> u64 {
-    let fuel = FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX));
-    users.saturating_mul(fuel).saturating_mul(VISITS_PER_FUEL)
+    users
+        .saturating_mul(render_fuel_of(boxes))
+        .saturating_mul(VISITS_PER_FUEL)
+}
+
+/// The most memory rendering `users` of a user's templates for a world of
+/// `boxes` boxes may hold: each the bytes its fuel lets it create (its
+/// strings and its output; nested `replace`s once built 117 MB priced at
+/// nothing), and its output once more as `check` reads it back.
+pub(crate) fn render_bytes(users: u64, boxes: u64) -> u64 {
+    users
+        .saturating_mul(render_fuel_of(boxes))
+        .saturating_mul(BYTES_PER_FUEL)
+        .saturating_mul(2)
+}
+
+fn render_fuel_of(boxes: u64) -> u64 {
+    FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX))
 }
 
 /// The most bytes one rendered file of a world may hold: what `check`
@@ -631,10 +680,11 @@ mod tests {
         );
     }
 
-    /// Our templates render a world of many boxes on a tenth of the fuel a
-    /// user's template gets: the per-box fuel is no tight fit.
+    /// Our templates render a world of many boxes on a fifth of the fuel a
+    /// user's template gets a box (they take 24–48): the per-box fuel is
+    /// no tight fit.
     #[test]
-    fn our_templates_need_a_tenth_of_the_fuel() {
+    fn our_templates_need_a_fifth_of_the_fuel() {
         let scheme =
             rse_core::Scheme::from_csv("# size: 40x40\ntype,height\nrandom,4\n", None).unwrap();
         let terrain = rse_core::generate(&scheme, 1, 0);
@@ -642,7 +692,7 @@ mod tests {
         assert!(boxes.len() > 500, "{}", boxes.len());
         let context = WorldContext::new("w".to_owned(), &terrain, MeshMode::Blocks, &boxes);
         let templates = Templates::builtin();
-        let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 10;
+        let fuel = 1000 + boxes.len() as u64 * FUEL_PER_BOX / 4;
         for target in Target::ALL {
             templates
                 .render_with_fuel(target, &context, fuel, Fueled::All)
@@ -672,7 +722,7 @@ mod tests {
             ),
             (
                 "big.txt.j2",
-                "{% for a in range(100) %}{{ 'x' * 99000000 }}{% endfor %}",
+                "{% set x = 'x' * 9900000 %}{% for a in range(100) %}{{ x }}{% endfor %}",
                 "renders more than",
             ),
         ] {
