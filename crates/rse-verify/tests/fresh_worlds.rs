@@ -266,3 +266,75 @@ proptest! {
         );
     }
 }
+
+/// The sixth round's shapes, each checked on a pool of 128 threads (the
+/// budget was once the memory divided by them): long strips both ways
+/// with every target, flat worlds of fine blocks under the physics smoke
+/// test (once priced per cell, 37 times what it took), and fields of
+/// random steps.
+fn sixth_round_scheme() -> impl Strategy<Value = (String, bool)> {
+    prop_oneof![
+        // A long strip, along x or y.
+        (1_000u32..=20_000, 1u32..=1000, any::<bool>()).prop_map(|(n, h, along_x)| {
+            let (nx, ny) = if along_x { (n, 1) } else { (1, n) };
+            (
+                format!("# size: {nx}x{ny}\n# block_size: 0.05\ntype,height\nrandom,{h}\n"),
+                false,
+            )
+        }),
+        // A flat world of fine blocks, on a base or not, physics on.
+        (
+            20u32..=300,
+            20u32..=300,
+            prop::sample::select(vec![0.01, 0.02]),
+            any::<bool>()
+        )
+            .prop_map(|(nx, ny, block, base)| {
+                let base = if base { "# base: 0.01\n" } else { "" };
+                (
+                    format!(
+                        "# size: {nx}x{ny}\n# block_size: {block}\n{base}type,height\nrandom,0\n"
+                    ),
+                    true,
+                )
+            }),
+        // Random steps of any height.
+        (10u32..=120, 10u32..=120, 1u32..=1000).prop_map(|(nx, ny, h)| {
+            (
+                format!("# size: {nx}x{ny}\ntype,height\nrandom,{h}\n"),
+                false,
+            )
+        }),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 10,
+        rng_seed: RngSeed::Fixed(62),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn a_world_of_the_sixth_rounds_shapes_passes_check_on_many_threads(
+        (text, physics) in sixth_round_scheme()
+    ) {
+        let Ok(scheme) = Scheme::from_csv(&text, None) else { return Ok(()) };
+        let targets = if physics { "obj,urdf" } else { "obj,gazebo,webots,mujoco,urdf,usd" };
+        let world = WorldConfig {
+            targets: Some(Targets::parse(targets).unwrap()),
+            ..WorldConfig::default()
+        };
+        let batch = BatchConfig { amount: Some(3), world, ..BatchConfig::default() };
+        let check = CheckOptions { physics, ..CheckOptions::default() };
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(128).build().unwrap();
+        let report = pool.install(|| batch_checked(&scheme, batch, &check));
+        prop_assert!(
+            report.first_fault().is_none(),
+            "{}\nfirst fault: {}\nscheme:\n{text}",
+            report.verdict(),
+            report.first_fault().unwrap_or_default()
+        );
+    }
+}
