@@ -600,6 +600,18 @@ fn read_tree(folder: &OpenFolder) -> Result<BTreeMap<Target, Vec<TemplateFile>>,
             Listed::File { .. } => {
                 let cap = MAX_TEMPLATE_FILE_BYTES.min(MAX_TEMPLATE_BYTES.saturating_sub(total));
                 let file = match folder.read(&relative, cap) {
+                    // Another name for it may be outside the folder (a
+                    // secret linked in would reach every world): `check`
+                    // reads no world file with two names either. Judged
+                    // on the file opened, not the listing.
+                    Ok(file) if file.links > 1 => {
+                        return Err(bad(&format!(
+                            "it has {} hard links: another name for it may be outside the \
+                             folder (template files are read from this folder alone: copy \
+                             it in)",
+                            file.links
+                        )));
+                    }
                     Ok(file) => file,
                     Err(ReadError::TooLarge { bytes, .. }) => {
                         return Err(bad(&format!(
@@ -740,16 +752,21 @@ mod tests {
     }
 
     /// A template folder is read by descriptor: a link in it (to a secret,
-    /// to `/dev/zero`), a FIFO, or a target folder that is a link, is
-    /// refused naming it, never followed, read or waited on.
+    /// to `/dev/zero`), a hard link, a FIFO, or a target folder that is a
+    /// link, is refused naming it, never followed, read or waited on.
     #[cfg(unix)]
     #[test]
     fn links_and_special_files_in_a_template_folder_are_refused() {
         let secret = tempfile::NamedTempFile::new().unwrap();
         std::fs::write(secret.path(), "secret").unwrap();
-        let cases: [(&str, Plant); 4] = [
+        let cases: [(&str, Plant); 5] = [
             ("urdf/key.txt", &|at| {
                 std::os::unix::fs::symlink(secret.path(), at).unwrap();
+            }),
+            // Hostile worlds VI: a hard link to a file outside was copied
+            // into every world.
+            ("urdf/linked.txt", &|at| {
+                std::fs::hard_link(secret.path(), at).unwrap();
             }),
             ("urdf/zero.bin", &|at| {
                 std::os::unix::fs::symlink("/dev/zero", at).unwrap();
