@@ -519,6 +519,10 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
             return Err(bad(words::world_failure(&e)));
         }
     };
+    if let Err(refusal) = fits_on_disk(&scheme, &templates, &options) {
+        *job.running.lock().expect("not poisoned") = false;
+        return Err(refusal);
+    }
     job.done.store(0, Ordering::SeqCst);
     job.total.store(options.amount, Ordering::SeqCst);
     *job.result.lock().expect("not poisoned") = None;
@@ -552,6 +556,39 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         *job.running.lock().expect("not poisoned") = false;
     });
     Ok(json!({ "ok": true, "total": total }))
+}
+
+/// Refuses a batch that could not fit on the disk it goes to, priced from
+/// its first worlds built in memory (2⁶⁴ − 1 worlds asked from the page
+/// once wrote until the disk was full). Worlds already there are counted
+/// too: a batch resumed on a full disk is refused a little early.
+fn fits_on_disk(
+    scheme: &rse_core::Scheme,
+    templates: &Templates,
+    options: &rse_world::BatchOptions,
+) -> Result<(), Value> {
+    let need = rse_world::batch_disk_bytes(scheme, templates, options)
+        .map_err(|e| bad(words::world_failure(&e)))?;
+    let Some(free) = rse_world::free_disk_bytes(&options.out) else {
+        return Ok(());
+    };
+    if need <= free {
+        return Ok(());
+    }
+    let worlds = options.shard.worlds(options.amount).max(1);
+    let each = need / worlds;
+    let mib = |bytes: u64| (bytes >> 20).max(1);
+    Err(control_error(
+        "gen-amount",
+        &format!(
+            "{worlds} worlds of some {} MiB each need some {} MiB, but {} MiB are free where \
+             they go: ask for at most {} worlds, or free some space",
+            mib(each),
+            mib(need),
+            free >> 20,
+            free / each.max(1)
+        ),
+    ))
 }
 
 /// `GET /api/job`: the batch's progress and, once done, its summaries.
@@ -827,6 +864,32 @@ mod tests {
         assert!(message.contains("more than the editor draws"), "{message}");
         let alike = vec![row(65_535); 17_000];
         assert!(preview(scheme(alike).to_string().as_bytes()).is_ok());
+    }
+
+    /// Hostile worlds VI: 2⁶⁴ − 1 worlds asked from the page wrote until
+    /// the disk was full. A batch is priced from its first worlds and
+    /// refused, at the amount's control, when it could not fit in the
+    /// space free where it goes; nothing is written or left running.
+    #[test]
+    fn a_batch_larger_than_the_disk_is_refused_before_a_world_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("w");
+        let editor = Editor::default();
+        let body = json!({
+            "scheme": seeded_page_scheme(),
+            "out": out,
+            "amount": u64::MAX.to_string(),
+            "targets": ["obj"],
+        });
+        let refusal = generate(&editor, body.to_string().as_bytes()).unwrap_err();
+        assert_eq!(refusal["error"]["control"], "gen-amount", "{refusal}");
+        let message = refusal["error"]["message"].as_str().unwrap();
+        assert!(
+            message.contains("MiB are free") && message.contains("ask for at most"),
+            "{message}"
+        );
+        assert!(!*editor.job.running.lock().unwrap(), "nothing started");
+        assert!(!out.exists(), "nothing written");
     }
 
     /// A page scheme with `# seed: 9` and `# amount: 2` of `random,3`.

@@ -26,6 +26,7 @@
 mod atlas;
 mod batch;
 mod config;
+mod disk;
 mod error;
 mod files;
 mod memory;
@@ -38,6 +39,7 @@ pub use batch::{
     write_batch_until,
 };
 pub use config::{BatchConfig, WorldConfig};
+pub use disk::{batch_disk_bytes, free_disk_bytes};
 pub use error::Error;
 pub use files::digest::sha256_hex;
 pub use files::folder::{place_folder, write_world_at};
