@@ -132,24 +132,23 @@ pub async fn serve(listener: TcpListener, port: u16, handler: Arc<Handler>) {
             tokio::time::sleep(std::time::Duration::from_millis(50)).await;
             continue;
         };
-        let permit = match Arc::clone(&open).try_acquire_owned() {
-            Ok(permit) => permit,
-            Err(_) => {
-                let evicted = slots.lock().is_ok_and(|slots| slots.evict_idle());
-                let freed = if evicted {
-                    tokio::time::timeout(EVICTION_WAIT, Arc::clone(&open).acquire_owned())
-                        .await
-                        .ok()
-                        .and_then(Result::ok)
-                } else {
-                    None
-                };
-                let Some(permit) = freed else {
-                    turn_away(&stream);
-                    continue;
-                };
-                permit
-            }
+        let permit = if let Ok(permit) = Arc::clone(&open).try_acquire_owned() {
+            permit
+        } else {
+            let evicted = slots.lock().is_ok_and(|slots| slots.evict_idle());
+            let freed = if evicted {
+                tokio::time::timeout(EVICTION_WAIT, Arc::clone(&open).acquire_owned())
+                    .await
+                    .ok()
+                    .and_then(Result::ok)
+            } else {
+                None
+            };
+            let Some(permit) = freed else {
+                turn_away(&stream);
+                continue;
+            };
+            permit
         };
         let Ok((id, slot)) = slots.lock().map(|mut slots| slots.add()) else {
             turn_away(&stream);
