@@ -52,7 +52,9 @@ def chromium_page(width: int = 1500, height: int = 1000) -> Iterator[Page]:
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=chromium, args=CHROMIUM_FLAGS)
         try:
-            yield browser.new_page(viewport={"width": width, "height": height})
+            # In a context of its own: `page.context.new_page()` opens a
+            # second tab of the same browser profile.
+            yield browser.new_context(viewport={"width": width, "height": height}).new_page()
         finally:
             browser.close()
 

@@ -13,7 +13,7 @@ use rse_world::{BatchConfig, MeshMode, Target, Targets, Templates, WorldConfig, 
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use crate::drafts::Drafts;
+use crate::drafts::{Drafts, Stored, unnamed_id};
 use crate::model::{FieldError, PageScheme};
 use crate::words;
 
@@ -33,6 +33,9 @@ pub struct Editor {
     /// Where each file's draft and undo history are kept (None: nowhere,
     /// the page keeps them in the browser only).
     pub drafts: Option<Drafts>,
+    /// Held while a draft is compared and written: two tabs' writes never
+    /// interleave.
+    pub drafts_written: Mutex<()>,
 }
 
 /// Progress of a Generate run.
@@ -82,61 +85,152 @@ fn bad(message: impl Into<String>) -> Value {
 /// # Panics
 /// If the lock is poisoned (a panic while saving).
 pub fn state(editor: &Editor) -> Value {
+    let folder = std::env::current_dir()
+        .map(|d| d.display().to_string())
+        .unwrap_or_default();
+    // The page was last on a scheme in no file yet (New, a sample, a file
+    // from the browser's computer): that one, with its draft, whatever
+    // reload, port or restart (once lost to the command line's file).
+    let current = editor
+        .drafts
+        .as_ref()
+        .and_then(|d| d.current(&start_document(editor)));
+    if let Some(document) = current.filter(|d| unnamed_id(d).is_some()) {
+        let (draft, revision) = draft_of(editor, &document);
+        if let Some(scheme) = draft.get("scheme").filter(|s| s.is_object()) {
+            return json!({
+                "ok": true,
+                "document": document,
+                "scheme": scheme,
+                "draft": draft,
+                "revision": revision,
+                "path": null,
+                "folder": folder,
+            });
+        }
+    }
     let saved = editor.saved.lock().unwrap();
     let (path, scheme) = match &*saved {
         Some((path, scheme)) => (Some(path), scheme),
         None => (editor.path.as_ref(), &editor.initial),
     };
     let shown = path.map(|p| p.display().to_string());
+    let (draft, revision) = draft_of(editor, shown.as_deref().unwrap_or(""));
     json!({
         "ok": true,
+        "document": shown.as_deref().unwrap_or(""),
         "scheme": scheme,
-        "draft": draft_of(editor, shown.as_deref().unwrap_or("")),
+        "draft": draft,
+        "revision": revision,
         "path": shown,
+        // The command line's file is not there yet: Save writes it.
+        "new_file": path.is_some_and(|p| !p.exists()),
         // Where relative paths (Open path, Save as, the output folder) start.
-        "folder": std::env::current_dir().map(|d| d.display().to_string()).unwrap_or_default(),
+        "folder": folder,
     })
 }
 
-/// `file`'s draft as the server keeps it (null: none).
-fn draft_of(editor: &Editor, file: &str) -> Value {
+/// The document the editor started on: the command line's file ("": none).
+fn start_document(editor: &Editor) -> String {
     editor
-        .drafts
+        .path
         .as_ref()
-        .and_then(|d| d.load(file))
-        .unwrap_or(Value::Null)
+        .map_or_else(String::new, |p| p.display().to_string())
+}
+
+/// `document`'s draft as the server keeps it (null: none) and its
+/// revision (0: none).
+fn draft_of(editor: &Editor, document: &str) -> (Value, u64) {
+    match &editor.drafts {
+        Some(drafts) => {
+            let (draft, revision) = drafts.load_revised(document);
+            (draft.unwrap_or(Value::Null), revision)
+        }
+        None => (Value::Null, 0),
+    }
 }
 
 #[derive(Deserialize)]
 struct DraftRequest {
-    /// The file the draft is of, as the server named it ("": none yet).
+    /// The document the draft is of: a file as the server named it, or
+    /// `unnamed:ID` for a scheme in no file yet.
     file: String,
     /// The page's draft (its scheme, the file's scheme it was made from,
     /// its undo history), kept as the page sent it; null forgets it.
     draft: Value,
+    /// The tab writing it (a page load's own id).
+    #[serde(default)]
+    tab: String,
+    /// The revision of this draft the tab read or wrote last (0: none).
+    #[serde(default)]
+    base: u64,
+    /// Write over another tab's later draft (the user chose this one).
+    #[serde(default)]
+    force: bool,
+    /// The page is on this document now: a reload starts from it.
+    #[serde(default)]
+    current: bool,
 }
 
 /// `POST /api/draft`: keeps (or with a null draft forgets) the page's
-/// draft of a file, so a reload, another browser or the editor restarted
-/// on another port finds it.
+/// draft of a document, so a reload, another browser or the editor
+/// restarted on another port finds it; never over another tab's draft
+/// written since this tab read it (the answer is `conflict` with theirs).
+///
+/// # Panics
+/// If the drafts' lock is poisoned (a panic while writing one).
 pub fn draft(editor: &Editor, body: &[u8]) -> Answer {
     let request: DraftRequest = request(body)?;
     let Some(drafts) = &editor.drafts else {
         return Ok(json!({ "ok": true, "kept": false }));
     };
+    if !request.file.is_empty()
+        && request.file.starts_with("unnamed:")
+        && unnamed_id(&request.file).is_none()
+    {
+        return Err(bad("bad request: not a document name"));
+    }
+    let failed = |e: rse_world::Error| {
+        bad(format!(
+            "the draft could not be kept: {}",
+            words::world_failure(&e)
+        ))
+    };
+    // One tab's read-compare-write at a time.
+    let _one = editor.drafts_written.lock().expect("not poisoned");
+    let mut answer = json!({ "ok": true, "kept": true });
     if request.draft.is_null() {
         drafts.forget(&request.file);
     } else if !request.draft.is_object() {
         return Err(bad("bad request: a draft is an object"));
     } else {
-        drafts.store(&request.file, &request.draft).map_err(|e| {
-            bad(format!(
-                "the draft could not be kept: {}",
-                words::world_failure(&e)
-            ))
-        })?;
+        let stored = drafts
+            .store_revised(
+                &request.file,
+                &request.draft,
+                &request.tab,
+                request.base,
+                request.force,
+            )
+            .map_err(failed)?;
+        match stored {
+            Stored::Kept { revision } => answer["revision"] = revision.into(),
+            Stored::Conflict { theirs, revision } => {
+                return Ok(json!({
+                    "ok": false,
+                    "conflict": true,
+                    "theirs": theirs,
+                    "revision": revision,
+                }));
+            }
+        }
     }
-    Ok(json!({ "ok": true, "kept": true }))
+    if request.current {
+        drafts
+            .set_current(&start_document(editor), &request.file)
+            .map_err(failed)?;
+    }
+    Ok(answer)
 }
 
 /// `GET /api/schema`: what the page's fields and lists are made of — the
@@ -375,8 +469,14 @@ pub fn open(editor: &Editor, body: &[u8]) -> Answer {
 fn remember(editor: &Editor, path: PathBuf, scheme: &rse_core::Scheme) -> Value {
     let page = PageScheme::from_scheme(scheme);
     let shown = path.display().to_string();
-    let answer =
-        json!({ "ok": true, "draft": draft_of(editor, &shown), "path": shown, "scheme": page });
+    let (draft, revision) = draft_of(editor, &shown);
+    let answer = json!({
+        "ok": true,
+        "draft": draft,
+        "revision": revision,
+        "path": shown,
+        "scheme": page,
+    });
     *editor.saved.lock().unwrap() = Some((path, page));
     answer
 }

@@ -352,7 +352,7 @@ pub const FEWER_JOBS: &str = "; use fewer worker threads (jobs) or a smaller gri
 /// need more memory than the machine has available (`MemAvailable` on
 /// Linux; elsewhere nothing is refused): better a clear error before
 /// starting than an abort half-way.
-fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
+pub(crate) fn check_memory(scheme: &Scheme, options: &BatchOptions) -> Result<(), Error> {
     let threads = options
         .jobs
         .unwrap_or_else(rayon::current_num_threads)

@@ -21,12 +21,16 @@ const SAMPLED_WORLDS: u64 = 2;
 
 /// The bytes `options`' batch of `scheme` would write (every world of its
 /// shard, none skipped): its first worlds built in memory, the largest
-/// times the worlds, each file rounded up to a disk block.
+/// times the worlds, each file rounded up to a disk block. A batch that
+/// would not fit in memory is refused first, as `write_batch` refuses it.
 pub fn batch_disk_bytes(
     scheme: &Scheme,
     templates: &Templates,
     options: &BatchOptions,
 ) -> Result<u64, Error> {
+    // Built here only if the batch would fit in memory (it is refused
+    // otherwise, naming what to reduce).
+    crate::batch::check_memory(scheme, options)?;
     let worlds = options.shard.worlds(options.amount);
     let mut largest = 0u64;
     let shard = options.shard;

@@ -85,6 +85,8 @@ function connectionLost() {
 const HISTORY_MERGE_MS = 600;
 const undoLog = { past: [], future: [], lastKey: null, lastAt: 0, restoring: false };
 const file = {
+  doc: "", // the document the draft belongs to: `server`, or `unnamed:ID` for a scheme in no file yet
+  revision: 0, // the revision of its draft this tab read or wrote last
   path: "", // the file Save writes ("" : none yet, Save asks)
   name: "", // what the header shows
   server: "", // the file the server starts a reload from
@@ -94,8 +96,17 @@ const file = {
   opened: null, // the scheme of a document in no file as it was opened, as JSON
 };
 
-/** Where this browser keeps the draft of `of` (the file the server holds for the page). */
-function draftKey(of = file.server) { return `rse-editor:${of || "(unnamed)"}`; }
+/** Where this browser keeps the draft of the document `of`. */
+function draftKey(of = file.doc) { return `rse-editor:${of || "(unnamed)"}`; }
+
+/** This page load's own name among the tabs on one draft. */
+const TAB = newId();
+
+/** A fresh id: for a tab, or for a document in no file yet. */
+function newId() {
+  if (crypto.randomUUID) return crypto.randomUUID();
+  return `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 12)}`;
+}
 
 function snapshot() { return JSON.stringify({ scheme: pageScheme(), selected: state.selected }); }
 
@@ -182,6 +193,7 @@ function draft(unsaved) {
   for (;;) {
     const kept = {
       scheme: pageScheme(), unsaved, base: file.base, path: file.path, name: file.name,
+      suggestion: file.suggestion, opened: file.opened,
       past: undoLog.past.slice(-keep), future: undoLog.future.slice(-keep),
     };
     if (keep <= 1 || JSON.stringify(kept).length <= DRAFT_MAX_CHARS) return kept;
@@ -195,22 +207,59 @@ function keepDraft() {
   window.rseEditor.draftPending = true;
 }
 
-/** Sends the draft of the file the server holds for this page (`forget`:
- * that there is none). With the server gone it is not sent: the browser's
- * copy stands, and the next change (or the server's return) sends it. */
-function sendDraft({ keepalive = false, forget = false, of = file.server } = {}) {
+/** Sends the draft of the page's document (`forget`: that there is none;
+ * `of`: another document's). With the server gone it is not sent: the
+ * browser's copy stands, and the next change (or the server's return)
+ * sends it. Another tab's draft written since this tab read it is not
+ * overwritten: the server answers with it, and the page offers both. */
+function sendDraft({ keepalive = false, forget = false, of = file.doc, force = false } = {}) {
   clearTimeout(drafts.timer); drafts.timer = null;
-  const body = JSON.stringify({ file: of, draft: forget ? null : draft(!$("unsaved").hidden) });
+  const mine = of === file.doc;
+  const body = JSON.stringify({
+    file: of, draft: forget ? null : draft(!$("unsaved").hidden),
+    tab: TAB, base: mine ? file.revision : 0, force, current: mine && !forget,
+  });
   window.rseEditor.draftPending = true;
   fetch("/api/draft", { method: "POST", headers: { "Content-Type": "application/json" }, body, keepalive })
-    .then((response) => { if (response.ok) window.rseEditor.draftsSent += 1; })
+    .then(async (response) => {
+      if (!response.ok) return;
+      const answer = await response.json();
+      if (!answer.conflict) window.rseEditor.draftsSent += 1;
+      if (!mine || of !== file.doc) return; // the page moved on meanwhile
+      if (answer.conflict) offerBoth(answer.theirs, answer.revision);
+      else if (answer.revision) file.revision = answer.revision;
+    })
     .catch(() => {})
     .finally(() => { window.rseEditor.draftPending = drafts.timer !== null; });
+}
+
+/** Another tab (or window, or browser) changed this document's draft since
+ * this page read it: nothing is overwritten unasked. The user keeps this
+ * page's scheme (written over theirs) or takes theirs (this page's stays
+ * one Undo away). */
+let offering = false;
+async function offerBoth(theirs, revision) {
+  if (offering) return;
+  offering = true;
+  const dialog = $("conflict-dialog");
+  dialog.returnValue = "";
+  dialog.showModal();
+  const choice = await new Promise((resolve) => dialog.addEventListener("close", () => resolve(dialog.returnValue), { once: true }));
+  offering = false;
+  file.revision = revision;
+  if (choice === "theirs" && theirs && theirs.scheme) {
+    loadScheme(theirs.scheme);
+    record(null);
+    say("took the other tab's version (Undo brings this tab's back)");
+  } else {
+    say("kept this tab's version");
+  }
+  sendDraft({ force: true });
 }
 // A reload or a closed tab within the quarter second still sends the last edit.
 window.addEventListener("pagehide", () => { if (drafts.timer) sendDraft({ keepalive: true }); });
 
-/** Forgets the draft of `of` (the file the page held): saved or discarded. */
+/** Forgets the draft of the document `of`: saved or discarded. */
 function forgetDraft(of) {
   try { localStorage.removeItem(draftKey(of)); } catch (e) { /* nothing kept */ }
   sendDraft({ forget: true, of });
@@ -224,14 +273,18 @@ function forgetHistory() { undoLog.past = []; undoLog.future = []; undoLog.lastK
  * this browser kept, wins if it was made from what the file still holds
  * (else the file changed since, and the file wins). A draft brings back
  * the unsaved scheme and the undo history. */
-function startFile(scheme, server, kept) {
+function startFile(scheme, server, kept, revision = 0, newFile = false) {
   file.server = server || "";
+  file.doc = file.server;
+  file.revision = revision;
   file.path = file.server; file.name = file.server;
   file.base = JSON.stringify(scheme);
   file.opened = null;
   forgetHistory();
   loadScheme(scheme);
-  file.saved = JSON.stringify(pageScheme());
+  // A file named on the command line that is not there yet: a new scheme
+  // Save writes there.
+  file.saved = newFile ? null : JSON.stringify(pageScheme());
   let found = kept && kept.base === file.base ? kept : null;
   if (!found) {
     try {
@@ -592,7 +645,7 @@ async function mayReplace(what) {
     return $("unsaved").hidden;
   }
   if (choice !== "discard") return false;
-  forgetDraft(file.server);
+  forgetDraft(file.doc);
   return true;
 }
 
@@ -605,7 +658,7 @@ async function openPath() {
   if (!answer.ok) { say(`not opened: ${answer.error.message}`); $("error").textContent = answer.error.message; return; }
   // The draft of the file left behind stays in this browser: opening it
   // again brings it back.
-  startFile(answer.scheme, answer.path, answer.draft);
+  startFile(answer.scheme, answer.path, answer.draft, answer.revision);
   if (!$("status").textContent.startsWith("unsaved changes restored")) say(`opened ${answer.path}`);
 }
 $("open-path").onclick = openPath;
@@ -614,6 +667,8 @@ $("open-path").onclick = openPath;
  * asks where, offering `suggestion`), with its own history. */
 function startUnnamed(scheme, name, suggestion) {
   file.server = file.path = "";
+  file.doc = `unnamed:${newId()}`;
+  file.revision = 0;
   file.name = name;
   file.base = null;
   file.saved = null;
@@ -695,8 +750,9 @@ async function saveTo(path, makeFolder = false) {
   // The file is now what the page holds: the draft of another file the
   // page held goes; `changed` below drops this browser's copy of this
   // file's and sends the server its saved state.
-  if (file.server !== answer.path) forgetDraft(file.server);
-  file.server = file.path = file.name = answer.path;
+  if (file.doc !== answer.path) forgetDraft(file.doc);
+  file.server = file.doc = file.path = file.name = answer.path;
+  file.revision = 0;
   file.base = JSON.stringify(answer.scheme);
   file.saved = JSON.stringify(pageScheme());
   changed();
@@ -944,5 +1000,32 @@ function buildFields(schema) {
   } catch (e) { say(`the editor's server did not answer: ${e.message}; reload the page once it runs`); return; }
   buildFields(schema);
   $("work-folder").textContent = $("work-folder").title = $("dialog-folder").textContent = answer.folder;
-  startFile(answer.scheme, answer.path, answer.draft);
+  if (answer.document?.startsWith("unnamed:")) resumeUnnamed(answer);
+  else {
+    startFile(answer.scheme, answer.path, answer.draft, answer.revision, answer.new_file);
+    if (answer.new_file) say(`a new scheme: Save writes ${answer.path}`);
+  }
 })();
+
+/** Back on the scheme in no file yet the page was on (New, a sample, a
+ * file from this computer), from its draft: its name, what Save offers,
+ * its undo history. */
+function resumeUnnamed(answer) {
+  const kept = answer.draft;
+  file.server = "";
+  file.doc = answer.document;
+  file.revision = answer.revision ?? 0;
+  file.path = kept.path ?? "";
+  file.name = kept.name ?? "";
+  file.suggestion = kept.suggestion ?? "scheme.csv";
+  file.opened = kept.opened ?? null;
+  file.base = null; file.saved = null;
+  forgetHistory();
+  loadScheme(kept.scheme);
+  if (Array.isArray(kept.past)) undoLog.past = kept.past.filter((t) => typeof t === "string");
+  if (Array.isArray(kept.future)) undoLog.future = kept.future.filter((t) => typeof t === "string");
+  const top = undoLog.past[undoLog.past.length - 1];
+  if (!top || JSON.stringify(JSON.parse(top).scheme) !== JSON.stringify(pageScheme())) undoLog.past.push(snapshot());
+  changed();
+  say(JSON.stringify(pageScheme()) === file.opened ? `back on ${file.name || "a new scheme"}` : "unsaved changes restored");
+}

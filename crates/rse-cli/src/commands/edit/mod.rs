@@ -18,7 +18,15 @@ use rse_edit::{Drafts, Editor, PageScheme, api};
 pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitStatus> {
     let mut editor = Editor::default();
     if let Some(path) = &args.scheme {
-        let scheme = super::load_scheme(path, overrides)?;
+        // A file that is not there yet starts a new scheme there, as a
+        // desktop program does (Save writes it); one that cannot be read
+        // is refused.
+        let scheme = if path.try_exists().is_ok_and(|there| !there) {
+            rse_core::Scheme::from_csv(rse_edit::NEW_SCHEME, None)
+                .expect("the starting scheme is valid (a test reads it)")
+        } else {
+            super::load_scheme(path, overrides)?
+        };
         editor.initial = PageScheme::from_scheme(&scheme);
         editor.path = Some(path.clone());
     } else {
