@@ -1,7 +1,8 @@
 """Takes docs/images/editor.png (a 1440 px laptop window: the preview beside
-the table), docs/images/editor-wide.png (1920 px: globals, table and
-preview in three columns) and docs/images/editor-narrow.png (800 px: the
-preview below the table): `rse-gen edit` on schemes/six_obstacles.csv in
+the table), docs/images/editor-1280.png (a 1280×800 laptop),
+docs/images/editor-wide.png (1920 px: globals, table and preview in three
+columns) and docs/images/editor-narrow.png (800 px: the preview below the
+table): `rse-gen edit` on schemes/six_obstacles.csv in
 headless Chromium, the peak selected and the pointer on the map. Run:
 .venv/bin/python scripts/editor_screenshot.py"""
 
@@ -21,7 +22,12 @@ def main() -> None:
     os.environ["RSE_STATE_DIR"] = tempfile.mkdtemp(prefix="rse-screenshot-state-")
     scheme = REPO / "schemes/six_obstacles.csv"
     with running_editor(REPO / "target/release/rse-gen", scheme, REPO) as url:
-        for width, height, name in [(1440, 900, "editor.png"), (1920, 1080, "editor-wide.png"), (800, 1000, "editor-narrow.png")]:
+        for width, height, name in [
+            (1440, 900, "editor.png"),
+            (1280, 800, "editor-1280.png"),
+            (1920, 1080, "editor-wide.png"),
+            (800, 1000, "editor-narrow.png"),
+        ]:
             with chromium_page(width, height) as page:
                 page.goto(url)
                 page.wait_for_function("window.rseEditor.previews >= 1")

@@ -414,14 +414,14 @@ def test_one_action_is_one_undo_step_whatever_mix_of_buttons_keys_and_map_grabs_
     edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("peak"))
     edit(page, lambda: page.get_by_label("angle of obstacle 2", exact=True).fill("90"))
     mapped = page.get_by_role("application", name="top-down map")
-    mapped.focus()  # the cursor starts mid-grid, (10, 8)
-    edit(page, lambda: page.keyboard.press("Enter"))  # a keyboard grab places the peak …
+    mapped.focus()  # the cursor starts mid-grid, (10, 8), where the new peak stands
+    edit(page, lambda: page.keyboard.press("Enter"))  # a keyboard grab places the new peak …
     for _ in range(3):
         edit(page, lambda: page.keyboard.press("ArrowRight"))  # … and moves it, still held
     assert table(page)[1]["x1.lo"] == "13"
     # Ctrl+Z mid-grab takes back the grab, and only it.
     edit(page, lambda: page.keyboard.press("Control+Z"))
-    assert table(page)[1] == {"type": "peak", "height.lo": "1", "angle.lo": "90"}, table(page)
+    assert table(page)[1] == {"type": "peak", "height.lo": "1", "angle.lo": "90", "x1.lo": "10", "y1.lo": "8"}, table(page)
     edit(page, lambda: page.keyboard.press("Control+Shift+Z"))
     assert (table(page)[1]["x1.lo"], table(page)[1]["y1.lo"]) == ("13", "8"), "Redo brings the grab back"
     # A grab, then a button clicked while it is held: two steps.
@@ -436,9 +436,10 @@ def test_one_action_is_one_undo_step_whatever_mix_of_buttons_keys_and_map_grabs_
     edit(page, lambda: undo.click())
     assert table(page)[1]["y1.lo"] == "8"
     edit(page, lambda: undo.click())
-    assert "x1.lo" not in table(page)[1] and table(page)[1]["angle.lo"] == "90"
+    assert table(page)[1]["x1.lo"] == "10" and table(page)[1]["angle.lo"] == "90"
     edit(page, lambda: undo.click())
-    assert "angle.lo" not in table(page)[1] and table(page)[1]["type"] == "peak"
+    # The type's step: a new peak starts valid, 45° in the middle.
+    assert table(page)[1] == {"type": "peak", "height.lo": "1", "angle.lo": "45", "x1.lo": "10", "y1.lo": "8"}, table(page)
     for _ in range(4):
         edit(page, lambda: redo.click())
     assert len(table(page)) == 3 and redo.is_disabled()

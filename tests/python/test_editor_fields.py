@@ -180,24 +180,35 @@ def test_at_800_px_nothing_scrolls_sideways_and_the_preview_moves_below_the_tabl
                     assert map_box["width"] >= 300, f"{width} px: the map is {map_box['width']} px wide"
 
 
-def test_at_1440_px_the_map_stays_in_view_beside_any_row_edited(tmp_path: Path) -> None:
-    """A laptop's 1440×900: the map and the 3D view beside the table, whole
-    on the screen, whichever row is edited (the page scrolled down to the
-    30th)."""
+@pytest.mark.parametrize("width, height", [(1280, 800), (1440, 900), (1920, 1080)])
+def test_the_map_stays_in_view_beside_any_row_edited_with_the_toolbar_and_headings(tmp_path: Path, width: int, height: int) -> None:
+    """A laptop's 1280×800 or 1440×900, a desktop's 1920×1080: the map
+    beside the table, whole on the screen and large (once 347×231 px at
+    1440×900, some 6 px a block), whichever row is edited (the 30th too);
+    the toolbar (Undo, Save, "unsaved") and the column headings stay on the
+    screen above the row (row 30 was unlabelled numbers). The 3D view is
+    under the map, in the preview's own scroll."""
     scheme = tmp_path / "long.csv"
     scheme.write_text("# size: 40x40\ntype,height,angle,x1,y1\n" + "".join(f"peak,3,60,{i},{i}\n" for i in range(30)))
-    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url, chromium_page(1440, 900) as page:
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url, chromium_page(width, height) as page:
         wait_ready(page, url)
         for row in (1, 15, 30):
             field = page.get_by_label(f"height of obstacle {row}", exact=True)
             edit(page, lambda field=field: field.fill("4"))
             field_box = field.bounding_box()
             map_box = page.locator("#map-overlay").bounding_box()
-            assert 0 <= field_box["y"] < 900, "the edited field is on the screen"
-            assert 0 <= map_box["y"] and map_box["y"] + map_box["height"] <= 900, f"row {row}: the map is at {map_box}"
+            assert 0 <= field_box["y"] < height, "the edited field is on the screen"
+            assert 0 <= map_box["y"] and map_box["y"] + map_box["height"] <= height, f"row {row}: the map is at {map_box}"
             assert map_box["x"] >= field_box["x"] + field_box["width"]
-            view = page.get_by_role("img", name="3D view of the blocks").bounding_box()
-            assert 0 <= view["y"] and view["y"] + view["height"] <= 900, f"row {row}: the 3D view is at {view}"
+            assert map_box["width"] >= 480, f"row {row}: the map is {map_box['width']} px wide"
+            for name in ("Undo", "Save"):
+                button = page.get_by_role("button", name=name, exact=True).bounding_box()
+                assert 0 <= button["y"] < field_box["y"], f"row {row}: {name} scrolled away"
+            heading = page.locator("#table thead th", has_text="height").bounding_box()
+            assert heading["y"] + heading["height"] <= field_box["y"] and heading["y"] >= 0, f"row {row}: the heading is at {heading}"
+        page.get_by_role("img", name="3D view of the blocks").scroll_into_view_if_needed()
+        view = page.get_by_role("img", name="3D view of the blocks").bounding_box()
+        assert 0 <= view["y"] and view["y"] + view["height"] <= height, f"the 3D view is at {view}"
 
 
 def focus_section(page: Page) -> str:
@@ -310,6 +321,9 @@ NOT_THE_USERS_WORDS = {
     "step_height": "a key's spelling",
     "pallet_size": "a key's spelling",
     "jobs": "a setting the page does not have",
+    "lo..hi": "scheme-file syntax of a range",
+    "NXxNY": "scheme-file syntax of a size",
+    "≥": "a symbol for a sentence",
 }
 
 
@@ -361,6 +375,16 @@ def test_every_error_is_said_in_the_users_words_naming_the_control_and_the_fix(e
     edit(page, lambda: page.get_by_label("notes").fill("size: big"))
     said("reword its start")
     edit(page, lambda: page.get_by_label("notes").fill("fine"))
+    # A letter in a number's field, a size in words (once "`a` is not a
+    # whole number ≥ 0 or a range lo..hi", and "`si` is not a whole number").
+    edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("a"))
+    said("`a` is not a whole number of 0 or more: type one")
+    edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("2"))
+    size = page.get_by_label("size", exact=True)
+    before = size.input_value()
+    edit(page, lambda: size.fill("sixty by forty"))
+    said("`sixty by forty` is not a size: type two whole numbers, columns x rows")
+    edit(page, lambda: size.fill(before))
     for value, expect in (("-1", "a whole number of 0 or more"), ("99999999999999999999999", "is too large")):
         edit(page, lambda value=value: page.get_by_label("index").fill(value))
         said(expect)
@@ -409,4 +433,4 @@ def test_every_error_is_said_in_the_users_words_naming_the_control_and_the_fix(e
     page.get_by_role("dialog", name="Create the folder?").get_by_role("button", name="Create folder").click()
     page.wait_for_function("document.getElementById('status').textContent.startsWith('saved')")
     assert (folder / "new" / "mine.csv").is_file()
-    assert len(seen) == 12, seen
+    assert len(seen) == 14, seen

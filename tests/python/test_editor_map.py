@@ -57,18 +57,22 @@ def test_the_map_is_preview_png_pixel_for_pixel(tmp_path: Path, page: Page, sche
         assert np.array_equal(got, want), f"{(got != want).any(axis=2).sum()} pixels differ"
 
 
-def test_a_click_places_the_peak_and_a_drag_draws_the_wall_on_the_cells_pointed_at(tmp_path: Path, page: Page) -> None:
+def test_a_drag_moves_the_peak_and_draws_the_new_wall_on_the_cells_pointed_at(tmp_path: Path, page: Page) -> None:
     scheme_file = tmp_path / "start.csv"
     scheme_file.write_text("# size: 20x16\ntype,height,angle,x1,y1\npeak,4,90,1,1\n")
     with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
         wait_ready(page, url)
-        # A click places the selected peak (90°: one block) on the cell clicked.
-        edit(page, lambda: page.mouse.click(*cell_point(page, 5, 7)))
+        # A click on empty ground moves nothing (it once moved the selection there).
+        page.mouse.click(*cell_point(page, 5, 7))
+        assert table(page)[0] == {"type": "peak", "height.lo": "4", "angle.lo": "90", "x1.lo": "1", "y1.lo": "1"}
+        # A drag of the peak's point (90°: one block) takes it to the cell let go on.
+        drag_on_map(page, (1, 1), (5, 7))
+        page.wait_for_function("window.rseEditor.preview.heights[7 * 20 + 5] === 4")
         assert table(page)[0] == {"type": "peak", "height.lo": "4", "angle.lo": "90", "x1.lo": "5", "y1.lo": "7"}
         heights = heights_on_page(page)
-        assert heights[7, 5] == 4 and heights.sum() == 4, "the block is where the click was, and only there"
+        assert heights[7, 5] == 4 and heights.sum() == 4, "the block is where the drag ended, and only there"
 
-        # A wall, drawn by a drag from (2, 3) to (15, 3).
+        # A new wall, drawn by a drag from (2, 3) to (15, 3).
         edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
         edit(page, lambda: page.get_by_label("type of obstacle 2").select_option("wall"))
         edit(page, lambda: page.get_by_label("height of obstacle 2", exact=True).fill("3"))
@@ -109,17 +113,19 @@ def test_a_click_places_the_peak_and_a_drag_draws_the_wall_on_the_cells_pointed_
         assert page.locator("#error").inner_text() == ""
 
 
-def test_a_click_places_the_selected_obstacle_even_inside_another_ones_range(tmp_path: Path, page: Page) -> None:
-    """On a busy map (six obstacles, their random ranges covering the middle)
-    a click places the selected new pit where it is, and says so first;
-    another obstacle is picked with Shift; Enter next to another's point
-    places too (it no longer grabs the neighbour)."""
+def test_a_new_obstacle_is_placed_by_the_next_click_wherever_others_lie(tmp_path: Path, page: Page) -> None:
+    """On a busy map (six obstacles, their random ranges covering the
+    middle) a new pit starts valid in the middle, and the next click places
+    it where it is, and says so first: it never selects another obstacle
+    there. By the keyboard, Enter next to another's point places it too."""
     scheme_file = tmp_path / "six.csv"
     scheme_file.write_text((REPO / "schemes/six_obstacles.csv").read_text())
     with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
         wait_ready(page, url)
         edit(page, lambda: page.get_by_role("button", name="Add obstacle").click())
         edit(page, lambda: page.get_by_label("type of obstacle 7").select_option("pit"))
+        assert table(page)[6] == {"type": "pit", "height.lo": "1", "angle.lo": "45", "x1.lo": "25", "y1.lo": "25"}, "valid from the start"
+        assert page.locator("#error").inner_text() == ""
         edit(page, lambda: page.get_by_label("angle of obstacle 7", exact=True).fill("60"))
         assert page.evaluate("window.rseEditor.state.selected") == 6
         # (20, 30) lies inside the peak's, the wall's and the other pit's ranges.
@@ -131,48 +137,149 @@ def test_a_click_places_the_selected_obstacle_even_inside_another_ones_range(tmp
         assert (table(page)[6]["x1.lo"], table(page)[6]["y1.lo"]) == ("20", "30")
         assert page.evaluate("window.rseEditor.state.selected") == 6, "the pit stays selected"
         assert table(page)[2]["x1.lo"] == "10" and table(page)[2]["x1.hi"] == "40", "the peak did not move"
+        # Placed: a click there now picks what is under the pointer.
+        page.mouse.move(*cell_point(page, 20, 30))
+        assert hint.inner_text().startswith("Click: drag to move pit 7"), hint.inner_text()
 
-        # Shift+click picks the obstacle whose range is there: the peak.
-        page.keyboard.down("Shift")
-        page.mouse.move(*cell_point(page, 21, 31))
-        assert hint.inner_text() == "Click: select peak 3 and move it", hint.inner_text()
-        page.mouse.click(*cell_point(page, 21, 31))
-        page.keyboard.up("Shift")
-        assert page.evaluate("window.rseEditor.state.selected") == 2
-
-        # The keyboard: the pit again, Enter on the cell next to the long
-        # pit's end (25, 0) places the pit there.
-        page.get_by_label("type of obstacle 7").focus()
+        # The keyboard: a second new pit, Enter on the cell next to the long
+        # pit's end (25, 0) places it there.
+        edit(page, lambda: page.get_by_role("button", name="Copy obstacle").click())
+        assert "click on the map to place it" in page.locator("#status").inner_text()
         page.get_by_role("application", name="top-down map").focus()  # the cursor starts mid-grid, (25, 25)
         page.keyboard.press("ArrowRight")
         for _ in range(24):
             page.keyboard.press("ArrowDown")
-        assert hint.inner_text().startswith("Click: place pit 7 here"), hint.inner_text()
+        assert hint.inner_text().startswith("Click: place pit 8 here"), hint.inner_text()
         edit(page, lambda: page.keyboard.press("Enter"))
         page.keyboard.press("Enter")
-        assert (table(page)[6]["x1.lo"], table(page)[6]["y1.lo"]) == ("26", "1")
+        assert (table(page)[7]["x1.lo"], table(page)[7]["y1.lo"]) == ("26", "1")
         assert (table(page)[5]["x1.lo"], table(page)[5]["y1.lo"]) == ("25", "0"), "the long pit stayed"
-        assert page.evaluate("window.rseEditor.state.selected") == 6
+        assert page.evaluate("window.rseEditor.state.selected") == 7
+
+
+def test_pointing_picks_what_is_under_the_pointer(tmp_path: Path, page: Page) -> None:
+    """A busy map of 12 obstacles: a click exactly on another obstacle's
+    point picks it though the selected one's point is a block away (the
+    selection's handle once won); a wall is picked by the middle of its
+    line and dragged whole; clicking again on one spot goes through every
+    obstacle under the pointer in turn; a plain click on empty ground moves
+    nothing; picking records no Undo step."""
+    scheme_file = tmp_path / "busy.csv"
+    rows = ["random,1,,,,,", "wall,3,90,4,10,20,10", "long_pit,2,90,10,2,10,8"]
+    rows += [f"peak,4,45,{x},{y},," for x, y in [(30, 20), (31, 21), (5, 30), (6, 30), (15, 25), (15, 25), (35, 5), (36, 6), (20, 30)]]
+    scheme_file.write_text("# size: 40x36\ntype,height,angle,x1,y1,x2,y2\n" + "\n".join(rows) + "\n")
+    with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
+        wait_ready(page, url)
+        selected = lambda: page.evaluate("window.rseEditor.state.selected")  # noqa: E731
+        undo = page.get_by_role("button", name="Undo")
+        # Peak 4 at (30, 20) selected; a click exactly on peak 5's point (31, 21).
+        page.mouse.click(*cell_point(page, 30, 20))
+        assert selected() == 3
+        page.mouse.click(*cell_point(page, 31, 21))
+        assert selected() == 4, "the point clicked on wins over the selected one a block away"
+        # A wall by the middle of its line, dragged whole: both ends move.
+        drag_on_map(page, (12, 10), (12, 14))
+        page.wait_for_function("window.rseEditor.state.rows[1]['y1.lo'] === '14'")
+        wall = table(page)[1]
+        assert (wall["x1.lo"], wall["y1.lo"], wall["x2.lo"], wall["y2.lo"]) == ("4", "14", "20", "14")
+        assert selected() == 1
+        # Two peaks on one spot, (15, 25): click, click again: each in turn.
+        page.mouse.click(*cell_point(page, 15, 25))
+        first = selected()
+        page.mouse.click(*cell_point(page, 15, 25))
+        second = selected()
+        page.mouse.click(*cell_point(page, 15, 25))
+        assert {first, second} == {7, 8} and selected() == first, (first, second, selected())
+        # Empty ground: nothing moves, nothing is selected anew.
+        before = table(page)
+        page.mouse.click(*cell_point(page, 25, 33))
+        assert table(page) == before and selected() == first
+        assert page.locator("#map-hint").inner_text().startswith("Click: nothing here")
+        # Picks recorded nothing: one Undo takes back the wall's drag.
+        edit(page, lambda: undo.click())
+        assert table(page)[1]["y1.lo"] == "10" and undo.is_disabled()
+
+
+def test_the_map_zooms_and_pans_by_wheel_buttons_and_keys(tmp_path: Path, page: Page) -> None:
+    """A 120×80 grid is some 4 px a block: the map zooms to 24 px a block
+    and more (wheel over it, the buttons, + and − on it), pans by a drag on
+    empty ground and with the keyboard's cursor, and clicks still land on
+    the cell under the pointer."""
+    scheme_file = tmp_path / "wide.csv"
+    scheme_file.write_text("# size: 120x80\ntype,height,angle,x1,y1\nrandom,1,,,\npeak,5,45,60,40\n")
+    with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
+        wait_ready(page, url)
+        level = page.locator("#zoom-level")
+        assert level.inner_text().startswith("whole grid")
+        box = page.locator(".map-box").bounding_box()
+        block = lambda: page.locator("#map-overlay").bounding_box()["width"] / 120  # noqa: E731
+        assert block() < 8
+        for _ in range(6):
+            page.get_by_role("button", name="Zoom in").click()
+        assert block() >= 24, f"{block()} px a block"
+        assert "px a block" in level.inner_text() and level.inner_text().startswith("zoom")
+        # The peak, zoomed: dragged by its point to a cell clicked on.
+        centre = page.locator("#map-overlay").bounding_box()
+        assert centre["x"] < box["x"], "zoomed about the middle"
+        page.mouse.move(*cell_point(page, 60, 40))
+        assert page.locator("#map-hint").inner_text().startswith("Click: select peak 2")
+        drag_on_map(page, (60, 40), (62, 41))
+        page.wait_for_function("window.rseEditor.state.rows[1]['x1.lo'] === '62'")
+        assert table(page)[1]["y1.lo"] == "41"
+        # A drag on empty ground pans.
+        before = page.locator("#map-overlay").bounding_box()
+        page.mouse.move(box["x"] + 20, box["y"] + 20)
+        page.mouse.down()
+        page.mouse.move(box["x"] + 120, box["y"] + 60, steps=5)
+        page.mouse.up()
+        after = page.locator("#map-overlay").bounding_box()
+        assert after["x"] > before["x"] and after["y"] > before["y"], (before, after)
+        assert table(page)[1]["x1.lo"] == "62", "panning moved nothing"
+        # The keys: − out, 0 the whole grid, + in; the wheel.
+        page.get_by_role("application", name="top-down map").focus()
+        page.keyboard.press("0")
+        assert level.inner_text().startswith("whole grid")
+        page.keyboard.press("+")
+        assert level.inner_text().startswith("zoom")
+        page.keyboard.press("-")
+        page.keyboard.press("-")
+        assert level.inner_text().startswith("whole grid")
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        page.mouse.wheel(0, -600)
+        assert block() > 8
+        page.get_by_role("button", name="Whole grid").click()
+        assert level.inner_text().startswith("whole grid")
 
 
 def test_the_keyboard_draws_on_the_map(tmp_path: Path, page: Page) -> None:
     scheme_file = tmp_path / "start.csv"
-    scheme_file.write_text("# size: 20x16\ntype,height,angle,x1,y1,x2,y2\nwall,2,90,0,0,1,0\n")
+    scheme_file.write_text("# size: 20x16\ntype,height,angle,x1,y1,x2,y2\nrandom,1,,,,,\n")
     with running_editor(rse_gen_release_path(), scheme_file, tmp_path) as url:
         wait_ready(page, url)
+        edit(page, lambda: page.get_by_label("type of obstacle 1").select_option("wall"))
+        edit(page, lambda: page.get_by_label("height of obstacle 1", exact=True).fill("2"))
+        edit(page, lambda: page.get_by_label("angle of obstacle 1", exact=True).fill("90"))
         page.get_by_role("application", name="top-down map").focus()  # the cursor starts mid-grid, (10, 8)
         for key, times in [("ArrowRight", 7), ("ArrowUp", 5)]:
             for _ in range(times):
                 page.keyboard.press(key)
         assert page.locator("#readout").inner_text().startswith("column 17, row 13")
-        page.keyboard.press("Enter")  # the wall's first end …
+        page.keyboard.press("Enter")  # the new wall's first end …
         for _ in range(10):
             page.keyboard.press("ArrowDown")
         edit(page, lambda: page.keyboard.press("Enter"))  # … and its second
         row = table(page)[0]
         assert (row["x1.lo"], row["y1.lo"], row["x2.lo"], row["y2.lo"]) == ("17", "13", "17", "3")
         heights = heights_on_page(page)
-        assert (heights[3:14, 17] == 2).all() and heights[0, :2].sum() == 0, "the wall moved to where the keys drew it"
+        assert (heights[3:14, 17] == 2).all() and heights[:, :17].sum() == 0, "the wall is where the keys drew it"
+        # Enter on its line grabs it whole; the arrows move it.
+        page.keyboard.press("ArrowUp")
+        page.keyboard.press("Enter")
+        for _ in range(3):
+            page.keyboard.press("ArrowLeft")
+        edit(page, lambda: page.keyboard.press("Enter"))
+        row = table(page)[0]
+        assert (row["x1.lo"], row["y1.lo"], row["x2.lo"], row["y2.lo"]) == ("14", "13", "14", "3")
 
 
 def test_the_readout_and_legend_say_what_rse_core_generated(tmp_path: Path, page: Page) -> None:

@@ -168,10 +168,12 @@ pub fn parse_dims(text: &str) -> Result<[u32; 2], String> {
     let (a, b) = text
         .split_once(['x', 'X', '×', '*'])
         .ok_or_else(|| format!("`{text}` is not of the form NXxNY, e.g. 50x50"))?;
+    // Named whole: "sixty by forty" splits at its first `x`, and `si` is
+    // no help to whoever typed it.
     let one = |s: &str| {
         s.trim()
             .parse::<u32>()
-            .map_err(|_| format!("`{}` is not a whole number ≥ 0", s.trim()))
+            .map_err(|_| format!("`{text}` is not two whole numbers NXxNY, e.g. 50x50"))
     };
     Ok([one(a)?, one(b)?])
 }

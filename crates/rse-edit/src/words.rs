@@ -34,9 +34,28 @@ pub fn scheme_fault(kind: &SchemeErrorKind) -> String {
             "`{}` is not a setting of a scheme; did you mean `{near}`?",
             quote(found)
         ),
+        SchemeErrorKind::NotANumber { value, expected } => format!(
+            "`{}` is not {}: type one in the first field (and a larger one in the \
+             second for a random range)",
+            quote(value),
+            page_words(expected)
+        ),
+        SchemeErrorKind::BadGlobal { value, reason } if reason.contains("NXxNY") => format!(
+            "`{}` is not a size: type two whole numbers, columns x rows, e.g. 60x40",
+            quote(value)
+        ),
         other => other.to_string(),
     };
     with_labels(&text)
+}
+
+/// What a field expects, as the page says it: no `lo..hi` (the page has
+/// a second field for a range's high end), no `≥`.
+fn page_words(expected: &str) -> String {
+    expected
+        .trim_end_matches(" or a range lo..hi")
+        .replace("≥ 0", "of 0 or more")
+        .replace("cells ≥ 1", "cells, 1 or more")
 }
 
 /// A fault of a scheme file being opened: where in the file (line, the

@@ -75,15 +75,14 @@ function connectionLost() {
 
 // --- never lose work: undo history and the draft kept in this browser -------
 //
-// Every edit records the page's scheme after it (typing in one field within
-// HISTORY_MERGE_MS is one edit, a drag on the map is one edit). Undo and
-// Redo move through the records. The draft — the page's scheme, unsaved or
+// Every edit records the page's scheme after it (typing in one field, until
+// the focus leaves it, is one edit; a drag on the map is one edit; a
+// selection alone is none). Undo and Redo move through the records. The draft — the page's scheme, unsaved or
 // not, and its undo history — is kept by the server per file (any port,
 // reload or browser finds it) and, for when the server is gone, in this
 // browser's storage too.
 
-const HISTORY_MERGE_MS = 600;
-const undoLog = { past: [], future: [], lastKey: null, lastAt: 0, restoring: false };
+const undoLog = { past: [], future: [], lastKey: null, restoring: false };
 const file = {
   doc: "", // the document the draft belongs to: `server`, or `unnamed:ID` for a scheme in no file yet
   revision: 0, // the revision of its draft this tab read or wrote last
@@ -112,26 +111,63 @@ function snapshot() { return JSON.stringify({ scheme: pageScheme(), selected: st
 
 function record(key) {
   if (undoLog.restoring) return;
-  const now = performance.now();
   const text = snapshot();
   const top = undoLog.past[undoLog.past.length - 1];
   if (text === top) return;
-  if (key !== null && key === undoLog.lastKey && now - undoLog.lastAt < HISTORY_MERGE_MS && undoLog.past.length > 1) {
+  // Selecting changes nothing to undo: the newest step keeps the new
+  // selection (once 19 Undo presses in a row did nothing visible).
+  if (top && schemeOf(top) === JSON.stringify(pageScheme())) {
+    undoLog.past[undoLog.past.length - 1] = text;
+    return;
+  }
+  if (key !== null && key === undoLog.lastKey && undoLog.past.length > 1) {
     undoLog.past[undoLog.past.length - 1] = text;
   } else {
     undoLog.past.push(text);
   }
-  undoLog.lastKey = key; undoLog.lastAt = now;
+  undoLog.lastKey = key;
   undoLog.future = [];
   changed();
 }
 
+/** The scheme of a history step, as JSON text. */
+function schemeOf(step) {
+  try { return JSON.stringify(JSON.parse(step).scheme); } catch (e) { return ""; }
+}
+
+// A field's typing ends when the focus leaves it: the next is a new step.
+document.addEventListener("focusout", () => { undoLog.lastKey = null; });
+
 function restore(text) {
   undoLog.restoring = true;
+  const focus = focusedField();
   const { scheme, selected } = JSON.parse(text);
   loadScheme(scheme, selected);
+  refocus(focus);
   undoLog.restoring = false;
   changed();
+}
+
+/** Which field of the scheme has the focus (a table cell, a global, the
+ * notes), to give it back after the table is drawn again. */
+function focusedField() {
+  const e = document.activeElement;
+  if (!(e instanceof HTMLElement)) return null;
+  if (e.dataset.global) return `[data-global="${e.dataset.global}"]`;
+  if (e.id === "notes") return "#notes";
+  const tr = e.closest("#table tbody tr");
+  if (tr && e.dataset.field) {
+    const part = e.dataset.part ? `[data-part="${e.dataset.part}"]` : "";
+    return `#table tbody tr[data-row="${tr.dataset.row}"] [data-field="${e.dataset.field}"]${part}`;
+  }
+  return null;
+}
+
+function refocus(selector) {
+  const e = selector && document.querySelector(selector);
+  if (!e || e.disabled) return;
+  e.focus();
+  if (typeof e.value === "string" && e.setSelectionRange && e.type !== "checkbox") e.setSelectionRange(e.value.length, e.value.length);
 }
 
 // One user action is one step whatever made it: a map grab still held
@@ -311,14 +347,22 @@ window.addEventListener("beforeunload", (e) => {
   if (!$("unsaved").hidden) { e.preventDefault(); e.returnValue = ""; }
 });
 
-// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y outside text fields (inside one they are
-// the field's own undo).
+// Ctrl+Z, Ctrl+Shift+Z and Ctrl+Y are the editor's Undo and Redo wherever
+// the focus is, text fields included (their own undo once undid another
+// field and the notes letter by letter, recorded as new edits, wiping
+// Redo); only inside a dialog are they the dialog field's own. The
+// browser's Edit menu undo is turned the same way.
+function inDialog(target) { return target instanceof Element && target.closest("dialog") !== null; }
 document.addEventListener("keydown", (e) => {
-  const typing = e.target instanceof HTMLElement && e.target.matches("input:not([type=checkbox]):not([type=file]), textarea");
-  if (typing || !(e.ctrlKey || e.metaKey)) return;
+  if (!(e.ctrlKey || e.metaKey) || e.altKey || inDialog(e.target)) return;
   const key = e.key.toLowerCase();
   if (key === "z" && !e.shiftKey) { e.preventDefault(); undo(); }
   else if ((key === "z" && e.shiftKey) || key === "y") { e.preventDefault(); redo(); }
+});
+document.addEventListener("beforeinput", (e) => {
+  if (inDialog(e.target)) return;
+  if (e.inputType === "historyUndo") { e.preventDefault(); undo(); }
+  else if (e.inputType === "historyRedo") { e.preventDefault(); redo(); }
 });
 $("undo").onclick = undo;
 $("redo").onclick = redo;
@@ -382,6 +426,7 @@ function unused(row, c) {
 }
 
 function select(i) {
+  if (i !== map.placing) map.stopPlacing();
   state.selected = i;
   document.querySelectorAll("#table tbody tr").forEach((r) => r.classList.toggle("selected", Number(r.dataset.row) === i));
   map.drawOverlay();
@@ -409,10 +454,19 @@ function renderTable() {
     choice.value = row.type;
     choice.addEventListener("change", () => {
       // A type leaves some columns unused: they are emptied (Undo brings
-      // them back), as the scheme refuses a value there.
+      // them back), as the scheme refuses a value there. The columns it
+      // needs that are empty get a start that works (a new pit or wall
+      // once began with red errors, one at a time): the obstacle stands
+      // in the middle of the grid, and the next click on the map places
+      // it.
       row.type = choice.value;
       for (const c of COLUMNS) if (TYPE_COLUMNS[row.type]?.[c] === "unused") { row[`${c}.lo`] = ""; row[`${c}.hi`] = ""; }
+      const placed = startValid(row);
       renderTable(); record(null); refresh();
+      if (placed) {
+        map.startPlacing(i);
+        say(`${row.type.replaceAll("_", " ")} ${i + 1} stands in the middle: click on the map to place it`);
+      }
       document.querySelector(`#table tbody tr[data-row="${i}"] select`)?.focus();
     });
     typeCell.append(choice); tr.append(typeCell);
@@ -437,6 +491,43 @@ function renderTable() {
   map.drawOverlay();
 }
 
+// --- a new obstacle starts valid ---------------------------------------------
+
+/** The grid's columns and rows: the map's, else the size field's, else 20×20. */
+function gridSize() {
+  const p = map.preview;
+  if (p) return [p.nx, p.ny];
+  const m = /^\s*(\d+)\s*[xX×*]\s*(\d+)\s*$/.exec(document.querySelector('[data-global="size"]')?.value ?? "");
+  return m ? [Number(m[1]), Number(m[2])] : [20, 20];
+}
+
+/** Fills each column `row`'s type needs that is empty with a start that
+ * works on this grid: height 1, angle 45°, a tread of 1, a point in the
+ * middle, a wall or long pit across the middle third, a rectangle of the
+ * middle third. `true` when it gave the obstacle a place on the map. */
+function startValid(row) {
+  const [nx, ny] = gridSize();
+  const [cx, cy] = [Math.floor(nx / 2), Math.floor(ny / 2)];
+  const [qx, qy] = [Math.max(1, Math.floor(nx / 6)), Math.max(1, Math.floor(ny / 6))];
+  const clampX = (x) => String(Math.min(Math.max(x, 0), nx - 1));
+  const clampY = (y) => String(Math.min(Math.max(y, 0), ny - 1));
+  const rectangle = ["stairs", "pyramid", "pyramid_pit", "ramp", "crossing_ramps"].includes(row.type);
+  const starts = {
+    height: "1", angle: "45", tread: "1", sigma: "3",
+    x1: clampX(cx - (row.type === "peak" || row.type === "pit" ? 0 : qx)),
+    y1: clampY(cy - (rectangle ? qy : 0)),
+    x2: clampX(cx + qx),
+    y2: clampY(cy + (rectangle ? qy : 0)),
+  };
+  let placed = false;
+  for (const c of COLUMNS) {
+    if (TYPE_COLUMNS[row.type]?.[c] !== "required" || (row[`${c}.lo`] ?? "") !== "" || !(c in starts)) continue;
+    row[`${c}.lo`] = starts[c];
+    if (/^[xy][12]$/.test(c)) placed = true;
+  }
+  return placed;
+}
+
 // --- table tools --------------------------------------------------------------
 
 function edit(change) { change(); renderTable(); record(null); refresh(); }
@@ -450,6 +541,11 @@ $("add").onclick = () => {
 $("copy").onclick = () => {
   if (state.selected < 0) return;
   edit(() => { state.rows.splice(state.selected + 1, 0, { ...state.rows[state.selected] }); state.selected += 1; });
+  // The copy lies on the original: the next click on the map places it.
+  if (map.placeable(state.selected)) {
+    map.startPlacing(state.selected);
+    say(`the copy, ${state.rows[state.selected].type.replaceAll("_", " ")} ${state.selected + 1}, lies on the original: click on the map to place it`);
+  }
   focusRow(state.selected);
 };
 $("delete").onclick = () => edit(() => { if (state.selected < 0) return; state.rows.splice(state.selected, 1); state.selected = Math.min(state.selected, state.rows.length - 1); });
@@ -476,19 +572,24 @@ const map = new TopView({
   // A drag's steps show at once (table and preview); its end is one edit.
   rendered() { renderTable(); refresh(); },
   done() { record(null); },
-  hint: say,
+  // What a click does is said under the map, never in the header (an old
+  // "nothing here to select" once stayed there after a reload).
+  hint: (text) => { $("map-hint").textContent = text; },
 });
 const blocks = new BlockView($("blocks"));
 
 // --- errors where they are ---------------------------------------------------
 
 /** Marks the field an error concerns (`aria-invalid`, the message as its
- * tooltip) and says it in words under the table; `null` clears. */
+ * tooltip and beside it: under its row in the table, under a global or a
+ * Generate field) and says it under the table too; `null` clears. The
+ * message once stood only under the table, off the screen with 30 rows. */
 function markError(error) {
   document.querySelectorAll("[aria-invalid]").forEach((e) => {
-    e.classList.remove("invalid"); e.removeAttribute("aria-invalid");
+    e.classList.remove("invalid"); e.removeAttribute("aria-invalid"); e.removeAttribute("aria-describedby");
     if (e.dataset.title !== undefined) { e.title = e.dataset.title; delete e.dataset.title; }
   });
+  document.querySelectorAll(".field-error").forEach((e) => e.remove());
   $("error").textContent = "";
   if (!error) return;
   let where = "";
@@ -510,8 +611,33 @@ function markError(error) {
   for (const t of targets) {
     t.classList.add("invalid"); t.setAttribute("aria-invalid", "true");
     t.dataset.title = t.title; t.title = error.message;
+    t.setAttribute("aria-describedby", "field-error");
   }
   $("error").textContent = where + error.message;
+  besideTheField(targets[0], where + error.message);
+}
+
+/** The message right under the field it names: a row of its own under an
+ * obstacle's row, a line under a global or a Generate field. */
+function besideTheField(target, text) {
+  if (!target) return;
+  const note = document.createElement(target.closest("#table") ? "td" : "p");
+  note.id = "field-error"; note.className = "field-error-text"; note.textContent = text;
+  note.setAttribute("role", "alert");
+  const tr = target.closest("#table tbody tr");
+  if (tr) {
+    note.colSpan = tr.children.length;
+    const row = document.createElement("tr");
+    row.className = "field-error";
+    row.append(note);
+    tr.after(row);
+    return;
+  }
+  note.classList.add("field-error");
+  // In the globals' and Generate's grids: a line of its own after the
+  // field's unit.
+  const after = target.nextElementSibling?.matches(".unit, span") ? target.nextElementSibling : target;
+  after.after(note);
 }
 
 /** Why the pictures can be out of date, in the user's words: the scheme,

@@ -51,6 +51,13 @@ export class TopView {
     this.drag = null;
     this.cursor = null; // the keyboard's cell
     this.keyDrawing = false;
+    this.placing = null; // the row the next click places, if any
+    this.lastPick = null; // the cell pressed last: pressed again, the next obstacle there
+    // Zoom and pan: the grid scaled by `zoom` and moved by (`panX`, `panY`)
+    // CSS pixels inside the map's window.
+    this.box = this.overlay.closest(".map-box");
+    this.layer = document.getElementById("map-layer");
+    this.zoom = 1; this.panX = 0; this.panY = 0;
     this.listen();
   }
 
@@ -65,6 +72,9 @@ export class TopView {
       for (const c of [this.canvas, this.overlay]) { c.width = width; c.height = height; }
       this.image = new ImageData(width, height);
       if (this.cursor && (this.cursor.x >= nx || this.cursor.y >= ny)) this.cursor = null;
+      // Another grid: the whole of it again.
+      if (!this.shownGrid || this.shownGrid[0] !== nx || this.shownGrid[1] !== ny) this.setView(1, 0, 0);
+      this.shownGrid = [nx, ny];
     }
     // One 32-bit pixel at a time, a cell row's pixel line built once and
     // copied down the cell (only the darker bottom line differs).
@@ -110,6 +120,65 @@ export class TopView {
       li.append(swatch, text);
       return li;
     }));
+  }
+
+  // --- zoom and pan ----------------------------------------------------------
+
+  /** The most zoom: a block 48 CSS pixels wide (at least 24 asked). */
+  maxZoom() {
+    if (!this.preview) return 1;
+    const perBlock = this.box.clientWidth / this.preview.nx;
+    return Math.max(1, 48 / Math.max(perBlock, 1e-6));
+  }
+
+  /** Zoom `zoom`, the grid's corner at (`x`, `y`) in the window: kept so
+   * that the grid always covers the window. */
+  setView(zoom, x, y) {
+    const z = Math.min(Math.max(zoom, 1), this.maxZoom());
+    const w = this.box.clientWidth, h = this.box.clientHeight;
+    this.zoom = z;
+    this.panX = Math.min(0, Math.max(x, w - w * z));
+    this.panY = Math.min(0, Math.max(y, h - h * z));
+    this.layer.style.transform = z === 1 ? "" : `translate(${this.panX}px, ${this.panY}px) scale(${z})`;
+    const out = document.getElementById("zoom-level");
+    if (out && this.preview) {
+      const block = (w * z) / this.preview.nx;
+      out.textContent = z === 1 ? `whole grid, ${block.toFixed(0)} px a block` : `zoom ${z.toFixed(1)}×, ${block.toFixed(0)} px a block`;
+    }
+  }
+
+  /** Zooms by `factor` about the point (`clientX`, `clientY`), which stays
+   * where it is (the window's middle when not given). */
+  zoomBy(factor, clientX, clientY) {
+    const r = this.box.getBoundingClientRect();
+    const px = clientX === undefined ? r.width / 2 : clientX - r.left;
+    const py = clientY === undefined ? r.height / 2 : clientY - r.top;
+    const z = Math.min(Math.max(this.zoom * factor, 1), this.maxZoom());
+    const gx = (px - this.panX) / this.zoom, gy = (py - this.panY) / this.zoom;
+    this.setView(z, px - gx * z, py - gy * z);
+  }
+
+  /** Pans so that `cell` is in the window (the keyboard's cursor). */
+  showCell(cell) {
+    if (!cell || !this.preview || this.zoom === 1) return;
+    const { nx, ny } = this.preview;
+    const w = this.box.clientWidth, h = this.box.clientHeight;
+    const size = (w * this.zoom) / nx;
+    const left = cell.x * size + this.panX, top = (ny - 1 - cell.y) * size + this.panY;
+    let x = this.panX, y = this.panY;
+    if (left < 0) x -= left; else if (left + size > w) x -= left + size - w;
+    if (top < 0) y -= top; else if (top + size > h) y -= top + size - h;
+    this.setView(this.zoom, x, y);
+  }
+
+  /** A press on empty ground: a pan of the zoomed map, or nothing. */
+  panFrom(e) {
+    return this.zoom > 1 ? { kind: "pan", x: e.clientX, y: e.clientY, panX: this.panX, panY: this.panY } : null;
+  }
+
+  panTo(e) {
+    const d = this.drag;
+    this.setView(this.zoom, d.panX + e.clientX - d.x, d.panY + e.clientY - d.y);
   }
 
   /** Every obstacle's ends; the selected row's bold, with handles. */
@@ -182,63 +251,101 @@ export class TopView {
     this.readout.textContent = `column ${cell.x}, row ${cell.y}: height ${h} ${h === 1 ? "step" : "steps"} (${metres(p.base + h * p.step_height)})${frame ? ", pallet frame" : ""}`;
   }
 
-  /** Row `i`'s end at `cell` as {row, k, end}, or null: inside a random
-   * range's rectangle, or on a point or the cells around it (`near`), or
-   * exactly on the point (not `near`). */
-  endAt(i, cell, near) {
-    const row = this.page.rows()[i];
-    for (const k of ENDS[row?.type] ?? []) {
-      const end = endOf(row, k);
-      if (!end) continue;
-      const reach = near ? 1 : 0;
-      const inside = end.range
-        ? cell.x >= end.x[0] && cell.x <= end.x[1] && cell.y >= end.y[0] && cell.y <= end.y[1]
-        : Math.abs(cell.x - end.x[0]) <= reach && Math.abs(cell.y - end.y[0]) <= reach;
-      if (inside) return { row: i, k, end };
-    }
-    return null;
+  /** Every obstacle under `cell`, nearest first, one hit each:
+   * `{row, k, end, d}` for one of its ends (a point within a cell of it,
+   * or anywhere in a random range's rectangle), `{row, whole: true, d}` for
+   * the obstacle itself (a wall's or long pit's line within a cell of it,
+   * anywhere inside a stairs', pyramid's or ramp's rectangle). `d` orders
+   * them: the nearest point first, whatever is selected (a busy map's
+   * selected handle once kept a click on another obstacle's own point). */
+  hits(cell) {
+    const rows = this.page.rows();
+    const found = [];
+    rows.forEach((row, i) => {
+      const ends = (ENDS[row?.type] ?? []).map((k) => ({ k, end: endOf(row, k) }));
+      let best = null;
+      const offer = (hit) => { if (!best || hit.d < best.d) best = hit; };
+      for (const { k, end } of ends) {
+        if (!end) continue;
+        if (end.range) {
+          if (cell.x >= end.x[0] && cell.x <= end.x[1] && cell.y >= end.y[0] && cell.y <= end.y[1]) offer({ row: i, k, end, d: 0.5 });
+        } else {
+          const d = Math.max(Math.abs(cell.x - end.x[0]), Math.abs(cell.y - end.y[0]));
+          if (d <= 1) offer({ row: i, k, end, d });
+        }
+      }
+      const [a, b] = ends.map((e) => e.end);
+      if (ends.length === 2 && a && b) {
+        const mid = (e, axis) => (e[axis][0] + e[axis][1]) / 2;
+        if (BOXES.has(row.type)) {
+          const [x0, x1] = [mid(a, "x"), mid(b, "x")].sort((p, q) => p - q);
+          const [y0, y1] = [mid(a, "y"), mid(b, "y")].sort((p, q) => p - q);
+          if (cell.x >= Math.round(x0) && cell.x <= Math.round(x1) && cell.y >= Math.round(y0) && cell.y <= Math.round(y1)) {
+            offer({ row: i, whole: true, d: 1.5 });
+          }
+        } else {
+          const d = segmentDistance(cell, [mid(a, "x"), mid(a, "y")], [mid(b, "x"), mid(b, "y")]);
+          if (d <= 1) offer({ row: i, whole: true, d: 0.3 + d / 2 });
+        }
+      }
+      if (best) found.push(best);
+    });
+    return found.sort((p, q) => p.d - q.d || p.row - q.row);
   }
 
-  /** What a press at `cell` does, as {act, row, …, text}: `move` an end
-   * (selecting its row), `place` the selected row there, or `none`. The
-   * selected obstacle comes first: a click places it, or moves it when on
-   * its own point or range, wherever other obstacles lie (a busy map's
-   * ranges cover its middle). Another obstacle is picked only by its own
-   * point (the dot drawn on its cell) or, anywhere it reaches, with Shift
-   * (`pick`). `text` says it in words, for the hint under the map. */
-  intent(cell, pick) {
+  /** Starts placing row `i` (a new obstacle, or one just given points):
+   * the next click or Enter puts it there, wherever other obstacles lie. */
+  startPlacing(i) { this.placing = i; }
+
+  /** Whether row `i` has points on the map. */
+  placeable(i) { return Boolean(ENDS[this.page.rows()[i]?.type]); }
+
+  /** Placing ends (another row selected, Escape). */
+  stopPlacing() { this.placing = null; }
+
+  /** What a press at `cell` does, as {act, row, …, text}: `place` the
+   * obstacle being placed there; else `move` (select, and drag to move)
+   * the obstacle under the pointer: the nearest of them, or, pressed again
+   * on the same cell, the next one under it (every obstacle there in
+   * turn); `none` on empty ground, where nothing moves. `text` says it in
+   * words, for the hint under the map. */
+  intent(cell) {
     const rows = this.page.rows();
     const selected = this.page.selected();
-    const others = rows.map((_, i) => i).filter((i) => i !== selected);
     const name = (i) => `${rows[i].type.replaceAll("_", " ")} ${i + 1}`;
-    const first = (order, near) => { for (const i of order) { const e = this.endAt(i, cell, near); if (e) return e; } return null; };
-    const picked = (e) => ({ act: "move", ...e, text: e.row === selected ? `move ${name(e.row)}` : `select ${name(e.row)} and move it` });
-    if (pick) {
-      const e = first(others, true) ?? first([selected].filter((i) => i >= 0), true);
-      return e ? picked(e) : { act: "none", text: "nothing here to select" };
+    const placing = this.placing;
+    if (placing !== null && placing !== undefined && ENDS[rows[placing]?.type]) {
+      const what = ENDS[rows[placing].type].length === 2
+        ? `place ${name(placing)} here (drag to draw it to its other end)`
+        : `place ${name(placing)} here`;
+      return { act: "place", row: placing, text: what };
     }
-    const own = selected >= 0 ? this.endAt(selected, cell, true) : null;
-    if (own) return picked(own);
-    const dot = first(others, false);
-    if (dot && !dot.end.range) return picked(dot);
-    if (selected >= 0 && ENDS[rows[selected]?.type]) {
-      const what = ENDS[rows[selected].type].length === 2 ? `start ${name(selected)} here (drag to its other end)` : `place ${name(selected)} here`;
-      return { act: "place", row: selected, text: what };
+    const hits = this.hits(cell);
+    if (!hits.length) return { act: "none", text: "nothing here (drag to pan a zoomed map)" };
+    // Picked here last and still selected: a drag moves it, a click
+    // selects the next obstacle here.
+    const again = this.lastPick && this.lastPick.x === cell.x && this.lastPick.y === cell.y;
+    const mine = hits.findIndex((h) => h.row === selected);
+    if (again && mine >= 0) {
+      const hit = hits[mine];
+      if (hits.length === 1) return { act: "move", ...hit, text: `drag to move ${name(hit.row)}` };
+      const next = hits[(mine + 1) % hits.length].row;
+      return { act: "move", ...hit, next, text: `drag to move ${name(hit.row)}, or click for the next here, ${name(next)} (${hits.length} obstacles here)` };
     }
-    // Nothing to place: a click picks what is there, as Shift would.
-    const e = first(others, true);
-    return e ? picked(e) : { act: "none", text: "select a peak, pit, wall, long pit, stairs, pyramid or ramp in the table to place it" };
+    const hit = hits[0];
+    const more = hits.length > 1 ? ` (${hits.length} obstacles here: click again for the next)` : "";
+    const text = hit.row === selected ? `drag to move ${name(hit.row)}` : `select ${name(hit.row)}, drag to move it`;
+    return { act: "move", ...hit, text: text + more };
   }
 
   /** Says under the map (and by the pointer's shape) what a click or
    * Enter at `cell` would do. */
-  showIntent(cell, pick) {
+  showIntent(cell) {
     const hint = document.getElementById("map-hint");
     if (!cell || !this.preview) { hint.textContent = ""; this.overlay.style.cursor = ""; return; }
-    const intent = this.intent(cell, pick);
-    const shift = pick ? "" : " · Shift+click (Shift+Enter): select another obstacle here";
-    hint.textContent = `Click: ${intent.text}${shift}`;
-    this.overlay.style.cursor = { move: intent.row === this.page.selected() ? "move" : "pointer", place: "crosshair", none: "not-allowed" }[intent.act];
+    const intent = this.intent(cell);
+    hint.textContent = `Click: ${intent.text}`;
+    this.overlay.style.cursor = { move: intent.row === this.page.selected() ? "move" : "pointer", place: "crosshair", none: "grab" }[intent.act];
   }
 
   /** The fields that put end `k` of a drag's start `end` moved by (dx, dy),
@@ -252,34 +359,73 @@ export class TopView {
     return { [`x${k}.lo`]: String(x[0]), [`x${k}.hi`]: hi(x, end.x), [`y${k}.lo`]: String(y[0]), [`y${k}.hi`]: hi(y, end.y) };
   }
 
-  /** A press at `cell` (`pick`: with Shift): does what `intent` says. */
-  press(cell, pick) {
-    const intent = this.intent(cell, pick);
-    if (intent.act === "none") { this.page.hint(intent.text); return null; }
+  /** The fields that move every end of `ends` (`[{k, end}]`) by (dx, dy),
+   * as far as all of them stay on the grid: the obstacle keeps its shape. */
+  movedAll(ends, dx, dy) {
+    const { nx, ny } = this.preview;
+    const room = (axis, d, n) => ends.reduce((by, { end }) => Math.min(Math.max(by, -end[axis][0]), n - 1 - end[axis][1]), d);
+    const bx = room("x", dx, nx), by = room("y", dy, ny);
+    return Object.assign({}, ...ends.map(({ k, end }) => this.moved(end, k, bx, by)));
+  }
+
+  /** A press at `cell`: does what `intent` says; the drag it starts, or
+   * null. */
+  press(cell) {
+    const intent = this.intent(cell);
+    if (intent.act === "none") { this.page.hint(`Click: ${intent.text}`); return null; }
     if (intent.act === "move") {
+      this.lastPick = cell;
       if (intent.row !== this.page.selected()) this.page.select(intent.row);
-      return { kind: "move", start: cell, row: intent.row, k: intent.k, end: intent.end };
+      const row = this.page.rows()[intent.row];
+      const ends = (ENDS[row.type] ?? []).map((k) => ({ k, end: endOf(row, k) })).filter((e) => e.end);
+      return { kind: "move", start: cell, row: intent.row, k: intent.k, end: intent.end, whole: intent.whole === true, ends, next: intent.next, moved: false };
     }
+    // Placing: the obstacle goes where the pointer is, and placing ends.
     const i = intent.row;
-    const ends = ENDS[this.page.rows()[i].type];
+    this.placing = null;
+    this.lastPick = null;
+    const row = this.page.rows()[i];
+    const ends = (ENDS[row.type] ?? []).map((k) => ({ k, end: endOf(row, k) })).filter((e) => e.end);
     const point = (k) => ({ [`x${k}.lo`]: String(cell.x), [`x${k}.hi`]: "", [`y${k}.lo`]: String(cell.y), [`y${k}.hi`]: "" });
-    this.page.change(i, ends.length === 2 ? { ...point(1), ...point(2) } : point(1));
-    return ends.length === 2 ? { kind: "line", row: i } : { kind: "move", start: cell, row: i, k: 1, end: endOf(this.page.rows()[i], 1) };
+    if (ENDS[row.type].length === 2) {
+      // A click moves it whole, its first end here; a drag draws it anew
+      // from here to where it ends.
+      return { kind: "line", row: i, start: cell, ends, drawn: false };
+    }
+    this.page.change(i, point(1));
+    return { kind: "move", start: cell, row: i, k: 1, end: endOf(this.page.rows()[i], 1), whole: false, ends: [] };
   }
 
   /** The pointer (or the keyboard's cursor) moved to `cell` mid-drag. */
   follow(cell) {
     const d = this.drag;
     if (!d || !cell) return;
+    if (d.kind === "pan") return;
     if (d.kind === "line") {
-      this.page.change(d.row, { "x2.lo": String(cell.x), "x2.hi": "", "y2.lo": String(cell.y), "y2.hi": "" });
+      if (!d.drawn && cell.x === d.start.x && cell.y === d.start.y) return;
+      d.drawn = true;
+      const point = (k, c) => ({ [`x${k}.lo`]: String(c.x), [`x${k}.hi`]: "", [`y${k}.lo`]: String(c.y), [`y${k}.hi`]: "" });
+      this.page.change(d.row, { ...point(1, d.start), ...point(2, cell) });
     } else {
-      this.page.change(d.row, this.moved(d.end, d.k, cell.x - d.start.x, cell.y - d.start.y));
+      if (cell.x !== d.start.x || cell.y !== d.start.y) d.moved = true;
+      if (d.whole) this.page.change(d.row, this.movedAll(d.ends, cell.x - d.start.x, cell.y - d.start.y));
+      else if (d.end) this.page.change(d.row, this.moved(d.end, d.k, cell.x - d.start.x, cell.y - d.start.y));
     }
   }
 
   finish() {
-    if (this.drag) { this.drag = null; this.page.done(); }
+    const d = this.drag;
+    if (!d) return;
+    this.drag = null;
+    if (d.kind === "pan") return;
+    if (d.kind === "line" && !d.drawn) {
+      // Placed by a click: the whole obstacle moved, its first end here.
+      const first = d.ends.find((e) => e.k === 1);
+      if (first) this.page.change(d.row, this.movedAll(d.ends, d.start.x - first.end.x[0], d.start.y - first.end.y[0]));
+    }
+    // A click (no drag) again where this obstacle was picked: the next one there.
+    if (d.kind === "move" && !d.moved && d.next !== undefined) this.page.select(d.next);
+    this.page.done();
   }
 
   /** Ends a drag or keyboard grab under way as a finished edit (Undo and
@@ -288,26 +434,37 @@ export class TopView {
 
   listen() {
     const o = this.overlay;
+    // The wheel (and a touchpad's pinch, which Chromium sends as a wheel
+    // with Ctrl) zooms about the pointer; the buttons and + − 0 too.
+    o.addEventListener("wheel", (e) => {
+      e.preventDefault();
+      this.zoomBy(Math.exp(-e.deltaY * (e.ctrlKey ? 0.01 : 0.0015)), e.clientX, e.clientY);
+    }, { passive: false });
+    document.getElementById("zoom-in").addEventListener("click", () => this.zoomBy(1.5));
+    document.getElementById("zoom-out").addEventListener("click", () => this.zoomBy(1 / 1.5));
+    document.getElementById("zoom-fit").addEventListener("click", () => this.setView(1, 0, 0));
+    new ResizeObserver(() => this.setView(this.zoom, this.panX, this.panY)).observe(this.box);
     o.addEventListener("pointerdown", (e) => {
       const cell = this.cellAt(e);
       if (!cell || e.button !== 0) return;
       e.preventDefault();
       o.setPointerCapture(e.pointerId);
-      this.drag = this.press(cell, e.shiftKey);
+      this.drag = this.press(cell) ?? this.panFrom(e);
       this.page.rendered();
     });
     o.addEventListener("pointermove", (e) => {
       const cell = this.cellAt(e);
       this.showReadout(cell);
-      if (!this.drag) this.showIntent(cell, e.shiftKey);
-      if (this.drag) { this.follow(cell); this.page.rendered(); }
+      if (!this.drag) this.showIntent(cell);
+      if (this.drag?.kind === "pan") this.panTo(e);
+      else if (this.drag) { this.follow(cell); this.page.rendered(); }
     });
     o.addEventListener("pointerup", () => { this.finish(); this.page.rendered(); });
     o.addEventListener("pointercancel", () => { this.finish(); this.page.rendered(); });
-    o.addEventListener("pointerleave", () => { if (!this.drag) { this.showReadout(this.cursor); this.showIntent(document.activeElement === o ? this.cursor : null, false); } });
+    o.addEventListener("pointerleave", () => { if (!this.drag) { this.showReadout(this.cursor); this.showIntent(document.activeElement === o ? this.cursor : null); } });
     o.addEventListener("focus", () => {
       if (!this.cursor && this.preview) this.cursor = { x: this.preview.nx >> 1, y: this.preview.ny >> 1 };
-      this.showReadout(this.cursor); this.showIntent(this.cursor, false); this.drawOverlay();
+      this.showReadout(this.cursor); this.showIntent(this.cursor); this.drawOverlay();
     });
     o.addEventListener("blur", () => { if (this.keyDrawing) this.letGo(); this.drawOverlay(); });
     o.addEventListener("keydown", (e) => {
@@ -321,22 +478,40 @@ export class TopView {
           y: Math.min(Math.max(this.cursor.y + step[1] * by, 0), this.preview.ny - 1),
         };
         this.showReadout(this.cursor);
-        if (!this.keyDrawing) this.showIntent(this.cursor, false);
+        this.showCell(this.cursor);
+        if (!this.keyDrawing) this.showIntent(this.cursor);
         if (this.keyDrawing) this.follow(this.cursor);
         this.page.rendered();
       } else if (e.key === "Enter" || e.key === " ") {
         e.preventDefault();
         // Enter grabs or places at the cursor; the next Enter lets go.
         if (this.keyDrawing) { this.keyDrawing = false; this.finish(); } else {
-          this.drag = this.press(this.cursor, e.shiftKey);
+          this.drag = this.press(this.cursor);
           this.keyDrawing = this.drag !== null;
         }
         this.page.rendered();
+      } else if (e.key === "+" || e.key === "=") {
+        e.preventDefault(); this.zoomBy(1.5); this.showCell(this.cursor);
+      } else if (e.key === "-" || e.key === "_") {
+        e.preventDefault(); this.zoomBy(1 / 1.5);
+      } else if (e.key === "0") {
+        e.preventDefault(); this.setView(1, 0, 0);
       } else if (e.key === "Escape" && this.keyDrawing) {
         this.keyDrawing = false; this.finish(); this.page.rendered();
+      } else if (e.key === "Escape" && this.placing !== null) {
+        this.placing = null; this.showIntent(this.cursor);
       }
     });
   }
 }
 
 function metres(m) { return `${Number(m.toFixed(4))} m`; }
+
+/** The distance in cells from `cell` to the segment from `a` to `b`
+ * (`[x, y]` cell coordinates). */
+function segmentDistance(cell, a, b) {
+  const [dx, dy] = [b[0] - a[0], b[1] - a[1]];
+  const length2 = dx * dx + dy * dy;
+  const t = length2 === 0 ? 0 : Math.min(1, Math.max(0, ((cell.x - a[0]) * dx + (cell.y - a[1]) * dy) / length2));
+  return Math.hypot(cell.x - (a[0] + t * dx), cell.y - (a[1] + t * dy));
+}
