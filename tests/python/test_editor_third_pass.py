@@ -133,3 +133,35 @@ def test_no_old_status_line_after_a_reload(editor, page: Page) -> None:
     page.reload()
     page.wait_for_function("window.rseEditor?.previews >= 1")
     assert page.locator("#status").inner_text() in ("", "unsaved changes restored")
+
+
+def test_after_generate_the_folder_whole_a_way_to_open_it_and_each_worlds_preview(editor, page: Page) -> None:
+    """After Generate there was no link to the worlds or their previews, and
+    the path was shown as typed (relative). Now the summary names the folder
+    whole, Open folder opens it (or says where it is, with no file manager),
+    and each world's preview is shown with its legend."""
+    from PIL import Image
+
+    url, folder = editor
+    wait_ready(page, url)
+    page.get_by_label("number of worlds").fill("2")
+    page.get_by_label("output folder").fill("worlds")
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-check').textContent !== ''", timeout=60_000)
+    whole = str((folder / "worlds").resolve())
+    assert whole in page.locator("#gen-summary").inner_text()
+    assert page.locator("#gen-folder-path").inner_text() == whole
+    page.get_by_role("button", name="Open folder").click()
+    page.wait_for_function("document.getElementById('status').textContent.includes('opened')")
+    status = page.locator("#status").inner_text()
+    assert status.startswith("opened") or whole in status, status
+    for name in ("world_0000", "world_0001"):
+        image = page.get_by_role("img", name=f"preview of {name}")
+        image.wait_for()
+        page.wait_for_function("n => document.querySelector(`img[alt='preview of ${n}']`).naturalWidth > 0", arg=name)
+        width = image.evaluate("e => e.naturalWidth")
+        with Image.open(folder / "worlds" / name / "preview.png") as png:
+            assert width == png.width
+        legend = page.get_by_role("list", name=f"legend of {name}: colour of each height")
+        assert legend.get_by_role("listitem").count() >= 2
+        assert "steps" in legend.inner_text() and " m" in legend.inner_text()

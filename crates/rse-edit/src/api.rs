@@ -56,6 +56,9 @@ pub struct Job {
     /// Each written world's `check` (its name, whether it is good, its
     /// faults), at most [`WORLDS_LISTED`].
     pub worlds: Mutex<Vec<Value>>,
+    /// The folder the last batch wrote into, whole (its worlds' previews
+    /// are served from it, and Open folder opens it).
+    pub folder: Mutex<Option<PathBuf>>,
 }
 
 /// The most worlds whose check results the page is sent one by one (the
@@ -630,6 +633,9 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     *job.suggestion.lock().expect("not poisoned") = None;
     job.worlds.lock().expect("not poisoned").clear();
     let total = options.amount;
+    // Said and served whole: a relative path means little on the page.
+    let whole = std::path::absolute(&options.out).unwrap_or_else(|_| options.out.clone());
+    *job.folder.lock().expect("not poisoned") = Some(whole.clone());
     std::thread::spawn(move || {
         let templates = Arc::new(templates);
         let outcome = write_batch(&scheme, &templates, &options, &|_| {
@@ -644,7 +650,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
                 "{} worlds written, {} already there, into {}",
                 s.written,
                 s.skipped,
-                options.out.display()
+                whole.display()
             )
         });
         if result.is_ok() {
@@ -708,7 +714,68 @@ pub fn job(editor: &Editor) -> Value {
         "check": *job.check.lock().expect("not poisoned"),
         "suggestion": *job.suggestion.lock().expect("not poisoned"),
         "worlds": *job.worlds.lock().expect("not poisoned"),
+        "folder": job.folder.lock().expect("not poisoned").as_ref().map(|f| f.display().to_string()),
     })
+}
+
+/// The most worlds whose previews the page shows after a Generate.
+pub const PREVIEWS_SHOWN: usize = 24;
+
+/// `GET /api/world-preview/NAME`: `preview.png` of the world `NAME` of the
+/// last batch (one the page lists), read from its folder as `check` reads
+/// a world (no link followed); None when there is none.
+///
+/// # Panics
+/// If the job's lock is poisoned (a panic in the batch thread).
+pub fn world_preview(editor: &Editor, name: &str) -> Option<Vec<u8>> {
+    let listed = editor
+        .job
+        .worlds
+        .lock()
+        .expect("not poisoned")
+        .iter()
+        .take(PREVIEWS_SHOWN)
+        .any(|w| w["world"] == name);
+    if !listed || rse_world::world_name_problem(name).is_some() {
+        return None;
+    }
+    let folder = editor.job.folder.lock().expect("not poisoned").clone()?;
+    let opened = rse_world::OpenFolder::open(&folder, true).ok()?;
+    // A preview is a few MB at most (`rse-gen preview` caps its pixels).
+    let file = opened
+        .read(&format!("{name}/preview.png"), 256 << 20)
+        .ok()?;
+    Some(file.bytes)
+}
+
+/// `POST /api/open-folder`: opens the last batch's folder in the desktop's
+/// file manager (`xdg-open`, `open` on macOS), or says why not and where
+/// the worlds are.
+///
+/// # Panics
+/// If the job's lock is poisoned (a panic in the batch thread).
+pub fn open_folder(editor: &Editor) -> Answer {
+    let Some(folder) = editor.job.folder.lock().expect("not poisoned").clone() else {
+        return Err(bad("no worlds written yet: Generate first"));
+    };
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    let ran = std::process::Command::new(opener)
+        .arg(&folder)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status();
+    match ran {
+        Ok(status) if status.success() => Ok(json!({ "ok": true, "folder": folder })),
+        Ok(_) | Err(_) => Err(bad(format!(
+            "this machine has no file manager to open it with ({opener}): the worlds are in {}",
+            folder.display()
+        ))),
+    }
 }
 
 /// The `check` of the worlds in `folder` (no physics; with the templates
@@ -728,12 +795,25 @@ fn check_summary(folder: &Path, templates: Arc<Templates>) -> (String, Vec<Value
         .worlds
         .iter()
         .take(WORLDS_LISTED)
-        .map(|w| {
+        .enumerate()
+        .map(|(i, w)| {
             let name = Path::new(&w.world)
                 .file_name()
                 .map_or_else(|| w.world.clone(), |n| n.to_string_lossy().into_owned());
             let faults: Vec<String> = w.faults.iter().map(ToString::to_string).collect();
-            json!({ "world": name, "ok": w.ok, "faults": faults })
+            // Its height range and step: the preview's colours run over
+            // them, the page draws the legend beside it.
+            let step = w.manifest.as_ref().map(|m| m.globals.step_height);
+            let range = w
+                .manifest
+                .as_ref()
+                .filter(|_| i < PREVIEWS_SHOWN)
+                .and_then(|m| heights_of(&Path::new(&w.world).join("heightmap.csv"), &m.grid));
+            let path = std::path::absolute(&w.world).unwrap_or_else(|_| PathBuf::from(&w.world));
+            json!({
+                "world": name, "ok": w.ok, "faults": faults,
+                "path": path, "heights": range, "step_height": step,
+            })
         })
         .collect();
     let line = match report.first_fault() {
@@ -741,6 +821,24 @@ fn check_summary(folder: &Path, templates: Arc<Templates>) -> (String, Vec<Value
         None => report.verdict(),
     };
     (line, worlds)
+}
+
+/// The lowest and highest cell of a world's `heightmap.csv` on `grid`, in
+/// steps, pallet frames left out, as its preview's colours run (None: not
+/// read).
+fn heights_of(csv: &Path, grid: &rse_core::Grid) -> Option<[u16; 2]> {
+    let text = std::fs::read_to_string(csv).ok()?;
+    let map = rse_core::Heightmap::from_csv(&text).ok()?;
+    let mut span: Option<[u16; 2]> = None;
+    for y in 0..map.ny() {
+        for (x, &h) in map.row(y).iter().enumerate() {
+            if !grid.is_frame(x as u32, y) {
+                let [lo, hi] = span.unwrap_or([h, h]);
+                span = Some([lo.min(h), hi.max(h)]);
+            }
+        }
+    }
+    span
 }
 
 #[cfg(test)]

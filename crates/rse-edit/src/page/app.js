@@ -5,7 +5,7 @@
 // third-party script.
 "use strict";
 
-import { decodePreview } from "./colours.js";
+import { decodePreview, legendHeights, palette } from "./colours.js";
 import { TopView } from "./map.js";
 import { BlockView } from "./view3d.js";
 
@@ -947,6 +947,43 @@ function showWorlds(worlds) {
   }));
 }
 
+/** The first worlds' previews (`preview.png` of each folder, served by the
+ * editor) with their legends: each height's colour in steps and metres,
+ * as the map's. */
+function showPreviews(worlds) {
+  const shown = worlds.filter((w) => w.heights).slice(0, 24);
+  $("gen-previews").replaceChildren(...shown.map((w) => {
+    const figure = document.createElement("figure");
+    figure.setAttribute("role", "listitem");
+    const image = document.createElement("img");
+    image.src = `/api/world-preview/${encodeURIComponent(w.world)}`;
+    image.alt = `preview of ${w.world}`;
+    image.title = w.path;
+    const caption = document.createElement("figcaption");
+    caption.textContent = w.world;
+    const legend = document.createElement("ul");
+    legend.className = "legend";
+    legend.setAttribute("aria-label", `legend of ${w.world}: colour of each height`);
+    const [lo, hi] = w.heights;
+    legend.append(...legendHeights(lo, hi, 4).map((h) => {
+      const li = document.createElement("li");
+      const swatch = document.createElement("span");
+      swatch.className = "swatch"; swatch.style.background = `rgb(${palette(h, lo, hi).join(",")})`;
+      const metres = w.step_height ? `, ${Number((h * w.step_height).toFixed(4))} m` : "";
+      li.append(swatch, `${h} ${h === 1 ? "step" : "steps"}${metres}`);
+      return li;
+    }));
+    figure.append(image, caption, legend);
+    return figure;
+  }));
+}
+
+$("open-folder").onclick = async () => {
+  let answer;
+  try { answer = await api("/api/open-folder", {}); } catch (e) { say(`not opened: ${e.message}`); return; }
+  say(answer.ok ? `opened ${answer.folder}` : `not opened: ${answer.error.message}`);
+};
+
 /** After a Generate into a folder holding other worlds: a button that
  * writes into `folder` (one that does not exist yet) instead. */
 function offerFolder(folder) {
@@ -959,7 +996,8 @@ function offerFolder(folder) {
 $("generate").onclick = async () => {
   const targets = [...document.querySelectorAll("#gen-targets input:checked")].map((i) => i.value);
   $("gen-summary").textContent = ""; $("gen-check").textContent = "";
-  $("gen-worlds").hidden = true;
+  $("gen-worlds").hidden = true; $("gen-folder").hidden = true;
+  $("gen-previews").replaceChildren();
   let answer;
   try {
     answer = await api("/api/generate", {
@@ -977,7 +1015,10 @@ $("generate").onclick = async () => {
     $("gen-summary").textContent = job.error ? `failed: ${job.error}` : job.summary;
     $("gen-check").textContent = job.check ?? "";
     if (job.error && job.suggestion) offerFolder(job.suggestion);
+    $("gen-folder").hidden = Boolean(job.error) || !job.folder;
+    $("gen-folder-path").textContent = job.folder ?? "";
     showWorlds(job.worlds ?? []);
+    showPreviews(job.error ? [] : job.worlds ?? []);
   };
   poll();
 };

@@ -125,6 +125,13 @@ fn route(editor: &Editor, method: &Method, path: &str, body: &[u8]) -> http::Rep
         (&Method::GET, "/api/schema") => http::json(&api::schema()),
         (&Method::GET, "/api/state") => http::json(&api::state(editor)),
         (&Method::GET, "/api/job") => http::json(&api::job(editor)),
+        (&Method::GET, world) if world.starts_with("/api/world-preview/") => {
+            let name = &world["/api/world-preview/".len()..];
+            match api::world_preview(editor, name) {
+                Some(png) => http::bytes(200, "image/png", png),
+                None => http::text(404, "no such world's preview"),
+            }
+        }
         (&Method::POST, api_path) => {
             let answer = match api_path {
                 "/api/preview" => api::preview(body),
@@ -134,6 +141,7 @@ fn route(editor: &Editor, method: &Method, path: &str, body: &[u8]) -> http::Rep
                 "/api/csv" => api::csv(body),
                 "/api/draft" => api::draft(editor, body),
                 "/api/generate" => api::generate(editor, body),
+                "/api/open-folder" => api::open_folder(editor),
                 _ => return http::text(404, "not found"),
             };
             // A refusal is an answer too: the page reads its `ok` and `error`.
