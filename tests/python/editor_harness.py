@@ -24,11 +24,11 @@ CHROMIUM_FLAGS = [
 
 
 @contextmanager
-def running_editor(binary: Path, scheme: Path, cwd: Path, port: int | None = None) -> Iterator[str]:
+def running_editor(binary: Path, scheme: Path, cwd: Path, port: int | None = None, extra: tuple[str, ...] = ()) -> Iterator[str]:
     """`rse-gen edit SCHEME` running in `cwd` (on `port`, else where it
-    chooses); yields the URL it prints."""
+    chooses; `extra`: more of its options); yields the URL it prints."""
     process = subprocess.Popen(
-        [str(binary), "edit", str(scheme), *(["--port", str(port)] if port else [])],
+        [str(binary), "edit", str(scheme), *(["--port", str(port)] if port else []), *extra],
         stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL,
         text=True,

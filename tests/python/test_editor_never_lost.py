@@ -156,3 +156,9 @@ def test_editing_a_file_not_there_yet_starts_a_new_scheme_there(tmp_path: Path, 
         save(page)
         assert "random,3" in target.read_text()
         assert page.locator("#unsaved").is_hidden()
+    # The command line's scheme options apply to the new scheme too.
+    other = tmp_path / "plans" / "wide.csv"
+    with running_editor(rse_gen_release_path(), other, tmp_path, extra=("--size", "30x12")) as url:
+        wait_ready(page, url)
+        assert page.get_by_label("size", exact=True).input_value() == "30x12"
+        assert not other.exists()

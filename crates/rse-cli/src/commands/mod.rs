@@ -97,6 +97,11 @@ pub fn load_scheme(path: &Path, overrides: &SchemeOverrides) -> anyhow::Result<S
             path.display()
         );
     }
+    with_overrides(scheme, overrides)
+}
+
+/// `scheme` with the command-line overrides applied.
+pub fn with_overrides(scheme: Scheme, overrides: &SchemeOverrides) -> anyhow::Result<Scheme> {
     let patch = overrides.patch();
     if patch.is_empty() {
         return Ok(scheme);

@@ -22,8 +22,9 @@ pub fn run(args: &EditArgs, overrides: &SchemeOverrides) -> anyhow::Result<ExitS
         // desktop program does (Save writes it); one that cannot be read
         // is refused.
         let scheme = if path.try_exists().is_ok_and(|there| !there) {
-            rse_core::Scheme::from_csv(rse_edit::NEW_SCHEME, None)
-                .expect("the starting scheme is valid (a test reads it)")
+            let new = rse_core::Scheme::from_csv(rse_edit::NEW_SCHEME, None)
+                .expect("the starting scheme is valid (a test reads it)");
+            super::with_overrides(new, overrides)?
         } else {
             super::load_scheme(path, overrides)?
         };
