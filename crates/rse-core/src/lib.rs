@@ -30,6 +30,7 @@
 //! `docs/meshes.md`.
 
 mod atlas;
+mod canvas;
 mod color;
 mod curriculum;
 mod difficulty;

@@ -1,5 +1,6 @@
 //! The top-down preview of paper §3.1: blue (lowest) → green → red (highest).
 
+use crate::canvas::{Canvas, GLYPH, LINE};
 use crate::error::Error;
 use crate::png_rows;
 use crate::terrain::Terrain;
@@ -145,19 +146,94 @@ fn for_each_row(
 }
 
 /// The PNG of `terrain` with `cell_pixels` pixels per cell (default:
-/// [`auto_cell_pixels`]), refused past [`MAX_PIXELS`] before anything is
-/// drawn: what a world's `preview.png`, `rse-gen preview`, the editor and
-/// Python's `Terrain.preview()` hold. The bytes of [`encode_png`] of
-/// [`render`], written row by row without the image in memory.
+/// [`auto_cell_pixels`]) and its legend under it ([`legend`]), refused
+/// past [`MAX_PIXELS`] before anything is drawn: what a world's
+/// `preview.png`, `rse-gen preview`, and Python's `Terrain.preview()` hold.
+/// The map's rows are those of [`render`], written row by row without the
+/// image in memory.
 pub fn png(terrain: &Terrain, cell_pixels: Option<u32>) -> Result<Vec<u8>, Error> {
     let grid = terrain.grid();
     let cell_pixels = cell_pixels.unwrap_or_else(|| auto_cell_pixels(grid.nx, grid.ny));
     validate_size(grid.nx, grid.ny, cell_pixels)?;
     let cp = cell_pixels.max(1);
     let (width, height) = (grid.nx * cp, grid.ny * cp);
-    Ok(png_rows::encode(width, height, |emit| {
-        for_each_row(terrain, cp, height_span(terrain), emit)
+    let legend = legend(terrain, width);
+    Ok(png_rows::encode(width, height + legend.height, |emit| {
+        for_each_row(terrain, cp, height_span(terrain), emit)?;
+        let row_bytes = 3 * width as usize;
+        legend.rgb.chunks(row_bytes.max(1)).try_for_each(emit)
     })?)
+}
+
+/// The legend's background and text: the editor's page and ink.
+const LEGEND_BACKGROUND: [u8; 3] = [246, 244, 240];
+const LEGEND_INK: [u8; 3] = [34, 34, 34];
+/// Pixels around the legend's lines.
+const LEGEND_MARGIN: u32 = 4;
+/// Heights a legend names at most (every one when there are fewer).
+const LEGEND_HEIGHTS: u32 = 7;
+
+/// The heights a legend of `lo..=hi` names: every height when there are at
+/// most seven, else seven spread evenly from `lo` to `hi`
+/// (the editor's page names the same).
+pub fn legend_heights(lo: u16, hi: u16) -> Vec<u16> {
+    if hi < lo {
+        return Vec::new();
+    }
+    let span = u32::from(hi - lo);
+    if span < LEGEND_HEIGHTS {
+        return (lo..=hi).collect();
+    }
+    (0..LEGEND_HEIGHTS)
+        .map(|i| {
+            // Rounded to the nearest, halves up, in whole numbers.
+            let at = (2 * span * i + (LEGEND_HEIGHTS - 1)) / (2 * (LEGEND_HEIGHTS - 1));
+            lo + at as u16
+        })
+        .collect()
+}
+
+/// The legend drawn under a `width`-pixel preview of `terrain`: each
+/// height of [`legend_heights`] as its colour and "N steps, X m", and the
+/// pallet frames' wood where there are frames, in lines as wide as the
+/// map (an item wider than the map is cut at its edge).
+pub fn legend(terrain: &Terrain, width: u32) -> Preview {
+    let (lo, hi) = height_span(terrain);
+    let step = terrain.step_height();
+    let mut items: Vec<([u8; 3], String)> = legend_heights(lo, hi)
+        .into_iter()
+        .map(|h| {
+            let metres = (f64::from(h) * step * 1e4).round() / 1e4;
+            let unit = if h == 1 { "step" } else { "steps" };
+            (palette(h, lo, hi), format!("{h} {unit}, {metres} m"))
+        })
+        .collect();
+    if terrain.grid().frame_period.is_some() {
+        items.push((FRAME_RGB, "pallet frame".to_owned()));
+    }
+    // Each item's place: a swatch, a space, its words, then a space.
+    let item_width = |text: &str| (text.chars().count() as u32 + 3) * GLYPH;
+    let mut places = Vec::with_capacity(items.len());
+    let (mut x, mut line) = (LEGEND_MARGIN, 0u32);
+    for (_, text) in &items {
+        let w = item_width(text);
+        if x > LEGEND_MARGIN && x + w > width {
+            x = LEGEND_MARGIN;
+            line += 1;
+        }
+        places.push((x, line));
+        x += w;
+    }
+    let lines = if items.is_empty() { 0 } else { line + 1 };
+    let height = 2 * LEGEND_MARGIN + lines * LINE;
+    let mut canvas = Canvas::new(width, height, LEGEND_BACKGROUND, LEGEND_INK);
+    for ((colour, text), (x, line)) in items.iter().zip(places) {
+        let y = LEGEND_MARGIN + line * LINE;
+        canvas.fill(x, y + 1, GLYPH, GLYPH, LEGEND_INK);
+        canvas.fill(x + 1, y + 2, GLYPH - 2, GLYPH - 2, *colour);
+        canvas.text(x + 2 * GLYPH, y, text);
+    }
+    canvas.into_preview()
 }
 
 /// Encodes a preview as PNG bytes: `png`'s encoder at `Compression::Fast`
@@ -177,6 +253,39 @@ pub fn encode_png(preview: &Preview) -> Result<Vec<u8>, Error> {
 mod tests {
     use super::*;
 
+    /// `preview.png` is the map, then its legend: every height of a few
+    /// named, seven of many, from the lowest to the highest, as the
+    /// editor's page names them.
+    #[test]
+    fn the_png_is_the_map_then_its_legend() {
+        assert_eq!(legend_heights(2, 4), vec![2, 3, 4]);
+        assert_eq!(legend_heights(0, 40), vec![0, 7, 13, 20, 27, 33, 40]);
+        assert_eq!(legend_heights(5, 4), Vec::<u16>::new());
+        let scheme =
+            crate::Scheme::from_csv("# size: 30x20\ntype,height\nrandom,40\n", None).unwrap();
+        let terrain = crate::generate(&scheme, 1, 0);
+        let png = png(&terrain, Some(4)).unwrap();
+        let decoder = ::png::Decoder::new(std::io::Cursor::new(&png));
+        let mut reader = decoder.read_info().unwrap();
+        let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut rgb).unwrap();
+        let map = render(&terrain, 4);
+        let legend = legend(&terrain, 120);
+        assert_eq!((info.width, info.height), (120, 80 + legend.height));
+        assert_eq!(&rgb[..map.rgb.len()], &map.rgb[..], "the map on top");
+        assert_eq!(
+            &rgb[map.rgb.len()..info.buffer_size()],
+            &legend.rgb[..],
+            "the legend under it"
+        );
+        // Seven heights, wrapped to the map's width: more than one line.
+        assert!(
+            legend.height > 2 * LEGEND_MARGIN + LINE,
+            "{}",
+            legend.height
+        );
+    }
+
     #[test]
     fn previews_are_the_png_crates_bytes() {
         let samples = concat!(env!("CARGO_MANIFEST_DIR"), "/../../schemes/");
@@ -184,11 +293,18 @@ mod tests {
             let scheme = crate::Scheme::load(format!("{samples}{name}.csv")).unwrap();
             let terrain = crate::generate(&scheme, 3, 1);
             for cell_pixels in [None, Some(1), Some(3), Some(4), Some(9)] {
-                let image = render(
+                let map = render(
                     &terrain,
                     cell_pixels
                         .unwrap_or_else(|| auto_cell_pixels(terrain.grid().nx, terrain.grid().ny)),
                 );
+                // The map, then its legend.
+                let under = legend(&terrain, map.width);
+                let image = Preview {
+                    width: map.width,
+                    height: map.height + under.height,
+                    rgb: [map.rgb, under.rgb].concat(),
+                };
                 let reference = crate::png_rows::png_crate(image.width, image.height, &image.rgb);
                 assert_eq!(
                     png(&terrain, cell_pixels).unwrap(),

@@ -476,7 +476,8 @@ impl Terrain {
         ))
     }
 
-    /// The preview as PNG bytes (the world folder's `preview.png`):
+    /// The preview as PNG bytes (the world folder's `preview.png`: the map,
+    /// north up, and its legend under it):
     /// `cell_pixels` pixels per cell, by default as many as keep the image
     /// near 512 pixels wide.
     #[pyo3(signature = (cell_pixels=None))]

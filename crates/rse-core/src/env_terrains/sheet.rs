@@ -4,19 +4,14 @@
 //! 70 cm stairs would be one colour on theirs), and a legend of each scale
 //! below.
 
-use font8x8::legacy::BASIC_LEGACY;
-
 use super::EnvTerrains;
 use crate::Terrain;
+use crate::canvas::{Canvas, GLYPH, LINE};
 use crate::error::Error;
 use crate::preview::{MAX_PIXELS, Preview, height_span, palette, render_span};
 
 /// Pixels between tiles and around the sheet.
 const GAP: u32 = 6;
-/// A glyph's side, pixels (the 8×8 font, unscaled).
-const GLYPH: u32 = 8;
-/// Pixels of one text line: a glyph and its leading.
-const LINE: u32 = GLYPH + 3;
 /// The sheet's background and its text.
 const BACKGROUND: [u8; 3] = [32, 32, 32];
 const TEXT: [u8; 3] = [235, 235, 235];
@@ -158,7 +153,7 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
         });
     }
     // Within MAX_PIXELS (2²⁸), so every coordinate fits a u32.
-    let mut sheet = Canvas::new(width as u32, height as u32);
+    let mut sheet = Canvas::new(width as u32, height as u32, BACKGROUND, TEXT);
     let glyphs = (cell_w / u64::from(GLYPH)) as usize;
     for (i, tile) in tiles.iter().enumerate() {
         let (col, row) = (i as u64 % cols, i as u64 / cols);
@@ -185,7 +180,8 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
         } else {
             String::new()
         };
-        sheet.legend(
+        legend(
+            &mut sheet,
             GAP,
             legend_y + k as u32 * LINE,
             &label,
@@ -267,65 +263,12 @@ fn clip(text: &str, glyphs: usize) -> String {
     cut
 }
 
-/// An RGB image being drawn.
-struct Canvas {
-    width: u32,
-    height: u32,
-    rgb: Vec<u8>,
-}
-
-impl Canvas {
-    fn new(width: u32, height: u32) -> Canvas {
-        let pixels = width as usize * height as usize;
-        Canvas {
-            width,
-            height,
-            rgb: BACKGROUND.repeat(pixels),
-        }
-    }
-
-    fn put(&mut self, x: u32, y: u32, colour: [u8; 3]) {
-        if x < self.width && y < self.height {
-            let at = 3 * (y as usize * self.width as usize + x as usize);
-            self.rgb[at..at + 3].copy_from_slice(&colour);
-        }
-    }
-
-    /// `image` with its top-left corner at `(x0, y0)`.
-    fn blit(&mut self, x0: u32, y0: u32, image: &Preview) {
-        let row_bytes = 3 * image.width as usize;
-        for (y, row) in image.rgb.chunks(row_bytes.max(1)).enumerate() {
-            for (x, px) in row.chunks_exact(3).enumerate() {
-                // Both fit: the image was sized to fit the canvas.
-                self.put(x0 + x as u32, y0 + y as u32, [px[0], px[1], px[2]]);
-            }
-        }
-    }
-
-    /// `text` in the 8×8 font, ASCII only (anything else is a `?`).
-    fn text(&mut self, x0: u32, y0: u32, text: &str) {
-        for (i, c) in text.chars().enumerate() {
-            let glyph = BASIC_LEGACY[if c.is_ascii() {
-                c as usize
-            } else {
-                '?' as usize
-            }];
-            for (dy, bits) in glyph.iter().enumerate() {
-                for dx in 0..8 {
-                    // font8x8: bit 0 is the leftmost pixel of a row.
-                    if bits & (1 << dx) != 0 {
-                        self.put(x0 + i as u32 * GLYPH + dx, y0 + 1 + dy as u32, TEXT);
-                    }
-                }
-            }
-        }
-    }
-
-    /// The colour scale from 0 to `hi_m` metres, as a bar and its ends
-    /// (in steps too where every terrain on it has the same step height,
-    /// `step`), after `label`.
-    fn legend(&mut self, x0: u32, y0: u32, label: &str, hi_m: f64, step: Option<f64>) {
-        self.text(x0, y0, label);
+/// The colour scale from 0 to `hi_m` metres, as a bar and its ends (in
+/// steps too where every terrain on it has the same step height, `step`),
+/// after `label`.
+fn legend(sheet: &mut Canvas, x0: u32, y0: u32, label: &str, hi_m: f64, step: Option<f64>) {
+    {
+        sheet.text(x0, y0, label);
         let x0 = x0 + label.chars().count() as u32 * GLYPH;
         let bar = 120;
         // The bar's colours in steps of the scale: the common step, else
@@ -336,7 +279,7 @@ impl Canvas {
             // Equal lengths of bar for the heights 0 … hi.
             let h = ((u32::from(hi) + 1) * x / bar).min(u32::from(hi)) as u16;
             for y in 0..GLYPH {
-                self.put(x0 + x, y0 + 1 + y, palette(h, 0, hi));
+                sheet.put(x0 + x, y0 + 1 + y, palette(h, 0, hi));
             }
         }
         let mm = hi_m * 1000.0;
@@ -344,15 +287,7 @@ impl Canvas {
             Some(_) => format!("0 .. {hi} steps (0 .. {mm:.0} mm)"),
             None => format!("0 .. {mm:.0} mm"),
         };
-        self.text(x0 + bar + GLYPH, y0, &text);
-    }
-
-    fn into_preview(self) -> Preview {
-        Preview {
-            width: self.width,
-            height: self.height,
-            rgb: self.rgb,
-        }
+        sheet.text(x0 + bar + GLYPH, y0, &text);
     }
 }
 
