@@ -74,6 +74,9 @@ def preview_round_trips(page: Page, url: str, count: int, size: int = 50) -> lis
     page.wait_for_function("window.rseEditor?.previews >= 1")
     page.fill('[data-global="size"]', f"{size}x{size}")
     page.wait_for_function(f"document.getElementById('timing').textContent.startsWith('{size}×{size}')")
+    # Nothing on its way (a draft restored on load asks for its own
+    # preview): each edit below is then answered by its own.
+    page.wait_for_function("window.rseEditor.inFlight === 0")
     times = []
     for i in range(1, count + 1):
         drawn = page.evaluate("window.rseEditor.previews")
