@@ -888,7 +888,7 @@ mod tests {
         use std::fmt::Write as _;
 
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/schemes.md");
-        let docs = std::fs::read_to_string(path).unwrap();
+        let mut docs = std::fs::read_to_string(path).unwrap();
         let header = "| key | value | default |\n|---|---|---|\n";
         let start = docs
             .find(header)
@@ -902,7 +902,10 @@ mod tests {
         }
         if docs[start..end] != rows {
             if std::env::var_os("RSE_UPDATE_DOCS").is_some() {
-                std::fs::write(path, format!("{}{rows}{}", &docs[..start], &docs[end..])).unwrap();
+                // Rewritten, and the rest of the test reads what it wrote
+                // (it once failed its first run on the old text).
+                docs = format!("{}{rows}{}", &docs[..start], &docs[end..]);
+                std::fs::write(path, &docs).unwrap();
             } else {
                 panic!(
                     "docs/schemes.md's table of global keys is not rse-core's: rerun with RSE_UPDATE_DOCS=1\n{rows}"
