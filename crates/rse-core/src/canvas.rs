@@ -3,8 +3,6 @@
 
 use font8x8::legacy::BASIC_LEGACY;
 
-use crate::preview::Preview;
-
 /// A glyph's side, pixels (the 8×8 font, unscaled).
 pub(crate) const GLYPH: u32 = 8;
 /// Pixels of one text line: a glyph and its leading.
@@ -46,10 +44,11 @@ impl Canvas {
         }
     }
 
-    /// `image` with its top-left corner at `(x0, y0)`.
-    pub(crate) fn blit(&mut self, x0: u32, y0: u32, image: &Preview) {
-        let row_bytes = 3 * image.width as usize;
-        for (y, row) in image.rgb.chunks(row_bytes.max(1)).enumerate() {
+    /// An image `width` pixels wide (`rgb`, rows from the top) with its
+    /// top-left corner at `(x0, y0)`.
+    pub(crate) fn blit(&mut self, x0: u32, y0: u32, width: u32, rgb: &[u8]) {
+        let row_bytes = 3 * width as usize;
+        for (y, row) in rgb.chunks(row_bytes.max(1)).enumerate() {
             for (x, px) in row.chunks_exact(3).enumerate() {
                 self.put(x0 + x as u32, y0 + y as u32, [px[0], px[1], px[2]]);
             }
@@ -76,11 +75,8 @@ impl Canvas {
         }
     }
 
-    pub(crate) fn into_preview(self) -> Preview {
-        Preview {
-            width: self.width,
-            height: self.height,
-            rgb: self.rgb,
-        }
+    /// Its width, height and pixels (rows from the top).
+    pub(crate) fn into_parts(self) -> (u32, u32, Vec<u8>) {
+        (self.width, self.height, self.rgb)
     }
 }

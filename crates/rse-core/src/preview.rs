@@ -233,7 +233,8 @@ pub fn legend(terrain: &Terrain, width: u32) -> Preview {
         canvas.fill(x + 1, y + 2, GLYPH - 2, GLYPH - 2, *colour);
         canvas.text(x + 2 * GLYPH, y, text);
     }
-    canvas.into_preview()
+    let (width, height, rgb) = canvas.into_parts();
+    Preview { width, height, rgb }
 }
 
 /// Encodes a preview as PNG bytes: `png`'s encoder at `Compression::Fast`

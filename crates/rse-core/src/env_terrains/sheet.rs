@@ -163,7 +163,8 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
         sheet.text(x0, y0 + LINE, &clip(tile.caption, glyphs));
         // This terrain's steps that reach its scale's top (rounded).
         let hi = steps_to(scales.top[scales.of_tile[i]], tile.terrain.step_height());
-        sheet.blit(x0, y0 + 2 * LINE, &render_span(tile.terrain, cp, (0, hi)));
+        let tile_image = render_span(tile.terrain, cp, (0, hi));
+        sheet.blit(x0, y0 + 2 * LINE, tile_image.width, &tile_image.rgb);
     }
     let legend_y = (gap + rows * (cell_h + gap)) as u32;
     let named = scales.names.len() > 1;
@@ -189,7 +190,8 @@ pub fn tiles_sheet(tiles: &[SheetTile<'_>], options: SheetOptions) -> Result<Pre
             scales.step[k],
         );
     }
-    Ok(sheet.into_preview())
+    let (width, height, rgb) = sheet.into_parts();
+    Ok(Preview { width, height, rgb })
 }
 
 /// The colour scales of a sheet's tiles: each scale's name (in the order
