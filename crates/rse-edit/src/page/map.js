@@ -1,13 +1,14 @@
 // The top-down map: the world's heights drawn as `preview.png` draws them
 // (north up, `cell_pixels` pixels a cell, darker cell edges from 4 pixels
 // on), an overlay with every obstacle's points, walls and random ranges, a
-// legend, a readout of the cell under the pointer, and drawing: click to
-// place the selected peak or pit, drag to draw the selected wall, long pit,
-// stairs, pyramid or ramp (corner to corner), drag a point or a range's
-// rectangle to move it; another obstacle is
-// picked by its own point or with Shift, and a line under the map says
-// what a click will do. The keyboard does the same with the arrow keys and
-// Enter.
+// legend, a readout of the cell under the pointer, zoom and pan, and
+// editing: a click picks the obstacle under the pointer (the nearest point,
+// a wall along its line, a rectangle from inside; again on one spot, the
+// next one there) and a drag moves it; a new obstacle is placed by the next
+// click, or drawn by a drag (a wall, long pit, stairs, pyramid or ramp
+// corner to corner); a click on empty ground moves nothing. A line under
+// the map says what a click will do. The keyboard does the same with the
+// arrow keys and Enter.
 "use strict";
 
 import { FRAME_RGB, isFrame, legendHeights, palette } from "./colours.js";
