@@ -63,6 +63,19 @@ def page():
         yield page
 
 
+@pytest.fixture
+def editor(tmp_path: Path):
+    """A running `rse-gen edit` (release, as users run it) on a small
+    scheme, `start.csv` in its own folder; yields (url, folder). A test
+    module needing another scheme defines its own `editor`."""
+    from editor_harness import running_editor
+
+    scheme = tmp_path / "start.csv"
+    scheme.write_text("# size: 20x16\ntype,height\nrandom,1\n")
+    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
+        yield url, tmp_path
+
+
 def units(scheme: Path) -> dict:
     """The scheme's block_size, step_height and base (metres), with defaults."""
     found = {"block_size": 0.1, "step_height": 0.1, "base": 0.0}

@@ -25,16 +25,6 @@ from playwright.sync_api import Page
 pytestmark = pytest.mark.thirdparty
 
 
-@pytest.fixture
-def editor(tmp_path: Path):
-    """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
-    scheme = tmp_path / "start.csv"
-    scheme.write_text("# size: 20x16\ntype,height\nrandom,1\n")
-    # Optimised, as users run it: the preview round trip is measured.
-    with running_editor(rse_gen_release_path(), scheme, tmp_path) as url:
-        yield url, tmp_path
-
-
 def previews(page: Page) -> int:
     return page.evaluate("window.rseEditor.previews")
 

@@ -29,14 +29,6 @@ REPO = Path(__file__).resolve().parents[2]
 START = "# size: 20x16\ntype,height\nrandom,1\n"
 
 
-@pytest.fixture
-def editor(tmp_path: Path):
-    """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
-    (tmp_path / "start.csv").write_text(START)
-    with running_editor(rse_gen_release_path(), tmp_path / "start.csv", tmp_path) as url:
-        yield url, tmp_path
-
-
 def open_path(page: Page, path: Path) -> None:
     page.evaluate("document.getElementById('status').textContent = ''")
     page.get_by_role("button", name="Open path").click()

@@ -12,16 +12,6 @@ from playwright.sync_api import Page
 
 pytestmark = pytest.mark.thirdparty
 
-START = "# size: 20x16\ntype,height\nrandom,1\n"
-
-
-@pytest.fixture
-def editor(tmp_path: Path):
-    """A running `rse-gen edit` on a small scheme; yields (url, folder)."""
-    (tmp_path / "start.csv").write_text(START)
-    with running_editor(rse_gen_release_path(), tmp_path / "start.csv", tmp_path) as url:
-        yield url, tmp_path
-
 
 def test_ctrl_z_is_the_editors_undo_wherever_the_focus_is(editor, page: Page) -> None:
     """Ctrl+Z inside a text field was the browser's text undo: after an

@@ -94,8 +94,12 @@ pub fn render_span(terrain: &Terrain, cell_pixels: u32, (lo, hi): (u16, u16)) ->
 /// The lowest and highest cell of `terrain` that is not frame, in steps
 /// (`(u16::MAX, 0)` when every cell is frame).
 pub fn height_span(terrain: &Terrain) -> (u16, u16) {
-    let grid = terrain.grid();
-    let map = terrain.heightmap();
+    heights_span(terrain.heightmap(), &terrain.grid())
+}
+
+/// [`height_span`] of heights `map` on `grid` (a world's `heightmap.csv`
+/// read back, its record's grid).
+pub fn heights_span(map: &crate::Heightmap, grid: &crate::Grid) -> (u16, u16) {
     let (mut lo, mut hi) = (u16::MAX, 0u16);
     for y in 0..grid.ny {
         for (x, &h) in map.row(y).iter().enumerate() {

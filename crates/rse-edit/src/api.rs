@@ -758,21 +758,10 @@ pub fn open_folder(editor: &Editor) -> Answer {
     let Some(folder) = editor.job.folder.lock().expect("not poisoned").clone() else {
         return Err(bad("no worlds written yet: Generate first"));
     };
-    let opener = if cfg!(target_os = "macos") {
-        "open"
-    } else {
-        "xdg-open"
-    };
-    let ran = std::process::Command::new(opener)
-        .arg(&folder)
-        .stdin(std::process::Stdio::null())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .status();
-    match ran {
-        Ok(status) if status.success() => Ok(json!({ "ok": true, "folder": folder })),
-        Ok(_) | Err(_) => Err(bad(format!(
-            "this machine has no file manager to open it with ({opener}): the worlds are in {}",
+    match crate::desktop::open(folder.as_os_str()) {
+        Ok(()) => Ok(json!({ "ok": true, "folder": folder })),
+        Err(why) => Err(bad(format!(
+            "this machine has no file manager to open it with ({why}): the worlds are in {}",
             folder.display()
         ))),
     }
@@ -824,21 +813,12 @@ fn check_summary(folder: &Path, templates: Arc<Templates>) -> (String, Vec<Value
 }
 
 /// The lowest and highest cell of a world's `heightmap.csv` on `grid`, in
-/// steps, pallet frames left out, as its preview's colours run (None: not
-/// read).
+/// steps, as its preview's colours run (None: not read, or all frame).
 fn heights_of(csv: &Path, grid: &rse_core::Grid) -> Option<[u16; 2]> {
     let text = std::fs::read_to_string(csv).ok()?;
     let map = rse_core::Heightmap::from_csv(&text).ok()?;
-    let mut span: Option<[u16; 2]> = None;
-    for y in 0..map.ny() {
-        for (x, &h) in map.row(y).iter().enumerate() {
-            if !grid.is_frame(x as u32, y) {
-                let [lo, hi] = span.unwrap_or([h, h]);
-                span = Some([lo.min(h), hi.max(h)]);
-            }
-        }
-    }
-    span
+    let (lo, hi) = rse_core::preview::heights_span(&map, grid);
+    (lo <= hi).then_some([lo, hi])
 }
 
 #[cfg(test)]

@@ -60,11 +60,25 @@ impl Drafts {
 
     /// `file`'s draft and its revision (0: none kept).
     pub fn load_revised(&self, file: &str) -> (Option<Value>, u64) {
-        let revision = self
-            .read("drafts", file, "revision")
-            .and_then(|r| r.as_u64())
-            .unwrap_or(0);
-        (self.load(file), revision)
+        let Kept {
+            draft, revision, ..
+        } = self.kept(file);
+        (draft, revision)
+    }
+
+    /// `file`'s draft entry, read once: the draft, its revision and the
+    /// tab that wrote it.
+    fn kept(&self, file: &str) -> Kept {
+        let mut entry = self.read_entry("drafts", file).unwrap_or(Value::Null);
+        Kept {
+            draft: entry.get_mut("draft").map(Value::take),
+            revision: entry.get("revision").and_then(Value::as_u64).unwrap_or(0),
+            tab: entry
+                .get("tab")
+                .and_then(Value::as_str)
+                .unwrap_or_default()
+                .to_owned(),
+        }
     }
 
     /// Keeps `draft` as `file`'s (written whole or not at all).
@@ -92,11 +106,11 @@ impl Drafts {
         base: u64,
         force: bool,
     ) -> Result<Stored, rse_world::Error> {
-        let (theirs, revision) = self.load_revised(file);
-        let writer = self
-            .read("drafts", file, "tab")
-            .and_then(|t| t.as_str().map(str::to_owned))
-            .unwrap_or_default();
+        let Kept {
+            draft: theirs,
+            revision,
+            tab: writer,
+        } = self.kept(file);
         if let Some(theirs) = theirs
             && revision > base
             && writer != tab
@@ -154,10 +168,14 @@ impl Drafts {
     /// The `field` of `file`'s entry of `kind`, or None. The entry names its
     /// file: a hash collision never hands over another file's.
     fn read(&self, kind: &str, file: &str, field: &str) -> Option<Value> {
+        self.read_entry(kind, file)?.get_mut(field).map(Value::take)
+    }
+
+    /// `file`'s whole entry of `kind`, if it is `file`'s.
+    fn read_entry(&self, kind: &str, file: &str) -> Option<Value> {
         let text = std::fs::read(self.entry(kind, file)).ok()?;
-        let mut kept: Value = serde_json::from_slice(&text).ok()?;
-        (kept.get("file")?.as_str()? == Self::identity(file))
-            .then(|| kept.get_mut(field).map(Value::take))?
+        let kept: Value = serde_json::from_slice(&text).ok()?;
+        (kept.get("file")?.as_str()? == Self::identity(file)).then_some(kept)
     }
 
     /// Writes `file`'s entry of `kind` holding `value` as its `field`.
@@ -173,6 +191,13 @@ impl Drafts {
         kept[field] = value.clone();
         write_entry(&entry, &kept)
     }
+}
+
+/// A draft entry as read: the draft, its revision and its writer.
+struct Kept {
+    draft: Option<Value>,
+    revision: u64,
+    tab: String,
 }
 
 /// What [`Drafts::store_revised`] did.

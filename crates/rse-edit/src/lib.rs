@@ -6,6 +6,7 @@
 //! it over a loopback socket; the fuzz targets call the API directly.
 
 pub mod api;
+pub mod desktop;
 mod drafts;
 mod model;
 pub mod page;

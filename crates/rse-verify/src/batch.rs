@@ -218,30 +218,19 @@ pub fn check_paths(
     progress: &(dyn Fn() + Sync),
 ) -> Result<CheckReport, DiscoverError> {
     let (worlds, mut batch_faults) = discover(paths)?;
-    let check_all = || -> Vec<WorldReport> {
-        worlds
-            .par_iter()
-            .map(|world| {
-                let report = check_world(world, options);
-                progress();
-                report
-            })
-            .collect()
+    let check_one = |world: &PathBuf| {
+        let report = check_world(world, options);
+        progress();
+        report
     };
+    let check_all = || -> Vec<WorldReport> { worlds.par_iter().map(check_one).collect() };
     // Each world's budget is the whole memory available; fewer are
     // checked at once where the threads' worth would not fit in it.
     let at_once = worlds_at_once(&worlds, options);
     let reports = if at_once < rayon::current_num_threads() {
         match rayon::ThreadPoolBuilder::new().num_threads(at_once).build() {
             Ok(pool) => pool.install(check_all),
-            Err(_) => worlds
-                .iter()
-                .map(|world| {
-                    let report = check_world(world, options);
-                    progress();
-                    report
-                })
-                .collect(),
+            Err(_) => worlds.iter().map(check_one).collect(),
         }
     } else {
         check_all()

@@ -333,14 +333,19 @@ function startFile(scheme, server, kept, revision = 0, newFile = false) {
     file.path = found.path ?? file.path; file.name = found.name ?? file.name;
     say("unsaved changes restored");
   }
-  if (found && Array.isArray(found.past) && found.past.length) {
-    undoLog.past = found.past.filter((t) => typeof t === "string");
-    undoLog.future = Array.isArray(found.future) ? found.future.filter((t) => typeof t === "string") : [];
-  }
-  // The history ends at the page's scheme (a draft's does; a file's starts there).
-  const top = undoLog.past[undoLog.past.length - 1];
-  if (!top || JSON.stringify(JSON.parse(top).scheme) !== JSON.stringify(pageScheme())) undoLog.past.push(snapshot());
+  takeHistory(found);
   changed();
+}
+
+/** Undo and Redo from the draft `kept` (if it has them), ending at the
+ * page's scheme (a draft's history does; a file's starts there). */
+function takeHistory(kept) {
+  if (kept && Array.isArray(kept.past) && kept.past.length) {
+    undoLog.past = kept.past.filter((t) => typeof t === "string");
+    undoLog.future = Array.isArray(kept.future) ? kept.future.filter((t) => typeof t === "string") : [];
+  }
+  const top = undoLog.past[undoLog.past.length - 1];
+  if (!top || schemeOf(top) !== JSON.stringify(pageScheme())) undoLog.past.push(snapshot());
 }
 
 window.addEventListener("beforeunload", (e) => {
@@ -1189,10 +1194,7 @@ function resumeUnnamed(answer) {
   file.base = null; file.saved = null;
   forgetHistory();
   loadScheme(kept.scheme);
-  if (Array.isArray(kept.past)) undoLog.past = kept.past.filter((t) => typeof t === "string");
-  if (Array.isArray(kept.future)) undoLog.future = kept.future.filter((t) => typeof t === "string");
-  const top = undoLog.past[undoLog.past.length - 1];
-  if (!top || JSON.stringify(JSON.parse(top).scheme) !== JSON.stringify(pageScheme())) undoLog.past.push(snapshot());
+  takeHistory(kept);
   changed();
   say(JSON.stringify(pageScheme()) === file.opened ? `back on ${file.name || "a new scheme"}` : "unsaved changes restored");
 }

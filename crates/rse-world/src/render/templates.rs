@@ -277,7 +277,7 @@ impl Templates {
         context: &WorldContext,
     ) -> Result<Vec<(String, Vec<u8>)>, Error> {
         let boxes = context.boxes.len().unwrap_or_default();
-        self.render_with_fuel(target, context, render_fuel(boxes), Fueled::Users)
+        self.render_with_fuel(target, context, render_fuel(boxes as u64), Fueled::Users)
     }
 
     /// [`render`](Self::render) with `fuel` instructions per file of
@@ -367,10 +367,6 @@ pub const FIXED_FUEL: u64 = 2_000_000;
 /// 64th of a fuel for each byte of a string, list or output it makes.
 pub const BYTES_PER_FUEL: u64 = 64;
 
-fn render_fuel(boxes: usize) -> u64 {
-    render_fuel_of(boxes as u64)
-}
-
 /// One instruction of minijinja's, in cell visits ([`crate::VISIT_NANOS`]
 /// each): a loop that spends a world's whole fuel took 2.0 s for 5.5·10⁷
 /// instructions, ~36 ns each.
@@ -420,7 +416,7 @@ impl Templates {
 /// `boxes` boxes may take, in cell visits: each at its fuel.
 pub(crate) fn render_visits(users: u64, boxes: u64) -> u64 {
     users
-        .saturating_mul(render_fuel_of(boxes))
+        .saturating_mul(render_fuel(boxes))
         .saturating_mul(VISITS_PER_FUEL)
 }
 
@@ -430,12 +426,12 @@ pub(crate) fn render_visits(users: u64, boxes: u64) -> u64 {
 /// nothing), and its output once more as `check` reads it back.
 pub(crate) fn render_bytes(users: u64, boxes: u64) -> u64 {
     users
-        .saturating_mul(render_fuel_of(boxes))
+        .saturating_mul(render_fuel(boxes))
         .saturating_mul(BYTES_PER_FUEL)
         .saturating_mul(2)
 }
 
-fn render_fuel_of(boxes: u64) -> u64 {
+fn render_fuel(boxes: u64) -> u64 {
     FIXED_FUEL.saturating_add(boxes.saturating_mul(FUEL_PER_BOX))
 }
 

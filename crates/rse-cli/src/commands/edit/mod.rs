@@ -99,25 +99,10 @@ fn state_folder() -> Option<std::path::PathBuf> {
 /// none, or it fails (no display), says so in one line: the URL printed
 /// above is the way in then.
 fn open_in_browser(url: String) {
-    let opener = if cfg!(target_os = "macos") {
-        "open"
-    } else {
-        "xdg-open"
-    };
     std::thread::spawn(move || {
-        let status = std::process::Command::new(opener)
-            .arg(&url)
-            .stdin(std::process::Stdio::null())
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .status();
-        let why = match status {
-            Ok(s) if s.success() => return,
-            Ok(s) => format!("{opener} failed ({s})"),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => format!("no {opener} here"),
-            Err(e) => format!("{opener}: {e}"),
-        };
-        eprintln!("rse-gen: --open: cannot open a browser ({why}); open {url} yourself");
+        if let Err(why) = rse_edit::desktop::open(url.as_ref()) {
+            eprintln!("rse-gen: --open: cannot open a browser ({why}); open {url} yourself");
+        }
     });
 }
 
