@@ -25,7 +25,7 @@ def scheme_new() -> str:
     import rse
     from rse import _rse
 
-    types = {"obstacles": "list[Obstacle]", **{name: kind for name, kind, _ in _rse._global_keywords()}}
+    types = {"obstacles": "list[Obstacle]", **{name: kind for name, kind, *_ in _rse._global_keywords()}}
     lines = [BEGIN, "    def __new__(\n", "        cls,\n"]
     keyword_only = False
     for p in inspect.signature(rse.Scheme).parameters.values():

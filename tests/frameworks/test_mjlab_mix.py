@@ -92,7 +92,7 @@ def test_a_mix_of_other_block_sizes_or_a_bad_proportion_is_refused_at_the_flag(t
     monkeypatch.setenv("COLUMNS", "300")
     other = tmp_path / "coarse.csv"
     other.write_text("# size: 40x40\n# block_size: 0.2\ntype,height\nrandom,2\n")
-    for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has cells of 0.2 m"),
+    for mix, words in ((f'{{"{STAIRS}": 1, "{other}": 1}}', "scheme 2 has block_size 0.2 m"),
                        (f'{{"{STAIRS}": -1}}', "proportion is -1"),
                        (f'{{"{STAIRS}": 1, "missing.csv": 1}}', "missing.csv: cannot read it")):
         done = train_main(capsys, "--env.scene.terrain.schemes", mix)

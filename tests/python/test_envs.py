@@ -476,7 +476,7 @@ def test_a_mix_of_grids_gives_every_slot_the_largest_a_smaller_terrain_in_its_co
 
 def test_a_mix_refuses_schemes_of_other_block_sizes_and_bad_proportions() -> None:
     a = rse.Scheme.from_csv("# size: 20x20\ntype,height\nrandom,2\n")
-    with pytest.raises(ValueError, match="schemes: scheme 2 has cells of 0.2 m, scheme 1 of 0.1 m"):
+    with pytest.raises(ValueError, match="schemes: scheme 2 has block_size 0.2 m, scheme 1 0.1 m"):
         rse.EnvTerrains([a, rse.Scheme.from_csv("# size: 20x20\n# block_size: 0.2\ntype,height\nrandom,2\n")], 2)
     with pytest.raises(ValueError, match="proportions: 1 given for 2 schemes"):
         rse.EnvTerrains([a, a], 2, proportions=[1])

@@ -1,7 +1,8 @@
 """Every global option of a scheme, walked through every skin that carries
 it: the constructor's keyword, `Scheme.replace`, the scheme file both ways,
 the world's `rse.json`, the templates' context, the framework adapters'
-tile fitting, the command line's flag. The keys and a value of each other
+tile fitting, the command line's flag; and a value of each outside its
+range, which every skin refuses naming the key. The keys and a value of each other
 than its default come from the library itself (`Scheme().fields()`, the
 examples of rse-core's table of keys), so a key added to core that a skin
 drops fails here by name, with no edit of this file. (The editor's schema
@@ -29,7 +30,11 @@ def _sample(key: str, text: str) -> tuple[object, str]:
 KEYS = [key for key in rse.Scheme().fields() if key != "obstacles"]
 # The pallet keys need pallets on; fitting a tile sets the grid itself.
 NEEDS_PALLETS = {"pallet_size", "pallet_boundary"}
-SAMPLES: dict[str, tuple[object, str]] = {key: _sample(key, text) for key, _, text in _rse._global_keywords()}
+SAMPLES: dict[str, tuple[object, str]] = {key: _sample(key, text) for key, _, text, _ in _rse._global_keywords()}
+# A value of each key outside its range, as a scheme file writes it: the
+# one rse-core's table declares with the key's range (keys any value of
+# whose type will do have none).
+OUTSIDE: dict[str, str] = {key: outside for key, _, _, outside in _rse._global_keywords() if outside is not None}
 THE_GRID = {"size", "pallets"} | NEEDS_PALLETS
 
 
@@ -125,6 +130,78 @@ def test_the_command_lines_flag_reaches_the_scheme(key: str, tmp_path: Path) -> 
     )
     manifest = json.loads((tmp_path / "out" / "world_0000" / "rse.json").read_text())
     assert f"# {key}: {text}\n" in manifest["scheme"], manifest["scheme"]
+
+
+def _python_value(key: str, text: str) -> object:
+    """`text` as Python gives the key, by the key's type (core's parser
+    would refuse it: it is outside the range)."""
+    kind = {name: kind for name, kind, *_ in _rse._global_keywords()}[key]
+    if "_Pair" in kind:
+        return tuple(int(n) for n in text.split("x"))
+    if kind == "_Int":
+        return int(text)
+    if kind == "_Float":
+        return float(text)
+    if kind.startswith("Union[tuple[_Float"):
+        return tuple(float(c) for c in text.split())
+    raise AssertionError(f"{key}: no Python form for type {kind}")
+
+
+def test_most_keys_have_a_range() -> None:
+    assert {"size", "pallets", "pallet_size", "block_size", "step_height", "base", "color", "ground_color", "amount"} <= set(OUTSIDE)
+
+
+def _refusal_names(key: str, error: BaseException) -> None:
+    assert key in str(error), f"{key}: the refusal does not name it: {error}"
+
+
+@pytest.mark.parametrize("key", sorted(OUTSIDE))
+def test_the_constructor_and_replace_refuse_a_value_outside_its_range(key: str) -> None:
+    value = _python_value(key, OUTSIDE[key])
+    base: dict[str, object] = {"pallets": (2, 1)} if key in NEEDS_PALLETS else {}
+    with pytest.raises(ValueError) as refused:
+        rse.Scheme(**base, **{key: value})
+    _refusal_names(key, refused.value)
+    with pytest.raises(ValueError) as refused:
+        rse.Scheme(**base).replace(**{key: value})
+    _refusal_names(key, refused.value)
+
+
+@pytest.mark.parametrize("key", sorted(OUTSIDE))
+def test_the_scheme_file_refuses_a_value_outside_its_range(key: str) -> None:
+    pallets = "# pallets: 1x1\n" if key in NEEDS_PALLETS else ""
+    with pytest.raises(ValueError) as refused:
+        rse.Scheme.from_csv(f"{pallets}# {key}: {OUTSIDE[key]}\ntype\n")
+    _refusal_names(key, refused.value)
+
+
+@pytest.mark.parametrize("key", sorted(OUTSIDE))
+def test_a_world_whose_record_holds_a_value_outside_its_range_fails_check(key: str, tmp_path: Path) -> None:
+    base: dict[str, object] = {"pallets": (2, 1)} if key in NEEDS_PALLETS else {}
+    rse.write_worlds(rse.Scheme(**base), tmp_path, amount=1, targets="obj")
+    record = tmp_path / "world_0000" / "rse.json"
+    manifest = json.loads(record.read_text())
+    manifest["scheme"] = f"# {key}: {OUTSIDE[key]}\n" + manifest["scheme"]
+    record.write_text(json.dumps(manifest))
+    report = rse.check(tmp_path / "world_0000")
+    assert not report.ok
+    faults = [fault for world in report.worlds for fault in world.faults] + report.batch_faults
+    _refusal_names(key, "\n".join(str(fault) for fault in faults))
+
+
+@pytest.mark.parametrize("key", sorted(set(OUTSIDE) - {"amount", "seed"}))
+def test_the_command_line_refuses_a_value_outside_its_range(key: str, tmp_path: Path) -> None:
+    scheme = tmp_path / "s.csv"
+    scheme.write_text(rse.Scheme(pallets=(2, 1) if key in NEEDS_PALLETS else None).to_csv())
+    flag = "--" + key.replace("_", "-")
+    run = subprocess.run(
+        [str(rse_gen_path()), "batch", str(scheme), "-o", str(tmp_path / "out"), "--target", "obj", f"{flag}={OUTSIDE[key]}"],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 2, run.stderr
+    assert flag in run.stderr, run.stderr
+    assert not (tmp_path / "out").exists(), "nothing written"
 
 
 def test_a_colour_is_drawn_by_the_simulators(tmp_path: Path) -> None:

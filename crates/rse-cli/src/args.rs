@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use crate::examples;
-use rse_core::{Difficulty, GlobalsPatch};
+use rse_core::{Difficulty, GlobalKey, GlobalsPatch, SchemeErrorKind};
 use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldConfig, WorldOptions};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
@@ -508,11 +508,12 @@ pub struct DifficultyArg {
 
 /// `SchemeOverrides` from rse-core's table of global keys
 /// (`for_each_global_key!`): one flag for each key that has one, its type,
-/// help line and clap settings as the table gives them. Munches the table
+/// help line and clap settings as the table gives them, its value read by
+/// the scheme file's parser and range ([`flag_value`]). Munches the table
 /// entry by entry, keeping the keys with a flag (`amount` and `seed` are
 /// the batch's own flags).
 macro_rules! scheme_overrides {
-    (@munch [$($field:ident: $flag:ty => $help:literal ($($arg:tt)*);)*]) => {
+    (@munch [$($variant:ident $field:ident: $flag:ty => $help:literal ($($arg:tt)*);)*]) => {
         /// Global parameters that override the scheme's, on the subcommands
         /// that read a scheme (after the subcommand, or before it for all of
         /// them).
@@ -521,7 +522,11 @@ macro_rules! scheme_overrides {
         pub struct SchemeOverrides {
             $(
                 #[doc = $help]
-                #[arg(long, $($arg)*)]
+                #[arg(
+                    long,
+                    value_parser = |text: &str| flag_value::<_, $flag>(GlobalKey::$variant, text, |patch| patch.$field),
+                    $($arg)*
+                )]
                 pub $field: Option<$flag>,
             )*
         }
@@ -549,16 +554,7 @@ macro_rules! scheme_overrides {
     };
     (@munch [$($done:tt)*]
         $(#[doc = $what:literal])*
-        $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
-            stored: $stored:tt,
-            flag: {},
-        }
+        $variant:ident { $field:ident: $ty:ty, range: $range:expr, stored: $stored:tt, flag: {} }
         $($rest:tt)*
     ) => {
         scheme_overrides!(@munch [$($done)*] $($rest)*);
@@ -566,22 +562,39 @@ macro_rules! scheme_overrides {
     (@munch [$($done:tt)*]
         $(#[doc = $what:literal])*
         $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
+            $field:ident: $ty:ty,
+            range: $range:expr,
             stored: $stored:tt,
-            flag: { ty: $flag:ty, help: $help:literal, arg: ($($arg:tt)*) },
+            flag: { ty: $flag:ty, help: $help:literal, arg: ($($arg:tt)*) }
         }
         $($rest:tt)*
     ) => {
-        scheme_overrides!(@munch [$($done)* $field: $flag => $help ($($arg)*);] $($rest)*);
+        scheme_overrides!(@munch [$($done)* $variant $field: $flag => $help ($($arg)*);] $($rest)*);
     };
     ($($table:tt)*) => {
         scheme_overrides!(@munch [] $($table)*);
     };
+}
+
+/// A global flag's value, read as a scheme file reads `key` (core's
+/// parser, then its range: one rule for both), `take` picking it from the
+/// patch; the error is the scheme file's reason, which clap prefixes with
+/// the flag and the text.
+fn flag_value<Patch, Flag: FlagValue<Patch>>(
+    key: GlobalKey,
+    text: &str,
+    take: impl FnOnce(GlobalsPatch) -> Option<Patch>,
+) -> Result<Flag, String> {
+    let mut patch = GlobalsPatch::default();
+    match patch.set_key(key, text) {
+        Ok(()) => take(patch)
+            .map(Flag::from_patch)
+            .ok_or_else(|| format!("expected {}", key.expects())),
+        Err(error) => Err(match error.kind {
+            SchemeErrorKind::BadGlobal { reason, .. } => reason,
+            _ => error.to_string(),
+        }),
+    }
 }
 
 rse_core::for_each_global_key!(scheme_overrides);
@@ -627,18 +640,10 @@ impl SchemeOverrides {
     }
 }
 
-/// `--pallets`: a layout, or `None` for off (read by core's
-/// [`rse_core::parse_pallets`], as a scheme file's `pallets` is).
+/// `--pallets`: a layout, or `None` for off (read as a scheme file's
+/// `pallets` is).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PalletsFlag(pub Option<[u32; 2]>);
-
-fn parse_dims(text: &str) -> Result<[u32; 2], String> {
-    let dims = rse_core::parse_dims(text)?;
-    if dims.contains(&0) {
-        return Err("needs at least one each way".to_owned());
-    }
-    Ok(dims)
-}
 
 fn parse_targets(text: &str) -> Result<Targets, String> {
     Targets::parse(text).map_err(|e| e.to_string())
@@ -668,30 +673,12 @@ fn parse_difficulty_range(text: &str) -> Result<(Difficulty, Difficulty), String
     Ok((lo, hi))
 }
 
-fn pallets_flag(text: &str) -> Result<PalletsFlag, String> {
-    rse_core::parse_pallets(text).map(PalletsFlag)
-}
-
-fn positive_metres(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err("expected a length in metres > 0".to_owned()),
-    }
-}
-
 /// A radius in metres, by core's one rule for radii.
 fn radius(text: &str) -> Result<f64, String> {
     let value = text
         .parse::<f64>()
         .map_err(|_| "expected a length in metres".to_owned())?;
     rse_core::spawn::check_radius(value)
-}
-
-fn non_negative_metres(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-        _ => Err("expected a length in metres ≥ 0".to_owned()),
-    }
 }
 
 #[cfg(test)]

@@ -7,11 +7,11 @@ use rayon::prelude::*;
 
 use crate::difficulty::{Difficulty, DifficultyRule};
 use crate::generate::generate_by;
-use crate::global_key::GlobalKey;
 use crate::globals::Grid;
 use crate::heightmap::Heightmap;
 use crate::limits::{MAX_CELLS, MAX_EXTENT};
 use crate::scheme::Scheme;
+use crate::shared_globals::{Together, unshared};
 use crate::spawn::{DEFAULT_PATCH_RADIUS, DEFAULT_SPAWN_RADIUS, Region, check_radius};
 use crate::terrain::Terrain;
 
@@ -308,33 +308,13 @@ pub fn build_atlas(schemes: &[Scheme], options: &AtlasOptions) -> Result<Atlas, 
     let units = first.globals();
     let tile_grid = first.grid();
     for (other, scheme) in schemes.iter().enumerate().skip(1) {
-        let g = scheme.globals();
-        let mismatch = |field, found: String, expected: String| AtlasError::Mismatch {
-            field,
-            other,
-            found,
-            expected,
-        };
-        for (field, found, expected) in [
-            (GlobalKey::BlockSize, g.block_size, units.block_size),
-            (GlobalKey::StepHeight, g.step_height, units.step_height),
-            (GlobalKey::Base, g.base, units.base),
-        ] {
-            if found.to_bits() != expected.to_bits() {
-                return Err(mismatch(
-                    field.name(),
-                    format!("{found}"),
-                    format!("{expected}"),
-                ));
-            }
-        }
-        let grid = scheme.grid();
-        if (grid.nx, grid.ny) != (tile_grid.nx, tile_grid.ny) {
-            return Err(mismatch(
-                GlobalKey::Size.name(),
-                format!("{}x{}", grid.nx, grid.ny),
-                format!("{}x{}", tile_grid.nx, tile_grid.ny),
-            ));
+        if let Some(u) = unshared(units, scheme.globals(), Together::Atlas) {
+            return Err(AtlasError::Mismatch {
+                field: u.key.name(),
+                other,
+                found: u.found,
+                expected: u.expected,
+            });
         }
     }
     let [nx, ny] = options.map_cells([tile_grid.nx, tile_grid.ny]);

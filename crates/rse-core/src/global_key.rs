@@ -1,7 +1,7 @@
 //! The global keys of a scheme, declared once in one table
-//! ([`for_each_global_key`]): each key's name (in a scheme file, the editor
+//! ([`global_key_table`]): each key's name (in a scheme file, the editor
 //! and Python; `--block-size` on the command line), its field in the patch,
-//! its unit, what its value must be, its default and one line of
+//! its unit, what its text must be, its range, its default and one line of
 //! documentation. The enum, the globals and their patch are built from the
 //! table; the CSV reader, the editor's schema, the command line and Python
 //! read them instead of matching strings of their own.
@@ -9,10 +9,13 @@
 /// The global keys, declared once: each key's variant, name (in a scheme
 /// file, the editor and Python; `--block-size` on the command line), field
 /// and type in the patch (whose type picks its parser, its canonical text
-/// and its Python value), unit, what its text must be, an example other
-/// than its default (the value the tests walk it through every skin
-/// with), one line of documentation, how [`Globals`](crate::Globals)
-/// stores it, and its command-line flag.
+/// and its Python value), unit, what its text must be, its range (a
+/// [`global_range`](crate::global_range) value: what the value must be
+/// beyond its type, checked by every skin through
+/// [`GlobalsPatch::check_ranges`](crate::GlobalsPatch::check_ranges)), an
+/// example other than its default (the value the tests walk it through
+/// every skin with), one line of documentation, how
+/// [`Globals`](crate::Globals) stores it, and its command-line flag.
 ///
 /// `stored: { default, text, record }` makes the key a field of `Globals`
 /// of its own: its default, whether the canonical scheme file writes it
@@ -25,32 +28,34 @@
 ///
 /// `flag: {}` is for no flag (`amount` and `seed` are the batch's own);
 /// otherwise the flag's type, help line and clap `#[arg]` settings, as
-/// tokens only rse-cli expands (its parsers are rse-cli's).
+/// tokens only rse-cli expands. Its value is read by the scheme file's
+/// parser and range (rse-cli's `flag_value`).
 ///
-/// Hands the table to `$callback`, which builds what it needs of it:
-/// [`GlobalKey`] here; `Globals` and its defaults, canonical text and
-/// record in `globals.rs`; the patch and its `set_key`/`combine`/`given`/
-/// `apply` in `globals_patch.rs`; the command line's `SchemeOverrides` in
-/// rse-cli; Python's keywords, values and signature in rse-py. A key of a
-/// type these already know is added here and nowhere else
+/// Hands the whole table, entry by entry as written here, to
+/// `$($callback)+` with `[$($pass)*]` before it. Only [`GlobalKey`] reads
+/// it so: every other consumer takes the short form
+/// [`for_each_global_key`] gives, and asks [`GlobalKey`] for the rest. A
+/// key of a type these already know is added here and nowhere else
 /// (docs/development.md, "Adding a global key of the scheme").
+#[doc(hidden)]
 #[macro_export]
-macro_rules! for_each_global_key {
-    ($callback:ident) => {
-        $callback! {
+macro_rules! global_key_table {
+    ([$($callback:tt)+] [$($pass:tt)*]) => {
+        $($callback)+! { [$($pass)*]
             /// `[nx, ny]` in cells.
             Size {
                 name: "size",
                 field: size: [u32; 2],
                 unit: Some("cells"),
                 expects: "NXxNY, whole numbers of cells",
+                range: $crate::global_range::EachAtLeastOne("cell"),
                 example: "13x11",
                 doc: "`NXxNY` cells, used when pallets are off",
                 stored: by_hand,
                 flag: {
                     ty: [u32; 2],
                     help: "Grid size in cells, used when pallets are off.",
-                    arg: (value_name = "NXxNY", value_parser = parse_dims)
+                    arg: (value_name = "NXxNY")
                 },
             }
             /// Pallets along x and y, or off: `Some(None)` turns them off.
@@ -59,13 +64,14 @@ macro_rules! for_each_global_key {
                 field: pallets: Option<[u32; 2]>,
                 unit: Some("pallets"),
                 expects: "NXxNY pallets, or off",
+                range: $crate::global_range::EachAtLeastOne("pallet"),
                 example: "2x1",
                 doc: "`PXxPY` pallets, or `off`",
                 stored: by_hand,
                 flag: {
                     ty: PalletsFlag,
                     help: "Pallets along x and y, or `off`.",
-                    arg: (value_name = "PXxPY|off", value_parser = pallets_flag)
+                    arg: (value_name = "PXxPY|off")
                 },
             }
             /// Pallet side in cells; needs pallets.
@@ -74,13 +80,14 @@ macro_rules! for_each_global_key {
                 field: pallet_size: u32,
                 unit: Some("cells"),
                 expects: "a whole number of cells",
+                range: $crate::global_range::AtLeastOne("cell"),
                 example: "7",
                 doc: "pallet side in cells, inside the frame (needs `pallets`; a NIST pallet is 10)",
                 stored: by_hand,
                 flag: {
                     ty: u32,
                     help: "Pallet side in cells (needs pallets).",
-                    arg: (value_name = "CELLS", value_parser = clap::value_parser!(u32).range(1..))
+                    arg: (value_name = "CELLS")
                 },
             }
             /// Whether every pallet has a frame; `true` needs pallets.
@@ -89,6 +96,7 @@ macro_rules! for_each_global_key {
                 field: pallet_boundary: bool,
                 unit: None,
                 expects: "true or false",
+                range: $crate::global_range::AnyValue,
                 example: "false",
                 doc: "`true`/`false`: a 1-cell frame, 1 step high, around every pallet (needs `pallets`)",
                 stored: by_hand,
@@ -104,13 +112,14 @@ macro_rules! for_each_global_key {
                 field: block_size: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                range: $crate::global_range::Length,
                 example: "0.05",
                 doc: "cell side `S` in metres",
                 stored: { default: 0.1, text: always, record: always },
                 flag: {
                     ty: f64,
                     help: "Cell side in metres.",
-                    arg: (value_name = "M", value_parser = positive_metres)
+                    arg: (value_name = "M")
                 },
             }
             /// One step, metres.
@@ -119,13 +128,14 @@ macro_rules! for_each_global_key {
                 field: step_height: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                range: $crate::global_range::Length,
                 example: "0.025",
                 doc: "height of one step in metres",
                 stored: { default: 0.1, text: always, record: always },
                 flag: {
                     ty: f64,
                     help: "Height of one step in metres.",
-                    arg: (value_name = "M", value_parser = positive_metres)
+                    arg: (value_name = "M")
                 },
             }
             /// The slab under the grid, metres.
@@ -134,13 +144,14 @@ macro_rules! for_each_global_key {
                 field: base: f64,
                 unit: Some("m"),
                 expects: "a length in metres",
+                range: $crate::global_range::LengthOrZero("no slab"),
                 example: "0.02",
                 doc: "slab under the whole grid, metres",
                 stored: { default: 0.0, text: unless_default, record: always },
                 flag: {
                     ty: f64,
                     help: "Slab under the whole grid in metres (0 for none).",
-                    arg: (value_name = "M", value_parser = non_negative_metres)
+                    arg: (value_name = "M")
                 },
             }
             /// The terrain's colour, red green blue from 0 to 1.
@@ -149,8 +160,9 @@ macro_rules! for_each_global_key {
                 field: color: $crate::Color,
                 unit: None,
                 expects: "red, green and blue, each 0 to 1",
+                range: $crate::global_range::CheckedByType { describe: "each component 0 to 1", outside: "1.5 0 0" },
                 example: "0.1 0.2 0.3",
-                doc: "the terrain's colour: red green blue, each 0 to 1 (light wood)",
+                doc: "the terrain's colour: red green blue (light wood)",
                 stored: { default: $crate::Color::WOOD, text: unless_default, record: unless_default },
                 flag: {
                     ty: $crate::Color,
@@ -164,8 +176,9 @@ macro_rules! for_each_global_key {
                 field: ground_color: $crate::Color,
                 unit: None,
                 expects: "red, green and blue, each 0 to 1",
+                range: $crate::global_range::CheckedByType { describe: "each component 0 to 1", outside: "0 0 -0.1" },
                 example: "0.3 0.5 0.3",
-                doc: "the ground's colour around the terrain: red green blue, each 0 to 1 (light grey)",
+                doc: "the ground's colour around the terrain: red green blue (light grey)",
                 stored: { default: $crate::Color::LIGHT_GREY, text: unless_default, record: unless_default },
                 flag: {
                     ty: $crate::Color,
@@ -179,6 +192,7 @@ macro_rules! for_each_global_key {
                 field: amount: u64,
                 unit: Some("worlds"),
                 expects: "a whole number of worlds",
+                range: $crate::global_range::AtLeastOne("world"),
                 example: "3",
                 doc: "worlds in a batch",
                 stored: { default: 1, text: unless_default, record: always },
@@ -190,6 +204,7 @@ macro_rules! for_each_global_key {
                 field: seed: u64,
                 unit: None,
                 expects: "a whole number from 0 to 2^64 − 1",
+                range: $crate::global_range::AnyValue,
                 example: "17",
                 doc: "base seed of a batch, a whole number from 0 to 2^64 − 1",
                 stored: { default: 0, text: unless_default, record: always },
@@ -199,15 +214,67 @@ macro_rules! for_each_global_key {
     };
 }
 
-/// [`GlobalKey`] from the table of [`for_each_global_key`].
-macro_rules! declare_global_key {
-    ($(
+/// The table of [`global_key_table`] in the short form every consumer but
+/// [`GlobalKey`] matches, one entry a key:
+///
+/// ```text
+/// /// docs
+/// Variant { field: Type, range: RANGE, stored: STORED, flag: FLAG }
+/// ```
+///
+/// the parts that shape types and code (the patch's field and type, the
+/// range checked, how `Globals` stores it, the command-line flag). The
+/// rest (name, unit, doc, example) are [`GlobalKey`]'s methods:
+/// `GlobalKey::Variant.name()`. Hands the entries to `$callback`, which
+/// builds what it needs of them: `Globals` and its defaults, canonical text
+/// and record in `globals.rs`; the patch and its `set_key`/`combine`/
+/// `given`/`check_ranges` in `globals_patch.rs`; the command line's
+/// `SchemeOverrides` in rse-cli; Python's keywords, values and signature in
+/// rse-py.
+#[macro_export]
+macro_rules! for_each_global_key {
+    ($callback:ident) => {
+        $crate::global_key_table!([$crate::short_global_keys][$callback]);
+    };
+}
+
+/// The short form of [`for_each_global_key`], made from the whole table.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! short_global_keys {
+    ([$callback:ident] $(
         $(#[doc = $what:literal])*
         $variant:ident {
             name: $name:literal,
             field: $field:ident: $ty:ty,
             unit: $unit:expr,
             expects: $expects:literal,
+            range: $range:expr,
+            example: $example:literal,
+            doc: $doc:literal,
+            stored: $stored:tt,
+            flag: $flag:tt,
+        }
+    )*) => {
+        $callback! {
+            $(
+                $(#[doc = $what])*
+                $variant { $field: $ty, range: $range, stored: $stored, flag: $flag }
+            )*
+        }
+    };
+}
+
+/// [`GlobalKey`] from the whole table of [`global_key_table`].
+macro_rules! declare_global_key {
+    ([] $(
+        $(#[doc = $what:literal])*
+        $variant:ident {
+            name: $name:literal,
+            field: $field:ident: $ty:ty,
+            unit: $unit:expr,
+            expects: $expects:literal,
+            range: $range:expr,
             example: $example:literal,
             doc: $doc:literal,
             stored: $stored:tt,
@@ -257,19 +324,39 @@ macro_rules! declare_global_key {
             }
 
             /// One line of documentation, markdown (backticks for what is
-            /// typed): the "value" column of docs/schemes.md's table of
-            /// keys (rse-edit's tests write the table from it), and
-            /// without its backticks the editor's tooltip.
+            /// typed), which [`GlobalKey::described`] follows with the
+            /// range.
             pub const fn doc(self) -> &'static str {
                 match self {
                     $(GlobalKey::$variant => $doc,)*
+                }
+            }
+
+            /// What its value must be beyond its type, in words (its
+            /// table entry's `range`), or `""` where any value of its type
+            /// will do.
+            pub fn range(self) -> &'static str {
+                use $crate::global_range::RangeText as _;
+                match self {
+                    $(GlobalKey::$variant => $range.describe(),)*
+                }
+            }
+
+            /// A value outside its range as a scheme file writes it (with
+            /// pallets on, for the pallet keys), which every skin must
+            /// refuse naming the key; `None` where any value of its type
+            /// will do.
+            pub fn outside_example(self) -> Option<&'static str> {
+                use $crate::global_range::RangeText as _;
+                match self {
+                    $(GlobalKey::$variant => $range.outside(),)*
                 }
             }
         }
     };
 }
 
-for_each_global_key!(declare_global_key);
+global_key_table!([declare_global_key] []);
 
 impl GlobalKey {
     /// The key spelt `name` in any case.
@@ -277,6 +364,17 @@ impl GlobalKey {
         GlobalKey::ALL
             .into_iter()
             .find(|key| key.name().eq_ignore_ascii_case(name))
+    }
+}
+
+impl GlobalKey {
+    /// Its documentation line and its range: docs/schemes.md's "value"
+    /// column, and without backticks the editor's tooltip.
+    pub fn described(self) -> String {
+        match self.range() {
+            "" => self.doc().to_owned(),
+            range => format!("{}; {range}", self.doc()),
+        }
     }
 }
 

@@ -49,14 +49,12 @@ impl ParseGlobal for f64 {
 }
 
 /// `PXxPY`, or `off`/`none`/`false`/`no` for no pallets: the `pallets`
-/// value of a scheme file, the editor and `--pallets` alike.
+/// value of a scheme file, the editor and `--pallets` alike (its range,
+/// at least one each way, is the key's: `GlobalsPatch::set_key` checks it).
 pub fn parse_pallets(value: &str) -> Result<Option<[u32; 2]>, String> {
     match value.trim().to_ascii_lowercase().as_str() {
         "off" | "none" | "false" | "no" => Ok(None),
-        _ => match parse_dims(value)? {
-            dims if dims.contains(&0) => Err("needs at least one pallet each way".to_owned()),
-            dims => Ok(Some(dims)),
-        },
+        _ => parse_dims(value).map(Some),
     }
 }
 
@@ -155,6 +153,17 @@ impl GlobalText for bool {
 impl GlobalText for [u32; 2] {
     fn global_text(&self) -> String {
         format_dims(*self)
+    }
+
+    fn same_global(&self, other: &Self) -> bool {
+        self == other
+    }
+}
+
+/// `pallets`: a count, or `off`.
+impl GlobalText for Option<[u32; 2]> {
+    fn global_text(&self) -> String {
+        self.map_or_else(|| "off".to_owned(), format_dims)
     }
 
     fn same_global(&self, other: &Self) -> bool {

@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize, Serializer};
 use crate::error::{SchemeError, SchemeErrorKind};
 use crate::for_each_global_key;
 use crate::global_key::{GLOBAL_KEYS, GlobalKey};
-use crate::global_value::{GlobalText, format_dims};
-use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS, MIN_LENGTH};
+use crate::global_value::GlobalText;
+use crate::limits::{MAX_CELLS, MAX_EXTENT, MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS};
 
 /// The global whose name `word` most likely misspells (any case, `-` or a
 /// space for `_`, one edit away for a short name, two for a long one), if
@@ -40,9 +40,6 @@ fn bad(key: GlobalKey, value: String, reason: &str) -> Result<(), SchemeError> {
     })
     .with_field(key.name()))
 }
-
-const MIN_LENGTH_REASON: &str =
-    "must be at least 0.001 m: shorter is not exact in an f32 mesh, nor told apart by check";
 
 /// Pallet layout: `count[0] × count[1]` pallets of `size × size` cells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -139,16 +136,7 @@ macro_rules! declare_globals {
     };
     (@munch [$($fields:tt)*] [$($keys:tt)*]
         $(#[doc = $what:literal])*
-        $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
-            stored: by_hand,
-            flag: $flag:tt,
-        }
+        $variant:ident { $field:ident: $ty:ty, range: $range:expr, stored: by_hand, flag: $flag:tt }
         $($rest:tt)*
     ) => {
         declare_globals!(@munch [$($fields)*] [$($keys)*] $($rest)*);
@@ -156,14 +144,10 @@ macro_rules! declare_globals {
     (@munch [$($fields:tt)*] [$($keys:tt)*]
         $(#[doc = $what:literal])*
         $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
+            $field:ident: $ty:ty,
+            range: $range:expr,
             stored: { default: $default:expr, text: $text:ident, record: $record:ident },
-            flag: $flag:tt,
+            flag: $flag:tt
         }
         $($rest:tt)*
     ) => {
@@ -231,44 +215,12 @@ impl Globals {
         }
     }
 
-    /// `block_size` and `step_height` at least [`MIN_LENGTH`], `base` 0 or
-    /// at least that; finite numbers all.
-    fn validate_lengths(&self) -> Result<(), SchemeError> {
-        for (key, value) in [
-            (GlobalKey::BlockSize, self.block_size),
-            (GlobalKey::StepHeight, self.step_height),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                return bad(key, value.to_string(), "must be a length in metres > 0");
-            }
-            if value < MIN_LENGTH {
-                return bad(key, format!("{value:?}"), MIN_LENGTH_REASON);
-            }
-        }
-        if !(self.base.is_finite() && self.base >= 0.0) {
-            return bad(
-                GlobalKey::Base,
-                self.base.to_string(),
-                "must be a length in metres ≥ 0",
-            );
-        }
-        if self.base > 0.0 && self.base < MIN_LENGTH {
-            return bad(
-                GlobalKey::Base,
-                format!("{:?}", self.base),
-                "must be 0 (no slab) or at least 0.001 m: thinner is not exact in an f32 mesh, nor told apart by check",
-            );
-        }
-        Ok(())
-    }
-
-    /// Checks every value's domain and the grid size. The error's `field`
-    /// names the global key.
+    /// Checks every value's range (its table entry's), the grid size and
+    /// what the values must be together. The error's `field` names the
+    /// global key.
     pub fn validate(&self) -> Result<(), SchemeError> {
-        self.validate_lengths()?;
-        if self.amount == 0 {
-            return bad(GlobalKey::Amount, "0".into(), "needs at least one world");
-        }
+        // Each key's range, as its table entry declares it.
+        self.as_patch().check_ranges()?;
         // Frames and any cell of one step reach `base + step_height`.
         let lowest_top = self.base + self.step_height;
         if lowest_top > MAX_TOP_IN_BLOCKS * self.block_size {
@@ -291,25 +243,6 @@ impl Globals {
                     MAX_TOP_IN_BLOCKS * self.block_size
                 ),
             );
-        }
-        if self.size.contains(&0) {
-            return bad(
-                GlobalKey::Size,
-                format_dims(self.size),
-                "needs at least one cell each way",
-            );
-        }
-        if let Some(p) = self.pallets {
-            if p.size == 0 {
-                return bad(GlobalKey::PalletSize, "0".into(), "needs at least one cell");
-            }
-            if p.count.contains(&0) {
-                return bad(
-                    GlobalKey::Pallets,
-                    format_dims(p.count),
-                    "needs at least one pallet each way",
-                );
-            }
         }
         let grid = self.grid();
         if u64::from(grid.nx) * u64::from(grid.ny) > MAX_CELLS

@@ -6,7 +6,8 @@
 use crate::error::{SchemeError, SchemeErrorKind};
 use crate::for_each_global_key;
 use crate::global_key::GlobalKey;
-use crate::global_value::{ParseGlobal, format_dims};
+use crate::global_range::GlobalRange;
+use crate::global_value::{GlobalText as _, ParseGlobal, format_dims};
 use crate::globals::{self, Globals, Pallets};
 use crate::limits::DEFAULT_PALLET_SIZE;
 
@@ -15,16 +16,7 @@ use crate::limits::DEFAULT_PALLET_SIZE;
 macro_rules! declare_globals_patch {
     ($(
         $(#[doc = $what:literal])*
-        $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
-            stored: $stored:tt,
-            flag: $flag:tt,
-        }
+        $variant:ident { $field:ident: $ty:ty, range: $range:expr, stored: $stored:tt, flag: $flag:tt }
     )*) => {
         /// Global parameters, each `None` when not given. Every skin fills
         /// one in and [`apply`](GlobalsPatch::apply)s it onto the globals it
@@ -36,13 +28,14 @@ macro_rules! declare_globals_patch {
         }
 
         impl GlobalsPatch {
-            /// Sets `key` from its text as a scheme file writes it; the
-            /// error's `field` names the key.
+            /// Sets `key` from its text as a scheme file writes it, in its
+            /// range; the error's `field` names the key.
             pub fn set_key(&mut self, key: GlobalKey, text: &str) -> Result<(), SchemeError> {
                 let expects = key.expects();
                 let parsed = match key {
                     $(GlobalKey::$variant => {
                         <$ty as ParseGlobal>::parse_global(text, expects)
+                            .and_then(|value| GlobalRange::check(&$range, &value).map(|()| value))
                             .map(|value| self.$field = Some(value))
                     })*
                 };
@@ -79,6 +72,25 @@ macro_rules! declare_globals_patch {
                 let mut patch = GlobalsPatch::default();
                 $(if_stored!($stored, patch.$field = Some(g.$field));)*
                 patch
+            }
+
+            /// Each value given in its key's range (the table's `range`),
+            /// the first outside it an error whose `field` names the key.
+            /// What every skin's value passes through: the scheme file's
+            /// text and the flags by [`set_key`](GlobalsPatch::set_key),
+            /// the rest (Python, a record) by
+            /// [`Globals::validate`](crate::Globals::validate).
+            pub fn check_ranges(&self) -> Result<(), SchemeError> {
+                $(if let Some(value) = &self.$field {
+                    GlobalRange::check(&$range, value).map_err(|reason| {
+                        SchemeError::new(SchemeErrorKind::BadGlobal {
+                            value: value.global_text(),
+                            reason,
+                        })
+                        .with_field(GlobalKey::$variant.name())
+                    })?;
+                })*
+                Ok(())
             }
 
             /// The keys given, in [`GlobalKey::ALL`] order.

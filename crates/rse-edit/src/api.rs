@@ -247,7 +247,7 @@ pub fn schema() -> Value {
             "key": key.name(),
             "default": Globals::default_text(key),
             "unit": key.unit(),
-            "doc": key.doc().replace('`', ""),
+            "doc": key.described().replace('`', ""),
         })
     };
     let columns: Vec<Field> = Field::ALL
@@ -877,7 +877,7 @@ mod tests {
         let end = start + docs[start..].find("\n\n").unwrap() + 1;
         let mut rows = String::new();
         for key in GlobalKey::ALL {
-            let (name, doc, default) = (key.name(), key.doc(), Globals::default_text(key));
+            let (name, doc, default) = (key.name(), key.described(), Globals::default_text(key));
             writeln!(rows, "| `{name}` | {doc} | `{default}` |").unwrap();
         }
         if docs[start..end] != rows {

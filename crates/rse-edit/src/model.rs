@@ -243,6 +243,35 @@ mod tests {
         );
     }
 
+    /// Every key's value outside its range (rse-core's table declares
+    /// both) is refused on that key's field, in the range's words.
+    #[test]
+    fn a_value_outside_a_keys_range_is_refused_on_its_field() {
+        let mut walked = 0;
+        for key in rse_core::GlobalKey::ALL {
+            let Some(outside) = key.outside_example() else {
+                continue;
+            };
+            let needs_pallets = [
+                rse_core::GlobalKey::PalletSize,
+                rse_core::GlobalKey::PalletBoundary,
+            ]
+            .contains(&key);
+            let mut globals = vec![(key.name(), outside)];
+            if needs_pallets {
+                globals.push(("pallets", "1x1"));
+            }
+            let e = page(&globals, &[]).scheme().unwrap_err();
+            assert_eq!(
+                (e.row, e.field.as_deref()),
+                (None, Some(key.name())),
+                "{e:?}"
+            );
+            walked += 1;
+        }
+        assert!(walked >= 8, "{walked} keys with a range");
+    }
+
     #[test]
     fn a_note_read_back_as_a_global_is_refused_on_the_notes_field() {
         let mut p = page(&[], &[]);

@@ -7,7 +7,7 @@
 use pyo3::IntoPyObjectExt as _;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use rse_core::{Color, Globals, GlobalsPatch};
+use rse_core::{Color, GlobalKey, Globals, GlobalsPatch};
 
 use crate::args;
 use crate::errors::scheme_error_at;
@@ -155,23 +155,14 @@ fn patch_value<'py, T: PyGlobal>(
 macro_rules! declare_keywords {
     ($(
         $(#[doc = $what:literal])*
-        $variant:ident {
-            name: $name:literal,
-            field: $field:ident: $ty:ty,
-            unit: $unit:expr,
-            expects: $expects:literal,
-            example: $example:literal,
-            doc: $doc:literal,
-            stored: $stored:tt,
-            flag: $flag:tt,
-        }
+        $variant:ident { $field:ident: $ty:ty, range: $range:expr, stored: $stored:tt, flag: $flag:tt }
     )*) => {
         /// The global keywords in `given` as core's patch (keys absent or
         /// `None` not given; `pallets=None` is off).
         pub fn patch(given: &Bound<'_, PyDict>) -> PyResult<GlobalsPatch> {
             let mut patch = GlobalsPatch::default();
-            $(if let Some(value) = given.get_item($name)? {
-                patch.$field = <$ty as PyGlobal>::from_py($name, &value)?;
+            $(if let Some(value) = given.get_item(GlobalKey::$variant.name())? {
+                patch.$field = <$ty as PyGlobal>::from_py(GlobalKey::$variant.name(), &value)?;
             })*
             Ok(patch)
         }
@@ -181,14 +172,14 @@ macro_rules! declare_keywords {
         pub fn values(globals: &Globals, into: &Bound<'_, PyDict>) -> PyResult<()> {
             let py = into.py();
             let patch = globals.as_patch();
-            $(into.set_item($name, patch_value(py, patch.$field.as_ref())?)?;)*
+            $(into.set_item(GlobalKey::$variant.name(), patch_value(py, patch.$field.as_ref())?)?;)*
             Ok(())
         }
 
-        /// Every keyword with its type as `_rse.pyi` writes it and its
-        /// example's text, in the table's order.
-        pub const KEYWORDS: &[(&str, &str, &str)] =
-            &[$(($name, <$ty as PyGlobal>::PY_TYPE, $example)),*];
+        /// Every keyword's key with its type as `_rse.pyi` writes it, in
+        /// the table's order.
+        pub const KEYWORDS: &[(GlobalKey, &str)] =
+            &[$((GlobalKey::$variant, <$ty as PyGlobal>::PY_TYPE)),*];
     };
 }
 
@@ -204,7 +195,8 @@ pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
         "obstacles",
         Some(PyList::empty(py).into_any()),
     )];
-    for &(name, _, _) in KEYWORDS {
+    for &(key, _) in KEYWORDS {
+        let name = key.name();
         let default = defaults
             .get_item(name)?
             .unwrap_or_else(|| py.None().into_bound(py));
@@ -213,11 +205,20 @@ pub fn scheme_signature(py: Python<'_>) -> PyResult<Py<PyAny>> {
     signature_of(py, parameters.into_iter())
 }
 
-/// `[(name, type, example), …]`: each global keyword, its type as
-/// `_rse.pyi` writes it (for `scripts/python_stubs.py`) and an example other
-/// than its default as a scheme file writes it (the sample
+/// `[(name, type, example, outside), …]`: each global keyword, its type
+/// as `_rse.pyi` writes it (for `scripts/python_stubs.py`), an example
+/// other than its default and a value outside its range (`None` where any
+/// value of its type will do), as a scheme file writes them (the values
 /// `tests/python/test_every_option.py` walks it through every skin with).
 #[pyfunction]
-pub fn _global_keywords() -> Vec<(&'static str, &'static str, &'static str)> {
-    KEYWORDS.to_vec()
+pub fn _global_keywords() -> Vec<(
+    &'static str,
+    &'static str,
+    &'static str,
+    Option<&'static str>,
+)> {
+    KEYWORDS
+        .iter()
+        .map(|&(key, py_type)| (key.name(), py_type, key.example(), key.outside_example()))
+        .collect()
 }

@@ -9,6 +9,7 @@ use rand_chacha::rand_core::{Rng, SeedableRng};
 use super::options::{EnvError, bad};
 use crate::globals::Grid;
 use crate::scheme::Scheme;
+use crate::shared_globals::{Together, unshared};
 
 /// Bytes 8‥16 of the `ChaCha8` key of the mix's draws ("rse mix\0"): the
 /// worlds' keys have zeros there, so a mix draw never shares a stream with
@@ -123,17 +124,26 @@ pub fn check_mixable(schemes: &[Scheme]) -> Result<(), EnvError> {
     let Some(first) = schemes.first() else {
         return Err(bad("schemes", "no scheme to draw terrains from"));
     };
-    // Bit for bit: one sample spacing.
-    let key = |s: &Scheme| s.globals().block_size.to_bits();
-    match schemes.iter().position(|s| key(s) != key(first)) {
+    let unshared = schemes
+        .iter()
+        .enumerate()
+        .find_map(|(i, s)| unshared(first.globals(), s.globals(), Together::Mix).map(|u| (i, u)));
+    match unshared {
         None => Ok(()),
-        Some(i) => Err(bad(
+        Some((i, u)) => Err(bad(
             "schemes",
             format!(
-                "scheme {} has cells of {} m, scheme 1 of {} m: the schemes of a mix share their block size; their grids, step heights and bases may differ",
+                "scheme {} has {} {}{unit}, scheme 1 {}{unit}: the schemes of a mix share their {}; their grids, step heights and bases may differ",
                 i + 1,
-                schemes[i].globals().block_size,
-                first.globals().block_size
+                u.key,
+                u.found,
+                u.expected,
+                u.key,
+                unit = u
+                    .key
+                    .unit()
+                    .map(|unit| format!(" {unit}"))
+                    .unwrap_or_default(),
             ),
         )),
     }
@@ -236,7 +246,7 @@ mod tests {
         let err = check_mixable(&[a, other]).unwrap_err();
         assert!(
             err.to_string()
-                .starts_with("schemes: scheme 2 has cells of 0.2 m"),
+                .starts_with("schemes: scheme 2 has block_size 0.2 m, scheme 1 0.1 m"),
             "{err}"
         );
     }
