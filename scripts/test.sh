@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-say() { printf '\n== %s\n' "$*" >&2; }
+say() { printf '\n== [%d s] %s\n' "$SECONDS" "$*" >&2; }
 
 if ! command -v cargo >/dev/null; then
     echo "scripts/test.sh: needs Rust: install rustup (https://rustup.rs), then rerun" >&2
@@ -123,5 +123,6 @@ for f in target/readme-demo/world_0000/heightmap.csv target/readme-demo/world_00
     [ -s "$f" ] || { echo "make demo did not write $f" >&2; exit 1; }
 done
 
+say "done"
 # One closing line for the whole run: cargo's test binaries and pytest.
 scripts/count_tests.sh "$log"
