@@ -1,9 +1,12 @@
-"""Writes the part of `crates/rse-py/python/rse/_rse.pyi` that rse-core's
-table of global keys defines: `Scheme.__new__`, from the installed
-extension's `inspect.signature(rse.Scheme)` (built from the table, with
-`Globals::default`'s defaults) and each keyword's type
-(`rse._rse._global_keywords()`, by the key's Rust type). `--check` compares instead of writing, for
-the tests: a key added to the table without the stub fails them.
+"""Writes the parts of `crates/rse-py/python/rse/_rse.pyi` that the tables
+of options define: `Scheme.__new__`, from rse-core's table of global keys
+(the installed extension's `inspect.signature(rse.Scheme)`, built from the
+table with `Globals::default`'s defaults, and each keyword's type,
+`rse._rse._global_keywords()`, by the key's Rust type); and the world
+options of every writer (`write_worlds`, `write_world`, `Atlas.write`),
+from rse-world's table (`rse._rse._world_keywords()`), after each
+`# The world options:` line. `--check` compares instead of writing, for
+the tests: an option added to a table without the stub fails them.
 
     .venv/bin/python scripts/python_stubs.py           # rewrite the stub
     .venv/bin/python scripts/python_stubs.py --check   # exit 1 if it is stale
@@ -40,11 +43,34 @@ def scheme_new() -> str:
     return "".join(lines)
 
 
+WORLD_OPTIONS = "# The world options: scripts/python_stubs.py writes them from rse-world's table.\n"
+# The writer's own keywords, after the world options.
+WRITER_OWN = ("template: Optional[Union[str, os.PathLike[str]]] = None,\n", "force: Optional[bool] = None,\n")
+
+
+def world_options(indent: str) -> str:
+    """The world options' keywords of a writer, then the writer's own, at `indent`."""
+    from rse import _rse
+
+    lines = [f"{indent}{name}: Optional[{kind}] = None,\n" for name, kind, *_ in _rse._world_keywords()]
+    return "".join(lines + [indent + line for line in WRITER_OWN])
+
+
 def updated(text: str) -> str:
-    """`text` (the stub) with its generated part rewritten."""
+    """`text` (the stub) with its generated parts rewritten."""
     start = text.index(BEGIN)
     end = text.index(END, start) + len(END)
-    return text[:start] + scheme_new() + text[end:]
+    text = text[:start] + scheme_new() + text[end:]
+    at = 0
+    while (found := text.find(WORLD_OPTIONS, at)) >= 0:
+        line_start = text.rindex("\n", 0, found) + 1
+        indent = text[line_start:found]
+        body = found + len(WORLD_OPTIONS)
+        last = indent + WRITER_OWN[-1]
+        end = text.index(last, body) + len(last)
+        text = text[:body] + world_options(indent) + text[end:]
+        at = body
+    return text
 
 
 def main() -> int:

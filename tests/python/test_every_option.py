@@ -253,3 +253,85 @@ def test_the_ground_colour_is_drawn_by_the_simulators(tmp_path: Path) -> None:
     finally:
         pybullet.disconnect(client)
     assert rse.check(world).ok
+
+
+# Every world option (rse-world's table): its keyword, type as the stubs
+# write it, an example other than its default and a value every writer
+# refuses, as text.
+WORLD_OPTIONS = {name: (kind, example, outside) for name, kind, example, outside in _rse._world_keywords()}
+# What an option needs beside it to be taken: an oversample is the height
+# field's.
+WORLD_NEEDS = {"oversample": {"mujoco_collider": "hfield"}}
+
+
+def _world_value(name: str, text: str) -> object:
+    return int(text) if WORLD_OPTIONS[name][0] == "int" else text
+
+
+def _world_keywords(name: str, text: str) -> dict[str, object]:
+    return {"targets": "obj,mujoco", **WORLD_NEEDS.get(name, {}), name: _world_value(name, text)}
+
+
+def _flags(keywords: dict[str, object]) -> list[str]:
+    flag = {name: "--" + name.replace("_", "-") for name in WORLD_OPTIONS} | {"targets": "--target"}
+    return [f"{flag[name]}={value}" for name, value in keywords.items()]
+
+
+def test_every_world_option_is_in_every_writers_signature() -> None:
+    import inspect
+
+    scheme = rse.Scheme(size=(4, 4))
+    writers = [rse.write_worlds, rse.write_world, rse.Atlas([scheme], rows=1, cols=1).write]
+    for writer in writers:
+        parameters = inspect.signature(writer).parameters
+        for name in WORLD_OPTIONS:
+            assert parameters[name].kind is inspect.Parameter.KEYWORD_ONLY, (writer, name)
+            assert parameters[name].default is None, (writer, name)
+
+
+@pytest.mark.parametrize("name", sorted(WORLD_OPTIONS))
+def test_a_world_option_reaches_rse_json_from_python_and_the_command_line_alike(name: str, tmp_path: Path) -> None:
+    """The example of each option, given to `write_worlds`, `write_world`
+    and `rse-gen batch`, writes the same world, byte for byte, and not the
+    world of the default."""
+    scheme_file = tmp_path / "s.csv"
+    scheme_file.write_text(rse.Scheme(size=(6, 5)).to_csv())
+    scheme = rse.Scheme.load(scheme_file)
+    keywords = _world_keywords(name, WORLD_OPTIONS[name][1])
+    rse.write_worlds(scheme, tmp_path / "py", amount=1, **keywords)
+    rse.write_world(scheme.generate(0, 0), tmp_path / "one" / "world_0000", **keywords)
+    rse.write_worlds(scheme, tmp_path / "default", amount=1, **_world_keywords("targets", "obj,mujoco"))
+    subprocess.run(
+        [str(rse_gen_path()), "batch", str(scheme_file), "-o", str(tmp_path / "cli"), "--amount", "1", *_flags(keywords)],
+        check=True,
+        capture_output=True,
+    )
+    record = (tmp_path / "py" / "world_0000" / "rse.json").read_text()
+    assert (tmp_path / "cli" / "world_0000" / "rse.json").read_text() == record
+    assert (tmp_path / "one" / "world_0000" / "rse.json").read_text() == record
+    assert (tmp_path / "default" / "world_0000" / "rse.json").read_text() != record, f"{name}: its example is the default"
+
+
+@pytest.mark.parametrize("name", sorted(WORLD_OPTIONS))
+def test_every_writer_refuses_a_world_option_outside_what_it_takes(name: str, tmp_path: Path) -> None:
+    scheme_file = tmp_path / "s.csv"
+    scheme_file.write_text(rse.Scheme(size=(6, 5)).to_csv())
+    scheme = rse.Scheme.load(scheme_file)
+    keywords = _world_keywords(name, WORLD_OPTIONS[name][2])
+    writers = [
+        lambda: rse.write_worlds(scheme, tmp_path / "py", amount=1, **keywords),
+        lambda: rse.write_world(scheme.generate(0, 0), tmp_path / "py", **keywords),
+        lambda: rse.Atlas([scheme], rows=1, cols=1).write(tmp_path / "py", **keywords),
+    ]
+    for write in writers:
+        with pytest.raises(ValueError) as refused:
+            write()
+        _refusal_names(name, refused.value)
+    run = subprocess.run(
+        [str(rse_gen_path()), "batch", str(scheme_file), "-o", str(tmp_path / "cli"), *_flags(keywords)],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 2, run.stderr
+    assert _flags({name: ""})[0].rstrip("=") in run.stderr, run.stderr
+    assert not (tmp_path / "py").exists() and not (tmp_path / "cli").exists(), "nothing written"

@@ -378,13 +378,17 @@ def test_the_schemes_stub_is_the_table_of_global_keys() -> None:
     # A key the stub lacks is put back by the script.
     without_seed = text.replace("        seed: _Int = 0,\n", "", 1)
     assert without_seed != text and stubs.updated(without_seed) == text
+    # So is a world option one of the writers' stubs lacks.
+    without_mesh = text.replace("    mesh: Optional[_MeshMode] = None,\n", "", 1)
+    assert without_mesh != text and stubs.updated(without_mesh) == text
     assert list(inspect.signature(rse.Scheme).parameters) == list(rse.Scheme().fields())
 
 
 def test_every_keyword_group_is_the_signature_it_shows(tmp_path: Path) -> None:
     """Calls that read `**options` into typed keyword groups show their
-    keywords in `inspect.signature` (a hand `text_signature` for functions
-    and methods, `__signature__` built from the groups for classes): an
+    keywords in `inspect.signature` (for functions and methods, the
+    signature heading the docstring, its world options from rse-world's
+    table; for classes, `__signature__` built from the groups): an
     unknown keyword's `TypeError` lists the groups' keywords, which must be
     the signature's, and each of them is taken."""
     scheme = rse.Scheme(size=(4, 4))

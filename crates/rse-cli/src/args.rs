@@ -6,7 +6,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::examples;
 use rse_core::{Difficulty, GlobalKey, GlobalsPatch, SchemeErrorKind};
-use rse_world::{MeshMode, MujocoCollider, Shard, Targets, Templates, WorldConfig, WorldOptions};
+use rse_world::{OptionValue, Shard, Templates, WorldConfig, WorldOptions};
 
 /// Mass-generate Random Step Environments (NIST stepfields) as simulator worlds.
 ///
@@ -419,41 +419,71 @@ pub struct WorldArgs {
     pub difficulty: DifficultyArg,
 }
 
-/// What goes in a world folder: targets, terrain model, colliders,
-/// templates (`batch` and `atlas` alike).
-#[derive(Debug, Args)]
-pub struct WorldFilesArgs {
-    /// Simulators to write, comma-separated: obj, gazebo, gazebo-classic, webots, mujoco, urdf, usd.
-    #[arg(long, value_name = "LIST", default_value_t = Targets::default(), value_parser = parse_targets)]
-    pub target: Targets,
+/// `WorldFilesArgs` from rse-world's table of world options
+/// (`for_each_world_option!`): a flag for each, its value read by the
+/// option's own parser and range, and `config`.
+macro_rules! world_files_args {
+    ($(
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            flag: $flag:literal,
+            value_name: $value_name:literal,
+            help: $help:literal,
+            py_type: $py_type:literal,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:literal,
+        }
+    )*) => {
+        /// What goes in a world folder: targets, terrain model, colliders,
+        /// templates (`batch` and `atlas` alike).
+        #[derive(Debug, Args)]
+        pub struct WorldFilesArgs {
+            $(
+                #[arg(
+                    long = $flag,
+                    value_name = $value_name,
+                    help = concat!($help, " [default: ", $default, "]"),
+                    value_parser = |text: &str| world_flag::<$ty>(text, &$range),
+                )]
+                pub $field: Option<$ty>,
+            )*
 
-    /// Terrain model in the simulator files: each target's fastest exact one that holds (auto:
-    /// boxes for URDF and Gazebo classic, the mesh elsewhere), the single mesh everywhere, or
-    /// boxes everywhere.
-    #[arg(long, value_name = "auto|single|blocks", default_value_t = MeshMode::default(), value_parser = parse_mesh_mode)]
-    pub mesh: MeshMode,
+            /// A folder of templates overlaying ours file by file (DIR/gazebo/rse.world.j2, …).
+            #[arg(long, value_name = "DIR")]
+            pub template: Option<PathBuf>,
+        }
 
-    #[command(flatten)]
-    pub collider: ColliderArgs,
+        impl WorldFilesArgs {
+            /// What these flags give a world folder, at `difficulty`: what
+            /// the user gave, `None` for the rest (rse-world's
+            /// `WorldConfig` resolves them).
+            pub fn config(&self, difficulty: Difficulty) -> WorldConfig {
+                WorldConfig {
+                    difficulty: Some(difficulty),
+                    $($field: self.$field.clone(),)*
+                }
+            }
+        }
+    };
+}
 
-    /// A folder of templates overlaying ours file by file (DIR/gazebo/rse.world.j2, …).
-    #[arg(long, value_name = "DIR")]
-    pub template: Option<PathBuf>,
+rse_world::for_each_world_option!(world_files_args);
+
+/// A world option's flag value: read by the option's parser, then its
+/// range (rse-world's, which `WorldConfig::resolve` checks again for every
+/// front end).
+fn world_flag<T: OptionValue>(
+    text: &str,
+    range: &impl rse_core::global_range::GlobalRange<T>,
+) -> Result<T, String> {
+    let value = T::parse_option(text)?;
+    range.check(&value)?;
+    Ok(value)
 }
 
 impl WorldFilesArgs {
-    /// What these flags give a world folder, at `difficulty` (every flag
-    /// has a value: clap fills in the defaults, which are the library's).
-    pub fn config(&self, difficulty: Difficulty) -> WorldConfig {
-        WorldConfig {
-            difficulty: Some(difficulty),
-            targets: Some(self.target.clone()),
-            mesh: Some(self.mesh),
-            mujoco_collider: Some(self.collider.name.clone()),
-            oversample: self.collider.oversample,
-        }
-    }
-
     /// The world options these flags give, at `difficulty`.
     pub fn options(&self, difficulty: Difficulty) -> anyhow::Result<WorldOptions> {
         self.config(difficulty).resolve().map_err(in_flags)
@@ -478,19 +508,6 @@ pub fn in_flags(error: rse_world::Error) -> anyhow::Error {
         } => anyhow::anyhow!("--oversample: {error}; add --mujoco-collider hfield"),
         error => error.into(),
     }
-}
-
-/// What `MuJoCo` worlds collide with.
-#[derive(Debug, Args)]
-pub struct ColliderArgs {
-    /// MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin).
-    #[arg(long = "mujoco-collider", value_name = "boxes|hfield", default_value = MujocoCollider::default().name(),
-          value_parser = MujocoCollider::NAMES, hide_possible_values = true)]
-    pub name: String,
-
-    /// Height field samples per cell along each axis [default: 4]; needs --mujoco-collider hfield.
-    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
-    pub oversample: Option<u32>,
 }
 
 /// A difficulty for curricula (docs/schemes.md, "Difficulty").
@@ -644,14 +661,6 @@ impl SchemeOverrides {
 /// `pallets` is).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PalletsFlag(pub Option<[u32; 2]>);
-
-fn parse_targets(text: &str) -> Result<Targets, String> {
-    Targets::parse(text).map_err(|e| e.to_string())
-}
-
-fn parse_mesh_mode(text: &str) -> Result<MeshMode, String> {
-    text.parse().map_err(|e: rse_world::Error| e.to_string())
-}
 
 fn parse_shard(text: &str) -> Result<Shard, String> {
     let shard = if text == "auto" {

@@ -137,7 +137,7 @@ pub enum SchemeErrorKind {
     #[error(
         "unknown global parameter `{}` (known: {known}; a note is written `# note: …`)",
         quote(.0),
-        known = crate::limits::GLOBAL_KEYS.join(", ")
+        known = crate::global_key::GLOBAL_KEYS.join(", ")
     )]
     UnknownGlobal(String),
     /// A leading comment `# word: value` whose word is a global's name

@@ -1,9 +1,6 @@
-//! The limits and defaults of the scheme model (and the names of its
-//! global keys, from `global_key`): read by the model (`globals`,
-//! `obstacle`) and its errors (`error`) alike, so that neither has to
-//! import the other.
-
-pub use crate::global_key::GLOBAL_KEYS;
+//! The limits and defaults of the scheme model: read by the model
+//! (`globals`, `obstacle`, the ranges of `global_range`) and its errors
+//! (`error`) alike, so that neither has to import the other.
 
 /// Pallet side in cells when a scheme turns pallets on without `pallet_size`:
 /// a NIST pallet holds 10×10 blocks inside its frame.

@@ -1,6 +1,7 @@
 //! The editor's JSON API, one function a route: request body in, JSON
 //! answer out (no socket here: the command line serves these).
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -278,6 +279,9 @@ pub fn schema() -> Value {
         "types": ObstacleKind::ALL.map(|kind| json!({ "name": kind.name(), "columns": usage(kind) })),
         "targets": Target::ALL.map(|t| t.to_string()),
         "default_targets": Targets::default().iter().map(|t| t.to_string()).collect::<Vec<_>>(),
+        "world_options": rse_world::WORLD_OPTIONS.iter().map(|o| json!({
+            "name": o.name, "help": o.help, "default": o.default, "value_name": o.value_name,
+        })).collect::<Vec<_>>(),
         "new_scheme": page_scheme_of(crate::NEW_SCHEME),
         "samples": crate::SAMPLES.map(|(name, csv)| {
             let scheme = page_scheme_of(csv);
@@ -560,6 +564,48 @@ struct GenerateRequest {
     /// paper's "custom base files"); absent or blank: the built-in ones.
     #[serde(default)]
     templates: Option<String>,
+    /// The other world options (rse-world's table, `/api/schema`'s
+    /// `world_options`) by name, as typed; blank: the default.
+    #[serde(default)]
+    options: BTreeMap<String, String>,
+}
+
+/// The control of world option `name` on the page: its own for targets
+/// and mesh, else the field the page makes for it from the schema.
+fn world_option_control(name: &str) -> String {
+    match name {
+        "targets" => "gen-targets".to_owned(),
+        "mesh" => "mesh".to_owned(),
+        other => format!("gen-opt-{other}"),
+    }
+}
+
+/// The world options a generate request gives, each read by rse-world's
+/// table (`WorldConfig::set`), a refusal at that option's control.
+fn world_config(request: &GenerateRequest) -> Result<WorldConfig, Value> {
+    let targets = (!request.targets.is_empty()).then(|| request.targets.join(","));
+    let given = [
+        ("targets", targets.as_deref()),
+        ("mesh", request.mesh.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(name, text)| text.map(|text| (name, text)))
+    .chain(
+        request
+            .options
+            .iter()
+            .map(|(name, text)| (name.as_str(), text.as_str())),
+    );
+    let mut world = WorldConfig::default();
+    for (name, text) in given {
+        if text.trim().is_empty() {
+            continue;
+        }
+        world
+            .set(name, text)
+            .map_err(|e| control_error(&world_option_control(name), &e.to_string()))?;
+    }
+    Ok(world)
 }
 
 /// `POST /api/generate`: starts writing a batch in the background.
@@ -570,12 +616,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let request: GenerateRequest = request(body)?;
     let amount = whole_number("gen-amount", "number of worlds", &request.amount)?;
     let seed = whole_number("seed", "world seed", &request.seed)?;
-    let mesh = request
-        .mesh
-        .as_deref()
-        .map(str::parse::<MeshMode>)
-        .transpose()
-        .map_err(|e| control_error("mesh", &e.to_string()))?;
+    let world = world_config(&request)?;
     if request.out.as_os_str().is_empty() {
         return Err(control_error(
             "gen-out",
@@ -583,14 +624,6 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         ));
     }
     let scheme = request.scheme.scheme().map_err(|e| error(&e))?;
-    let targets = if request.targets.is_empty() {
-        None
-    } else {
-        Some(
-            Targets::parse(&request.targets.join(","))
-                .map_err(|e| control_error("gen-targets", &e.to_string()))?,
-        )
-    };
     let templates = match request.templates.as_deref().map(str::trim) {
         None | Some("") => Templates::builtin(),
         Some(folder) => Templates::with_overrides(Path::new(folder))
@@ -607,11 +640,7 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
     let options = BatchConfig {
         amount,
         seed,
-        world: WorldConfig {
-            targets,
-            mesh,
-            ..WorldConfig::default()
-        },
+        world,
         ..BatchConfig::default()
     }
     .resolve(&scheme, request.out);
@@ -619,7 +648,14 @@ pub fn generate(editor: &Editor, body: &[u8]) -> Answer {
         Ok(options) => options,
         Err(e) => {
             *job.running.lock().expect("not poisoned") = false;
-            return Err(bad(words::world_failure(&e)));
+            return Err(match &e {
+                rse_world::Error::BadOption { option, .. }
+                    if rse_world::WORLD_OPTIONS.iter().any(|o| o.name == *option) =>
+                {
+                    control_error(&world_option_control(option), &words::world_failure(&e))
+                }
+                _ => bad(words::world_failure(&e)),
+            });
         }
     };
     if let Err(refusal) = fits_on_disk(&scheme, &templates, &options) {
@@ -1109,5 +1145,63 @@ mod tests {
         .unwrap();
         assert_eq!(manifest["seed"], 9, "the scheme's seed");
         assert!(!dir.path().join("w/world_0002").exists());
+    }
+
+    /// A generate request with world option `name` given as `text`: the
+    /// targets and mesh in their own controls, the rest by name.
+    fn with_world_option(out: &Path, name: &str, text: &str) -> Value {
+        let mut body = json!({ "scheme": seeded_page_scheme(), "out": out, "amount": "1", "targets": ["obj", "mujoco"] });
+        match name {
+            "targets" => body["targets"] = json!([text]),
+            "mesh" => body["mesh"] = json!(text),
+            other => body["options"] = json!({ other: text }),
+        }
+        body
+    }
+
+    /// Every world option of rse-world's table reaches the page's batch:
+    /// its example is written into `rse.json`, and a value outside what it
+    /// takes is refused at its control, naming it, before a world is
+    /// written. (The collider's oversample needs the height field.)
+    #[test]
+    fn every_world_option_is_taken_from_the_page_and_checked() {
+        for option in rse_world::WORLD_OPTIONS {
+            let dir = tempfile::tempdir().unwrap();
+            let out = dir.path().join("w");
+            let editor = Editor::default();
+            let body = with_world_option(&out, option.name, option.outside);
+            let refusal = generate(&editor, body.to_string().as_bytes()).unwrap_err();
+            assert_eq!(
+                refusal["error"]["control"],
+                world_option_control(option.name),
+                "{refusal}"
+            );
+            let message = refusal["error"]["message"].as_str().unwrap();
+            assert!(message.contains(option.name), "{message}");
+            assert!(!out.exists(), "nothing written");
+
+            let mut body = with_world_option(&out, option.name, option.example);
+            if option.name == "oversample" {
+                body["options"]["mujoco_collider"] = json!("hfield");
+            }
+            generate(&editor, body.to_string().as_bytes()).unwrap();
+            while *editor.job.running.lock().unwrap() {
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
+            let manifest: Value =
+                serde_json::from_slice(&std::fs::read(out.join("world_0000/rse.json")).unwrap())
+                    .unwrap();
+            // What rse-world's own config makes of the same options.
+            let mut config = WorldConfig::default();
+            config.set("targets", "obj,mujoco").unwrap();
+            if option.name == "oversample" {
+                config.set("mujoco_collider", "hfield").unwrap();
+            }
+            config.set(option.name, option.example).unwrap();
+            let expected = serde_json::to_value(config.resolve().unwrap()).unwrap();
+            for (key, value) in expected.as_object().unwrap() {
+                assert_eq!(&manifest[key], value, "{}: {key}", option.name);
+            }
+        }
     }
 }

@@ -14,7 +14,7 @@ use crate::args;
 use crate::batch::{outcome_name, templates};
 use crate::errors::{core_error, world_error};
 use crate::keywords::{self, KeywordGroup as _, keyword_group};
-use crate::options::WorldKeywords;
+use crate::options::{WorldKeywords, world_keywords_text};
 use crate::scheme::{Scheme, difficulty_arg};
 use crate::terrain::{Terrain, check_radius};
 
@@ -262,13 +262,13 @@ impl Atlas {
         Ok(out.into_pyarray(py))
     }
 
+    #[doc = concat!("write($self, out, *, ", rse_world::for_each_world_option!(world_keywords_text), ")\n--\n")]
     /// Writes the atlas's world folder at `out`, as `rse-gen atlas` does
     /// (the same bytes): whole or not at all; an identical folder is left
     /// alone (returns `"skipped"`), a different one refused unless
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
     /// Keywords: the world options every writer takes.
-    #[pyo3(signature = (out, **options),
-           text_signature = "($self, out, *, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
+    #[pyo3(signature = (out, **options), text_signature = None)]
     fn write(
         &self,
         py: Python<'_>,

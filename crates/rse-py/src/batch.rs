@@ -9,7 +9,7 @@ use rse_world::{BatchConfig, Outcome, Shard, Templates};
 
 use crate::errors::world_error;
 use crate::keywords::{self, KeywordGroup as _, keyword_group};
-use crate::options::WorldKeywords;
+use crate::options::{WorldKeywords, world_keywords_text};
 use crate::scheme::{PyDifficulty, Scheme};
 use crate::terrain::Terrain;
 
@@ -72,13 +72,20 @@ keyword_group! {
     }
 }
 
+// The signature heads the docstring, as CPython's builtins write theirs
+// (pyo3's `text_signature` takes a literal only): the world keywords are
+// rse-world's table's.
+#[doc = concat!(
+    "write_worlds(scheme, out, *, amount=None, seed=None, jobs=None, shard=None, difficulty=None, ",
+    rse_world::for_each_world_option!(world_keywords_text),
+    ")\n--\n"
+)]
 /// Writes simulator worlds as `rse-gen batch` does (same folders, same
 /// bytes); returns counts: `written`, `skipped`, `replaced`, `bytes`.
 /// Keywords: the batch's (`amount`, `seed`, `jobs`, `shard`,
 /// `difficulty`) and the world options every writer takes.
 #[pyfunction]
-#[pyo3(signature = (scheme, out, **options),
-       text_signature = "(scheme, out, *, amount=None, seed=None, jobs=None, shard=None, difficulty=None, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
+#[pyo3(signature = (scheme, out, **options), text_signature = None)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
     scheme: &Scheme,
@@ -96,7 +103,7 @@ pub fn write_worlds<'py>(
     let options = BatchConfig {
         amount: batch.amount,
         seed: batch.seed,
-        world: world.config(batch.difficulty.map(|d| d.0)),
+        world: world.config(py, batch.difficulty.map(|d| d.0))?,
         jobs: batch.jobs,
         shard: batch
             .shard
@@ -121,6 +128,7 @@ pub fn write_worlds<'py>(
     Ok(dict)
 }
 
+#[doc = concat!("write_world(terrain, out, *, ", rse_world::for_each_world_option!(world_keywords_text), ")\n--\n")]
 /// Writes `terrain` as the world folder `out` (named after it), as
 /// `rse-gen batch` writes each world: the same files, an `rse.json` that
 /// `rse.check` and `rse-gen check` verify, whole or not at all. An identical
@@ -128,8 +136,7 @@ pub fn write_worlds<'py>(
 /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
 /// Keywords: the world options every writer takes.
 #[pyfunction]
-#[pyo3(signature = (terrain, out, **options),
-       text_signature = "(terrain, out, *, targets=None, mesh=None, template=None, force=None, mujoco_collider=None, oversample=None)")]
+#[pyo3(signature = (terrain, out, **options), text_signature = None)]
 pub fn write_world(
     py: Python<'_>,
     terrain: &Terrain,

@@ -7,32 +7,18 @@
 
 use std::path::PathBuf;
 
-use rse_core::{Difficulty, DifficultyRule, Scheme};
+use rse_core::{DifficultyRule, Scheme};
 
 use crate::batch::{BatchOptions, Shard};
 use crate::error::Error;
-use crate::record::options::{MeshMode, MujocoCollider, Targets, WorldOptions};
-
-/// What a world folder holds, as given: `None` is the default.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct WorldConfig {
-    /// The difficulty (validated where the user's number is read, by
-    /// [`Difficulty`]'s own parser); default [`Difficulty::FULL`].
-    pub difficulty: Option<Difficulty>,
-    /// The simulators; default [`Targets::default`].
-    pub targets: Option<Targets>,
-    /// The terrain model; default [`MeshMode::default`].
-    pub mesh: Option<MeshMode>,
-    /// The `MuJoCo` collider by name (`boxes`, `hfield`); default boxes.
-    pub mujoco_collider: Option<String>,
-    /// The height field's samples per cell; only with `hfield`.
-    pub oversample: Option<u32>,
-}
+use crate::record::options::{MujocoCollider, WorldOptions};
+use crate::world_option::WorldConfig;
 
 impl WorldConfig {
     /// The world options: defaults for what is unset; an unknown collider,
     /// or an oversample without a height field, is refused.
     pub fn resolve(self) -> Result<WorldOptions, Error> {
+        self.check_ranges()?;
         let defaults = WorldOptions::default();
         let collider = self
             .mujoco_collider
@@ -94,6 +80,7 @@ impl BatchConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::record::options::Targets;
 
     fn scheme() -> Scheme {
         Scheme::from_csv(

@@ -32,13 +32,14 @@ mod files;
 mod memory;
 mod record;
 mod render;
+mod world_option;
 
 pub use atlas::{ATLAS_JSON, atlas_json, atlas_of, build_atlas_world, write_atlas};
 pub use batch::{
     BatchOptions, FEWER_JOBS, Shard, Summary, thread_pool, world_index, world_name, write_batch,
     write_batch_until,
 };
-pub use config::{BatchConfig, WorldConfig};
+pub use config::BatchConfig;
 pub use disk::{batch_disk_bytes, free_disk_bytes};
 pub use error::Error;
 pub use files::digest::sha256_hex;
@@ -61,3 +62,4 @@ pub use render::templates::{
     MAX_TEMPLATE_BYTES, MAX_TEMPLATE_FILE_BYTES, Templates, VISITS_PER_FUEL, rendered_file_cap,
 };
 pub use render::world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};
+pub use world_option::{OptionValue, WORLD_OPTIONS, WorldConfig, WorldOptionInfo};

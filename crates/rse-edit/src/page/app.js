@@ -1008,6 +1008,8 @@ $("generate").onclick = async () => {
     answer = await api("/api/generate", {
       scheme: pageScheme(), out: $("gen-out").value.trim(), amount: $("gen-amount").value,
       seed: $("seed").value, targets, mesh: $("mesh").value || null, templates: $("gen-templates").value,
+      options: Object.fromEntries([...document.querySelectorAll("[data-world-option]")]
+        .map((i) => [i.dataset.worldOption, i.value.trim()]).filter(([, text]) => text)),
     });
   } catch (e) { $("gen-summary").textContent = `not started: ${e.message}`; return; }
   if (!answer.ok) { markError(answer.error); $("gen-summary").textContent = `not started: ${answer.error.message}`; return; }
@@ -1161,6 +1163,17 @@ function buildFields(schema) {
     box.type = "checkbox"; box.value = t; box.checked = schema.default_targets.includes(t);
     label.append(box, ` ${t}`);
     targets.append(label);
+  }
+  // The other world options (rse-world's table): a field each, sent by
+  // name, so an option added there is on the page with no edit here.
+  const templatesLabel = document.querySelector('label[for="gen-templates"]');
+  for (const o of schema.world_options.filter((o) => !["targets", "mesh"].includes(o.name))) {
+    const label = document.createElement("label");
+    const input = document.createElement("input");
+    input.id = `gen-opt-${o.name}`; input.dataset.worldOption = o.name;
+    label.htmlFor = input.id; label.textContent = o.name.replaceAll("_", " ");
+    input.placeholder = o.default; input.title = o.help; input.size = 10;
+    templatesLabel.before(label, input, document.createElement("span"));
   }
 }
 

@@ -32,6 +32,7 @@ __all__ = [
     "_time_generate",
     "_check_json",
     "_global_keywords",
+    "_world_keywords",
     "_check_curriculum",
 ]
 
@@ -241,12 +242,13 @@ class Atlas:
         self,
         out: Union[str, os.PathLike[str]],
         *,
+        # The world options: scripts/python_stubs.py writes them from rse-world's table.
         targets: Optional[_Targets] = None,
         mesh: Optional[_MeshMode] = None,
-        template: Optional[Union[str, os.PathLike[str]]] = None,
-        force: Optional[bool] = None,
         mujoco_collider: Optional[_MujocoCollider] = None,
         oversample: Optional[int] = None,
+        template: Optional[Union[str, os.PathLike[str]]] = None,
+        force: Optional[bool] = None,
     ) -> str: ...
 
 @final
@@ -318,6 +320,7 @@ def generate_batch(
     scheme: Scheme, amount: int, seed: Optional[int] = None, jobs: Optional[int] = None, difficulty: Optional[float] = None
 ) -> list[Terrain]: ...
 def _global_keywords() -> list[tuple[str, str, str, Optional[str]]]: ...
+def _world_keywords() -> list[tuple[str, str, str, str]]: ...
 def write_worlds(
     scheme: Scheme,
     out: Union[str, os.PathLike[str]],
@@ -327,23 +330,25 @@ def write_worlds(
     jobs: Optional[int] = None,
     shard: Optional[str] = None,
     difficulty: Optional[float] = None,
+    # The world options: scripts/python_stubs.py writes them from rse-world's table.
     targets: Optional[_Targets] = None,
     mesh: Optional[_MeshMode] = None,
-    template: Optional[Union[str, os.PathLike[str]]] = None,
-    force: Optional[bool] = None,
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
+    template: Optional[Union[str, os.PathLike[str]]] = None,
+    force: Optional[bool] = None,
 ) -> dict[str, int]: ...
 def write_world(
     terrain: Terrain,
     out: Union[str, os.PathLike[str]],
     *,
+    # The world options: scripts/python_stubs.py writes them from rse-world's table.
     targets: Optional[_Targets] = None,
     mesh: Optional[_MeshMode] = None,
-    template: Optional[Union[str, os.PathLike[str]]] = None,
-    force: Optional[bool] = None,
     mujoco_collider: Optional[_MujocoCollider] = None,
     oversample: Optional[int] = None,
+    template: Optional[Union[str, os.PathLike[str]]] = None,
+    force: Optional[bool] = None,
 ) -> str: ...
 def _time_generate(scheme: Scheme, count: int, seed: int = 0) -> float: ...
 def _check_json(

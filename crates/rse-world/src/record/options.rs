@@ -347,7 +347,8 @@ impl MujocoCollider {
 
     /// The collider named `boxes` or `hfield`, with `oversample` for a
     /// height field (`None`: [`rse_core::DEFAULT_OVERSAMPLE`]); an
-    /// oversample with boxes, or 0, is refused.
+    /// oversample with boxes is refused (its range, 1 or more, is the
+    /// world option's: `WorldConfig::resolve` checks it first).
     pub fn parse(name: &str, oversample: Option<u32>) -> Result<Self, Error> {
         let bad = |message: String| Error::BadOption {
             option: "mujoco_collider",
@@ -358,7 +359,6 @@ impl MujocoCollider {
             ("boxes", Some(_)) => Err(bad(
                 "an oversample applies to the hfield collider only".to_owned()
             )),
-            ("hfield", Some(0)) => Err(bad("oversample must be 1 or more".to_owned())),
             ("hfield", k) => Ok(MujocoCollider::Hfield {
                 oversample: k.unwrap_or(rse_core::DEFAULT_OVERSAMPLE),
             }),
