@@ -195,8 +195,8 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     copies rse's step terms make."""
     import sys
 
-    from rse._adapters.mjlab.event import event_of
-    from rse._adapters.mjlab.terms import bound_near_robots
+    from rse._adapters.mjlab.reset_event import event_of
+    from rse._adapters.mjlab.step_terms import bound_near_robots
     from rse.mjlab import exact_height_scan, out_of_slot
 
     sys.path.insert(0, str(REPO / "tests" / "frameworks"))
@@ -369,7 +369,7 @@ def main() -> None:
     rays, exact = scan_cost(envs[True], 20)
     print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms", flush=True)
     proxy = proxies(envs[True], args.episode_s[-1])
-    from rse._adapters.mjlab.pool import pool_memory
+    from rse._adapters.mjlab.scene_pool import pool_memory
 
     host, on_device = pool_memory(probe(), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
     print(

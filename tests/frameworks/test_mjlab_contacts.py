@@ -19,8 +19,8 @@ from mjlab.envs import ManagerBasedRlEnv
 from mjlab.tasks.registry import load_env_cfg
 from mujoco_warp._src.types import OverflowType
 from rse._adapters import contacts
-from rse._adapters.mjlab.config import NCON_HEADROOM, terrain_colliders
-from rse._adapters.mjlab.pool import GROUND_DROP
+from rse._adapters.mjlab.env_cfg import NCON_HEADROOM, terrain_colliders
+from rse._adapters.mjlab.scene_pool import GROUND_DROP
 from rse.mjlab import env_terrains, use_env_terrains
 
 NUM_ENVS = 16

@@ -19,9 +19,9 @@ from host_copies import HostCopies, as_a_gpu_runs_them
 from mjlab.envs import ManagerBasedRlEnv
 from mjlab.managers.observation_manager import ObservationTermCfg
 from mjlab.tasks.registry import load_env_cfg
-from rse._adapters.mjlab.event import event_of
-from rse._adapters.mjlab.pool import pool_memory
-from rse._adapters.mjlab.rays import DirectRays, FieldRays, seen_geoms
+from rse._adapters.mjlab.reset_event import event_of
+from rse._adapters.mjlab.scene_pool import pool_memory
+from rse._adapters.mjlab.ray_sensors import DirectRays, FieldRays, seen_geoms
 from rse._adapters.mjlab.terrains import probe_envs
 from rse.mjlab import env_terrains, exact_height_scan, use_env_terrains
 from rse.mjlab_tasks import STEPFIELD
@@ -285,7 +285,7 @@ def test_the_reach_holds_every_collider_in_any_pose_of_the_legs() -> None:
     ranges (MuJoCo's own kinematics), and is no more than 1.5x the
     farthest seen."""
     import mujoco
-    from rse._adapters.mjlab.near import free_root, reach, terrain_colliders
+    from rse._adapters.mjlab.near_bounds import free_root, reach, terrain_colliders
 
     cfg = load_env_cfg(TASK)
     cfg.scene.num_envs = 1

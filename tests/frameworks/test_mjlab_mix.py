@@ -110,13 +110,13 @@ def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_pat
     import dataclasses
 
     import mjlab.scripts.play  # noqa: F401  (this process is mjlab's play)
-    from rse import _mjlab_run
+    from rse._adapters.mjlab import run_record
 
     mine = tmp_path / "mine.csv"
     mine.write_text("# size: 30x20\ntype,height\nrandom,3\n")
     run = tmp_path / "logs" / "run"
     cfg = load_env_cfg("Rse-Velocity-Rough-Unitree-Go1", play=True)
-    _mjlab_run.write(run, dataclasses.replace(cfg.scene.terrain, scheme=str(mine), seed=7))
+    run_record.write(run, dataclasses.replace(cfg.scene.terrain, scheme=str(mine), seed=7))
     cfg.scene.num_envs = 2
     argv = ["play", "Rse-Velocity-Rough-Unitree-Go1", "--num-envs", "2", "--checkpoint-file", str(run / "model_3.pt")]
     monkeypatch.setattr(sys, "argv", argv)
@@ -145,7 +145,7 @@ def test_a_mix_of_grids_runs_every_slot_the_largest_and_the_exact_tops_agree_on_
     terrain too (0, the ground plane), and the Go1s step on it."""
     import torch
     from host_copies import as_a_gpu_runs_them
-    from rse._adapters.mjlab.event import event_of
+    from rse._adapters.mjlab.reset_event import event_of
 
     small = rse.Scheme.from_csv("# size: 40x40\n# step_height: 0.05\ntype,height\nrandom,1..2\n")
     cfg = load_env_cfg("Mjlab-Velocity-Rough-Unitree-Go1")

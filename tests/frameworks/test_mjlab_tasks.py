@@ -505,7 +505,7 @@ def test_a_built_scene_says_the_seed_and_oversample_it_used_in_its_config_and_re
     scheme's own seed and rse's default oversample, so mjlab's ``env.yaml``
     (dumped from the config after the env is built) and rse's
     ``rse_terrain.json`` (``record``) say the same values, not None."""
-    from rse._mjlab_run import record
+    from rse._adapters.mjlab.run_record import record
 
     cfg = task_cfg()
     seeded = rse.Scheme.from_csv("# seed: 11\n" + SCHEME.to_csv())

@@ -38,7 +38,7 @@ import numpy as np
 from rse._adapters.fields import env_field, require_layout
 from rse._adapters.ids import env_ids as _env_ids
 from rse._adapters.pool import GEOM, POOL, add_env_geom
-from rse._adapters.rows import world_rows
+from rse._adapters.world_rows import world_rows
 from rse._rse import EnvTerrains
 
 __all__ = ["GEOM", "add_terrain", "hfield_rows", "in_axes", "put_model", "sync"]

@@ -39,7 +39,7 @@ import numpy as np
 from rse._adapters import private
 from rse._adapters.fields import env_field, geom_id, require_layout
 from rse._adapters.mjcf import replace_field
-from rse._adapters.rows import world_rows
+from rse._adapters.world_rows import world_rows
 from rse._rse import EnvTerrains
 
 __all__ = ["FIELD", "FLOOR", "SPAWN_RADIUS", "go1_joystick", "terrains_fn"]

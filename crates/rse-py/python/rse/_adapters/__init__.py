@@ -9,8 +9,8 @@ Python over ``rse._rse``; no framework is imported at import time.
   a compiled MuJoCo model and its size checked against the envs'.
 - ``pool``: the envs' height fields and their geom in an ``MjSpec``, and
   their samples copied into a compiled model.
-- ``rows``: per-world rows of ``hfield_data`` for batched models (MJX,
-  Playground).
+- ``world_rows``: per-world rows of ``hfield_data`` for batched models
+  (MJX, Playground).
 - ``tiles``: what a framework's sub-terrain config shares: its rse fields,
   the scheme fitted to a tile, the tile's world index and terrain, flat
   patches, the launcher's rank.
@@ -18,4 +18,5 @@ Python over ``rse._rse``; no framework is imported at import time.
 - ``private``: each framework's private API that an adapter uses, with the
   versions it was checked against, and the check that says so when a
   release removes one.
+- ``mjlab``: everything rse does in mjlab (a package of its own).
 """

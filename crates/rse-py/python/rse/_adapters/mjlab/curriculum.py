@@ -7,7 +7,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._adapters.mjlab.event import TERM, event_of, ids_of
+from rse._adapters.mjlab.reset_event import TERM, event_of, ids_of
 
 
 def terrain_difficulty(

@@ -9,7 +9,7 @@ import sys
 from typing import Any, Optional
 
 from rse._adapters import contacts
-from rse._adapters.mjlab.pool import add_pool, available_memory, pool_memory
+from rse._adapters.mjlab.scene_pool import add_pool, available_memory, pool_memory
 from rse._adapters.mjlab.terrains import probe_envs, scheme_of, terrain_settings
 
 PLAY_MODULE = "mjlab.scripts.play"
@@ -51,7 +51,7 @@ class PoolSpec:
             raise ValueError(
                 f"env_cfg.scene.terrain: rse's pool needs the EnvTerrainCfg use_env_terrains set; the scene's terrain is a {type(scene.terrain).__name__}"
             )
-        from rse._mjlab_scene import check
+        from rse._adapters.mjlab.scene_cfg import check
 
         play_the_runs_scheme(scene.terrain)
         # Fields set by assignment after the config was made (and the
@@ -164,11 +164,11 @@ def likely_device() -> str:
 
 def play_the_runs_scheme(terrain: Any) -> None:
     """In mjlab's ``play`` of a checkpoint whose run recorded its terrains
-    (``rse._mjlab_run``), the terrain's scheme and seed become the run's,
+    (``rse._adapters.mjlab.run_record``), the terrain's scheme and seed become the run's,
     and it says so: ``play`` takes no terrain flags, and would show the
     task's registered scheme. The checkpoint is the one ``play``'s command
     line names (``plays_checkpoint``); elsewhere nothing changes."""
-    from rse._mjlab_run import run_terrain
+    from rse._adapters.mjlab.run_record import run_terrain
 
     checkpoint = plays_checkpoint(sys.argv)
     recorded = run_terrain(checkpoint) if checkpoint is not None else None

@@ -16,8 +16,8 @@ from rse._rse import EnvTerrains
 def scheme_of(scheme: Any) -> Any:
     """``scheme`` as an ``rse.Scheme``: one already, CSV text (a string
     with a line break), or a CSV file's path; a mix
-    (``rse._mjlab_scene.Mix``) as it is."""
-    from rse._mjlab_scene import Mix
+    (``rse._adapters.mjlab.scene_cfg.Mix``) as it is."""
+    from rse._adapters.mjlab.scene_cfg import Mix
     from rse._rse import Scheme
 
     if isinstance(scheme, Mix):
@@ -40,8 +40,8 @@ def scheme_setting(scheme: SchemeLike) -> str:
 
 def make_envs(scheme: Any, num_envs: int, **options: Any) -> EnvTerrains:
     """``rse.EnvTerrains`` of ``num_envs`` envs of a scheme (anything
-    ``scheme_of`` reads) or a mix (``rse._mjlab_scene.Mix``)."""
-    from rse._mjlab_scene import Mix
+    ``scheme_of`` reads) or a mix (``rse._adapters.mjlab.scene_cfg.Mix``)."""
+    from rse._adapters.mjlab.scene_cfg import Mix
 
     scheme = scheme_of(scheme)
     if isinstance(scheme, Mix):
@@ -65,7 +65,7 @@ def terrain_settings(terrain: Any) -> dict[str, Any]:
     settings = {k: getattr(terrain, k) for k in keys}
     settings["scheme"] = terrain.scheme_csv or terrain.scheme
     if terrain.schemes:
-        from rse._mjlab_scene import Mix
+        from rse._adapters.mjlab.scene_cfg import Mix
         from rse._rse import Scheme
 
         # A mix, from the texts the config read.

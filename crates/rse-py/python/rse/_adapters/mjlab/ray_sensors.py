@@ -66,8 +66,9 @@ class FieldRays:
     def __init__(self, sensor: Any, candidates: list[int]) -> None:
         import warp as wp
 
-        from rse._adapters.mjlab.field_rays import cast_on_candidates
+        from rse._adapters.mjlab.ray_kernel import cast_on_candidates, geom_model
 
+        self._geom_model = geom_model
         self.sensor = sensor
         self.candidates = list(candidates)
         self._kernel = cast_on_candidates
@@ -90,25 +91,7 @@ class FieldRays:
             self._kernel,
             dim=(d.nworld, pnt.shape[1]),
             inputs=[
-                m.nmeshface,
-                m.body_weldid,
-                m.geom_type,
-                m.geom_bodyid,
-                m.geom_dataid,
-                m.geom_matid,
-                m.geom_group,
-                m.geom_size,
-                m.geom_rgba,
-                m.mesh_vertadr,
-                m.mesh_faceadr,
-                m.mesh_vert,
-                m.mesh_face,
-                m.hfield_size,
-                m.hfield_nrow,
-                m.hfield_ncol,
-                m.hfield_adr,
-                m.hfield_data,
-                m.mat_rgba,
+                self._geom_model(m),
                 d.geom_xpos,
                 d.geom_xmat,
                 self._ids,

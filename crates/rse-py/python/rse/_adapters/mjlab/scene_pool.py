@@ -10,7 +10,7 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._adapters import contacts
-from rse._adapters.mjlab.rays import RAY_BYTES_PER_SAMPLE
+from rse._adapters.mjlab.ray_sensors import RAY_BYTES_PER_SAMPLE
 from rse._adapters.mjlab.terrains import probe_envs
 from rse._adapters.pool import GEOM, POOL, add_env_geom
 from rse._adapters.tiles import SchemeLike

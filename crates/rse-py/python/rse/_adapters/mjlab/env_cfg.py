@@ -7,10 +7,10 @@ from __future__ import annotations
 from typing import Any, Optional, Union
 
 from rse._adapters.mjlab.curriculum import initial_levels, terrain_difficulty
-from rse._adapters.mjlab.event import TERM, EnvTerrainsEvent
-from rse._adapters.mjlab.pool import BODY
+from rse._adapters.mjlab.reset_event import TERM, EnvTerrainsEvent
+from rse._adapters.mjlab.scene_pool import BODY
 from rse._adapters.mjlab.spec_fn import PoolScene, pool_scene
-from rse._adapters.mjlab.terms import bound_near_robots, out_of_slot
+from rse._adapters.mjlab.step_terms import bound_near_robots, out_of_slot
 from rse._adapters.mjlab.terrains import scheme_of, scheme_setting
 from rse._adapters.tiles import SchemeLike
 from rse._rse import EnvTerrains
@@ -86,60 +86,52 @@ def use_env_terrains(
 ) -> None:
     """Gives every env of an mjlab ``ManagerBasedRlEnvCfg`` its own rse
     terrain, new every episode — a registered velocity task's config as it
-    is. It replaces:
-
-    - the scene's terrain (``scene.terrain``, mjlab's generator or plane) by
-      an ``EnvTerrainCfg`` (``rse._mjlab_scene``: mjlab's plane with rse's
-      settings as fields, which ``train`` and ``play`` set from their command
-      line: ``--env.scene.terrain.scheme my.csv``, ``.seed``,
-      ``.difficulty``, ``.max-init-terrain-level``, ``.oversample``,
-      ``.spawn-radius``) and rse's pool, added through the scene's
-      ``spec_fn`` (sized by ``scene.num_envs`` when the scene is built)
-      into mjlab's body named ``terrain``, in geom group 0, as mjlab's
-      importer makes it: the tasks' contact sensors, ``terrain_scan`` and
-      the feet's height sensors, and the rewards that read them, find it;
-    - the terrain-level curriculum (``terrain_levels_vel``) by
-      ``terrain_difficulty``, the same rule, continuous, with the same
-      ``command_name`` (``curriculum=True`` adds it to a config without
-      one; ``False`` leaves it out);
-    - ``out_of_terrain_bounds`` by ``out_of_slot`` (the robot left its
-      env's terrain);
-
-    and adds ``EnvTerrainsEvent`` as the first reset event ``term``, and
-    ``bound_near_robots`` as the step event ``term + "_near"`` (each
-    world's terrain bounded, every step, by the square its robot can reach:
-    fewer broadphase pairs, the same contacts). Every other term is kept.
+    is (docs/train.md). It replaces the scene's terrain by an
+    ``EnvTerrainCfg`` (mjlab's plane with rse's settings as fields, which
+    ``train`` and ``play`` set from their command line:
+    ``--env.scene.terrain.scheme my.csv``, ``.seed``, ``.difficulty``, …)
+    and rse's pool, added through the scene's ``spec_fn`` into mjlab's body
+    named ``terrain``; ``terrain_levels_vel`` by ``terrain_difficulty`` (the
+    same rule, continuous; ``curriculum=True`` adds it, ``False`` leaves it
+    out); ``out_of_terrain_bounds`` by ``out_of_slot``. It adds
+    ``EnvTerrainsEvent`` as the first reset event ``term`` and
+    ``bound_near_robots`` as the step event ``term + "_near"``.
 
     ``scheme`` is one scheme (an ``rse.Scheme``, a CSV file's path or its
-    text) or a mix, ``{scheme: proportion}`` (paths or CSV text), as
-    mjlab's ``sub_terrains``: each env draws one by its global id and the
-    seed, for the whole run, and the curriculum is logged per scheme
-    (``Curriculum/rse_terrain_difficulty/<name>``, by file name). A config rse cannot serve is refused with a
-    ``ValueError`` naming the field.
+    text) or a mix, ``{scheme: proportion}``. Without a ``difficulty``, the
+    envs start as mjlab's do: at levels 0 … ``max_init_terrain_level`` of
+    ``terrain_levels``, read from the terrain it replaces unless given.
+    Without a ``spawn_radius``, the radius covers the task's
+    ``reset_root_state_uniform`` ``pose_range``. ``apart=True`` lays the
+    terrains out on a grid, for watching. A config rse cannot serve is a
+    ``ValueError`` naming the field."""
+    scene = env_cfg.scene
+    _check_scene(scene)
+    if spawn_radius is None:
+        spawn_radius = spawn_radius_of(env_cfg)
+    # Bad arguments fail here, not when the env is built: the same
+    # arguments on one env. A mix is checked by EnvTerrainCfg below.
+    mix = {str(k): float(v) for k, v in scheme.items()} if isinstance(scheme, dict) else {}
+    if not mix:
+        EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
+    if env_cfg.sim.nconmax is not None:
+        env_cfg.sim.nconmax = terrain_nconmax(env_cfg.sim.nconmax, terrain_colliders(scene))
+    spread = initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
+    settings = dict(seed=seed, difficulty=difficulty, oversample=oversample, spawn_radius=spawn_radius, apart=apart)
+    setting = "" if isinstance(scheme, dict) else scheme_setting(scheme)
+    scene.terrain = _scene_terrain(scene.terrain, setting, mix, spread, settings)
+    # The scene becomes a copy whose spec_fn adds the pool of whatever
+    # config mjlab builds from it (the command line's included).
+    env_cfg.scene = pool_scene(scene)
+    _set_events(env_cfg, term, env_offset)
+    _set_curriculum(env_cfg, term, curriculum)
+    _set_terminations(env_cfg, term)
 
-    Without a ``difficulty``, the envs start as mjlab's do: each at a level
-    drawn from 0 … ``max_init_terrain_level`` of ``terrain_levels`` (level
-    ``i`` is difficulty ``i / (terrain_levels - 1)``), both read from the
-    terrain it replaces (the velocity tasks: 5 of 10) unless given; the
-    curriculum then moves an env one level (``1 / (terrain_levels - 1)``)
-    at a time. With neither, every env starts at difficulty 1.
 
-    Without a ``spawn_radius``, the radius covers where the task's
-    ``reset_root_state_uniform`` event may move a robot (its ``pose_range``
-    x and y: 0.71 m for the velocity tasks' ±0.5 m), so no robot starts
-    below a top it may be moved over.
-
-    ``apart=True`` lays the envs' terrains out on a grid (``apart_offsets``),
-    each robot on its own terrain in its own place, as mjlab's own terrain
-    lays out its envs: for watching (the registered tasks' play configs set
-    it). By default every env's terrain is at one place in its own world,
-    where float32 positions are most precise."""
-    from mjlab.managers.curriculum_manager import CurriculumTermCfg
-    from mjlab.managers.event_manager import EventTermCfg
-    from mjlab.managers.termination_manager import TerminationTermCfg
+def _check_scene(scene: Any) -> None:
+    """Refuses a scene rse's terrains cannot go into, naming the field."""
     from mjlab.terrains import TerrainEntityCfg
 
-    scene = env_cfg.scene
     if scene.terrain is not None and not isinstance(scene.terrain, TerrainEntityCfg):
         raise ValueError(
             f"env_cfg.scene.terrain: a {type(scene.terrain).__name__} is not mjlab's TerrainEntityCfg: rse replaces mjlab's terrain only; set it to None"
@@ -148,36 +140,28 @@ def use_env_terrains(
         raise ValueError(f"env_cfg.scene.entities[{BODY!r}]: rse's terrain body is named {BODY!r}; rename the entity")
     if isinstance(scene, PoolScene):
         raise ValueError("env_cfg: has rse's terrains already (use_env_terrains was called on it once)")
-    if spawn_radius is None:
-        spawn_radius = spawn_radius_of(env_cfg)
-    # Bad arguments fail here, not when the env is built: the same
-    # arguments on one env.
-    # A dict is a mix, {scheme: proportion}, checked by EnvTerrainCfg below.
-    mix = {str(k): float(v) for k, v in scheme.items()} if isinstance(scheme, dict) else {}
-    if not mix:
-        EnvTerrains(scheme_of(scheme), 1, oversample=oversample, seed=seed, difficulty=difficulty, spawn_radius=spawn_radius, env_offset=env_offset)
-    spread = initial_levels(scene.terrain, max_init_terrain_level, terrain_levels)
-    if env_cfg.sim.nconmax is not None:
-        env_cfg.sim.nconmax = terrain_nconmax(env_cfg.sim.nconmax, terrain_colliders(scene))
-    from rse._mjlab_scene import EnvTerrainCfg
 
-    spacing = getattr(scene.terrain, "env_spacing", None)
-    scene.terrain = EnvTerrainCfg(
+
+def _scene_terrain(replaced: Any, scheme: str, mix: dict[str, float], spread: Optional[tuple[int, int]], settings: dict[str, Any]) -> Any:
+    """The scene's ``EnvTerrainCfg`` in place of the terrain ``replaced``."""
+    from rse._adapters.mjlab.scene_cfg import EnvTerrainCfg
+
+    spacing = getattr(replaced, "env_spacing", None)
+    return EnvTerrainCfg(
         terrain_type="plane",
         env_spacing=2.0 if spacing is None else spacing,
         max_init_terrain_level=None if spread is None else spread[0],
         terrain_levels=None if spread is None else spread[1],
-        scheme="" if isinstance(scheme, dict) else scheme_setting(scheme),
+        scheme=scheme,
         schemes=mix,
-        seed=seed,
-        difficulty=difficulty,
-        oversample=oversample,
-        spawn_radius=spawn_radius,
-        apart=apart,
+        **settings,
     )
-    # The scene becomes a copy whose spec_fn adds the pool of whatever
-    # config mjlab builds from it (the command line's included).
-    env_cfg.scene = pool_scene(scene)
+
+
+def _set_events(env_cfg: Any, term: str, env_offset: Optional[int]) -> None:
+    """The reset event ``term`` first, and the step event ``term`` + ``_near``."""
+    from mjlab.managers.event_manager import EventTermCfg
+
     # The scheme, seed and levels are the scene's EnvTerrainCfg's (which the
     # command line sets): none is copied here, where it would go stale.
     params = dict(env_offset=env_offset)
@@ -185,6 +169,13 @@ def use_env_terrains(
     near = EventTermCfg(func=bound_near_robots, mode="step", params={"term": term})
     kept = {k: v for k, v in env_cfg.events.items() if k not in (term, f"{term}{NEAR}")}
     env_cfg.events = {term: event, f"{term}{NEAR}": near, **kept}
+
+
+def _set_curriculum(env_cfg: Any, term: str, curriculum: Optional[bool]) -> None:
+    """``terrain_levels_vel`` replaced by ``terrain_difficulty`` (added
+    with ``curriculum=True``, left out with ``False``)."""
+    from mjlab.managers.curriculum_manager import CurriculumTermCfg
+
     levels = {k: c for k, c in env_cfg.curriculum.items() if func_name(c) == "terrain_levels_vel"}
     for k in levels:
         del env_cfg.curriculum[k]
@@ -194,6 +185,12 @@ def use_env_terrains(
         command = next((c.params.get("command_name") for c in levels.values()), None)
         # The step, one level, follows the scene's terrain_levels when run.
         env_cfg.curriculum[f"{term}_difficulty"] = CurriculumTermCfg(func=terrain_difficulty, params={"term": term, "command_name": command})
+
+
+def _set_terminations(env_cfg: Any, term: str) -> None:
+    """``out_of_terrain_bounds`` replaced by ``out_of_slot``, its margin kept."""
+    from mjlab.managers.termination_manager import TerminationTermCfg
+
     for k, t in list(env_cfg.terminations.items()):
         if func_name(t) == "out_of_terrain_bounds":
             margin = t.params.get("margin", 0.3)

@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import Any, Optional
 
 from rse._adapters import private
-from rse._adapters.mjlab.event import TERM, event_of
+from rse._adapters.mjlab.reset_event import TERM, event_of
 
 
 def exact_height_scan(

@@ -20,9 +20,9 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._adapters.mjlab.apart import Apart
-from rse._adapters.mjlab.bounds import z_extent
-from rse._adapters.mjlab.tops import DeviceTops
+from rse._adapters.mjlab.device_tops import DeviceTops
+from rse._adapters.mjlab.terrain_bounds import z_extent
+from rse._adapters.mjlab.watch_layout import Apart
 
 SLACK = 0.02
 """Metres added to each square's half side: a fall's gain in speed over

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from rse._adapters import contacts
-from rse._adapters.mjlab.pool import BODY, VIEW
+from rse._adapters.mjlab.scene_pool import BODY, VIEW
 from rse._adapters.pool import GEOM
 from rse._adapters.warp_fields import route_per_world
 from rse._rse import EnvTerrains

@@ -126,7 +126,7 @@ def recording_runner(base: Any) -> Any:
     class RecordingRunner(base):  # type: ignore[misc,valid-type]
         def __init__(self, env: Any, train_cfg: Any, log_dir: Optional[str] = None, device: str = "cpu", **kwargs: Any) -> None:
             super().__init__(env, train_cfg, log_dir, device, **kwargs)
-            from rse._adapters.mjlab.event import TERM, event_of
+            from rse._adapters.mjlab.reset_event import TERM, event_of
             from rse._adapters.tiles import launcher_rank
 
             unwrapped = getattr(env, "unwrapped", env)

@@ -9,12 +9,12 @@ from typing import Any, Optional
 
 from rse._adapters.fields import geom_id
 from rse._adapters.ids import env_ids as _env_ids
-from rse._adapters.mjlab import bounds
-from rse._adapters.mjlab.apart import Apart
-from rse._adapters.mjlab.coarse import CoarsePool
-from rse._adapters.mjlab.near import NearRobotBounds, free_root, reach, terrain_colliders
-from rse._adapters.mjlab.pool import GEOM_GROUP, device_bytes
-from rse._adapters.mjlab.rays import RayMeshes, cast_on_each_worlds_field
+from rse._adapters.mjlab import terrain_bounds
+from rse._adapters.mjlab.device_tops import DeviceTops
+from rse._adapters.mjlab.large_geom_fields import CoarsePool
+from rse._adapters.mjlab.near_bounds import NearRobotBounds, free_root, reach, terrain_colliders
+from rse._adapters.mjlab.ray_sensors import RayMeshes, cast_on_each_worlds_field
+from rse._adapters.mjlab.scene_pool import GEOM_GROUP, device_bytes
 from rse._adapters.mjlab.terrains import (
     initial_difficulty,
     launcher_env_offset,
@@ -23,7 +23,7 @@ from rse._adapters.mjlab.terrains import (
     spread_of,
     terrain_settings,
 )
-from rse._adapters.mjlab.tops import DeviceTops
+from rse._adapters.mjlab.watch_layout import Apart
 from rse._adapters.pool import GEOM, POOL, copy_env_samples, env_pool
 from rse._adapters.warp_fields import Uploads
 from rse._rse import EnvTerrains
@@ -90,14 +90,16 @@ class EnvTerrainsEvent:
         sim = env.sim
         self.direct_rays = cast_on_each_worlds_field(env.scene, GEOM_GROUP)
         """How many ray sensors cast on each world's own field."""
-        sim.expand_model_fields(("geom_dataid", bounds.FIELD))
+        sim.expand_model_fields(("geom_dataid", terrain_bounds.FIELD))
         route(sim.wp_model, sim.mj_model, self.envs, name=self.name)
         self._coarse = CoarsePool(sim.wp_model, sim.mj_model, self.envs, self.name)
         # The pool's addresses, read once: the host model and the device's
         # hold the fields at the same addresses.
         _, self._adr, self._size = env_pool(sim.mj_model, self.envs, self.name, "env.sim.mj_model")
         self._uploads = Uploads()
-        self._bounds = bounds.TerrainBounds(sim.wp_model, sim.mj_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs)
+        self._bounds = terrain_bounds.TerrainBounds(
+            sim.wp_model, sim.mj_model, [geom_id(sim.mj_model, GEOM, "env.scene", "add_pool adds it"), self._coarse.gid], self.envs
+        )
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
         self.near_robot = self._near_robot(env)
@@ -159,7 +161,7 @@ class EnvTerrainsEvent:
         runs = [(0, int(self._adr[e]), rows[e]) for e in ids]
         runs += self._coarse.runs(sim.mj_model, self.envs, ids, 0)
         runs += self._bounds.runs(self.envs, ids, 1)
-        self._uploads.write([m.hfield_data, bounds.flat_boxes(m)], runs)
+        self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], runs)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
