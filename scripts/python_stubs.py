@@ -5,7 +5,9 @@ table with `Globals::default`'s defaults, and each keyword's type,
 `rse._rse._global_keywords()`, by the key's Rust type); and the world
 options of every writer (`write_worlds`, `write_world`, `Atlas.write`),
 from rse-world's table (`rse._rse._world_keywords()`), after each
-`# The world options:` line. `--check` compares instead of writing, for
+`# The world options:` line; and `EnvTerrains`' per-env options, from
+rse-core's table (`_env_keywords()`), after the `# The per-env options:`
+line. `--check` compares instead of writing, for
 the tests: an option added to a table without the stub fails them.
 
     .venv/bin/python scripts/python_stubs.py           # rewrite the stub
@@ -43,17 +45,27 @@ def scheme_new() -> str:
     return "".join(lines)
 
 
-WORLD_OPTIONS = "# The world options: scripts/python_stubs.py writes them from rse-world's table.\n"
-# The writer's own keywords, after the world options.
-WRITER_OWN = ("template: Optional[Union[str, os.PathLike[str]]] = None,\n", "force: Optional[bool] = None,\n")
+# Each generated block: its marker line, the table's keywords as
+# `(name, type)`, and the caller's own keywords after them.
+BLOCKS = {
+    "# The world options: scripts/python_stubs.py writes them from rse-world's table.\n": (
+        "_world_keywords",
+        ("template: Optional[Union[str, os.PathLike[str]]] = None,\n", "force: Optional[bool] = None,\n"),
+    ),
+    "# The per-env options: scripts/python_stubs.py writes them from rse-core's table.\n": (
+        "_env_keywords",
+        ("proportions: Optional[Sequence[float]] = None,\n",),
+    ),
+}
 
 
-def world_options(indent: str) -> str:
-    """The world options' keywords of a writer, then the writer's own, at `indent`."""
+def keywords(table: str, own: tuple[str, ...], indent: str) -> str:
+    """A table's keywords (all defaulting to None), then the caller's own, at `indent`."""
     from rse import _rse
 
-    lines = [f"{indent}{name}: Optional[{kind}] = None,\n" for name, kind, *_ in _rse._world_keywords()]
-    return "".join(lines + [indent + line for line in WRITER_OWN])
+    rows = getattr(_rse, table)()
+    lines = [f"{indent}{row[0]}: Optional[{row[1]}] = None,\n" for row in rows]
+    return "".join(lines + [indent + line for line in own])
 
 
 def updated(text: str) -> str:
@@ -61,15 +73,15 @@ def updated(text: str) -> str:
     start = text.index(BEGIN)
     end = text.index(END, start) + len(END)
     text = text[:start] + scheme_new() + text[end:]
-    at = 0
-    while (found := text.find(WORLD_OPTIONS, at)) >= 0:
-        line_start = text.rindex("\n", 0, found) + 1
-        indent = text[line_start:found]
-        body = found + len(WORLD_OPTIONS)
-        last = indent + WRITER_OWN[-1]
-        end = text.index(last, body) + len(last)
-        text = text[:body] + world_options(indent) + text[end:]
-        at = body
+    for marker, (table, own) in BLOCKS.items():
+        at = 0
+        while (found := text.find(marker, at)) >= 0:
+            indent = text[text.rindex("\n", 0, found) + 1 : found]
+            body = found + len(marker)
+            last = indent + own[-1]
+            end = text.index(last, body) + len(last)
+            text = text[:body] + keywords(table, own, indent) + text[end:]
+            at = body
     return text
 
 

@@ -45,6 +45,28 @@ if [ ${#apt_packages[@]} -gt 0 ]; then
     apt_pid=$!
 fi
 
+log=$(mktemp)
+pip_log=$(mktemp)
+machete_log=$(mktemp)
+fuzz_log=$(mktemp)
+trap 'rm -f "$log" "$apt_log" "$pip_log" "$machete_log" "$fuzz_log"' EXIT
+
+# The Python test dependencies download from the start, beside the Rust
+# work, into venvs kept outside the clone and keyed by their pins
+# (scripts/venvs.sh): a fresh clone on this machine reuses them. MJX pins
+# its own MuJoCo (3.17; .venv has 4.0): rse.mjx's tests get their own venv.
+scripts/venvs.sh test >"$pip_log" 2>&1 &
+pip_pid=$!
+
+# cargo-machete is built once per machine into the cache, beside clippy
+# (which leaves a core idle while it links and waits on single crates).
+machete_root=${XDG_CACHE_HOME:-$HOME/.cache}/rse/cargo-machete-0.9.2
+machete_pid=""
+if [ ! -x "$machete_root/bin/cargo-machete" ]; then
+    cargo install --quiet --locked cargo-machete --version 0.9.2 --root "$machete_root" >"$machete_log" 2>&1 &
+    machete_pid=$!
+fi
+
 say "format"
 cargo fmt --all --check
 
@@ -52,37 +74,36 @@ say "lint (clippy, warnings are errors; also the build without physics)"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo clippy -p rse-cli -p rse-py --no-default-features --locked -- -D warnings
 
-say "unused dependencies (cargo-machete; built once per machine into the cache)"
-machete_root=${XDG_CACHE_HOME:-$HOME/.cache}/rse/cargo-machete-0.9.2
-if [ ! -x "$machete_root/bin/cargo-machete" ]; then
-    cargo install --quiet --locked cargo-machete --version 0.9.2 --root "$machete_root"
-fi
-"$machete_root/bin/cargo-machete"
-
 say "docs (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
-say "Rust tests: unit, property, golden, samples"
-log=$(mktemp)
-pip_log=$(mktemp)
-trap 'rm -f "$log" "$apt_log" "$pip_log"' EXIT
-cargo test --workspace --exclude rse-cli --locked -- --include-ignored 2>&1 | tee "$log"
-# The CLI's tests drive the rse-gen binary through whole batches, checks
-# and physics: in release they take a fifth of the time, and the release
-# build is the one the Python tests, the wheel (same dependencies) and
-# `make demo` use, so it is built once.
-say "Rust tests: the command line (release build)"
-cargo test --release -p rse-cli --locked -- --include-ignored 2>&1 | tee -a "$log"
+say "unused dependencies (cargo-machete)"
+if [ -n "$machete_pid" ]; then
+    wait "$machete_pid" || { cat "$machete_log" >&2; echo "scripts/test.sh: cargo install cargo-machete failed" >&2; exit 1; }
+fi
+"$machete_root/bin/cargo-machete"
 
-# The Python test dependencies download while the fuzz targets build, into
-# venvs kept outside the clone and keyed by their pins (scripts/venvs.sh):
-# a fresh clone on this machine reuses them. MJX pins its own MuJoCo (3.17;
-# .venv has 4.0): rse.mjx's tests get their own venv.
-scripts/venvs.sh test >"$pip_log" 2>&1 &
-pip_pid=$!
+# The fuzz targets (their own workspace, target and flags: nothing to
+# share) build and run seeded beside the Rust tests, filling the cores
+# their links and single-threaded tests leave idle; their report is
+# shown, and waited for, after them.
+FUZZ_MODE=seeded scripts/fuzz.sh >"$fuzz_log" 2>&1 &
+fuzz_pid=$!
 
-say "fuzzing: every target, seeded and reproducible (scripts/fuzz.sh; kept inputs replay in the Rust tests above; make fuzz explores)"
-FUZZ_MODE=seeded scripts/fuzz.sh
+# One build for every Rust test: release, the profile the command line's
+# tests need (whole batches, checks and physics, a fifth of the time of a
+# debug build), and the one the Python package, the wheel (the same
+# dependencies, held so by the workspace-hack crate) and `make demo` use.
+# The debug build it replaces cost more to build and to run than the
+# release test binaries do (docs/testing.md, "The test run's time").
+say "Rust tests: every crate, the command line's included (one release build)"
+cargo test --release --workspace --locked -- --include-ignored 2>&1 | tee "$log"
+
+say "fuzzing: every target, seeded and reproducible (scripts/fuzz.sh, run beside the Rust tests; kept inputs replay in them; make fuzz explores)"
+fuzz_status=0
+wait "$fuzz_pid" || fuzz_status=$?
+cat "$fuzz_log"
+[ "$fuzz_status" = 0 ] || { echo "scripts/test.sh: fuzzing failed" >&2; exit 1; }
 
 say "Python: the rse package, and third-party readers (trimesh, manifold3d, pygltflib, PyBullet, MuJoCo, MuJoCo Warp, MJX, usd-core; libsdformat; gz-physics)"
 wait "$pip_pid" || { cat "$pip_log" >&2; echo "scripts/test.sh: pip install -r tests/requirements.txt failed" >&2; exit 1; }

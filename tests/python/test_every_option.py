@@ -300,7 +300,8 @@ def test_a_world_option_reaches_rse_json_from_python_and_the_command_line_alike(
     keywords = _world_keywords(name, WORLD_OPTIONS[name][1])
     rse.write_worlds(scheme, tmp_path / "py", amount=1, **keywords)
     rse.write_world(scheme.generate(0, 0), tmp_path / "one" / "world_0000", **keywords)
-    rse.write_worlds(scheme, tmp_path / "default", amount=1, **_world_keywords("targets", "obj,mujoco"))
+    # The same keywords but this option's: its default.
+    rse.write_worlds(scheme, tmp_path / "default", amount=1, **{k: v for k, v in keywords.items() if k != name})
     subprocess.run(
         [str(rse_gen_path()), "batch", str(scheme_file), "-o", str(tmp_path / "cli"), "--amount", "1", *_flags(keywords)],
         check=True,
@@ -335,3 +336,47 @@ def test_every_writer_refuses_a_world_option_outside_what_it_takes(name: str, tm
     assert run.returncode == 2, run.stderr
     assert _flags({name: ""})[0].rstrip("=") in run.stderr, run.stderr
     assert not (tmp_path / "py").exists() and not (tmp_path / "cli").exists(), "nothing written"
+
+
+# Every per-env option of `EnvTerrains` (rse-core's table): its keyword,
+# type as the stubs write it, default, example, a value it refuses (or
+# None) and what it needs beside it, as text.
+ENV_OPTIONS = {row[0]: row[1:] for row in _rse._env_keywords()}
+
+
+def _env_value(name: str, text: str) -> object:
+    kind = ENV_OPTIONS[name][0]
+    return int(text) if kind == "int" else float(text) if kind == "float" else text
+
+
+def _env_keywords(name: str, text: str) -> dict[str, object]:
+    needs = ENV_OPTIONS[name][4]
+    beside = dict([needs.split("=", 1)]) if needs else {}
+    return {**beside, name: _env_value(name, text)}
+
+
+def _pool_state(envs: rse.EnvTerrains) -> tuple[object, ...]:
+    return (envs.layout, envs.field_shape, envs.oversample, envs.samples.tobytes(), envs.origins.tobytes(), envs.difficulty.tobytes())
+
+
+def test_every_env_option_is_in_the_signature() -> None:
+    import inspect
+
+    parameters = inspect.signature(rse.EnvTerrains).parameters
+    for name in ENV_OPTIONS:
+        assert parameters[name].kind is inspect.Parameter.KEYWORD_ONLY, name
+
+
+@pytest.mark.parametrize("name", sorted(ENV_OPTIONS))
+def test_an_env_option_changes_the_envs_and_one_outside_its_range_is_refused(name: str) -> None:
+    scheme = rse.Scheme.load(Path(__file__).parents[2] / "schemes" / "six_obstacles.csv")
+    _, _, example, outside, needs = ENV_OPTIONS[name]
+    beside = _env_keywords(name, example)
+    del beside[name]
+    default = rse.EnvTerrains(scheme, 9, **beside)
+    given = rse.EnvTerrains(scheme, 9, **_env_keywords(name, example))
+    assert _pool_state(given) != _pool_state(default), f"{name}={example} changes nothing"
+    if outside is not None:
+        with pytest.raises(ValueError) as refused:
+            rse.EnvTerrains(scheme, 4, **_env_keywords(name, outside))
+        _refusal_names(name, refused.value)

@@ -399,6 +399,7 @@ def test_every_keyword_group_is_the_signature_it_shows(tmp_path: Path) -> None:
         "write": (rse.Atlas.write, lambda **kw: atlas.write(tmp_path / "atlas", **kw)),
         "Atlas": (rse.Atlas, lambda **kw: rse.Atlas([scheme], 1, 1, **kw)),
         "EnvTerrains": (rse.EnvTerrains, lambda **kw: rse.EnvTerrains(scheme, 1, **kw)),
+        "contact_sheet": (rse.EnvTerrains.contact_sheet, lambda **kw: rse.EnvTerrains(scheme, 1).contact_sheet(**kw)),
         "Obstacle": (rse.Obstacle, lambda **kw: rse.Obstacle("random", **kw)),
     }
     for name, (shown, call) in calls.items():

@@ -72,21 +72,21 @@ pub use curriculum::{
 };
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
-    DEFAULT_ENV_OVERSAMPLE, ENV_BITS, EnvError, EnvLayout, EnvOptions, EnvRequest, EnvTerrains,
-    LayoutKind, SchemeMix, SheetOptions, SheetTile, check_mixable, contact_sheet,
-    contact_sheet_named, env_pool_bytes, env_world, mix_pool_bytes, tiles_sheet,
+    DEFAULT_ENV_OVERSAMPLE, ENV_BITS, ENV_OPTIONS, EnvError, EnvLayout, EnvOptionInfo, EnvOptions,
+    EnvRequest, EnvTerrains, LayoutKind, SchemeMix, SheetOptions, SheetTile, check_mixable,
+    contact_sheet, contact_sheet_named, env_pool_bytes, env_world, mix_pool_bytes, tiles_sheet,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at, generate_by};
-pub use global_key::GlobalKey;
+pub use global_key::{GLOBAL_KEYS, GlobalKey};
 pub use global_value::{format_dims, parse_dims, parse_pallets};
 pub use globals::{Globals, Grid, Pallets};
 pub use globals_patch::GlobalsPatch;
 pub use heightmap::{Heightmap, HeightmapCsvError, Walls};
 pub use hfield::{DEFAULT_OVERSAMPLE, HField, HFieldError, MAX_HFIELD_SAMPLES};
 pub use limits::{
-    DEFAULT_PALLET_SIZE, DEFAULT_SIGMA, GLOBAL_KEYS, MAX_CELLS, MAX_EXTENT, MAX_HEIGHT,
-    MAX_LATTICE_UNITS, MAX_TOP_IN_BLOCKS, MIN_LENGTH, QUOTE_CHARS,
+    DEFAULT_PALLET_SIZE, DEFAULT_SIGMA, MAX_CELLS, MAX_EXTENT, MAX_HEIGHT, MAX_LATTICE_UNITS,
+    MAX_TOP_IN_BLOCKS, MIN_LENGTH, QUOTE_CHARS,
 };
 pub use obstacle::{DrawnObstacle, Field, Obstacle, ObstacleFields, ObstacleKind, Usage};
 pub use param::{Param, range_parts, range_text};

@@ -32,6 +32,26 @@ pub fn check_radius(radius: f64) -> Result<f64, String> {
     }
 }
 
+/// [`check_radius`] as a range of the option tables (`spawn_radius`).
+#[derive(Debug, Clone, Copy)]
+pub struct Radius;
+
+impl crate::global_range::GlobalRange<f64> for Radius {
+    fn check(&self, value: &f64) -> Result<(), String> {
+        check_radius(*value).map(|_| ())
+    }
+}
+
+impl crate::global_range::RangeText for Radius {
+    fn describe(&self) -> &'static str {
+        "a length of 0 m or more"
+    }
+
+    fn outside(&self) -> Option<&'static str> {
+        Some("-1")
+    }
+}
+
 impl Terrain {
     /// Every cell of the terrain as a region.
     pub fn region(&self) -> Region {

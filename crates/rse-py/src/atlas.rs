@@ -269,6 +269,8 @@ impl Atlas {
     /// `force=True`. Returns `"written"`, `"skipped"` or `"replaced"`.
     /// Keywords: the world options every writer takes.
     #[pyo3(signature = (out, **options), text_signature = None)]
+    // The signature heading the docstring is Python's, not markdown.
+    #[allow(clippy::doc_markdown)]
     fn write(
         &self,
         py: Python<'_>,

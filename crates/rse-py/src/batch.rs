@@ -86,6 +86,8 @@ keyword_group! {
 /// `difficulty`) and the world options every writer takes.
 #[pyfunction]
 #[pyo3(signature = (scheme, out, **options), text_signature = None)]
+// The signature heading the docstring is Python's, not markdown.
+#[allow(clippy::doc_markdown)]
 pub fn write_worlds<'py>(
     py: Python<'py>,
     scheme: &Scheme,
@@ -137,6 +139,8 @@ pub fn write_worlds<'py>(
 /// Keywords: the world options every writer takes.
 #[pyfunction]
 #[pyo3(signature = (terrain, out, **options), text_signature = None)]
+// The signature heading the docstring is Python's, not markdown.
+#[allow(clippy::doc_markdown)]
 pub fn write_world(
     py: Python<'_>,
     terrain: &Terrain,

@@ -214,28 +214,134 @@ impl EnvTerrains {
     }
 }
 
+/// A per-env option's value as Python gives it, by its type in rse-core's
+/// table (`for_each_env_option!`): what it is extracted as.
+pub trait PyEnvOption: Sized {
+    /// What Python's value is extracted as.
+    type Py: for<'a, 'py> FromPyObject<'a, 'py, Error = PyErr>;
+
+    /// The type as `_rse.pyi` writes it.
+    const PY_TYPE: &'static str;
+
+    /// The option's value.
+    fn from_py(py: Self::Py) -> Self;
+}
+
+/// Numbers, as they are.
+macro_rules! py_env_option_as_is {
+    ($($ty:ty: $py_type:literal),*) => {
+        $(impl PyEnvOption for $ty {
+            type Py = $ty;
+
+            const PY_TYPE: &'static str = $py_type;
+
+            fn from_py(py: $ty) -> Self {
+                py
+            }
+        })*
+    };
+}
+
+py_env_option_as_is!(u32: "int", u64: "int", f64: "float");
+
+impl PyEnvOption for rse_core::Difficulty {
+    type Py = PyDifficulty;
+
+    const PY_TYPE: &'static str = "float";
+
+    fn from_py(py: PyDifficulty) -> Self {
+        py.0
+    }
+}
+
+impl PyEnvOption for rse_core::LayoutKind {
+    type Py = PyLayout;
+
+    const PY_TYPE: &'static str = "Literal[\"slots\", \"tiles\"]";
+
+    fn from_py(py: PyLayout) -> Self {
+        py.0
+    }
+}
+
+/// `EnvKeywords` (the options of rse-core's table, then a mix's
+/// proportions) and `request`, rse-core's `EnvRequest` of them.
+macro_rules! env_keywords {
+    ($(
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:expr,
+            needs: $needs:literal,
+        }
+    )*) => {
+        keyword_group! {
+            /// What `EnvTerrains(scheme, num_envs, ...)` takes: rse-core's
+            /// `EnvRequest` as the user gives it, and a mix's proportions.
+            pub struct EnvKeywords {
+                $($(#[doc = $what])* $field: <$ty as PyEnvOption>::Py,)*
+                /// `proportions=`: a mix's shares.
+                proportions: Vec<f64>,
+            }
+        }
+
+        /// Each option's type as `_rse.pyi` writes it, in the table's order.
+        const PY_TYPES: &[&str] = &[$(<$ty as PyEnvOption>::PY_TYPE),*];
+
+        impl EnvKeywords {
+            /// What the user gave for `num_envs` environments, `None` for
+            /// the rest: rse-core resolves it.
+            fn request(&mut self, num_envs: usize) -> rse_core::EnvRequest {
+                rse_core::EnvRequest {
+                    num_envs,
+                    $($field: self.$field.take().map(PyEnvOption::from_py),)*
+                }
+            }
+        }
+    };
+}
+
+rse_core::for_each_env_option!(env_keywords);
+
+/// One row of [`_env_keywords`]: name, type, default, example, outside,
+/// needs.
+pub type EnvKeywordRow = (
+    &'static str,
+    &'static str,
+    &'static str,
+    &'static str,
+    Option<&'static str>,
+    &'static str,
+);
+
+/// `[(name, type, default, example, outside, needs), …]`: each per-env
+/// option of rse-core's table, its type as `_rse.pyi` writes it (for
+/// `scripts/python_stubs.py`), and what `tests/python/test_every_option.py`
+/// walks through every skin.
+#[pyfunction]
+pub fn _env_keywords() -> Vec<EnvKeywordRow> {
+    rse_core::ENV_OPTIONS
+        .iter()
+        .zip(PY_TYPES)
+        .map(|(o, py_type)| (o.name, *py_type, o.default, o.example, o.outside, o.needs))
+        .collect()
+}
+
 keyword_group! {
-    /// What `EnvTerrains(scheme, num_envs, ...)` takes: rse-core's
-    /// `EnvRequest` as the user gives it, and a mix's proportions.
-    pub struct EnvKeywords {
-        /// `oversample=`: samples a cell along each side.
-        oversample: u32,
-        /// `seed=` (default: the scheme's `# seed:`).
-        seed: u64,
-        /// `difficulty=`: 0 to 1.
-        difficulty: PyDifficulty,
-        /// `layout=`: `"slots"` or `"tiles"`.
-        layout: PyLayout,
-        /// `cols=`: tiles along x (tiles layout).
+    /// What `EnvTerrains.contact_sheet` takes beside its `path`.
+    pub struct SheetKeywords {
+        /// `env_ids=`: the envs drawn, in order (default every env).
+        env_ids: Py<PyAny>,
+        /// `cols=`: tiles per row.
         cols: u32,
-        /// `border=`: cells between tiles (tiles layout).
-        border: u32,
-        /// `env_offset=`: this process's first global env id.
-        env_offset: u64,
-        /// `spawn_radius=`, metres.
-        spawn_radius: f64,
-        /// `proportions=`: a mix's shares.
-        proportions: Vec<f64>,
+        /// `cell_pixels=`: pixels per cell.
+        cell_pixels: u32,
+        /// `names=`: a mix's scheme names.
+        names: Vec<String>,
+        /// `one_scale=`: one colour scale for every scheme.
+        one_scale: bool,
     }
 }
 
@@ -256,17 +362,9 @@ impl EnvTerrains {
         num_envs: usize,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let EnvKeywords {
-            oversample,
-            seed,
-            difficulty,
-            layout,
-            cols,
-            border,
-            env_offset,
-            spawn_radius,
-            proportions,
-        } = keywords::read::<EnvKeywords>(py, "EnvTerrains", options)?;
+        let mut given = keywords::read::<EnvKeywords>(py, "EnvTerrains", options)?;
+        let request = given.request(num_envs);
+        let proportions = given.proportions;
         // One scheme, or several mixed by proportion (equal by default).
         let schemes: Vec<Arc<rse_core::Scheme>> = match scheme.cast::<Scheme>() {
             Ok(one) => vec![Arc::clone(&one.get().inner)],
@@ -290,18 +388,6 @@ impl EnvTerrains {
         }
         let proportions = proportions.unwrap_or_else(|| vec![1.0; schemes.len()]);
         let scheme = Arc::clone(&schemes[0]);
-        // What the user gave, `None` for the rest: rse-core resolves it.
-        let request = rse_core::EnvRequest {
-            num_envs,
-            oversample,
-            seed,
-            env_offset,
-            difficulty: difficulty.map(|d| d.0),
-            layout: layout.map(|l| l.0),
-            cols,
-            border,
-            spawn_radius,
-        };
         let options = request.resolve(&scheme).map_err(value_error)?;
         // Python's episode, difficulty and origin arrays: 40 bytes an env.
         let all: Vec<rse_core::Scheme> = schemes.iter().map(|s| (**s).clone()).collect();
@@ -557,20 +643,23 @@ impl EnvTerrains {
     /// scheme (`names[j]` for scheme `j`, default `scheme j+1`) and each
     /// scheme has a colour scale of its own (from 0 to its highest cell
     /// shown; a legend bar each), unless `one_scale`.
-    #[pyo3(signature = (path=None, env_ids=None, cols=None, cell_pixels=None, names=None, one_scale=false))]
-    #[allow(clippy::too_many_arguments)] // Python's keyword arguments
+    #[pyo3(signature = (path=None, **options),
+           text_signature = "($self, path=None, *, env_ids=None, cols=None, cell_pixels=None, names=None, one_scale=None)")]
     fn contact_sheet<'py>(
         &self,
         py: Python<'py>,
         path: Option<std::path::PathBuf>,
-        env_ids: Option<&Bound<'py, PyAny>>,
-        cols: Option<u32>,
-        cell_pixels: Option<u32>,
-        names: Option<Vec<String>>,
-        one_scale: bool,
+        options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
-        let envs = match env_ids {
-            Some(ids) => self::env_ids(ids, self.fixed.num_envs)?,
+        let SheetKeywords {
+            env_ids,
+            cols,
+            cell_pixels,
+            names,
+            one_scale,
+        } = keywords::read::<SheetKeywords>(py, "contact_sheet", options)?;
+        let envs = match &env_ids {
+            Some(ids) => self::env_ids(ids.bind(py), self.fixed.num_envs)?,
             None => Vec::new(),
         };
         if env_ids.is_some() && envs.is_empty() {
@@ -584,7 +673,7 @@ impl EnvTerrains {
         let options = rse_core::SheetOptions {
             cols,
             cell_pixels,
-            one_scale,
+            one_scale: one_scale.unwrap_or(false),
         };
         let guard = self.reading()?;
         let inner: &rse_core::EnvTerrains = &guard;

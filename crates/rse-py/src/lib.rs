@@ -73,6 +73,7 @@ fn _rse(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::write_worlds, m)?)?;
     m.add_function(wrap_pyfunction!(global_keywords::_global_keywords, m)?)?;
     m.add_function(wrap_pyfunction!(options::_world_keywords, m)?)?;
+    m.add_function(wrap_pyfunction!(envs::_env_keywords, m)?)?;
     m.add_function(wrap_pyfunction!(batch::write_world, m)?)?;
     m.add_function(wrap_pyfunction!(batch::_time_generate, m)?)?;
     m.add_function(wrap_pyfunction!(check::_check_json, m)?)?;

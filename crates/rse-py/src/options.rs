@@ -11,7 +11,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyString;
 use rse_core::Difficulty;
-use rse_world::{MeshMode, Targets, WorldConfig, WorldOptions};
+use rse_world::{ColliderName, MeshMode, Targets, WorldConfig, WorldOptions};
 
 use crate::args::describe;
 use crate::errors::world_error;
@@ -63,7 +63,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<MeshMode> {
 
 /// `mujoco_collider=`: `"boxes"` or `"hfield"` (its oversample is a
 /// keyword of its own).
-impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<String> {
+impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<ColliderName> {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
@@ -78,7 +78,6 @@ impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<u32> {
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
         obj.extract::<u32>()
             .map(|n| OptionText::new(n.to_string()))
-            .map_err(Into::into)
     }
 }
 

@@ -12,7 +12,7 @@ use rse_core::{DifficultyRule, Scheme};
 use crate::batch::{BatchOptions, Shard};
 use crate::error::Error;
 use crate::record::options::{MujocoCollider, WorldOptions};
-use crate::world_option::WorldConfig;
+use crate::world_option::{ColliderName, WorldConfig};
 
 impl WorldConfig {
     /// The world options: defaults for what is unset; an unknown collider,
@@ -22,8 +22,8 @@ impl WorldConfig {
         let defaults = WorldOptions::default();
         let collider = self
             .mujoco_collider
-            .as_deref()
-            .unwrap_or(defaults.mujoco_collider.name());
+            .as_ref()
+            .map_or(defaults.mujoco_collider.name(), ColliderName::as_str);
         let difficulty = self.difficulty.unwrap_or(defaults.difficulty);
         Ok(WorldOptions {
             difficulty,
@@ -81,6 +81,7 @@ impl BatchConfig {
 mod tests {
     use super::*;
     use crate::record::options::Targets;
+    use crate::world_option::OptionValue as _;
 
     fn scheme() -> Scheme {
         Scheme::from_csv(
@@ -106,7 +107,7 @@ mod tests {
             force: Some(true),
             world: WorldConfig {
                 targets: Some(Targets::all()),
-                mujoco_collider: Some("hfield".to_owned()),
+                mujoco_collider: Some(ColliderName::parse_option("hfield").unwrap()),
                 ..WorldConfig::default()
             },
             ..BatchConfig::default()

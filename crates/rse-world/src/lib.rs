@@ -62,4 +62,4 @@ pub use render::templates::{
     MAX_TEMPLATE_BYTES, MAX_TEMPLATE_FILE_BYTES, Templates, VISITS_PER_FUEL, rendered_file_cap,
 };
 pub use render::world::{HFIELD_FILE, WorldFiles, build_world, build_world_of, mjcf};
-pub use world_option::{OptionValue, WORLD_OPTIONS, WorldConfig, WorldOptionInfo};
+pub use world_option::{ColliderName, OptionValue, WORLD_OPTIONS, WorldConfig, WorldOptionInfo};

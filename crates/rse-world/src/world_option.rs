@@ -33,7 +33,7 @@ macro_rules! for_each_world_option {
                 range: ::rse_core::global_range::AnyValue,
                 flag: "target",
                 value_name: "LIST",
-                help: "Simulators to write, comma-separated: obj, gazebo, gazebo-classic, webots, mujoco, urdf, usd.",
+                help: "Simulators to write, comma-separated: obj, gazebo, gazebo-classic, webots, mujoco, urdf, usd",
                 py_type: "_Targets",
                 default: "gazebo",
                 example: "obj,mujoco",
@@ -44,7 +44,7 @@ macro_rules! for_each_world_option {
                 range: ::rse_core::global_range::AnyValue,
                 flag: "mesh",
                 value_name: "auto|single|blocks",
-                help: "Terrain model in the simulator files: each target's fastest exact one that holds (auto: boxes for URDF and Gazebo classic, the mesh elsewhere), the single mesh everywhere, or boxes everywhere.",
+                help: "Terrain model in the simulator files: each target's fastest exact one that holds (auto: boxes for URDF and Gazebo classic, the mesh elsewhere), the single mesh everywhere, or boxes everywhere",
                 py_type: "_MeshMode",
                 default: "auto",
                 example: "blocks",
@@ -52,11 +52,11 @@ macro_rules! for_each_world_option {
             }
             /// The `MuJoCo` collider by name (`boxes`, `hfield`); default
             /// boxes.
-            mujoco_collider: String {
+            mujoco_collider: $crate::ColliderName {
                 range: ::rse_core::global_range::AnyValue,
                 flag: "mujoco-collider",
                 value_name: "boxes|hfield",
-                help: "MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin).",
+                help: "MuJoCo collision: the box set (exact), or a height field (mujoco/terrain.bin)",
                 py_type: "_MujocoCollider",
                 default: "boxes",
                 example: "hfield",
@@ -68,7 +68,7 @@ macro_rules! for_each_world_option {
                 range: ::rse_core::global_range::AtLeastOne("sample per cell"),
                 flag: "oversample",
                 value_name: "K",
-                help: "Height field samples per cell along each axis; needs --mujoco-collider hfield.",
+                help: "Height field samples per cell along each axis; needs --mujoco-collider hfield",
                 py_type: "int",
                 default: "4 with hfield",
                 example: "2",
@@ -97,12 +97,24 @@ impl OptionValue for MeshMode {
     }
 }
 
-/// A collider's name, one of [`MujocoCollider::NAMES`].
-impl OptionValue for String {
+/// A `MuJoCo` collider as a user names it, one of [`MujocoCollider::NAMES`]
+/// (its oversample is an option of its own; [`WorldConfig::resolve`]
+/// makes the two one [`MujocoCollider`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ColliderName(String);
+
+impl ColliderName {
+    /// The name.
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+impl OptionValue for ColliderName {
     fn parse_option(text: &str) -> Result<Self, String> {
         let name = text.trim();
         if MujocoCollider::NAMES.contains(&name) {
-            Ok(name.to_owned())
+            Ok(ColliderName(name.to_owned()))
         } else {
             Err(format!(
                 "unknown MuJoCo collider {name:?}: expected {}",

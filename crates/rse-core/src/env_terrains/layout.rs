@@ -22,6 +22,9 @@ pub(super) struct Shapes {
 /// out as `options` say; refused, naming the argument, past MuJoCo's or
 /// memory's limits.
 pub(super) fn buffer_shape_of(grid: Grid, options: EnvOptions) -> Result<Shapes, EnvError> {
+    // Each option in its range first (`cols` of 1 or more among them),
+    // whoever built the options.
+    super::EnvRequest::given(&options).check_ranges()?;
     let n = options.num_envs;
     let k = options.oversample;
     let (nrow, ncol) = hfield_shape_of(grid, k)?;
@@ -29,9 +32,6 @@ pub(super) fn buffer_shape_of(grid: Grid, options: EnvOptions) -> Result<Shapes,
     let shape = match options.layout {
         EnvLayout::Slots => (n, env_shape.0, env_shape.1),
         EnvLayout::Tiles { cols, border } => {
-            if cols == 0 {
-                return Err(bad("cols", "expected 1 or more tiles along x"));
-            }
             let rows = n.div_ceil(cols as usize) as u64;
             let b = u64::from(border);
             let side = |tiles: u64, cells: u32| {

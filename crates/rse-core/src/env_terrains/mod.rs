@@ -32,7 +32,7 @@ use options::bad;
 pub use layout::{env_pool_bytes, mix_pool_bytes};
 pub use mix::{SchemeMix, check_mixable};
 pub use options::{EnvError, EnvLayout, EnvOptions};
-pub use request::{DEFAULT_ENV_OVERSAMPLE, EnvRequest, LayoutKind};
+pub use request::{DEFAULT_ENV_OVERSAMPLE, ENV_OPTIONS, EnvOptionInfo, EnvRequest, LayoutKind};
 pub use sheet::{SheetOptions, SheetTile, contact_sheet, contact_sheet_named, tiles_sheet};
 
 /// Global environment ids and episodes are each below `2^ENV_BITS`: the
@@ -121,9 +121,9 @@ impl EnvTerrains {
                 ),
             ));
         }
-        if let Err(why) = crate::spawn::check_radius(options.spawn_radius) {
-            return Err(bad("spawn_radius", why));
-        }
+        // Each option's range, as the table declares it (options built by
+        // hand, not through `EnvRequest::resolve`, included).
+        EnvRequest::given(&options).check_ranges()?;
         // Every slot (or tile) fits the largest grid of the mix.
         let slot = mix::largest_grid(&schemes);
         let layout::Shapes { env_shape, shape } = layout::buffer_shape_of(slot, options)?;

@@ -64,30 +64,155 @@ impl From<EnvLayout> for LayoutKind {
     }
 }
 
-/// The environments a user asks for: `None` is "the default".
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct EnvRequest {
-    /// How many environments.
-    pub num_envs: usize,
-    /// Samples per cell; default [`DEFAULT_ENV_OVERSAMPLE`].
-    pub oversample: Option<u32>,
-    /// Base seed; default the scheme's `# seed:`.
-    pub seed: Option<u64>,
-    /// Global id of environment 0; default 0.
-    pub env_offset: Option<u64>,
-    /// Starting difficulty of every environment (checked where the user's
-    /// number is read, by [`Difficulty`]'s own constructor); default 1.
-    pub difficulty: Option<Difficulty>,
-    /// Slots or tiles; default slots.
-    pub layout: Option<LayoutKind>,
-    /// Tiles along x (tiles only); default `ceil(sqrt(num_envs))`.
-    pub cols: Option<u32>,
-    /// Cells of height 0 between and around tiles (tiles only); default 0.
-    pub border: Option<u32>,
-    /// Radius of the disc under a spawn origin, metres; default
-    /// [`DEFAULT_SPAWN_RADIUS`].
-    pub spawn_radius: Option<f64>,
+/// The per-environment options, declared once: each option's field in
+/// [`EnvRequest`] and type, its range (a [`global_range`](crate::global_range)
+/// value, checked by [`EnvRequest::check_ranges`] for every front end and
+/// by [`EnvTerrains::mixed`](super::EnvTerrains::mixed) for options built
+/// by hand), its default as text, an example other than the default, a
+/// value outside its range (the tests walk both through every skin), and
+/// what it needs beside it (the tile options: `layout=tiles`).
+///
+/// Hands the table to `$callback`: [`EnvRequest`], its `check_ranges` and
+/// [`ENV_OPTIONS`] here; Python's `EnvTerrains` keywords, their signature
+/// and their mapping in rse-py. An option of a type these know is added
+/// here, resolved in [`EnvRequest::resolve`] and used where it acts
+/// (docs/development.md, "Adding a per-env option").
+#[macro_export]
+macro_rules! for_each_env_option {
+    ($callback:ident) => {
+        $callback! {
+            /// Samples per cell along each axis; default
+            /// [`DEFAULT_ENV_OVERSAMPLE`](crate::DEFAULT_ENV_OVERSAMPLE).
+            oversample: u32 {
+                range: $crate::global_range::AtLeastOne("sample per cell"),
+                default: "2",
+                example: "3",
+                outside: Some("0"),
+                needs: "",
+            }
+            /// Base seed; default the scheme's `# seed:`.
+            seed: u64 {
+                range: $crate::global_range::AnyValue,
+                default: "the scheme's",
+                example: "7",
+                outside: None,
+                needs: "",
+            }
+            /// Global id of environment 0; default 0.
+            env_offset: u64 {
+                range: $crate::global_range::AnyValue,
+                default: "0",
+                example: "16",
+                outside: None,
+                needs: "",
+            }
+            /// Starting difficulty of every environment (checked where the
+            /// user's number is read, by [`Difficulty`](crate::Difficulty)'s
+            /// own constructor); default 1.
+            difficulty: $crate::Difficulty {
+                range: $crate::global_range::CheckedByType { describe: "0 to 1", outside: "1.5" },
+                default: "1",
+                example: "0.5",
+                outside: Some("1.5"),
+                needs: "",
+            }
+            /// Slots or tiles; default slots.
+            layout: $crate::LayoutKind {
+                range: $crate::global_range::CheckedByType { describe: "slots or tiles", outside: "rows" },
+                default: "slots",
+                example: "tiles",
+                outside: Some("rows"),
+                needs: "",
+            }
+            /// Tiles along x (tiles only); default `ceil(sqrt(num_envs))`.
+            cols: u32 {
+                range: $crate::global_range::AtLeastOne("tile along x"),
+                default: "ceil(sqrt(num_envs))",
+                example: "2",
+                outside: Some("0"),
+                needs: "layout=tiles",
+            }
+            /// Cells of height 0 between and around tiles (tiles only);
+            /// default 0.
+            border: u32 {
+                range: $crate::global_range::AnyValue,
+                default: "0",
+                example: "1",
+                outside: None,
+                needs: "layout=tiles",
+            }
+            /// Radius of the disc under a spawn origin, metres; default
+            /// [`DEFAULT_SPAWN_RADIUS`](crate::spawn::DEFAULT_SPAWN_RADIUS).
+            spawn_radius: f64 {
+                range: $crate::spawn::Radius,
+                default: "0.3",
+                example: "0.5",
+                outside: Some("-1"),
+                needs: "",
+            }
+        }
+    };
 }
+
+/// One per-environment option as the front ends show it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EnvOptionInfo {
+    /// The option's name: [`EnvRequest`]'s field, Python's keyword.
+    pub name: &'static str,
+    /// Its default, as text.
+    pub default: &'static str,
+    /// A value other than the default.
+    pub example: &'static str,
+    /// A value every front end refuses, where there is one.
+    pub outside: Option<&'static str>,
+    /// What it needs beside it (`layout=tiles`), or `""`.
+    pub needs: &'static str,
+}
+
+/// [`EnvRequest`], its range check and [`ENV_OPTIONS`] from the table.
+macro_rules! declare_env_request {
+    ($(
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:expr,
+            needs: $needs:literal,
+        }
+    )*) => {
+        /// The environments a user asks for: `None` is "the default".
+        #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        pub struct EnvRequest {
+            /// How many environments.
+            pub num_envs: usize,
+            $($(#[doc = $what])* pub $field: Option<$ty>,)*
+        }
+
+        impl EnvRequest {
+            /// Each option given in its range (the table's `range`), the
+            /// first outside it an error naming it.
+            pub fn check_ranges(&self) -> Result<(), EnvError> {
+                use $crate::global_range::GlobalRange as _;
+                $(if let Some(value) = &self.$field {
+                    $range.check(value).map_err(|reason| bad(stringify!($field), reason))?;
+                })*
+                Ok(())
+            }
+        }
+
+        /// Every per-environment option, in the table's order.
+        pub const ENV_OPTIONS: &[EnvOptionInfo] = &[$(EnvOptionInfo {
+            name: stringify!($field),
+            default: $default,
+            example: $example,
+            outside: $outside,
+            needs: $needs,
+        }),*];
+    };
+}
+
+for_each_env_option!(declare_env_request);
 
 impl EnvRequest {
     /// The options of [`EnvTerrains::new`](super::EnvTerrains::new) for
@@ -95,6 +220,7 @@ impl EnvRequest {
     /// argument: `cols` or `border` with slots.
     /// The rest (counts, sizes, the radius) is checked by `EnvTerrains::new`.
     pub fn resolve(&self, scheme: &Scheme) -> Result<EnvOptions, EnvError> {
+        self.check_ranges()?;
         let layout = match self.layout.unwrap_or_default() {
             // A border of 0 is the slots' own (no border): as before,
             // only a real tile setting is refused.
@@ -119,6 +245,38 @@ impl EnvRequest {
             difficulty,
             spawn_radius: self.spawn_radius.unwrap_or(DEFAULT_SPAWN_RADIUS),
         })
+    }
+}
+
+impl EnvRequest {
+    /// Every option `options` resolved to, given: what
+    /// [`EnvTerrains::mixed`](super::EnvTerrains::mixed) checks the ranges
+    /// of, whoever built the options.
+    pub fn given(options: &EnvOptions) -> EnvRequest {
+        let EnvOptions {
+            num_envs,
+            oversample,
+            seed,
+            env_offset,
+            layout,
+            difficulty,
+            spawn_radius,
+        } = *options;
+        let (cols, border) = match layout {
+            EnvLayout::Slots => (None, None),
+            EnvLayout::Tiles { cols, border } => (Some(cols), Some(border)),
+        };
+        EnvRequest {
+            num_envs,
+            oversample: Some(oversample),
+            seed: Some(seed),
+            env_offset: Some(env_offset),
+            difficulty: Some(difficulty),
+            layout: Some(layout.into()),
+            cols,
+            border,
+            spawn_radius: Some(spawn_radius),
+        }
     }
 }
 

@@ -33,6 +33,7 @@ __all__ = [
     "_check_json",
     "_global_keywords",
     "_world_keywords",
+    "_env_keywords",
     "_check_curriculum",
 ]
 
@@ -258,13 +259,14 @@ class EnvTerrains:
         scheme: Union[Scheme, Sequence[Scheme]],
         num_envs: int,
         *,
+        # The per-env options: scripts/python_stubs.py writes them from rse-core's table.
         oversample: Optional[int] = None,
         seed: Optional[int] = None,
+        env_offset: Optional[int] = None,
         difficulty: Optional[float] = None,
         layout: Optional[Literal["slots", "tiles"]] = None,
         cols: Optional[int] = None,
         border: Optional[int] = None,
-        env_offset: Optional[int] = None,
         spawn_radius: Optional[float] = None,
         proportions: Optional[Sequence[float]] = None,
     ) -> EnvTerrains: ...
@@ -304,11 +306,12 @@ class EnvTerrains:
     def contact_sheet(
         self,
         path: Optional[Union[str, os.PathLike[str]]] = None,
+        *,
         env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None,
         cols: Optional[int] = None,
         cell_pixels: Optional[int] = None,
         names: Optional[Sequence[str]] = None,
-        one_scale: bool = False,
+        one_scale: Optional[bool] = None,
     ) -> bytes: ...
     def heights_at(
         self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike
@@ -321,6 +324,7 @@ def generate_batch(
 ) -> list[Terrain]: ...
 def _global_keywords() -> list[tuple[str, str, str, Optional[str]]]: ...
 def _world_keywords() -> list[tuple[str, str, str, str]]: ...
+def _env_keywords() -> list[tuple[str, str, str, str, Optional[str], str]]: ...
 def write_worlds(
     scheme: Scheme,
     out: Union[str, os.PathLike[str]],
