@@ -131,6 +131,36 @@ def test_pallet_boundary_is_a_checkbox_and_mesh_a_choice_both_reach_the_worlds(e
     assert "# pallet_boundary: false\n" in manifest["scheme"], manifest["scheme"]
 
 
+def test_every_world_option_has_a_generate_field_that_reaches_the_worlds(editor, page: Page) -> None:
+    """The Generate panel offers every world option of rse-world's table
+    (targets and mesh with controls of their own, the rest a field each,
+    found by its name): the MuJoCo collider and its oversample reach
+    `rse.json`, and a value one refuses is said on its field."""
+    import rse._rse as _rse
+
+    url, folder = editor
+    wait_ready(page, url)
+    for name, *_ in _rse._world_keywords():
+        if name not in ("targets", "mesh"):
+            assert page.get_by_label(name.replace("_", " "), exact=True).is_visible(), name
+    page.check('#gen-targets input[value="mujoco"]')
+    page.get_by_label("number of worlds").fill("1")
+    page.get_by_label("output folder").fill(str(folder / "worlds"))
+    oversample = page.get_by_label("oversample", exact=True)
+    oversample.fill("0")
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-summary').textContent.startsWith('not started')")
+    assert oversample.get_attribute("aria-invalid") == "true"
+    assert "oversample" in page.locator("#gen-summary").inner_text()
+    page.get_by_label("mujoco collider", exact=True).fill("hfield")
+    oversample.fill("2")
+    page.get_by_role("button", name="Generate").click()
+    page.wait_for_function("document.getElementById('gen-check').textContent !== ''", timeout=60_000)
+    manifest = json.loads((folder / "worlds/world_0000/rse.json").read_text())
+    assert manifest["mujoco_collider"] == {"type": "hfield", "oversample": 2}, manifest.get("mujoco_collider")
+    assert (folder / "worlds/world_0000/mujoco/terrain.bin").is_file()
+
+
 def test_refused_values_are_marked_in_words_and_the_pictures_marked_out_of_date(editor, page: Page) -> None:
     url, folder = editor
     wait_ready(page, url)
