@@ -49,22 +49,35 @@ log=$(mktemp)
 pip_log=$(mktemp)
 machete_log=$(mktemp)
 fuzz_log=$(mktemp)
-trap 'rm -f "$log" "$apt_log" "$pip_log" "$machete_log" "$fuzz_log"' EXIT
+# A run that stops early stops what it started in the background too (a
+# venv half made is remade: scripts/cached_venv.sh marks the ready ones),
+# but apt, which is left to finish: a dpkg cut off needs repairing.
+# Each runs in a process group of its own (setsid), killed whole.
+background=()
+stop_background() {
+    local pid
+    for pid in "${background[@]}"; do
+        kill -- "-$pid" 2>/dev/null || true
+    done
+}
+trap 'stop_background; rm -f "$log" "$apt_log" "$pip_log" "$machete_log" "$fuzz_log"' EXIT
 
 # The Python test dependencies download from the start, beside the Rust
 # work, into venvs kept outside the clone and keyed by their pins
 # (scripts/venvs.sh): a fresh clone on this machine reuses them. MJX pins
 # its own MuJoCo (3.17; .venv has 4.0): rse.mjx's tests get their own venv.
-scripts/venvs.sh test >"$pip_log" 2>&1 &
+setsid scripts/venvs.sh test >"$pip_log" 2>&1 &
 pip_pid=$!
+background+=("$pip_pid")
 
 # cargo-machete is built once per machine into the cache, beside clippy
 # (which leaves a core idle while it links and waits on single crates).
 machete_root=${XDG_CACHE_HOME:-$HOME/.cache}/rse/cargo-machete-0.9.2
 machete_pid=""
 if [ ! -x "$machete_root/bin/cargo-machete" ]; then
-    cargo install --quiet --locked cargo-machete --version 0.9.2 --root "$machete_root" >"$machete_log" 2>&1 &
+    setsid cargo install --quiet --locked cargo-machete --version 0.9.2 --root "$machete_root" >"$machete_log" 2>&1 &
     machete_pid=$!
+    background+=("$machete_pid")
 fi
 
 say "format"
@@ -87,8 +100,9 @@ fi
 # share) build and run seeded beside the Rust tests, filling the cores
 # their links and single-threaded tests leave idle; their report is
 # shown, and waited for, after them.
-FUZZ_MODE=seeded scripts/fuzz.sh >"$fuzz_log" 2>&1 &
+FUZZ_MODE=seeded setsid scripts/fuzz.sh >"$fuzz_log" 2>&1 &
 fuzz_pid=$!
+background+=("$fuzz_pid")
 
 # One build for every Rust test: release, the profile the command line's
 # tests need (whole batches, checks and physics, a fifth of the time of a

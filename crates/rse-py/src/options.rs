@@ -76,8 +76,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<u32> {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        obj.extract::<u32>()
-            .map(|n| OptionText::new(n.to_string()))
+        obj.extract::<u32>().map(|n| OptionText::new(n.to_string()))
     }
 }
 
