@@ -432,8 +432,7 @@ macro_rules! world_files_args {
             help: $help:literal,
             py_type: $py_type:literal,
             default: $default:literal,
-            example: $example:literal,
-            outside: $outside:literal,
+            $($rest:tt)*
         }
     )*) => {
         /// What goes in a world folder: targets, terrain model, colliders,

@@ -111,16 +111,7 @@ fn string(obj: Borrowed<'_, '_, PyAny>, keyword: &str) -> PyResult<String> {
 macro_rules! world_keywords {
     ($(
         $(#[doc = $what:literal])*
-        $field:ident: $ty:ty {
-            range: $range:expr,
-            flag: $flag:literal,
-            value_name: $value_name:literal,
-            help: $help:literal,
-            py_type: $py_type:literal,
-            default: $default:literal,
-            example: $example:literal,
-            outside: $outside:literal,
-        }
+        $field:ident: $ty:ty { $($entry:tt)* }
     )*) => {
         keyword_group! {
             /// What every writer of world folders takes (`write_worlds`,

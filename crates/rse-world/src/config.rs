@@ -14,25 +14,94 @@ use crate::error::Error;
 use crate::record::options::{MujocoCollider, WorldOptions};
 use crate::world_option::{ColliderName, WorldConfig};
 
+/// `WorldConfig::resolve` from the table of world options
+/// ([`for_each_world_option`](crate::for_each_world_option)): each
+/// recorded option resolved by its entry's `resolve` (`given`, or a method
+/// below). Munches the table entry by entry.
+macro_rules! declare_resolve {
+    (@munch [$($record:ident = $resolve:ident($field:ident);)*]) => {
+        impl WorldConfig {
+            /// The world options: defaults for what is unset; a value out
+            /// of its range, an unknown collider, or an oversample without a
+            /// height field, is refused.
+            pub fn resolve(self) -> Result<WorldOptions, Error> {
+                self.check_ranges()?;
+                let defaults = WorldOptions::default();
+                let difficulty = self.difficulty.unwrap_or(defaults.difficulty);
+                Ok(WorldOptions {
+                    difficulty,
+                    // Recorded only below 1, so full worlds keep their bytes.
+                    difficulty_rule: (!difficulty.is_full()).then_some(DifficultyRule::CURRENT),
+                    $($record: resolved!($resolve, self, defaults, $field, $record),)*
+                })
+            }
+        }
+    };
+    (@munch [$($values:tt)*]
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            flag: $flag:literal,
+            value_name: $value_name:literal,
+            help: $help:literal,
+            py_type: $py_type:literal,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:literal,
+            record: none,
+            $($after:tt)*
+        }
+        $($rest:tt)*
+    ) => {
+        declare_resolve!(@munch [$($values)*] $($rest)*);
+    };
+    (@munch [$($values:tt)*]
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            flag: $flag:literal,
+            value_name: $value_name:literal,
+            help: $help:literal,
+            py_type: $py_type:literal,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:literal,
+            record: { field: $record:ident: $record_ty:ty, resolve: $resolve:ident, serde: ($($serde:tt)*) },
+            $($after:tt)*
+        }
+        $($rest:tt)*
+    ) => {
+        declare_resolve!(@munch
+            [$($values)* $record = $resolve($field);]
+            $($rest)*);
+    };
+    ($($table:tt)*) => {
+        declare_resolve!(@munch [] $($table)*);
+    };
+}
+
+/// A recorded option's value: `given` (the value given, else the
+/// default's), or a method of `WorldConfig` that resolves it.
+macro_rules! resolved {
+    (given, $config:ident, $defaults:ident, $field:ident, $record:ident) => {
+        $config.$field.clone().unwrap_or($defaults.$record)
+    };
+    ($method:ident, $config:ident, $defaults:ident, $field:ident, $record:ident) => {
+        $config.$method()?
+    };
+}
+
+crate::for_each_world_option!(declare_resolve);
+
 impl WorldConfig {
-    /// The world options: defaults for what is unset; an unknown collider,
-    /// or an oversample without a height field, is refused.
-    pub fn resolve(self) -> Result<WorldOptions, Error> {
-        self.check_ranges()?;
-        let defaults = WorldOptions::default();
-        let collider = self
+    /// The `MuJoCo` collider: its name (boxes by default) with the
+    /// oversample, which only a height field takes.
+    fn resolve_mujoco_collider(&self) -> Result<MujocoCollider, Error> {
+        let name = self
             .mujoco_collider
             .as_ref()
-            .map_or(defaults.mujoco_collider.name(), ColliderName::as_str);
-        let difficulty = self.difficulty.unwrap_or(defaults.difficulty);
-        Ok(WorldOptions {
-            difficulty,
-            // Recorded only below 1, so full worlds keep their bytes.
-            difficulty_rule: (!difficulty.is_full()).then_some(DifficultyRule::CURRENT),
-            targets: self.targets.unwrap_or(defaults.targets),
-            mesh: self.mesh.unwrap_or(defaults.mesh),
-            mujoco_collider: MujocoCollider::parse(collider, self.oversample)?,
-        })
+            .map_or(MujocoCollider::default().name(), ColliderName::as_str);
+        MujocoCollider::parse(name, self.oversample)
     }
 }
 

@@ -17,12 +17,23 @@ use crate::record::options::{MeshMode, MujocoCollider, Targets};
 /// line), its Python type as the stubs write it, its default as text
 /// (a test holds it to [`WorldOptions`](crate::WorldOptions)'s default),
 /// an example other than the default and a value every front end refuses
-/// (the tests walk both through every skin).
+/// (the tests walk both through every skin), and how
+/// [`WorldOptions`](crate::WorldOptions) records it in `rse.json`:
+/// `record: { field, resolve, serde }` is a field of its own (after the
+/// difficulty, in table order), resolved by `given` (the value given, else
+/// the default) or by a method of `WorldConfig` in `config.rs`, with its
+/// serde attributes (a new option: `default, skip_serializing_if` its
+/// default, so worlds written before it keep their bytes); `record: none`
+/// is recorded by another's (the oversample, in the collider's).
 ///
 /// Hands the table to `$callback`: `WorldConfig`, its `set`, `check_ranges`
-/// and [`WORLD_OPTIONS`] here; `WorldFilesArgs` in rse-cli; `WorldKeywords`
-/// and the signatures in rse-py. An option of a type these know is added
-/// here, used where it acts (the writer, a template), and nowhere else
+/// and [`WORLD_OPTIONS`] here; `WorldOptions` in `record/options.rs` and
+/// `WorldConfig::resolve` in `config.rs`; `WorldFilesArgs` in rse-cli;
+/// `WorldKeywords` and the signatures in rse-py. Each consumer matches the
+/// attributes it reads, in this order, and skips the rest
+/// (`$($rest:tt)*`), so an attribute added last edits only its readers. An
+/// option of a type these know is added here, used where it acts (the
+/// writer, a template) and in the CHANGELOG, and nowhere else
 /// (docs/development.md, "Adding a world option").
 #[macro_export]
 macro_rules! for_each_world_option {
@@ -38,6 +49,7 @@ macro_rules! for_each_world_option {
                 default: "gazebo",
                 example: "obj,mujoco",
                 outside: "quake",
+                record: { field: targets: $crate::Targets, resolve: given, serde: () },
             }
             /// The terrain model; default auto.
             mesh: $crate::MeshMode {
@@ -49,6 +61,7 @@ macro_rules! for_each_world_option {
                 default: "auto",
                 example: "blocks",
                 outside: "voxels",
+                record: { field: mesh: $crate::MeshMode, resolve: given, serde: () },
             }
             /// The `MuJoCo` collider by name (`boxes`, `hfield`); default
             /// boxes.
@@ -61,6 +74,13 @@ macro_rules! for_each_world_option {
                 default: "boxes",
                 example: "hfield",
                 outside: "spheres",
+                // One record with the oversample: absent for boxes, so
+                // worlds made before height fields keep their bytes.
+                record: {
+                    field: mujoco_collider: $crate::MujocoCollider,
+                    resolve: resolve_mujoco_collider,
+                    serde: (default, skip_serializing_if = "MujocoCollider::is_boxes")
+                },
             }
             /// The height field's samples per cell along each axis; only
             /// with `hfield` (default 4 there).
@@ -73,6 +93,8 @@ macro_rules! for_each_world_option {
                 default: "4 with hfield",
                 example: "2",
                 outside: "0",
+                // Recorded in `mujoco_collider`.
+                record: none,
             }
         }
     };
@@ -180,6 +202,7 @@ macro_rules! declare_world_config {
             default: $default:literal,
             example: $example:literal,
             outside: $outside:literal,
+            $($rest:tt)*
         }
     )*) => {
         /// What a world folder holds, as given: `None` is the default.

@@ -11,30 +11,78 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
 
-/// What to put in a world folder. Recorded in `rse.json` as it is (its
-/// fields flattened into the manifest, in this order), so an option added
-/// here is written, compared and rebuilt with no other edit.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct WorldOptions {
-    /// The difficulty the heights are scaled to; absent at 1, so worlds
-    /// of full difficulty keep the bytes they had before difficulties.
-    #[serde(default, skip_serializing_if = "is_full")]
-    pub difficulty: Difficulty,
-    /// How the scaled heights were rounded: written beside a difficulty
-    /// below 1 ([`WorldConfig::resolve`](crate::WorldConfig::resolve) sets
-    /// today's rule); absent in worlds written before the rule was recorded,
-    /// which [`Self::rule`] reads as the rule they were written with.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub difficulty_rule: Option<DifficultyRule>,
-    /// The simulators to write files for.
-    pub targets: Targets,
-    /// The terrain model of the simulator files.
-    pub mesh: MeshMode,
-    /// What the `MuJoCo` world collides with; absent for boxes, so worlds
-    /// made before height fields keep their bytes.
-    #[serde(default, skip_serializing_if = "MujocoCollider::is_boxes")]
-    pub mujoco_collider: MujocoCollider,
+/// `WorldOptions` from the table of world options
+/// ([`for_each_world_option`](crate::for_each_world_option)): the
+/// difficulty's two fields by hand, then a field for each option whose
+/// entry says `record: { field, … }`, in table order (the order `rse.json`
+/// writes them in). Munches the table entry by entry.
+macro_rules! declare_world_options {
+    (@munch [$($fields:tt)*]) => {
+        /// What to put in a world folder. Recorded in `rse.json` as it is
+        /// (its fields flattened into the manifest, in this order), so an
+        /// option added to the table is written, compared and rebuilt with
+        /// no other edit.
+        #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+        pub struct WorldOptions {
+            /// The difficulty the heights are scaled to; absent at 1, so
+            /// worlds of full difficulty keep the bytes they had before
+            /// difficulties.
+            #[serde(default, skip_serializing_if = "is_full")]
+            pub difficulty: Difficulty,
+            /// How the scaled heights were rounded: written beside a
+            /// difficulty below 1 ([`WorldConfig::resolve`](crate::WorldConfig::resolve)
+            /// sets today's rule); absent in worlds written before the rule
+            /// was recorded, which [`Self::rule`] reads as the rule they were
+            /// written with.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub difficulty_rule: Option<DifficultyRule>,
+            $($fields)*
+        }
+    };
+    (@munch [$($fields:tt)*]
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            flag: $flag:literal,
+            value_name: $value_name:literal,
+            help: $help:literal,
+            py_type: $py_type:literal,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:literal,
+            record: none,
+            $($after:tt)*
+        }
+        $($rest:tt)*
+    ) => {
+        declare_world_options!(@munch [$($fields)*] $($rest)*);
+    };
+    (@munch [$($fields:tt)*]
+        $(#[doc = $what:literal])*
+        $field:ident: $ty:ty {
+            range: $range:expr,
+            flag: $flag:literal,
+            value_name: $value_name:literal,
+            help: $help:literal,
+            py_type: $py_type:literal,
+            default: $default:literal,
+            example: $example:literal,
+            outside: $outside:literal,
+            record: { field: $record:ident: $record_ty:ty, resolve: $resolve:ident, serde: ($($serde:tt)*) },
+            $($after:tt)*
+        }
+        $($rest:tt)*
+    ) => {
+        declare_world_options!(@munch
+            [$($fields)* $(#[doc = $what])* #[serde($($serde)*)] pub $record: $record_ty,]
+            $($rest)*);
+    };
+    ($($table:tt)*) => {
+        declare_world_options!(@munch [] $($table)*);
+    };
 }
+
+crate::for_each_world_option!(declare_world_options);
 
 impl WorldOptions {
     /// The files of the single mesh a world of these options writes (for a

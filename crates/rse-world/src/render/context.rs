@@ -4,7 +4,7 @@ use rse_core::mesh::Block;
 use rse_core::{HField, Terrain};
 use serde::Serialize;
 
-use crate::record::options::MeshMode;
+use crate::record::options::{MeshMode, WorldOptions};
 use crate::render::box_value::BoxValue;
 
 /// The name of the terrain model in every target.
@@ -56,6 +56,10 @@ pub(crate) struct WorldContext {
     /// key added to the scheme reaches the templates here with no other
     /// edit. An atlas's are its first tile's scheme's.
     pub scheme: rse_core::Globals,
+    /// The world options as `rse.json` records them (`options.targets`,
+    /// `options.mesh`, …): an option added to rse-world's table reaches
+    /// the templates here with no other edit.
+    pub options: WorldOptions,
 }
 
 /// A `MuJoCo` height field: its file and where it goes.
@@ -106,6 +110,15 @@ impl WorldContext {
             collider: "boxes",
             hfield: None,
             scheme: *terrain.globals(),
+            options: WorldOptions::default(),
+        }
+    }
+
+    /// The same context for a world of `options`.
+    pub(crate) fn with_options(self, options: &WorldOptions) -> Self {
+        WorldContext {
+            options: options.clone(),
+            ..self
         }
     }
 

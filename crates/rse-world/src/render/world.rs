@@ -269,7 +269,8 @@ pub(crate) fn terrain_files(
         }
     }
 
-    let mut context = WorldContext::new(name.clone(), terrain, options.mesh, &boxes);
+    let mut context =
+        WorldContext::new(name.clone(), terrain, options.mesh, &boxes).with_options(options);
     if let (MujocoCollider::Hfield { oversample }, true) =
         (options.mujoco_collider, targets.contains(Target::Mujoco))
     {
