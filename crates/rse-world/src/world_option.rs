@@ -79,7 +79,7 @@ macro_rules! for_each_world_option {
                 record: {
                     field: mujoco_collider: $crate::MujocoCollider,
                     resolve: resolve_mujoco_collider,
-                    serde: (default, skip_serializing_if = "MujocoCollider::is_boxes")
+                    serde: (default, skip_serializing_if = "is_default")
                 },
             }
             /// The height field's samples per cell along each axis; only

@@ -118,6 +118,13 @@ impl WorldOptions {
     }
 }
 
+/// For serde: whether a recorded option is at its type's default, and so
+/// left out of `rse.json` (a world option added after worlds were written
+/// says so in its table entry's `serde`, so theirs keep their bytes).
+pub(crate) fn is_default<T: Default + PartialEq>(value: &T) -> bool {
+    *value == T::default()
+}
+
 /// For serde: whether a manifest's difficulty is left out.
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde passes a reference
 fn is_full(d: &Difficulty) -> bool {
