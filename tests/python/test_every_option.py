@@ -380,3 +380,22 @@ def test_an_env_option_changes_the_envs_and_one_outside_its_range_is_refused(nam
         with pytest.raises(ValueError) as refused:
             rse.EnvTerrains(scheme, 4, **_env_keywords(name, outside))
         _refusal_names(name, refused.value)
+
+
+@pytest.mark.parametrize("name", sorted(WORLD_OPTIONS))
+def test_the_templates_see_every_world_option(name: str, tmp_path: Path) -> None:
+    """A user's template prints `options`: at its example the option shows,
+    as it differs from the default (the oversample inside its collider's
+    record), and every option is there at its default too."""
+    folder = tmp_path / "templates" / "urdf"
+    folder.mkdir(parents=True)
+    (folder / "options.txt.j2").write_text("{% for key, value in options|items %}{{ key }}={{ value }}\n{% endfor %}")
+    keywords = _world_keywords(name, WORLD_OPTIONS[name][1])
+    printed = {}
+    for run, given in (("example", keywords), ("default", {k: v for k, v in keywords.items() if k != name})):
+        targets = ",".join(sorted(set(str(given.get("targets", "obj")).split(",")) | {"urdf"}))
+        rse.write_worlds(rse.Scheme(size=(4, 3)), tmp_path / run, amount=1, template=tmp_path / "templates", **{**given, "targets": targets})
+        printed[run] = (tmp_path / run / "world_0000" / "urdf" / "options.txt").read_text()
+    assert printed["example"] != printed["default"], f"{name}: the templates do not see it\n{printed['example']}"
+    shown = dict(line.split("=", 1) for line in printed["default"].splitlines())
+    assert {"targets", "mesh", "mujoco_collider"} <= set(shown), shown

@@ -17,7 +17,7 @@ use crate::error::Error;
 /// entry says `record: { field, … }`, in table order (the order `rse.json`
 /// writes them in). Munches the table entry by entry.
 macro_rules! declare_world_options {
-    (@munch [$($fields:tt)*]) => {
+    (@munch [$($fields:tt)*] [$($record:ident)*]) => {
         /// What to put in a world folder. Recorded in `rse.json` as it is
         /// (its fields flattened into the manifest, in this order), so an
         /// option added to the table is written, compared and rebuilt with
@@ -38,8 +38,23 @@ macro_rules! declare_world_options {
             pub difficulty_rule: Option<DifficultyRule>,
             $($fields)*
         }
+
+        impl WorldOptions {
+            /// Every recorded option by its name, at its default too (what
+            /// the templates see as `options`: `rse.json` leaves an option
+            /// at its default out, and a template need not know which).
+            pub(crate) fn template_value(&self) -> minijinja::Value {
+                let by_name: std::collections::BTreeMap<&str, minijinja::Value> = [
+                    ("difficulty", minijinja::Value::from(minijinja::value::Serde(self.difficulty))),
+                    $((stringify!($record), minijinja::Value::from(minijinja::value::Serde(&self.$record))),)*
+                ]
+                .into_iter()
+                .collect();
+                minijinja::Value::from(by_name)
+            }
+        }
     };
-    (@munch [$($fields:tt)*]
+    (@munch [$($fields:tt)*] [$($names:ident)*]
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
             range: $range:expr,
@@ -55,9 +70,9 @@ macro_rules! declare_world_options {
         }
         $($rest:tt)*
     ) => {
-        declare_world_options!(@munch [$($fields)*] $($rest)*);
+        declare_world_options!(@munch [$($fields)*] [$($names)*] $($rest)*);
     };
-    (@munch [$($fields:tt)*]
+    (@munch [$($fields:tt)*] [$($names:ident)*]
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
             range: $range:expr,
@@ -75,10 +90,11 @@ macro_rules! declare_world_options {
     ) => {
         declare_world_options!(@munch
             [$($fields)* $(#[doc = $what])* #[serde($($serde)*)] pub $record: $record_ty,]
+            [$($names)* $record]
             $($rest)*);
     };
     ($($table:tt)*) => {
-        declare_world_options!(@munch [] $($table)*);
+        declare_world_options!(@munch [] [] $($table)*);
     };
 }
 

@@ -56,10 +56,10 @@ pub(crate) struct WorldContext {
     /// key added to the scheme reaches the templates here with no other
     /// edit. An atlas's are its first tile's scheme's.
     pub scheme: rse_core::Globals,
-    /// The world options as `rse.json` records them (`options.targets`,
-    /// `options.mesh`, …): an option added to rse-world's table reaches
-    /// the templates here with no other edit.
-    pub options: WorldOptions,
+    /// The world options by name (`options.targets`, `options.mesh`, …),
+    /// every one even at its default: an option added to rse-world's
+    /// table reaches the templates here with no other edit.
+    pub options: minijinja::Value,
 }
 
 /// A `MuJoCo` height field: its file and where it goes.
@@ -110,14 +110,14 @@ impl WorldContext {
             collider: "boxes",
             hfield: None,
             scheme: *terrain.globals(),
-            options: WorldOptions::default(),
+            options: WorldOptions::default().template_value(),
         }
     }
 
     /// The same context for a world of `options`.
     pub(crate) fn with_options(self, options: &WorldOptions) -> Self {
         WorldContext {
-            options: options.clone(),
+            options: options.template_value(),
             ..self
         }
     }
