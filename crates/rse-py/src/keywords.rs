@@ -130,13 +130,20 @@ pub fn unexpected<'a>(
 }
 
 /// `e` of reading keyword `name`: a `TypeError` of Python's own words
-/// says which argument, as pyo3's do (`argument 'seed': …`); ours, which
-/// start with the keyword, and any other error stay as they are.
+/// says which argument, as pyo3's do (`argument 'seed': …`); an int out of
+/// a whole number's range (`OverflowError`) is a `ValueError` naming it;
+/// ours, which start with the keyword, and any other error stay as they
+/// are.
 pub fn naming(py: Python<'_>, name: &str, e: impl Into<PyErr>) -> PyErr {
     let e = e.into();
     let message = e.value(py).to_string();
-    if e.is_instance_of::<PyTypeError>(py) && !message.starts_with(&format!("{name}:")) {
+    if message.starts_with(&format!("{name}:")) {
+        e
+    } else if e.is_instance_of::<PyTypeError>(py) {
         PyTypeError::new_err(format!("argument '{name}': {message}"))
+    } else if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(py) {
+        // A negative or huge int for a whole number: said as a value.
+        pyo3::exceptions::PyValueError::new_err(format!("{name}: {message}"))
     } else {
         e
     }

@@ -71,12 +71,21 @@ impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<ColliderName> {
     }
 }
 
-/// A whole number (`oversample=`).
+/// A whole number (`oversample=`): a Python int of any size, written out,
+/// so the option's own parser names it when it is out of range.
 impl<'a, 'py> FromPyObject<'a, 'py> for OptionText<u32> {
     type Error = PyErr;
 
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        obj.extract::<u32>().map(|n| OptionText::new(n.to_string()))
+        if !obj.is_instance_of::<pyo3::types::PyInt>()
+            || obj.is_instance_of::<pyo3::types::PyBool>()
+        {
+            return Err(PyTypeError::new_err(format!(
+                "expected an int, got {}",
+                describe(&obj)
+            )));
+        }
+        Ok(OptionText::new(obj.str()?.to_string()))
     }
 }
 
