@@ -26,7 +26,7 @@ from rse._adapters.mjlab.terrains import (
 from rse._adapters.mjlab.watch_layout import Apart
 from rse._adapters.pool import GEOM, POOL, copy_env_samples, env_pool
 from rse._adapters.warp_fields import Uploads
-from rse._rse import EnvTerrains
+from rse._rse import EnvTerrains, _env_keywords
 
 TERM = "rse_terrain"
 """The default name of rse's reset event term in an mjlab env config (its
@@ -71,15 +71,11 @@ class EnvTerrainsEvent:
         """The curriculum's levels (the scene's ``EnvTerrainCfg``), if any."""
         self.names: list[str] = list(getattr(scheme, "names", []))
         """A mix's scheme names, in order (empty for one scheme)."""
-        self.envs = make_envs(
-            scheme,
-            env.num_envs,
-            oversample=p.get("oversample"),
-            seed=p.get("seed"),
-            difficulty=0.0 if spread is not None else p.get("difficulty"),
-            env_offset=offset,
-            spawn_radius=p.get("spawn_radius"),
-        )
+        # Every per-env option the scene's config (or the event) gives, by
+        # its name in rse-core's table.
+        options = {name: p[name] for name, *_ in _env_keywords() if name in p}
+        options.update(env_offset=offset, difficulty=0.0 if spread is not None else p.get("difficulty"))
+        self.envs = make_envs(scheme, env.num_envs, **options)
         if spread is not None:
             # Every env's first terrain at its own starting level.
             seed = self.envs.schemes[0].seed if p.get("seed") is None else p["seed"]

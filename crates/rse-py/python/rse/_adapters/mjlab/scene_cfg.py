@@ -213,18 +213,18 @@ def check(cfg: EnvTerrainCfg) -> None:
             )
     if cfg.seed is not None and not 0 <= cfg.seed < 2**64:
         raise ValueError(f"{flag('seed')} {cfg.seed}: expected a whole number from 0 to 2^64 - 1")
+    options = env_options(cfg)
     try:
         if mix is None:
-            EnvTerrains(scheme, 1, oversample=cfg.oversample, seed=cfg.seed, difficulty=cfg.difficulty, spawn_radius=cfg.spawn_radius)
+            EnvTerrains(scheme, 1, **options)
         else:
-            EnvTerrains(mix.schemes, 1, oversample=cfg.oversample, seed=cfg.seed, difficulty=cfg.difficulty,
-                        spawn_radius=cfg.spawn_radius, proportions=mix.proportions)
+            EnvTerrains(mix.schemes, 1, proportions=mix.proportions, **options)
     except (ValueError, OverflowError, TypeError) as e:
         # rse names the argument first ("difficulty: …", "oversample 0: …"):
         # the same names as the fields.
         name = str(e).split(" ", 1)[0].rstrip(":")
         reason = str(e).rpartition(": ")[2]
-        if name in ("difficulty", "oversample", "seed", "spawn_radius"):
+        if name in options:
             raise ValueError(f"{flag(name)} {getattr(cfg, name)}: {reason}") from None
         if name in ("schemes", "proportions"):
             raise ValueError(f"{flag('schemes')}: {str(e).partition(': ')[2]}") from None
@@ -236,3 +236,13 @@ def check(cfg: EnvTerrainCfg) -> None:
     cfg.schemes_sha256 = {name: sha256(t) for name, t in cfg.schemes_csv.items()}
     cfg.rse_version = rse.__version__
     cfg.difficulty_rule = rse.DIFFICULTY_RULE
+
+
+def env_options(cfg: Any) -> dict[str, Any]:
+    """The per-env options of rse-core's table (``rse._rse._env_keywords()``)
+    that ``cfg`` has a field for, by name: what its terrains are made with.
+    A field of ``EnvTerrainCfg`` named as an option reaches the terrains,
+    the check and the reset event with no other edit."""
+    from rse._rse import _env_keywords
+
+    return {name: getattr(cfg, name) for name, *_ in _env_keywords() if hasattr(cfg, name)}

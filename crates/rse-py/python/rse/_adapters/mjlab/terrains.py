@@ -61,8 +61,10 @@ def terrain_settings(terrain: Any) -> dict[str, Any]:
     config read and recorded (``scheme_csv``), not its path read again."""
     if type(terrain).__name__ != "EnvTerrainCfg":
         return {}
-    keys = ("scheme", "seed", "difficulty", "oversample", "spawn_radius", "apart", "max_init_terrain_level", "terrain_levels")
-    settings = {k: getattr(terrain, k) for k in keys}
+    from rse._adapters.mjlab.scene_cfg import env_options
+
+    keys = ("scheme", "apart", "max_init_terrain_level", "terrain_levels")
+    settings = {**{k: getattr(terrain, k) for k in keys}, **env_options(terrain)}
     settings["scheme"] = terrain.scheme_csv or terrain.scheme
     if terrain.schemes:
         from rse._adapters.mjlab.scene_cfg import Mix
