@@ -426,6 +426,7 @@ macro_rules! world_files_args {
     ($(
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
+            record: $record:tt,
             range: $range:expr,
             flag: $flag:literal,
             value_name: $value_name:literal,

@@ -40,14 +40,6 @@ macro_rules! declare_resolve {
     (@munch [$($values:tt)*]
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
-            range: $range:expr,
-            flag: $flag:literal,
-            value_name: $value_name:literal,
-            help: $help:literal,
-            py_type: $py_type:literal,
-            default: $default:literal,
-            example: $example:literal,
-            outside: $outside:literal,
             record: none,
             $($after:tt)*
         }
@@ -58,14 +50,6 @@ macro_rules! declare_resolve {
     (@munch [$($values:tt)*]
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
-            range: $range:expr,
-            flag: $flag:literal,
-            value_name: $value_name:literal,
-            help: $help:literal,
-            py_type: $py_type:literal,
-            default: $default:literal,
-            example: $example:literal,
-            outside: $outside:literal,
             record: { field: $record:ident: $record_ty:ty, resolve: $resolve:ident, serde: ($($serde:tt)*) },
             $($after:tt)*
         }

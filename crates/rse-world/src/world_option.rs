@@ -17,7 +17,7 @@ use crate::record::options::{MeshMode, MujocoCollider, Targets};
 /// line), its Python type as the stubs write it, its default as text
 /// (a test holds it to [`WorldOptions`](crate::WorldOptions)'s default),
 /// an example other than the default and a value every front end refuses
-/// (the tests walk both through every skin), and how
+/// (the tests walk both through every skin); first, how
 /// [`WorldOptions`](crate::WorldOptions) records it in `rse.json`:
 /// `record: { field, resolve, serde }` is a field of its own (after the
 /// difficulty, in table order), resolved by `given` (the value given, else
@@ -31,7 +31,8 @@ use crate::record::options::{MeshMode, MujocoCollider, Targets};
 /// `WorldConfig::resolve` in `config.rs`; `WorldFilesArgs` in rse-cli;
 /// `WorldKeywords` and the signatures in rse-py. Each consumer matches the
 /// attributes it reads, in this order, and skips the rest
-/// (`$($rest:tt)*`), so an attribute added last edits only its readers. An
+/// (`$($rest:tt)*`), so an attribute added last edits only its readers;
+/// `record` comes first, so its readers skip all the others. An
 /// option of a type these know is added here, used where it acts (the
 /// writer, a template) and in the CHANGELOG, and nowhere else
 /// (docs/development.md, "Adding a world option").
@@ -41,6 +42,7 @@ macro_rules! for_each_world_option {
         $callback! {
             /// The simulators; default gazebo.
             targets: $crate::Targets {
+                record: { field: targets: $crate::Targets, resolve: given, serde: () },
                 range: ::rse_core::global_range::AnyValue,
                 flag: "target",
                 value_name: "LIST",
@@ -49,10 +51,10 @@ macro_rules! for_each_world_option {
                 default: "gazebo",
                 example: "obj,mujoco",
                 outside: "quake",
-                record: { field: targets: $crate::Targets, resolve: given, serde: () },
             }
             /// The terrain model; default auto.
             mesh: $crate::MeshMode {
+                record: { field: mesh: $crate::MeshMode, resolve: given, serde: () },
                 range: ::rse_core::global_range::AnyValue,
                 flag: "mesh",
                 value_name: "auto|single|blocks",
@@ -61,11 +63,17 @@ macro_rules! for_each_world_option {
                 default: "auto",
                 example: "blocks",
                 outside: "voxels",
-                record: { field: mesh: $crate::MeshMode, resolve: given, serde: () },
             }
             /// The `MuJoCo` collider by name (`boxes`, `hfield`); default
             /// boxes.
             mujoco_collider: $crate::ColliderName {
+                // One record with the oversample: absent for boxes, so
+                // worlds made before height fields keep their bytes.
+                record: {
+                    field: mujoco_collider: $crate::MujocoCollider,
+                    resolve: resolve_mujoco_collider,
+                    serde: (default, skip_serializing_if = "is_default")
+                },
                 range: ::rse_core::global_range::AnyValue,
                 flag: "mujoco-collider",
                 value_name: "boxes|hfield",
@@ -74,17 +82,12 @@ macro_rules! for_each_world_option {
                 default: "boxes",
                 example: "hfield",
                 outside: "spheres",
-                // One record with the oversample: absent for boxes, so
-                // worlds made before height fields keep their bytes.
-                record: {
-                    field: mujoco_collider: $crate::MujocoCollider,
-                    resolve: resolve_mujoco_collider,
-                    serde: (default, skip_serializing_if = "is_default")
-                },
             }
             /// The height field's samples per cell along each axis; only
             /// with `hfield` (default 4 there).
             oversample: u32 {
+                // Recorded in `mujoco_collider`.
+                record: none,
                 range: ::rse_core::global_range::AtLeastOne("sample per cell"),
                 flag: "oversample",
                 value_name: "K",
@@ -93,8 +96,6 @@ macro_rules! for_each_world_option {
                 default: "4 with hfield",
                 example: "2",
                 outside: "0",
-                // Recorded in `mujoco_collider`.
-                record: none,
             }
         }
     };
@@ -194,6 +195,7 @@ macro_rules! declare_world_config {
     ($(
         $(#[doc = $what:literal])*
         $field:ident: $ty:ty {
+            record: $record:tt,
             range: $range:expr,
             flag: $flag:literal,
             value_name: $value_name:literal,
