@@ -191,8 +191,10 @@ def step_parts(env, episode_s: float, repeats: int) -> dict[str, float]:
 def proxies(env, episode_s: float) -> dict[str, float]:
     """The CPU-checkable proxies of rse's env: terrain bytes per env on
     the device (from the arrays), the reset event's host time per env
-    (generation, then the upload) and bytes uploaded per env, and the host
-    copies rse's step terms make."""
+    (generation, then the upload) and bytes uploaded per env, the host
+    copies rse's step terms make and the kernels each launches from Python
+    (``launches: <term>``; on a GPU each is a gap outside mjlab's captured
+    graphs)."""
     import sys
 
     from rse._adapters.mjlab.reset_event import event_of
@@ -201,6 +203,7 @@ def proxies(env, episode_s: float) -> dict[str, float]:
 
     sys.path.insert(0, str(REPO / "tests" / "frameworks"))
     from host_copies import HostCopies, as_a_gpu_runs_them
+    from launches import Launches
 
     event = event_of(env, "rse_terrain")
     parts = event.device_bytes()
@@ -209,10 +212,20 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     generate = timed(env, lambda: event.envs.reset(ids), 5) / n
     upload = timed(env, lambda: event._copy_out(ids), 5) / n
     cells = parts["fields"] + parts["coarse fields"]
-    with as_a_gpu_runs_them(event.exact_tops()), HostCopies() as copies:
-        exact_height_scan(env, "terrain_scan")
-        out_of_slot(env)
-        bound_near_robots(env)
+    terms = {
+        "exact_height_scan": lambda: exact_height_scan(env, "terrain_scan"),
+        "out_of_slot": lambda: out_of_slot(env),
+        "bound_near_robots": lambda: bound_near_robots(env),
+    }
+    launched = {}
+    with as_a_gpu_runs_them(event.exact_tops()):
+        with HostCopies() as copies:
+            for term in terms.values():
+                term()
+        for name, term in terms.items():
+            with Launches() as launches:
+                term()
+            launched[name] = len(launches.found)
     # What the allocator gave the arrays that hold them: the model's
     # height fields (the Go1 scene has none but rse's) and the per-world
     # routing and bounds, less the one row each had before rse expanded it.
@@ -228,6 +241,7 @@ def proxies(env, episode_s: float) -> dict[str, float]:
         # origin (12).
         "uploaded bytes/env": cells / env.num_envs + 2 * (4 + 24) + 12,
         "host copies in step terms": float(len(copies.found)),
+        **{f"launches: {name}": float(n) for name, n in launched.items()},
     }
 
 
@@ -238,6 +252,27 @@ def allocated(device: str) -> int:
     if not device.startswith("cuda"):
         return 0
     return int(wp.get_mempool_used_mem_current(device))
+
+
+def warp_arrays(env) -> int:
+    """Bytes of every Warp array of ``env``'s simulation (the device model
+    and data, their nested structs too, each array once): on the CPU,
+    where Warp has no allocator to ask, what it would hold on a GPU."""
+    import warp as wp
+
+    seen: set[int] = set()
+
+    def held(value, depth: int = 0) -> int:
+        if isinstance(value, wp.array):
+            if value.ptr is None or value.ptr in seen:
+                return 0
+            seen.add(value.ptr)
+            return int(value.capacity)
+        if depth > 2 or not hasattr(value, "__dict__"):
+            return 0
+        return sum(held(v, depth + 1) for v in vars(value).values())
+
+    return held(env.sim.wp_model) + held(env.sim.wp_data)
 
 
 def ppo_iteration(task: str, env) -> float:
@@ -262,27 +297,69 @@ def ppo_iteration(task: str, env) -> float:
 
 def device_used(device: str) -> int:
     """Bytes in use on the whole device (every allocator, the CUDA
-    context), as ``cudaMemGetInfo`` tells them: what a card must have."""
+    context), as ``cudaMemGetInfo`` tells them: what a card must have. On
+    the CPU the process's peak resident memory."""
+    if not device.startswith("cuda"):
+        import resource
+
+        return 1024 * resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     free, total = torch.cuda.mem_get_info(torch.device(device))
     return total - free
 
 
 def memory_only(args) -> None:
-    """Builds rse's task alone at ``--num-envs`` and steps it through
-    resets: what Warp's and torch's allocators hold and what the whole
-    device has in use (does it fit a 24 GB card?)."""
-    before, used_before = allocated(args.device), device_used(args.device)
-    env = make(args.task, args.num_envs, args.device, args.episode_s[0], True)
-    steps_per_second(env, 2 * round(args.episode_s[0] / env.step_dt))
-    warp_held = allocated(args.device) - before
-    used = device_used(args.device)
+    """Builds each terrain's task alone, each in a process of its own (a
+    device's memory is not handed back within one), at ``--num-envs``,
+    steps it through resets and reports what Warp's and torch's
+    allocators hold and what the whole device has in use (on the CPU: the
+    process's peak resident memory); then what rse's task takes beside
+    mjlab's own (does it fit a 24 GB card?)."""
+    import json
+    import subprocess
+    import sys
+
+    if args.terrain is not None:
+        print("MEMORY " + json.dumps(memory_of(args, args.terrain == "rse")), flush=True)
+        return
+    held = {}
+    for terrain in ("mjlab", "rse"):
+        run = subprocess.run([sys.executable, __file__, *sys.argv[1:], "--terrain", terrain], check=True, stdout=subprocess.PIPE, text=True)
+        line = [x for x in run.stdout.splitlines() if x.startswith("MEMORY ")][-1]
+        held[terrain] = m = json.loads(line[len("MEMORY ") :])
+        print(
+            f"{terrain}'s task alone, {args.num_envs} envs on {args.device} after {m['steps']} steps (every env reset): "
+            f"Warp's allocator {m['warp'] / 2**30:.2f} GiB ({m['warp'] / args.num_envs / 1024:.1f} KiB an env), "
+            f"torch's {m['torch max'] / 2**30:.2f} GiB at most ({m['torch reserved'] / 2**30:.2f} GiB reserved), "
+            f"the device {m['used'] / 2**30:.2f} GiB in use ({m['added'] / 2**30:.2f} GiB more than before the build)",
+            flush=True,
+        )
+    more = held["rse"]["used"] - held["mjlab"]["used"]
+    warp = held["rse"]["warp"] - held["mjlab"]["warp"]
     print(
-        f"rse's task alone, {args.num_envs} envs on {args.device} after {2 * round(args.episode_s[0] / env.step_dt)} steps (every env reset): "
-        f"Warp's allocator {warp_held / 2**30:.2f} GiB ({warp_held / args.num_envs / 1024:.1f} KiB an env), "
-        f"torch's {torch.cuda.max_memory_allocated(args.device) / 2**30:.2f} GiB at most, "
-        f"the device {used / 2**30:.2f} GiB in use ({(used - used_before) / 2**30:.2f} GiB more than before the build)",
+        f"rse's task beside mjlab's: the device {more / 2**30:+.2f} GiB in use ({more / args.num_envs / 1024:+.1f} KiB an env), "
+        f"Warp's allocator {warp / 2**30:+.2f} GiB ({warp / args.num_envs / 1024:+.1f} KiB an env)",
         flush=True,
     )
+
+
+def memory_of(args, rse: bool) -> dict[str, float]:
+    """One terrain's task built and stepped through resets: bytes held by
+    Warp's allocator, by torch's (at most, and reserved), and in use on the
+    whole device (and more than before the build)."""
+    cuda = args.device.startswith("cuda")
+    before, used_before = allocated(args.device), device_used(args.device)
+    env = make(args.task, args.num_envs, args.device, args.episode_s[0], rse)
+    steps = 2 * round(args.episode_s[0] / env.step_dt)
+    steps_per_second(env, steps)
+    used = device_used(args.device)
+    return {
+        "steps": steps,
+        "warp": allocated(args.device) - before if cuda else warp_arrays(env),
+        "torch max": torch.cuda.max_memory_allocated(args.device) if cuda else 0,
+        "torch reserved": torch.cuda.memory_reserved(args.device) if cuda else 0,
+        "used": used,
+        "added": used - used_before,
+    }
 
 
 def main() -> None:
@@ -306,14 +383,15 @@ def main() -> None:
         metavar="FILE=PROPORTION",
         help="rse's task on a mix of these scheme files (default: the task's stepfield)",
     )
-    parser.add_argument("--memory-only", action="store_true", help="build rse's task alone and report the device memory it holds")
+    parser.add_argument(
+        "--memory-only", action="store_true", help="build each terrain's task alone (a process each) and report the device memory it holds"
+    )
+    parser.add_argument("--terrain", choices=("mjlab", "rse"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     for item in args.schemes:
         path, _, weight = item.partition("=")
         SCHEMES[str(Path(path).resolve())] = float(weight or 1.0)
     if args.memory_only:
-        if not args.device.startswith("cuda"):
-            parser.error("--memory-only reads a CUDA device's allocators: give --device cuda")
         memory_only(args)
         return
 
@@ -383,6 +461,8 @@ def main() -> None:
         f"of the host's time, {proxy['uploaded bytes/env'] / 1024:.1f} KiB uploaded; host copies in rse's step terms: {proxy['host copies in step terms']:.0f}",
         flush=True,
     )
+    launches = ", ".join(f"{k.split(': ')[1]} {v:.0f}" for k, v in proxy.items() if k.startswith("launches: "))
+    print(f"kernels launched from Python a step, rse's step terms: {launches}", flush=True)
     # One runner per env (a second runner on an env the first used meets
     # its inference-mode tensors): a warm-up iteration, then one timed.
     ppo = {rse: ppo_iteration(args.task, env) for rse, env in envs.items()}

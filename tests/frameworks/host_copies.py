@@ -86,13 +86,10 @@ class HostCopies(TorchDispatchMode):
 @contextlib.contextmanager
 def as_a_gpu_runs_them(tops: Any) -> Iterator[None]:
     """While active, ``tops`` (an ``EnvTerrainsEvent.exact_tops()``) reads
-    the exact tops by tensor ops on the device, as on a GPU, where the CPU
-    device reads them with ``heights_at`` over the points' own memory. The
-    device model's fields are wrapped on entry (once, as a GPU does at its
-    first step), so that what is recorded inside is a step's work alone."""
+    the exact tops by a kernel on the device, as on a GPU, where the CPU
+    device reads them with ``heights_at`` over the points' own memory."""
     on_host, tops.on_host = tops.on_host, False
     try:
-        tops.samples()
         yield
     finally:
         tops.on_host = on_host

@@ -16,14 +16,16 @@ import pytest
 import rse
 import torch
 from host_copies import HostCopies, as_a_gpu_runs_them
+from launches import Launches
 from mjlab.envs import ManagerBasedRlEnv
 from mjlab.managers.observation_manager import ObservationTermCfg
 from mjlab.tasks.registry import load_env_cfg
+from rse._adapters.mjlab.ray_sensors import DirectRays, FieldRays, seen_geoms
 from rse._adapters.mjlab.reset_event import event_of
 from rse._adapters.mjlab.scene_pool import pool_memory
-from rse._adapters.mjlab.ray_sensors import DirectRays, FieldRays, seen_geoms
+from rse._adapters.mjlab.step_terms import bound_near_robots
 from rse._adapters.mjlab.terrains import probe_envs
-from rse.mjlab import env_terrains, exact_height_scan, use_env_terrains
+from rse.mjlab import env_terrains, exact_height_scan, out_of_slot, use_env_terrains
 from rse.mjlab_tasks import STEPFIELD
 
 TASK = "Mjlab-Velocity-Rough-Unitree-Go1"
@@ -61,7 +63,7 @@ def step_terms(env: ManagerBasedRlEnv) -> list[tuple[str, object]]:
 
 
 def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> None:
-    """Each term as a GPU runs it: the exact tops by tensor ops on the
+    """Each term as a GPU runs it: the exact tops by a kernel on the
     device (``DeviceTops.device_tops``; the CPU device reads them with
     ``heights_at`` over the points' own memory, and both give the same)."""
     terms = step_terms(env)
@@ -80,6 +82,46 @@ def test_the_step_terms_rse_adds_copy_nothing_between_host_and_device(env) -> No
                 got = run(term)
             assert not copies.found, f"{name} ({term.func.__name__}) copies to or from the host: {copies.found}"
             assert torch.allclose(got.float(), expected.float(), atol=1e-5), name
+
+
+def test_the_step_terms_rse_adds_launch_a_kernel_or_a_few_each(env) -> None:
+    """Each term as a GPU runs it launches few kernels from Python (each a
+    gap on a GPU, outside mjlab's captured graphs): the bounds around the
+    robots one Warp kernel and no tensor op (it was 44 tensor ops), the
+    exact scan its kernel and the few tensor ops around it, no more than
+    twice mjlab's own ray height scan (it was 150), ``out_of_slot`` as
+    many as mjlab's ``out_of_terrain_bounds``."""
+    from mjlab.envs import mdp
+
+    def launched(f) -> list[str]:
+        f()
+        with Launches() as launches:
+            f()
+        return launches.found
+
+    with as_a_gpu_runs_them(event_of(env, "rse_terrain").exact_tops()):
+        near = launched(lambda: bound_near_robots(env))
+        scan = launched(lambda: exact_height_scan(env, "terrain_scan"))
+        out = launched(lambda: out_of_slot(env))
+    rays = launched(lambda: mdp.height_scan(env, "terrain_scan"))
+    assert near == ["warp: near_boxes"], near
+    assert "warp: tops_under" in scan and len(scan) <= 2 * len(rays), (scan, rays)
+    assert len(out) <= 8, out
+
+
+def test_the_launch_recorder_sees_tensor_ops_and_warp_kernels() -> None:
+    """``Launches`` counts a tensor op that computes, not a view nor an
+    allocation, and a Warp kernel: the test above can fail."""
+    import warp as wp
+    from rse._adapters.warp_fields import scatter_rows_kernel
+
+    x = torch.ones(4)
+    with Launches() as launches:
+        x.view(2, 2)
+        torch.empty(3)
+        x + 1
+        wp.launch(scatter_rows_kernel(), dim=(1, 1), inputs=[wp.zeros((1, 1)), wp.zeros(1, dtype=wp.int32)], outputs=[wp.zeros(1)], device="cpu")
+    assert launches.found == ["torch: aten.add.Tensor", "warp: scatter_rows"], launches.found
 
 
 def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None:

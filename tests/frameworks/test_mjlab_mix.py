@@ -141,7 +141,7 @@ def test_play_of_a_checkpoint_shows_the_scheme_and_seed_its_run_recorded(tmp_pat
 def test_a_mix_of_grids_runs_every_slot_the_largest_and_the_exact_tops_agree_on_the_device() -> None:
     """A 4 m stepfield beside the 8 m flights: every env's slot is 8 m, the
     smaller terrain in its corner with ground around it; the exact tops a
-    GPU reads from the fields (tensor ops) are the host's, off the smaller
+    GPU reads from the fields (a kernel) are the host's, off the smaller
     terrain too (0, the ground plane), and the Go1s step on it."""
     import torch
     from host_copies import as_a_gpu_runs_them

@@ -12,7 +12,8 @@ event term), ``large_geom_fields`` (the coarse fields of the robot's large
 geoms), ``terrain_bounds`` and ``near_bounds`` (each world's terrain geoms
 bounded, at a reset and every step), ``watch_layout`` (envs laid out apart
 for watching), ``ray_sensors`` and ``ray_kernel`` (rays on each env's own
-field, camera meshes), ``device_tops`` (the exact tops on the device),
+field, camera meshes), ``device_tops`` and ``tops_kernel`` (the exact
+tops on the device, and the kernels that read them there),
 ``curriculum`` (the difficulty term), ``step_terms`` (height scan, out of
 slot, the near bounds' step event).
 

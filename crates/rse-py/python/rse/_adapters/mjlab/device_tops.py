@@ -1,6 +1,6 @@
 """Every env's exact tops on the simulation's device, for the terms that
-read them in a step (``exact_height_scan``): on a GPU tensor ops on the
-fields where they already are, on the CPU device ``heights_at`` over the
+read them in a step (``exact_height_scan``): on a GPU one kernel over the
+fields where they already are (``tops_kernel``), on the CPU device ``heights_at`` over the
 points' own memory; no copy between the host and a device either way."""
 
 from __future__ import annotations
@@ -17,12 +17,16 @@ class DeviceTops:
     """Every env's exact tops on the simulation's device, read from the
     pool's fields where they are (the device model's ``hfield_data``, no
     copy kept): each cell's k×k samples hold its height, so the sample at
-    a cell's first corner is its top. Only the fields' addresses are made
-    here, once."""
+    a cell's first corner is its top. Only the fields' addresses and the
+    grid's shape are made here, once (``starts``, ``grid``: the kernels'
+    arguments, also ``near.NearRobotBounds``')."""
 
     def __init__(self, sim: Any, envs: EnvTerrains, name: str) -> None:
         import mujoco
         import torch
+        import warp as wp
+
+        from rse._adapters.mjlab.tops_kernel import Grid, tops_under
 
         mjm = sim.mj_model
         first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
@@ -35,16 +39,22 @@ class DeviceTops:
         _, _, self.elevation, _ = envs.hfield_size
         self.z0 = float(envs.hfield_pos[2])
         self.model = sim.wp_model
-        self._wrapped: Any = None
-        self._tensor: Any = None
-        self.adr = torch.as_tensor(mjm.hfield_adr[first : first + n].astype(np.int64), device=sim.device)
+        device = sim.wp_model.hfield_data.device
+        self.starts: Any = wp.array(mjm.hfield_adr[first : first + n].astype(np.int64), dtype=wp.int64, device=device)
+        """Each env's field's first sample in ``hfield_data``."""
+        self.grid: Any = Grid()
+        """The slot's grid: the kernels' (``tops_kernel.Grid``)."""
+        for name, value in dict(ny=self.cells[0], nx=self.cells[1], k=self.k, ncol=self.ncol, block=self.block, elevation=self.elevation, z0=self.z0).items():
+            setattr(self.grid, name, value)
+        # Compiled now, not in the first step.
+        wp.load_module(tops_under.module, device=device)
         self.envs = envs
         self.all = np.arange(n)
         self.on_host = torch.device(sim.device).type == "cpu"
         """Whether the fields' device is the host: there the tops come from
-        ``EnvTerrains.heights_at`` over the points' own memory (3.3x faster
-        than the tensor ops on the CPU), elsewhere from tensor ops on the
-        device (``device_tops``)."""
+        ``EnvTerrains.heights_at`` over the points' own memory (0.15 ms for
+        32 envs × 187 points, against 0.20 ms for the kernel on the CPU),
+        elsewhere from one kernel on the device (``device_tops``)."""
 
     def tops(self, xy: Any) -> Any:
         """The tops under ``xy`` (``[num_envs, P, 2]``, each env's slot
@@ -59,47 +69,25 @@ class DeviceTops:
         return torch.from_numpy(np.nan_to_num(tops, nan=0.0, copy=False))
 
     def device_tops(self, xy: Any) -> Any:
-        """``tops`` by tensor ops where ``xy`` is: the two cells a point
-        may touch along each axis, each cell's top at the point from its
-        own samples, their highest. A cell's samples hold its top, or a
-        ramp's plane over it: the plane through its first sample and its
-        last along each axis, at the point, is either (a flat cell's
-        samples are equal: its top exactly)."""
+        """``tops`` by one kernel where ``xy`` is (``tops_kernel.tops_under``):
+        the two cells a point may touch along each axis, each cell's top at
+        the point from its own samples, their highest. A cell's samples
+        hold its top, or a ramp's plane over it: the plane through its
+        first sample and its last along each axis, at the point, is either
+        (a flat cell's samples are equal: its top exactly)."""
         import torch
-
-        ny, nx = self.cells
-        k = self.k
-        u = xy.to(torch.float64) / self.block
-        ux, uy = u[..., 0], u[..., 1]
-        row = k * self.ncol
-        data, start = self.samples(), self.adr.view(-1, *([1] * (ux.dim() - 1)))
-        # Each cell's first sample sits (½)/k of the way across it, its
-        # last (k − ½)/k: a point's place in the cell, in sample spacings
-        # from the first, over the k − 1 between first and last.
-        span = float(max(k - 1, 1))
-        top = None
-        for cy in ((torch.ceil(uy) - 1.0).clamp_(0, ny - 1), torch.floor(uy).clamp_(0, ny - 1)):
-            for cx in ((torch.ceil(ux) - 1.0).clamp_(0, nx - 1), torch.floor(ux).clamp_(0, nx - 1)):
-                first = start + cy.long() * row + cx.long() * k
-                a = torch.take(data, first).to(torch.float64)
-                if k > 1:
-                    along_x = torch.take(data, first + (k - 1)).to(torch.float64) - a
-                    along_y = torch.take(data, first + (k - 1) * self.ncol).to(torch.float64) - a
-                    fx = ((ux - cx) * k - 0.5) / span
-                    fy = ((uy - cy) * k - 0.5) / span
-                    a = a + along_x * fx + along_y * fy
-                top = a if top is None else torch.maximum(top, a)
-        assert top is not None
-        on = (ux >= 0) & (ux <= nx) & (uy >= 0) & (uy <= ny)
-        return torch.where(on, top * self.elevation + self.z0, 0.0)
-
-    def samples(self) -> Any:
-        """The device model's ``hfield_data`` as a tensor sharing its memory,
-        wrapped once (Warp's CPU interop goes through numpy), and again only
-        if the model's array was replaced."""
         import warp as wp
 
-        array = self.model.hfield_data
-        if array is not self._wrapped:
-            self._wrapped, self._tensor = array, wp.to_torch(array)
-        return self._tensor
+        from rse._adapters.mjlab.tops_kernel import tops_under
+
+        points = xy.detach().to(torch.float64).reshape(xy.shape[0], -1, 2).contiguous()
+        out = torch.empty(points.shape[:2], dtype=torch.float64, device=points.device)
+        data = self.model.hfield_data
+        wp.launch(
+            tops_under,
+            dim=tuple(points.shape[:2]),
+            inputs=[data, self.starts, self.grid, wp.from_torch(points, dtype=wp.float64)],
+            outputs=[wp.from_torch(out, dtype=wp.float64)],
+            device=data.device,
+        )
+        return out.view(xy.shape[:-1])

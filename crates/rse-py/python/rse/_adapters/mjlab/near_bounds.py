@@ -21,7 +21,6 @@ from typing import Any, Optional
 import numpy as np
 
 from rse._adapters.mjlab.device_tops import DeviceTops
-from rse._adapters.mjlab.terrain_bounds import z_extent
 from rse._adapters.mjlab.watch_layout import Apart
 
 SLACK = 0.02
@@ -98,54 +97,56 @@ class NearRobotBounds:
     the step after the update and the substep its positions lag by."""
 
     def __init__(self, sim: Any, gids: list[int], root: int, reach_m: float, horizon: float, tops: DeviceTops, apart: Apart) -> None:
-        import torch
+        import warp as wp
+
+        from rse._adapters.mjlab.tops_kernel import Square, near_boxes
 
         mjm = sim.mj_model
-        self.gids = torch.as_tensor(gids, dtype=torch.long, device=sim.device)
-        self.root = root
-        self.dof = int(mjm.jnt_dofadr[mjm.body_jntadr[root]])
-        self.reach = reach_m
-        self.horizon = horizon
+        device = sim.wp_model.hfield_data.device
+        self.gids: Any = wp.array(np.asarray(gids, dtype=np.int32), dtype=wp.int32, device=device)
+        self.offsets: Any = wp.array(np.asarray(apart.offsets, dtype=np.float32), dtype=wp.vec2, device=device)
         self.tops = tops
-        self.apart = apart
-        self.cap = reach_m + 2.0 * horizon * SPEED_CAP + SLACK
-        """The largest half side the gather covers, metres."""
-        # Cells a square of half side `cap` touches, and one more each side.
-        self.span = int(math.ceil(2.0 * self.cap / tops.block)) + 4
-        self.steps = torch.arange(self.span, device=sim.device)
-        self.centre = torch.as_tensor(0.5 * apart.size, dtype=torch.float32, device=sim.device)
-        _, _, _, self.base = tops.envs.hfield_size
+        self.square: Any = Square()
+        self.square.root = root
+        self.square.dof = int(mjm.jnt_dofadr[mjm.body_jntadr[root]])
+        self.square.horizon = horizon
+        self.square.slack = SLACK
+        x, y = 0.5 * apart.size
+        self.square.centre = wp.vec2(float(x), float(y))
+        _, _, _, self.square.base = tops.envs.hfield_size
+        self.reach = reach_m
+        # Compiled now, not in the first step.
+        wp.load_module(near_boxes.module, device=device)
+
+    @property
+    def reach(self) -> float:
+        """How far from the root a geom that may touch the terrain reaches
+        (``near.reach``), metres."""
+        return float(self.square.reach)
+
+    @reach.setter
+    def reach(self, metres: float) -> None:
+        # The largest half side the gather covers, and the cells a square
+        # of that half side touches, one more each side.
+        s = self.square
+        s.reach = metres
+        s.cap = metres + 2.0 * s.horizon * SPEED_CAP + SLACK
+        s.span = int(math.ceil(2.0 * s.cap / self.tops.block)) + 4
 
     def update(self, sim: Any) -> None:
         """Bounds every world's terrain geoms by the square around its
-        robot now: tensor ops on the simulation's device, written into the
-        model's per-world ``geom_aabb``."""
-        import torch
+        robot now: one kernel on the simulation's device
+        (``tops_kernel.near_boxes``), written into the model's per-world
+        ``geom_aabb``."""
+        import warp as wp
 
-        t = self.tops
-        ny, nx = t.cells
-        xy = self.apart.slot_xy(sim.data.xpos[:, self.root, :2]).to(torch.float32)
-        speed = torch.linalg.vector_norm(sim.data.qvel[:, self.dof : self.dof + 3], dim=1).to(torch.float32)
-        half = self.reach + 2.0 * self.horizon * speed + SLACK
-        # The cells the square touches, one more each side (a riser's
-        # slope), clamped onto the terrain; those past the square repeat
-        # its last and are masked.
-        first = torch.floor((xy - half[:, None]) / t.block).long() - 1
-        last = torch.floor((xy + half[:, None]) / t.block).long() + 1
-        cx, cy = first[:, 0:1] + self.steps, first[:, 1:2] + self.steps
-        inside = (cy <= last[:, 1:2]).unsqueeze(2) & (cx <= last[:, 0:1]).unsqueeze(1)
-        index = t.adr.view(-1, 1, 1) + (cy.clamp(0, ny - 1) * (t.k * t.ncol)).unsqueeze(2) + (cx.clamp(0, nx - 1) * t.k).unsqueeze(1)
-        samples = torch.take(t.samples(), index).masked_fill_(~inside, 0.0)
-        top = samples.amax(dim=(1, 2)).to(torch.float32)
-        # Faster than the gather covers: up to the highest top there is.
-        top = torch.where(half <= self.cap, top, 1.0) * t.elevation
-        z, half_z = z_extent(top, self.base)
-        box = torch.stack(
-            [
-                torch.stack([xy[:, 0] - self.centre[0], xy[:, 1] - self.centre[1], z], dim=1),
-                torch.stack([half, half, half_z], dim=1),
-            ],
-            dim=1,
+        from rse._adapters.mjlab.tops_kernel import near_boxes
+
+        m, d, t = sim.wp_model, sim.wp_data, self.tops
+        wp.launch(
+            near_boxes,
+            dim=d.nworld,
+            inputs=[m.hfield_data, t.starts, t.grid, self.square, d.xpos, d.qvel, self.offsets, self.gids],
+            outputs=[m.geom_aabb],
+            device=m.hfield_data.device,
         )
-        aabb = sim.model.geom_aabb
-        aabb[:, self.gids] = box.unsqueeze(1).to(aabb.dtype)
