@@ -126,30 +126,34 @@ def test_the_gpus_one_upload_writes_what_the_cpus_view_writes() -> None:
     assert np.array_equal(written[0], expected) and np.array_equal(written[1], expected)
 
 
-def test_a_resets_runs_go_into_two_arrays_the_same_either_way() -> None:
+def test_a_resets_blocks_go_into_two_arrays_the_same_either_way() -> None:
     """``Uploads`` (mjlab's reset: samples into ``hfield_data``, boxes
-    into ``geom_aabb``) writes each run at its start in its own target,
-    and nothing else: the GPU's way (one upload of the runs and their
-    places, one kernel), forced on the CPU device, writes what the CPU's
-    numpy views write, over calls that grow its buffers and reuse them."""
+    into ``geom_aabb``) writes each block's rows (picked, or in order) at
+    their starts in its own target, and nothing else: the GPU's way (one
+    upload of the rows and their places, one kernel), forced on the CPU
+    device, writes what the CPU's numpy views write, over calls that grow
+    its buffers and reuse them."""
     from rse._adapters.warp_fields import Uploads
 
     rng = np.random.default_rng(4)
+    pool = rng.random((5, 7), dtype=np.float32)
     calls = [
-        [(0, 40, rng.random(7, dtype=np.float32)), (1, 3, rng.random(6, dtype=np.float32)), (0, 2, rng.random(25, dtype=np.float32))],
-        [(1, 20, rng.random(6, dtype=np.float32))],
-        [(0, 100, rng.random(90, dtype=np.float32)), (1, 0, rng.random(3, dtype=np.float32)), (1, 30, rng.random(6, dtype=np.float32))],
+        [(0, [40, 2], pool, [3, 0]), (1, [3], rng.random((1, 6), dtype=np.float32), None), (0, [60], rng.random((1, 25), dtype=np.float32), None)],
+        [(1, [20], rng.random((1, 6), dtype=np.float32), None), (0, [], pool, [])],
+        [(0, [100], rng.random((1, 90), dtype=np.float32), None), (1, [0, 30], rng.random((2, 3), dtype=np.float32), None), (0, [10, 20, 30], pool, [4, 4, 1])],
     ]
     written = []
     for kernel in (False, True):
         targets = [wp.array(np.full(200, -1.0, dtype=np.float32), device="cpu"), wp.array(np.full(40, -2.0, dtype=np.float32), device="cpu")]
         uploads = Uploads(kernel=kernel)
-        for runs in calls:
-            uploads.write(targets, runs)
+        for blocks in calls:
+            uploads.write(targets, blocks)
         written.append([t.numpy().copy() for t in targets])
     expected = [np.full(200, -1.0, dtype=np.float32), np.full(40, -2.0, dtype=np.float32)]
-    for runs in calls:
-        for t, start, values in runs:
-            expected[t][start : start + len(values)] = values
+    for blocks in calls:
+        for t, starts, rows, picks in blocks:
+            for i, start in enumerate(starts):
+                row = rows[i if picks is None else picks[i]]
+                expected[t][start : start + len(row)] = row
     for got in written:
         assert all(np.array_equal(a, b) for a, b in zip(got, expected))

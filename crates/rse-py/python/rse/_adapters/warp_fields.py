@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Iterable
-from typing import Any, Optional
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -67,24 +67,26 @@ def scatter_rows_kernel() -> Any:
     return scatter_rows
 
 
-Run = tuple[int, int, np.ndarray]
-"""What ``Uploads.write`` writes: ``(target, start, values)``, the values
-(float32, one dimension) into target ``target`` from element ``start``."""
+Block = tuple[int, np.ndarray, np.ndarray, Optional[Union[np.ndarray, list[int]]]]
+"""What ``Uploads.write`` writes: ``(target, starts, rows, picks)``: row
+``picks[i]`` of ``rows`` (float32, one row a run; row ``i`` where
+``picks`` is None) into target ``target`` from element ``starts[i]``,
+for each ``i``: a reset's envs' fields, or their geoms' boxes."""
 
 
 class Uploads:
-    """A reset's runs of float32 values (its envs' samples, their geoms'
+    """A reset's blocks of float32 rows (its envs' samples, their geoms'
     boxes) written into up to ``TARGETS`` flat float32 Warp arrays of one
     device at once, in the order of Warp's stream (the simulation's). On a
-    GPU the runs and their places go up in two copies from pinned host
-    buffers kept from call to call (so the host does not wait for them,
-    and allocates nothing), and one kernel
-    writes every run in place; before, each array took its own two
+    GPU the rows and their places are gathered (numpy, a copy a block)
+    into pinned host buffers kept from call to call (so the host does not
+    wait for them, and allocates nothing), go up in two copies, and one
+    kernel writes every row in place; before, each array took its own two
     uploads from pageable memory and a kernel (at 4096 envs on an H200 a
-    reset of 4 envs took 3.5 ms of the host's time). On the CPU device the
-    runs go into numpy views of the targets' memory; ``kernel=True`` takes
-    the GPU's way there too (tests), from host buffers that are not
-    pinned."""
+    reset of 4 envs took 3.5 ms of the host's time), and each row was
+    packed in a loop of its own. On the CPU device the rows go into numpy
+    views of the targets' memory; ``kernel=True`` takes the GPU's way
+    there too (tests), from host buffers that are not pinned."""
 
     TARGETS = 2
 
@@ -96,37 +98,52 @@ class Uploads:
         self._places: Any = None
         self._sent: Any = None
 
-    def write(self, targets: list[Any], runs: list[Run]) -> None:
-        """Writes each ``(target, start, values)`` of ``runs`` into
+    def write(self, targets: list[Any], blocks: list[Block]) -> None:
+        """Writes each block of ``blocks`` (``Block``) into
         ``targets[target]`` (flat float32 Warp arrays of one device, at
-        most ``TARGETS``) from element ``start``."""
-        import warp as wp
-
-        if not runs:
-            return
+        most ``TARGETS``)."""
         if len(targets) > self.TARGETS:
             raise ValueError(f"targets: at most {self.TARGETS} arrays, got {len(targets)}")
+        blocks = [(t, np.asarray(starts, dtype=np.int64).reshape(-1), rows, picks) for t, starts, rows, picks in blocks if len(starts)]
+        if not blocks:
+            return
         device = targets[0].device
         if not (device.is_cuda if self.kernel is None else self.kernel):
             views = [_flat_view(t, "targets") for t in targets]
-            for t, start, values in runs:
-                views[t][start : start + len(values)] = values
+            for t, starts, rows, picks in blocks:
+                write_rows(views[t], rows, zip(range(len(starts)) if picks is None else picks, starts))
             return
-        sizes = [len(values) for _, _, values in runs]
-        self._reserve(device, sum(sizes), len(runs))
+        self._send(targets, blocks)
+
+    def _send(self, targets: list[Any], blocks: list[Block]) -> None:
+        """``write`` the GPU's way: the rows gathered into the pinned host
+        buffer, their places beside them, two copies up and one kernel."""
+        import warp as wp
+
+        device = targets[0].device
+        sizes = [rows.shape[-1] if rows.ndim > 1 else len(rows) for _, _, rows, _ in blocks]
+        count = sum(len(starts) for _, starts, _, _ in blocks)
+        self._reserve(device, sum(len(b[1]) * size for b, size in zip(blocks, sizes)), count)
         if self._sent is not None:
             # The last call's copies read these buffers: done long since.
             wp.synchronize_event(self._sent)
         host, places = self._host.numpy(), self._places_host.numpy().reshape(-1, 4)
-        offset = 0
-        for i, (t, start, values) in enumerate(runs):
-            host[offset : offset + len(values)] = values
-            places[i] = (offset, start, len(values), t)
-            offset += len(values)
+        offset = r = 0
+        for (t, starts, rows, picks), size in zip(blocks, sizes):
+            n = len(starts)
+            out = host[offset : offset + n * size].reshape(n, size)
+            rows = rows.reshape(-1, size)
+            if picks is None:
+                out[...] = rows
+            else:
+                np.take(rows, np.asarray(picks, dtype=np.int64), axis=0, out=out)
+            places[r : r + n] = np.stack([offset + size * np.arange(n), starts, np.full(n, size), np.full(n, t)], axis=1)
+            offset += n * size
+            r += n
         wp.copy(self._values, self._host, count=offset)
-        wp.copy(self._places, self._places_host, count=4 * len(runs))
+        wp.copy(self._places, self._places_host, count=4 * count)
         padded = list(targets) + [targets[0]] * (self.TARGETS - len(targets))
-        wp.launch(write_runs_kernel(), dim=(len(runs), max(sizes)), inputs=[self._values, self._places, *padded], device=device)
+        wp.launch(write_runs_kernel(), dim=(count, max(sizes)), inputs=[self._values, self._places, *padded], device=device)
         if device.is_cuda:
             self._sent = wp.get_stream(device).record_event()
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from rse._adapters import contacts
 from rse._adapters.pool import GEOM
-from rse._adapters.warp_fields import Run, route_per_world
+from rse._adapters.warp_fields import Block, route_per_world
 from rse._rse import EnvTerrains
 
 
@@ -30,14 +30,13 @@ class CoarsePool:
         self.adr = np.asarray(mjm.hfield_adr[first : first + envs.num_envs], dtype=np.int64)
         route_per_world(m, self.gid, first)
 
-    def runs(self, mjm: Any, envs: EnvTerrains, ids: list[int], target: int) -> list[Run]:
+    def blocks(self, mjm: Any, envs: EnvTerrains, ids: list[int], target: int) -> list[Block]:
         """Copies the coarse samples of ``ids`` into the host model
-        ``mjm`` and returns them as ``Uploads`` runs for the device
+        ``mjm`` and returns them as an ``Uploads`` block for the device
         model's ``hfield_data``, which the caller names ``target``."""
         if self.gid < 0 or not ids:
             return []
         # Gathered once, for the host model and the device's.
         samples = contacts.coarse_samples(envs, ids)
         contacts.copy_coarse(mjm.hfield_data, samples, ids, self.adr)
-        rows = samples.reshape(len(ids), -1)
-        return [(target, int(self.adr[e]), rows[i]) for i, e in enumerate(ids)]
+        return [(target, self.adr[ids], samples.reshape(len(ids), -1), None)]

@@ -154,10 +154,8 @@ class EnvTerrainsEvent:
         m = sim.wp_model
         copy_env_samples(sim.mj_model.hfield_data, self.envs, ids, self._adr, self._size)
         rows = self.envs.samples.reshape(self.envs.num_envs, -1)
-        runs = [(0, int(self._adr[e]), rows[e]) for e in ids]
-        runs += self._coarse.runs(sim.mj_model, self.envs, ids, 0)
-        runs += self._bounds.runs(self.envs, ids, 1)
-        self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], runs)
+        blocks = [(0, self._adr[ids], rows, ids), *self._coarse.blocks(sim.mj_model, self.envs, ids, 0), *self._bounds.blocks(self.envs, ids, 1)]
+        self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], blocks)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
         index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
