@@ -170,6 +170,35 @@ def test_write_into_a_callers_array_by_numpy_dlpack_or_buffer() -> None:
     assert np.array_equal(np.frombuffer(raw, np.float32).reshape(envs.samples.shape), envs.samples)
 
 
+def test_the_fields_copied_out_for_a_reset_are_the_pools_exact_and_coarse() -> None:
+    """``_copy_fields`` (mjlab's reset: the host model, the upload's
+    buffer) puts each named env's field at its start and nothing else;
+    with ``coarse``, a cell's sample is the mean of its first and last
+    (over a ramp, its plane at the centre); bad places are named, and a
+    refused copy writes nothing."""
+    ramps = rse.Scheme.load(SCHEMES / "mix_ramps.csv")
+    envs = rse.EnvTerrains(ramps, 3, oversample=2, difficulty=1.0)
+    n = envs.samples[0].size
+    data = np.full(3 * n, -1.0, np.float32)
+    envs._copy_fields([2, 0], data, [5, n + 5])
+    assert np.array_equal(data[5 : n + 5], envs.samples[2].ravel())
+    assert np.array_equal(data[n + 5 : 2 * n + 5], envs.samples[0].ravel())
+    assert (data[:5] == -1).all() and (data[2 * n + 5 :] == -1).all()
+    k = envs.oversample
+    first, last = envs.samples[1, ::k, ::k], envs.samples[1, k - 1 :: k, k - 1 :: k]
+    coarse = np.zeros(first.size, np.float32)
+    envs._copy_fields(np.array([1]), coarse, np.array([0]), coarse=True)
+    assert np.array_equal(coarse, ((first + last) * np.float32(0.5)).ravel())
+    assert not np.array_equal(coarse, first.ravel()), "the ramps' cells read their planes"
+    data[:] = 7.0
+    for starts, said in (([0, n - 1], "starts: the field at"), ([2 * n + 1, 0], "data: "), ([-1, 0], "starts: -1 is not a place")):
+        with pytest.raises(ValueError, match=said):
+            envs._copy_fields([0, 1], data, starts)
+    with pytest.raises(ValueError, match="env_ids: 3"):
+        envs._copy_fields([3], data, [0])
+    assert (data == 7.0).all()
+
+
 def ray_down(model, data, x: float, y: float, geom: int) -> float:
     hit = np.zeros(1, dtype=np.int32)
     dist = mujoco.mj_ray(model, data, np.array([x, y, 20.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, hit)

@@ -73,8 +73,9 @@ pub use curriculum::{
 pub use difficulty::{Difficulty, DifficultyError, DifficultyRule};
 pub use env_terrains::{
     DEFAULT_ENV_OVERSAMPLE, ENV_BITS, ENV_OPTIONS, EnvError, EnvLayout, EnvOptionInfo, EnvOptions,
-    EnvRequest, EnvTerrains, LayoutKind, SchemeMix, SheetOptions, SheetTile, check_mixable,
-    contact_sheet, contact_sheet_named, env_pool_bytes, env_world, mix_pool_bytes, tiles_sheet,
+    EnvRequest, EnvTerrains, FieldSamples, LayoutKind, SchemeMix, SheetOptions, SheetTile,
+    check_mixable, contact_sheet, contact_sheet_named, env_pool_bytes, env_world, mix_pool_bytes,
+    tiles_sheet,
 };
 pub use error::{Error, SchemeError, SchemeErrorKind, excerpt};
 pub use generate::{generate, generate_at, generate_by};

@@ -23,6 +23,7 @@ use crate::keywords::{self, KeywordGroup as _, keyword_group};
 use crate::options::PyLayout;
 use crate::scheme::{PyDifficulty, Scheme, difficulty_arg};
 use crate::terrain::{Terrain, writable_samples};
+use rse_core::FieldSamples;
 
 /// The terrains of `num_envs` environments, each new at every reset.
 ///
@@ -781,6 +782,45 @@ impl EnvTerrains {
         let guard = self.reading()?;
         let inner: &rse_core::EnvTerrains = &guard;
         py.detach(|| inner.write(&envs, slice)).map_err(value_error)
+    }
+
+    /// Copies the fields of `env_ids` out of `samples` into `data` (flat
+    /// float32 numpy, C-contiguous and writable: a model's `hfield_data`,
+    /// a host buffer a GPU upload reads) from `starts` (one each, not
+    /// overlapping), every env on its own thread with the GIL released:
+    /// the exact fields, or with `coarse` one sample a cell (the mean of
+    /// its first and last). For the adapters (mjlab's reset); slots only.
+    #[pyo3(signature = (env_ids, data, starts, *, coarse=false))]
+    fn _copy_fields(
+        &self,
+        py: Python<'_>,
+        env_ids: &Bound<'_, PyAny>,
+        data: &Bound<'_, PyArray1<f32>>,
+        starts: Vec<i64>,
+        coarse: bool,
+    ) -> PyResult<()> {
+        let envs = self::env_ids(env_ids, self.fixed.num_envs)?;
+        let starts = starts
+            .into_iter()
+            .map(|s| {
+                usize::try_from(s).map_err(|_| {
+                    PyValueError::new_err(format!("starts: {s} is not a place in data"))
+                })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let kind = if coarse {
+            FieldSamples::Coarse
+        } else {
+            FieldSamples::Exact
+        };
+        let samples = self.samples.bind(py).try_readonly().map_err(value_error)?;
+        let buffer = samples.as_slice().map_err(value_error)?;
+        let mut view = writable_samples(data, "data")?;
+        let out = view.as_slice_mut().map_err(value_error)?;
+        let guard = self.reading()?;
+        let inner: &rse_core::EnvTerrains = &guard;
+        py.detach(|| inner.copy_fields(buffer, &envs, &starts, kind, out))
+            .map_err(value_error)
     }
 }
 

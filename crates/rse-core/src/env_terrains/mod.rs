@@ -9,7 +9,8 @@
 //! This module holds the environments' state and episodes; `options` what
 //! they are made with and their errors, `layout` the buffer (slots or
 //! tiles, its shape, the writes), `request` what a user asks for, resolved
-//! to [`EnvOptions`] with the library's defaults.
+//! to [`EnvOptions`] with the library's defaults, `copy_out` the slots'
+//! fields copied out of the buffer for an adapter's reset.
 
 use rayon::prelude::*;
 
@@ -19,6 +20,7 @@ use crate::globals::Grid;
 use crate::scheme::Scheme;
 use crate::terrain::Terrain;
 
+mod copy_out;
 mod layout;
 mod mix;
 mod options;
@@ -29,6 +31,7 @@ use layout::chunks_at;
 
 use options::bad;
 
+pub use copy_out::FieldSamples;
 pub use layout::{env_pool_bytes, mix_pool_bytes};
 pub use mix::{SchemeMix, check_mixable};
 pub use options::{EnvError, EnvLayout, EnvOptions};

@@ -317,6 +317,14 @@ class EnvTerrains:
         self, env_ids: Union[Sequence[int], npt.NDArray[np.integer]], points: npt.ArrayLike
     ) -> npt.NDArray[np.float64]: ...
     def write(self, out: Any, env_ids: Union[None, Sequence[int], npt.NDArray[np.integer]] = None) -> None: ...
+    def _copy_fields(
+        self,
+        env_ids: Union[Sequence[int], npt.NDArray[np.integer]],
+        data: npt.NDArray[np.float32],
+        starts: Union[Sequence[int], npt.NDArray[np.integer]],
+        *,
+        coarse: bool = False,
+    ) -> None: ...
 
 def scheme_mix(proportions: Sequence[float], num_envs: int, seed: int, env_offset: int = 0) -> npt.NDArray[np.int64]: ...
 def generate_batch(

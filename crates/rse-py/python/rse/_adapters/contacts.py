@@ -15,9 +15,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
-
-from rse._adapters.warp_fields import write_rows
 from rse._rse import EnvTerrains
 
 MAX_PRISMS = 50
@@ -60,17 +57,6 @@ def coarse_size(envs: EnvTerrains) -> list[float]:
     ny, nx = slot_cells(envs)
     _, _, elevation, base = envs.hfield_size
     return [0.5 * (nx - 1) * s, 0.5 * (ny - 1) * s, elevation, base]
-
-
-def coarse_samples(envs: EnvTerrains, ids: list[int]) -> np.ndarray:
-    """The coarse samples of the envs ``ids``, ``(len(ids), ny, nx)``: at
-    each cell's centre, the mean of its first and last samples. A cell's
-    k×k samples are its height (the mean is that, exactly), or a ramp's
-    plane over it (the mean is the plane at the centre)."""
-    k = oversample_of(envs)
-    samples = envs.samples[ids]
-    first, last = samples[:, ::k, ::k], samples[:, k - 1 :: k, k - 1 :: k]
-    return np.ascontiguousarray((first + last) * np.float32(0.5), dtype=np.float32)
 
 
 def footprint_cells(geom_type: int, size: Any, rbound: float, spacing: float) -> float:
@@ -128,10 +114,3 @@ def route_geoms(small: list[Any], large: list[Any], exact: Any, coarse: Any, gro
     exact.contype, exact.conaffinity = 0, SMALL_BIT
     coarse.contype, coarse.conaffinity = 0, LARGE_BIT
     ground.contype, ground.conaffinity = 0, SMALL_BIT | LARGE_BIT
-
-
-def copy_coarse(data: np.ndarray, samples: np.ndarray, ids: list[int], adr: np.ndarray) -> None:
-    """Copies ``samples`` (``coarse_samples`` of ``ids``) into ``data`` (a
-    model's ``hfield_data``, or a numpy view of a Warp model's on the CPU)
-    at the coarse fields' addresses ``adr`` (one per env)."""
-    write_rows(data, samples.reshape(len(ids), -1), [(i, adr[e]) for i, e in enumerate(ids)])

@@ -7,8 +7,9 @@ pointed at a field per world (``geom_dataid`` batched per world)."""
 
 from __future__ import annotations
 
+import dataclasses
 import functools
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any, Optional, Union
 
 import numpy as np
@@ -67,11 +68,30 @@ def scatter_rows_kernel() -> Any:
     return scatter_rows
 
 
-Block = tuple[int, np.ndarray, np.ndarray, Optional[Union[np.ndarray, list[int]]]]
+@dataclasses.dataclass(frozen=True)
+class Filled:
+    """Rows that write themselves: ``size`` values each, row ``i`` written
+    by ``fill(data, starts)`` into the flat float32 numpy array ``data``
+    from ``starts[i]`` (``EnvTerrains._copy_fields``: a reset's envs'
+    fields, copied from the pool on a thread each)."""
+
+    size: int
+    fill: Callable[[np.ndarray, np.ndarray], None]
+
+
+Block = tuple[int, np.ndarray, Union[np.ndarray, Filled], Optional[Union[np.ndarray, list[int]]]]
 """What ``Uploads.write`` writes: ``(target, starts, rows, picks)``: row
 ``picks[i]`` of ``rows`` (float32, one row a run; row ``i`` where
-``picks`` is None) into target ``target`` from element ``starts[i]``,
-for each ``i``: a reset's envs' fields, or their geoms' boxes."""
+``picks`` is None, and always for ``Filled`` rows) into target
+``target`` from element ``starts[i]``, for each ``i``: a reset's envs'
+fields, or their geoms' boxes."""
+
+
+def row_size(rows: Union[np.ndarray, Filled]) -> int:
+    """Values in each of ``rows``."""
+    if isinstance(rows, Filled):
+        return rows.size
+    return int(rows.shape[-1]) if rows.ndim > 1 else len(rows)
 
 
 class Uploads:
@@ -111,7 +131,10 @@ class Uploads:
         if not (device.is_cuda if self.kernel is None else self.kernel):
             views = [_flat_view(t, "targets") for t in targets]
             for t, starts, rows, picks in blocks:
-                write_rows(views[t], rows, zip(range(len(starts)) if picks is None else picks, starts))
+                if isinstance(rows, Filled):
+                    rows.fill(views[t], starts)
+                else:
+                    write_rows(views[t], rows, zip(range(len(starts)) if picks is None else picks, starts))
             return
         self._send(targets, blocks)
 
@@ -121,7 +144,7 @@ class Uploads:
         import warp as wp
 
         device = targets[0].device
-        sizes = [rows.shape[-1] if rows.ndim > 1 else len(rows) for _, _, rows, _ in blocks]
+        sizes = [row_size(rows) for _, _, rows, _ in blocks]
         count = sum(len(starts) for _, starts, _, _ in blocks)
         self._reserve(device, sum(len(b[1]) * size for b, size in zip(blocks, sizes)), count)
         if self._sent is not None:
@@ -132,11 +155,12 @@ class Uploads:
         for (t, starts, rows, picks), size in zip(blocks, sizes):
             n = len(starts)
             out = host[offset : offset + n * size].reshape(n, size)
-            rows = rows.reshape(-1, size)
-            if picks is None:
-                out[...] = rows
+            if isinstance(rows, Filled):
+                rows.fill(host, offset + size * np.arange(n))
+            elif picks is None:
+                out[...] = rows.reshape(-1, size)
             else:
-                np.take(rows, np.asarray(picks, dtype=np.int64), axis=0, out=out)
+                np.take(rows.reshape(-1, size), np.asarray(picks, dtype=np.int64), axis=0, out=out)
             places[r : r + n] = np.stack([offset + size * np.arange(n), starts, np.full(n, size), np.full(n, t)], axis=1)
             offset += n * size
             r += n

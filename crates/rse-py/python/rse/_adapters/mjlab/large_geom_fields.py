@@ -11,7 +11,7 @@ import numpy as np
 
 from rse._adapters import contacts
 from rse._adapters.pool import GEOM
-from rse._adapters.warp_fields import Block, route_per_world
+from rse._adapters.warp_fields import Block, Filled, route_per_world
 from rse._rse import EnvTerrains
 
 
@@ -33,10 +33,12 @@ class CoarsePool:
     def blocks(self, mjm: Any, envs: EnvTerrains, ids: list[int], target: int) -> list[Block]:
         """Copies the coarse samples of ``ids`` into the host model
         ``mjm`` and returns them as an ``Uploads`` block for the device
-        model's ``hfield_data``, which the caller names ``target``."""
+        model's ``hfield_data``, which the caller names ``target``: each
+        cell's sample the mean of its first and last (``EnvTerrains._copy_fields``
+        with ``coarse``, a thread an env)."""
         if self.gid < 0 or not ids:
             return []
-        # Gathered once, for the host model and the device's.
-        samples = contacts.coarse_samples(envs, ids)
-        contacts.copy_coarse(mjm.hfield_data, samples, ids, self.adr)
-        return [(target, self.adr[ids], samples.reshape(len(ids), -1), None)]
+        starts = self.adr[ids]
+        envs._copy_fields(ids, mjm.hfield_data, starts, coarse=True)
+        size = int(np.prod(contacts.slot_cells(envs)))
+        return [(target, starts, Filled(size, lambda data, at: envs._copy_fields(ids, data, at, coarse=True)), None)]

@@ -24,8 +24,8 @@ from rse._adapters.mjlab.terrains import (
     terrain_settings,
 )
 from rse._adapters.mjlab.watch_layout import Apart
-from rse._adapters.pool import GEOM, POOL, copy_env_samples, env_pool
-from rse._adapters.warp_fields import Uploads
+from rse._adapters.pool import GEOM, POOL, env_pool
+from rse._adapters.warp_fields import Filled, Uploads
 from rse._rse import EnvTerrains, _env_keywords
 
 TERM = "rse_terrain"
@@ -146,15 +146,17 @@ class EnvTerrainsEvent:
     def _copy_out(self, ids: list[int]) -> None:
         """Copies the terrains of ``ids`` into the simulation's model (their
         exact and coarse samples and their geoms' boxes, in one upload:
-        ``Uploads``) and the host model, their meshes into the cameras'
+        ``Uploads``; the fields copied from the pool a thread an env,
+        ``EnvTerrains._copy_fields``) and the host model, their meshes into the cameras'
         render context (if any), and their origins into ``env_origins``."""
         import torch
 
         sim = self._env.sim
         m = sim.wp_model
-        copy_env_samples(sim.mj_model.hfield_data, self.envs, ids, self._adr, self._size)
-        rows = self.envs.samples.reshape(self.envs.num_envs, -1)
-        blocks = [(0, self._adr[ids], rows, ids), *self._coarse.blocks(sim.mj_model, self.envs, ids, 0), *self._bounds.blocks(self.envs, ids, 1)]
+        starts = self._adr[ids]
+        self.envs._copy_fields(ids, sim.mj_model.hfield_data, starts)
+        exact = Filled(self._size, lambda data, at: self.envs._copy_fields(ids, data, at))
+        blocks = [(0, starts, exact, None), *self._coarse.blocks(sim.mj_model, self.envs, ids, 0), *self._bounds.blocks(self.envs, ids, 1)]
         self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], blocks)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
