@@ -32,11 +32,11 @@ TASK = "Mjlab-Velocity-Rough-Unitree-Go1"
 NUM_ENVS = 4
 
 
-@pytest.fixture(scope="module")
-def env():
+def make_env() -> ManagerBasedRlEnv:
     """The Go1 rough task on rse's stepfield, laid out apart (the offsets'
     path of every term) and with the exact scan as the critic's height
-    scan, so that each step term rse has is in the config."""
+    scan, so that each step term rse has is in the config; reset and
+    stepped once."""
     cfg = load_env_cfg(TASK)
     cfg.scene.num_envs = NUM_ENVS
     use_env_terrains(cfg, rse.Scheme.from_csv(STEPFIELD), seed=3, apart=True)
@@ -44,6 +44,13 @@ def env():
     env = ManagerBasedRlEnv(cfg, device="cpu")
     env.reset()
     env.step(torch.zeros(env.action_space.shape))
+    return env
+
+
+@pytest.fixture(scope="module")
+def env():
+    """``make_env``'s env, shared by the tests that only read it."""
+    env = make_env()
     yield env
     env.close()
 
@@ -138,6 +145,33 @@ def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None
     with HostCopies() as copies:
         float(torch.ones(1).sum())
     assert any("_local_scalar_dense" in f for f in copies.found), copies.found
+
+
+def test_a_reset_reads_its_ids_once_and_sends_nothing_the_host_waits_for() -> None:
+    """On a GPU each copy from pageable memory, and each read into
+    Python, waits for the device: a step's reset (the curriculum term,
+    then the reset event, with mjlab's env ids on the device) reads the
+    ids once in each (the host draws the terrains), the curriculum its
+    moves, and makes no tensor from host data but the origins, which go
+    up through pinned memory without the host waiting (``to_device``)."""
+    from rse._adapters.mjlab.curriculum import terrain_difficulty
+
+    env = make_env()  # its terrains change: not the shared one
+    try:
+        event = event_of(env, "rse_terrain")
+        ids = torch.tensor([0, 2], device=env.device)
+        terrain_difficulty(env, ids)  # its per-env halves, made once
+        with HostCopies() as curriculum:
+            terrain_difficulty(env, ids)
+        with HostCopies() as reset:
+            event(env, ids)
+    finally:
+        env.close()
+    made = [f for f in curriculum.found + reset.found if "host data" in f and "from_numpy" not in f and "lift_fresh" not in f]
+    assert not made, made
+    assert sum("Tensor.cpu" in f for f in curriculum.found) == 2, curriculum.found
+    assert sum("Tensor.cpu" in f for f in reset.found) == 1, reset.found
+    assert sum("from_numpy" in f for f in reset.found) == 1, reset.found
 
 
 def test_the_terrains_take_at_most_128_kib_an_env_on_the_device_as_estimated(env) -> None:

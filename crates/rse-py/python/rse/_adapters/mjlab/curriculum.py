@@ -7,7 +7,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._adapters.mjlab.reset_event import TERM, event_of, ids_of
+from rse._adapters.mjlab.reset_event import TERM, event_of, ids_of, index_of
 
 
 def terrain_difficulty(
@@ -37,12 +37,9 @@ def terrain_difficulty(
         step = 1.0 / (event.terrain_levels - 1) if event.terrain_levels else 0.1
     ids = ids_of(env, env_ids)
     if env.common_step_counter > 0 and ids:
-        index = torch.as_tensor(ids, dtype=torch.long, device=env.device)
+        index = index_of(env_ids, ids, env.scene.env_origins.device)
         walked = torch.norm(env.scene[asset_name].data.root_link_pos_w[index, :2] - env.scene.env_origins[index, :2], dim=1)
-        # Half of each env's own terrain (a mix may hold smaller grids),
-        # from its scheme's grid: no terrain is read.
-        halves = np.array([0.5 * s.block_size * min(s.grid) for s in envs.schemes])
-        half = torch.as_tensor(halves[envs.scheme_ids[ids]], dtype=walked.dtype, device=walked.device)
+        half = event.halves(walked)[index]
         up = walked > half
         if command_name is None:
             down = walked < half / 2

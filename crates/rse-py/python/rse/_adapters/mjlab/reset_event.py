@@ -98,6 +98,7 @@ class EnvTerrainsEvent:
         )
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
+        self._halves: dict[Any, Any] = {}
         self.near_robot = self._near_robot(env)
         """The terrain's bounds around each robot, renewed every step
         (``bound_near_robots``), or None where the scene's geoms that may
@@ -143,12 +144,13 @@ class EnvTerrainsEvent:
         sim = self._env.sim
         return device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
 
-    def _copy_out(self, ids: list[int]) -> None:
+    def _copy_out(self, ids: list[int], index: Any = None) -> None:
         """Copies the terrains of ``ids`` into the simulation's model (their
         exact and coarse samples and their geoms' boxes, in one upload:
         ``Uploads``; the fields copied from the pool a thread an env,
         ``EnvTerrains._copy_fields``) and the host model, their meshes into the cameras'
-        render context (if any), and their origins into ``env_origins``."""
+        render context (if any), and their origins into ``env_origins``
+        (at ``index``, ``ids`` on the origins' device, made if None)."""
         import torch
 
         sim = self._env.sim
@@ -160,11 +162,12 @@ class EnvTerrainsEvent:
         self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], blocks)
         self._refresh_rays(ids)
         origins = self._env.scene.env_origins
-        index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
+        if index is None:
+            index = torch.as_tensor(ids, dtype=torch.long, device=origins.device)
         at = self.envs.origins[ids].copy()
         at[:, :2] += self.apart.offsets[ids]
-        origins[index] = torch.as_tensor(at, dtype=origins.dtype, device=origins.device)
-        self.apart.place(sim, ids)
+        origins[index] = to_device(at, origins)
+        self.apart.place(sim, ids, index)
 
     def _refresh_rays(self, ids: list[int]) -> None:
         """Brings the camera meshes of the fields of ``ids`` up to date in
@@ -195,12 +198,49 @@ class EnvTerrainsEvent:
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
         ids = ids_of(env, env_ids)
         self.envs.reset(ids)
-        self._copy_out(ids)
+        self._copy_out(ids, index_of(env_ids, ids, env.scene.env_origins.device))
+
+    def halves(self, like: Any) -> Any:
+        """Half of each env's own terrain's shorter side (a mix may hold
+        smaller grids), metres, from its scheme's grid (no terrain is
+        read): a tensor of ``like``'s device and dtype, made once each."""
+        import numpy as np
+        import torch
+
+        key = (like.device, like.dtype)
+        if key not in self._halves:
+            halves = np.array([0.5 * s.block_size * min(s.grid) for s in self.envs.schemes])
+            self._halves[key] = torch.as_tensor(halves[self.envs.scheme_ids], dtype=like.dtype, device=like.device)
+        return self._halves[key]
 
 
 def ids_of(env: Any, env_ids: Any) -> list[int]:
     """mjlab's env ids (a tensor, a slice or None: all) as a list."""
     return _env_ids(env.num_envs, env_ids)
+
+
+def index_of(env_ids: Any, ids: list[int], device: Any) -> Any:
+    """``ids`` as an index tensor on ``device``: mjlab's own ``env_ids``
+    where it is one already (a tensor of ints there, as a step's resets
+    hand it over), so no copy goes up for it; else made from ``ids``."""
+    import torch
+
+    given = isinstance(env_ids, torch.Tensor) and env_ids.dim() == 1 and env_ids.device == torch.device(device)
+    if given and env_ids.dtype in (torch.int64, torch.int32):
+        return env_ids.long()
+    return torch.as_tensor(ids, dtype=torch.long, device=device)
+
+
+def to_device(values: Any, like: Any) -> Any:
+    """Host ``values`` as a tensor of ``like``'s device and dtype: on a
+    GPU through pinned memory, copied without the host waiting for it
+    (torch's pinned allocator keeps the buffer until the copy is done)."""
+    import torch
+
+    host = torch.from_numpy(values).to(like.dtype)
+    if like.device.type == "cpu":
+        return host
+    return host.pin_memory().to(like.device, non_blocking=True)
 
 
 def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:

@@ -80,17 +80,19 @@ class Apart:
             tensor = self._tensors[key] = torch.as_tensor(getattr(self, name), dtype=like.dtype, device=like.device)
         return tensor
 
-    def place(self, sim: Any, ids: list[int]) -> None:
-        """Puts the view bodies of ``ids`` at their envs' places (a reset
-        may have put them back)."""
+    def place(self, sim: Any, ids: list[int], index: Any = None) -> None:
+        """Puts the view bodies of ``ids`` (at ``index`` on the device,
+        made if None) at their envs' places (a reset may have put them
+        back), from the offsets kept on the device."""
         import torch
 
         if self.mocap < 0 or not ids:
             return
         mocap = sim.data.mocap_pos
-        index = torch.as_tensor(ids, dtype=torch.long, device=mocap.device)
+        if index is None:
+            index = torch.as_tensor(ids, dtype=torch.long, device=mocap.device)
         at = torch.zeros((len(ids), 3), dtype=mocap.dtype, device=mocap.device)
-        at[:, :2] = torch.as_tensor(self.offsets[ids], dtype=mocap.dtype, device=mocap.device)
+        at[:, :2] = self._tensor("offsets", at)[index]
         mocap[index, self.mocap] = at
 
 
