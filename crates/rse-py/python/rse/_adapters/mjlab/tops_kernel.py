@@ -3,9 +3,9 @@
 where they are (the device model's ``hfield_data``): the tops under given
 points (``tops_under``: the exact height scan) and each world's terrain
 box around its robot (``near_boxes``: the step event's bounds). One
-launch each, where the tensor ops they replace launched some thirty
-kernels a call, and a GPU pays a launch for each. Imported only where
-Warp is (mjlab's envs)."""
+launch each, where the tensor ops they replace launched 150 (the scan)
+and 44 (the bounds) kernels a call from Python, and a GPU pays for each
+launch. Imported only where Warp is (mjlab's envs)."""
 
 from __future__ import annotations
 
