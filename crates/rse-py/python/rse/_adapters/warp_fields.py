@@ -81,17 +81,16 @@ class Filled:
 
 Block = tuple[int, np.ndarray, Union[np.ndarray, Filled], Optional[Union[np.ndarray, list[int]]]]
 """What ``Uploads.write`` writes: ``(target, starts, rows, picks)``: row
-``picks[i]`` of ``rows`` (float32, one row a run; row ``i`` where
+``picks[i]`` of ``rows`` (float32, 2-D, one row a run; row ``i`` where
 ``picks`` is None, and always for ``Filled`` rows) into target
 ``target`` from element ``starts[i]``, for each ``i``: a reset's envs'
 fields, or their geoms' boxes."""
 
 
 def row_size(rows: Union[np.ndarray, Filled]) -> int:
-    """Values in each of ``rows``."""
-    if isinstance(rows, Filled):
-        return rows.size
-    return int(rows.shape[-1]) if rows.ndim > 1 else len(rows)
+    """Values in each of ``rows`` (a 2-D array, one row a run, or
+    ``Filled``)."""
+    return rows.size if isinstance(rows, Filled) else int(rows.shape[1])
 
 
 class Uploads:
@@ -154,13 +153,12 @@ class Uploads:
         offset = r = 0
         for (t, starts, rows, picks), size in zip(blocks, sizes):
             n = len(starts)
-            out = host[offset : offset + n * size].reshape(n, size)
             if isinstance(rows, Filled):
                 rows.fill(host, offset + size * np.arange(n))
             elif picks is None:
-                out[...] = rows.reshape(-1, size)
+                host[offset : offset + n * size].reshape(n, size)[...] = rows
             else:
-                np.take(rows.reshape(-1, size), np.asarray(picks, dtype=np.int64), axis=0, out=out)
+                np.take(rows, np.asarray(picks, dtype=np.int64), axis=0, out=host[offset : offset + n * size].reshape(n, size))
             places[r : r + n] = np.stack([offset + size * np.arange(n), starts, np.full(n, size), np.full(n, t)], axis=1)
             offset += n * size
             r += n

@@ -31,21 +31,17 @@ class DeviceTops:
         mjm = sim.mj_model
         first = mujoco.mj_name2id(mjm, mujoco.mjtObj.mjOBJ_HFIELD, f"{name}0")
         n = envs.num_envs
-        t = envs.terrain(0)
-        self.cells = contacts.slot_cells(envs)  # (ny, nx): a slot's, the largest grid of a mix
-        self.k = contacts.oversample_of(envs)
-        self.ncol = int(mjm.hfield_ncol[first])
-        self.block = float(t.block_size)
-        _, _, self.elevation, _ = envs.hfield_size
-        self.z0 = float(envs.hfield_pos[2])
+        self.block = float(envs.terrain(0).block_size)
         self.model = sim.wp_model
         device = sim.wp_model.hfield_data.device
         self.starts: Any = wp.array(mjm.hfield_adr[first : first + n].astype(np.int64), dtype=wp.int64, device=device)
         """Each env's field's first sample in ``hfield_data``."""
-        self.grid: Any = Grid()
+        g: Any = Grid()
+        g.ny, g.nx = contacts.slot_cells(envs)  # a slot's: the largest grid of a mix
+        g.k, g.ncol = contacts.oversample_of(envs), int(mjm.hfield_ncol[first])
+        g.block, g.elevation, g.z0 = self.block, float(envs.hfield_size[2]), float(envs.hfield_pos[2])
+        self.grid = g
         """The slot's grid: the kernels' (``tops_kernel.Grid``)."""
-        for name, value in dict(ny=self.cells[0], nx=self.cells[1], k=self.k, ncol=self.ncol, block=self.block, elevation=self.elevation, z0=self.z0).items():
-            setattr(self.grid, name, value)
         # Compiled now, not in the first step.
         wp.load_module(tops_under.module, device=device)
         self.envs = envs

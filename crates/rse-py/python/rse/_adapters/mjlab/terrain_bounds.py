@@ -38,7 +38,7 @@ class TerrainBounds:
         nworld, self.ngeom = m.geom_aabb.shape[:2]
         if nworld != envs.num_envs:
             raise ValueError(f"m: geom_aabb holds {nworld} worlds, expected one per env ({envs.num_envs})")
-        self.plan = [(float(mjm.geom_aabb[g, 0]), float(mjm.geom_aabb[g, 1]), float(mjm.geom_aabb[g, 3]), float(mjm.geom_aabb[g, 4])) for g in self.gids]
+        self.plan = np.array([mjm.geom_aabb[g, [0, 1, 3, 4]] for g in self.gids], dtype=np.float32).reshape(-1, 4)
         """Each geom's box in x and y as MuJoCo made it: its whole field
         (centre x, y, half sides x, y)."""
 
@@ -60,7 +60,7 @@ class TerrainBounds:
         centre, half = z_extent(top, self.base)
         n, g = len(ids), len(self.gids)
         boxes = np.empty((n, g, 6), dtype=np.float32)
-        boxes[:, :, [0, 1, 3, 4]] = np.asarray(self.plan, dtype=np.float64)[:, [0, 1, 2, 3]]
+        boxes[:, :, [0, 1, 3, 4]] = self.plan
         boxes[:, :, 2] = centre[:, None]
         boxes[:, :, 5] = half[:, None]
         # Each geom's (center, size) vec3s, as floats.
