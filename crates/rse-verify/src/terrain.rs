@@ -60,6 +60,42 @@ pub struct ObjMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// Whether every index of a face, line or point statement (`line`) is
+/// one tobj can resolve without overflow: never 0, a relative one (from
+/// -1 back) within the elements defined before it (`defined`: vertices,
+/// texture coordinates, normals), a positive one whose offset (three
+/// floats an element) fits. tobj turns any other into a number whose
+/// offset overflows (a panic where overflow is checked: hostile input
+/// must not abort); a positive index past the file, or one that is not a
+/// number, is tobj's to refuse.
+fn references_defined(line: &[u8], defined: &[usize; 3]) -> Result<(), String> {
+    let words = line
+        .split(u8::is_ascii_whitespace)
+        .filter(|w| !w.is_empty());
+    for word in words.skip(1) {
+        for (kind, part) in word.split(|&b| b == b'/').enumerate().take(3) {
+            let Some(index) = std::str::from_utf8(part)
+                .ok()
+                .and_then(|t| t.parse::<i64>().ok())
+            else {
+                continue;
+            };
+            let n = defined[kind] as i64;
+            let offset_fits = usize::try_from(index - 1)
+                .ok()
+                .and_then(|i| i.checked_mul(3)?.checked_add(2))
+                .is_some();
+            if index == 0 || index < -n || (index > 0 && !offset_fits) {
+                let name = ["vertex", "texture coordinate", "normal"][kind];
+                return Err(format!(
+                    "a statement names {name} {index}, but {n} are defined before it"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Reads an OBJ file's positions and triangles (normals and materials are
 /// the readers' business). Refuses what a simulator could not use: faces
 /// that are not triangles, indices that name no vertex, coordinates that
@@ -72,6 +108,8 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
     // buffers: a file of nothing else costs tens of times its size, so
     // there may be few (ours have one).
     let mut objects = 0usize;
+    // Vertices, texture coordinates and normals defined so far.
+    let mut defined = [0usize; 3];
     for (i, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let keyword = line
             .split(u8::is_ascii_whitespace)
@@ -99,6 +137,16 @@ pub fn read_obj(bytes: &[u8]) -> Result<ObjMesh, FaultKind> {
                     i + 1
                 )));
             }
+        }
+        match keyword {
+            b"v" => defined[0] += 1,
+            b"vt" => defined[1] += 1,
+            b"vn" => defined[2] += 1,
+            b"f" | b"l" | b"p" => {
+                references_defined(line, &defined)
+                    .map_err(|r| bad(format!("line {}: {r}", i + 1)))?;
+            }
+            _ => {}
         }
         if !(keyword.is_empty() || keyword.starts_with(b"#") || known) {
             // Not quoted: a line that is no OBJ may be anyone's text.

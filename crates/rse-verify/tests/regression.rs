@@ -469,6 +469,32 @@ fn given_the_templates_a_custom_world_is_rebuilt_byte_for_byte() {
     );
 }
 
+/// Found by the seeded fuzzing of `make test` (fuzz/regressions/obj/crash-aa9dfafc…):
+/// a relative index past what is defined, 0, or a positive one whose
+/// offset overflows made tobj compute an offset that overflows (a panic
+/// where overflow is checked); each is refused, naming its line.
+#[test]
+fn an_index_tobj_cannot_resolve_is_refused_by_line() {
+    let cases: [(&[u8], &str); 3] = [
+        (
+            b"v 0 0 0\nvn 0 0 1\nf 1//-12 1//1 1//1\n",
+            "line 3: a statement names normal -12, but 1 are defined",
+        ),
+        (b"v 0 0 0\nf 0 1 1\n", "line 2: a statement names vertex 0"),
+        (
+            b"v 0 0 0\nf 9223372036854775807 1 1\n",
+            "line 2: a statement names vertex 9223372036854775807",
+        ),
+    ];
+    for (obj, said) in cases {
+        assert!(
+            matches!(rse_verify::read_obj(obj), Err(FaultKind::BadObj { ref reason }) if reason.starts_with(said)),
+            "{said}: {:?}",
+            rse_verify::read_obj(obj).map(|m| m.triangles.len())
+        );
+    }
+}
+
 /// Item 7: an OBJ of repeated `o a` / `f 1 2 3` lines cost gigabytes to
 /// parse: one longer than ours is not read past our size, one as long is
 /// refused after 1024 objects.
