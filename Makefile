@@ -30,9 +30,10 @@ test-cluster:
 test-gazebo-classic:
 	scripts/test-gazebo-classic.sh
 
-## mjlab's Go1 rough task on mjlab's terrain and on rse's (steps/s, a PPO iteration, the height scans), in .venv-frameworks (make test-frameworks makes it). On a GPU: .venv-frameworks/bin/python bench/mjlab_tasks.py --device cuda --num-envs 4096
+## mjlab's Go1 rough task on mjlab's terrain and on rse's (steps/s, a PPO iteration, the height scans), in .venv-frameworks, and a Genesis reset's rewrite, whole map against the reset tiles, in .venv-genesis (make test-frameworks makes both). On a GPU: .venv-frameworks/bin/python bench/mjlab_tasks.py --device cuda --num-envs 4096
 bench-frameworks:
 	.venv-frameworks/bin/python bench/mjlab_tasks.py
+	.venv-genesis/bin/python bench/genesis_sync.py
 
 ## Every fuzz target for FUZZ_SECONDS each (default 12), libFuzzer's random seed, a growing corpus (make test runs a seeded, fixed-length pass instead).
 fuzz:

@@ -80,6 +80,39 @@ def test_each_env_rests_on_its_tile_and_a_rewrite_changes_only_the_reset_envs(wo
     assert np.allclose(seen, new, atol=1e-5), "Genesis's own height query sees the rewritten map"
 
 
+def test_a_reset_writes_its_envs_tiles_alone_and_leaves_what_a_whole_rewrite_would(world, monkeypatch) -> None:
+    """``rse.genesis.reset`` writes the reset envs' tiles into Genesis's
+    own field (a torch view of it) where the map was rewritten whole
+    once: the collider's field, its bounds and the height queries end as
+    a whole rewrite leaves them, and the balls rest on the new tops."""
+    envs, scene, terrain, ball = world
+    info = scene.sim.rigid_solver.collider.collider_info
+    rse.genesis.sync(scene, terrain, envs)
+    before = drop(scene, ball, envs)
+
+    def whole(*_: object) -> None:
+        raise AssertionError("the whole map was written")
+
+    monkeypatch.setattr(info.terrain_hf, "from_numpy", whole)
+    mask = np.zeros(N_ENVS, dtype=bool)
+    mask[[0, 3]] = True
+    assert list(rse.genesis.reset(scene, terrain, envs, mask)) == [0, 3]
+    monkeypatch.undo()
+
+    new = rse.genesis.heights(envs)
+    assert np.array_equal(info.terrain_hf.to_numpy(), new), "the collider's field is the new map"
+    bounds = info.terrain_xyz_maxmin.to_numpy()
+    assert (bounds[2], bounds[5]) == (new.max(), new.min() - 1.0), "the bounds Genesis sets at build"
+    assert np.array_equal(terrain._terrain_height_field.cpu().numpy(), new)
+
+    after = drop(scene, ball, envs)
+    tops_now = tops(envs, after)
+    assert np.allclose(after[:, 2], tops_now + RADIUS, atol=5e-3), (after, tops_now)
+    assert np.allclose(after[[1, 2]], before[[1, 2]], atol=1e-5), "the other envs' balls rest where they did"
+    seen = terrain.get_terrain_height(after[:, :2]).cpu().numpy().reshape(-1)[:N_ENVS]
+    assert np.allclose(seen, tops_now, atol=1e-5)
+
+
 def test_bad_input_is_named(world) -> None:
     envs, scene, terrain, _ = world
     with pytest.raises(ValueError, match="^envs"):

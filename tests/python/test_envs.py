@@ -284,6 +284,22 @@ def test_tiles_are_one_mujoco_height_field_each_env_in_its_tile() -> None:
     assert ray_down(model, data, 0.05, 0.05, 0) == pytest.approx(SMALL.base, abs=1e-5)
 
 
+def test_each_tile_sits_at_its_field_corner_and_holds_its_slots_samples() -> None:
+    """``field_corners``: env e's tile of the map, ``field_shape`` from its
+    corner, holds the samples env e's slot holds (the same terrain in
+    either layout); a slot's corner is its own first sample."""
+    n, cols, border = 5, 2, 2
+    tiles = rse.EnvTerrains(SMALL, n, oversample=2, seed=9, layout="tiles", cols=cols, border=border)
+    slots = rse.EnvTerrains(SMALL, n, oversample=2, seed=9)
+    rows, columns = tiles.field_shape
+    corners = tiles.field_corners
+    assert corners.shape == (n, 2) and corners.dtype == np.int64
+    assert list(corners[3]) == [2 * (border + 10 + border), 2 * (border + 12 + border)], "row, column of tile (1, 1)"
+    for e, (r, c) in enumerate(corners):
+        assert np.array_equal(tiles.samples[0, r : r + rows, c : c + columns], slots.samples[e]), e
+    assert not slots.field_corners.any()
+
+
 @pytest.mark.parametrize("layout", ["slots", "tiles"])
 def test_the_pool_as_mjcf_loads_in_mujoco_and_takes_the_samples(layout: str) -> None:
     """env_hfields_mjcf: MuJoCo loads the text; after sync_env_hfields the

@@ -535,6 +535,22 @@ impl EnvTerrains {
         self.fixed.field_shape
     }
 
+    /// Each environment's field's first sample in `samples`, int64
+    /// `(num_envs, 2)` of `(row, column)`: its tile's corner in the map
+    /// (tiles; the tile is `field_shape` from there), `(0, 0)` in its own
+    /// slot (slots). What an adapter rewrites of a shared map after a reset.
+    #[getter]
+    fn field_corners<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let inner = self.reading()?;
+        let corners: Vec<i64> = (0..self.fixed.num_envs)
+            .flat_map(|e| {
+                let (row, col) = inner.field_corner(e);
+                [row as i64, col as i64]
+            })
+            .collect();
+        PyArray1::from_vec(py, corners).reshape([self.fixed.num_envs, 2])
+    }
+
     /// Samples per cell along each axis of the fields.
     #[getter]
     fn oversample(&self) -> u32 {

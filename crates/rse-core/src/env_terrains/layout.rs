@@ -170,6 +170,16 @@ impl EnvTerrains {
         (base / self.elevation) as f32
     }
 
+    /// Environment `e`'s field's first sample in the buffer, `(row,
+    /// column)`: its tile's corner in the map (tiles), `(0, 0)` in its own
+    /// slot (slots). Its field is the [`field_shape`](Self::field_shape)
+    /// from there.
+    pub fn field_corner(&self, e: usize) -> (usize, usize) {
+        let (x0, y0) = self.tile_origin(e);
+        let k = self.options.oversample as usize;
+        (y0 as usize * k, x0 as usize * k)
+    }
+
     /// Environment `e`'s tile's first cell in the map, `(x0, y0)`; `(0, 0)`
     /// for slots.
     pub(super) fn tile_origin(&self, e: usize) -> (u32, u32) {

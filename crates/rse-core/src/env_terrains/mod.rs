@@ -607,14 +607,15 @@ mod tests {
         let mut out = vec![-1.0f32; rows * cols];
         e.write(&[0, 1, 2, 3, 4], &mut out).unwrap();
         let elevation = e.hfield_size()[2];
+        assert_eq!(e.field_shape(), (10, 12));
         for env in 0..5 {
-            let (x0, y0) = e.tile_origin(env);
+            let (row0, col0) = e.field_corner(env);
             let mut want = vec![0.0f32; 10 * 12];
             e.terrain(env)
                 .hfield_into(2, 0.0, elevation, &mut want)
                 .unwrap();
             for r in 0..10 {
-                let at = (y0 as usize * 2 + r) * cols + x0 as usize * 2;
+                let at = (row0 + r) * cols + col0;
                 assert_eq!(
                     &out[at..at + 12],
                     &want[r * 12..(r + 1) * 12],
@@ -635,6 +636,7 @@ mod tests {
         // Heights in the map frame: env 3 is tile (1, 1).
         let (x0, y0) = e.tile_origin(3);
         assert_eq!((x0, y0), (8, 7));
+        assert_eq!(e.field_corner(3), (14, 16), "in samples, k = 2");
         let s = 0.1;
         assert_eq!(
             e.height_at(3, (f64::from(x0) + 0.5) * s, (f64::from(y0) + 0.5) * s),

@@ -72,6 +72,8 @@ USES = (
         "the collider's height field and bounds, rewritten in place", instance=True),
     Use("genesis", "genesis.engine.entities.rigid_entity.terrain_entity:TerrainEntity", "_terrain_height_field",
         "rse.genesis.sync", "the heights get_terrain_height answers from", instance=True),
+    Use("genesis", "genesis.utils.misc", "qd_to_torch", "rse.genesis.sync",
+        "a torch view of the collider's field, to write the reset envs' tiles in place"),
     # mjlab: the ray sensors' state.
     Use("mjlab", "mjlab.sensor.raycast_sensor:RayCastSensor", "_cached_world_origins", "rse.mjlab.exact_height_scan",
         "where the scan's rays start this step", instance=True),
