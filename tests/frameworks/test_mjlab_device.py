@@ -150,28 +150,44 @@ def test_the_recorder_catches_the_host_round_trip_the_scan_made_before() -> None
 def test_a_reset_reads_its_ids_once_and_sends_nothing_the_host_waits_for() -> None:
     """On a GPU each copy from pageable memory, and each read into
     Python, waits for the device: a step's reset (the curriculum term,
-    then the reset event, with mjlab's env ids on the device) reads the
-    ids once in each (the host draws the terrains), the curriculum its
-    moves, and makes no tensor from host data but the origins, which go
-    up through pinned memory without the host waiting (``to_device``)."""
+    then the reset event, with mjlab's env ids on the device, the same
+    tensor to both) reads the ids once (the host draws the terrains), the
+    curriculum its moves, and makes no tensor from host data but the
+    origins, which go up through pinned memory without the host waiting
+    (``to_device``). Other ids, or the same tensor changed, are read
+    anew."""
     from rse._adapters.mjlab.curriculum import terrain_difficulty
 
     env = make_env()  # its terrains change: not the shared one
     try:
         event = event_of(env, "rse_terrain")
+        terrain_difficulty(env, torch.tensor([0, 2], device=env.device))  # its per-env halves, made once
         ids = torch.tensor([0, 2], device=env.device)
-        terrain_difficulty(env, ids)  # its per-env halves, made once
         with HostCopies() as curriculum:
             terrain_difficulty(env, ids)
         with HostCopies() as reset:
             event(env, ids)
+        # The ids kept: read anew for another tensor, or the same changed.
+        assert event.ids(ids) == [0, 2]
+        ids[1] = 3
+        assert event.ids(ids) == [0, 3], "the same tensor, changed"
+        assert event.ids(torch.tensor([1], device=env.device)) == [1]
+        with torch.inference_mode():  # as in training: no version counter
+            ids = torch.tensor([0, 2], device=env.device)
+            assert event.ids(ids) == [0, 2]
+            with HostCopies() as again:
+                assert event.ids(ids) == [0, 2]
+            env.common_step_counter += 1
+            ids[1] = 3
+            assert event.ids(ids) == [0, 3], "the same tensor, a step later"
     finally:
         env.close()
     made = [f for f in curriculum.found + reset.found if "host data" in f and "from_numpy" not in f and "lift_fresh" not in f]
     assert not made, made
     assert sum("Tensor.cpu" in f for f in curriculum.found) == 2, curriculum.found
-    assert sum("Tensor.cpu" in f for f in reset.found) == 1, reset.found
+    assert sum("Tensor.cpu" in f for f in reset.found) == 0, reset.found
     assert sum("from_numpy" in f for f in reset.found) == 1, reset.found
+    assert not again.found, again.found
 
 
 def test_the_terrains_take_at_most_128_kib_an_env_on_the_device_as_estimated(env) -> None:

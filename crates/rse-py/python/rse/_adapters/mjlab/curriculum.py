@@ -7,7 +7,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from rse._adapters.mjlab.reset_event import TERM, event_of, ids_of, index_of
+from rse._adapters.mjlab.reset_event import TERM, event_of, index_of
 
 
 def terrain_difficulty(
@@ -35,7 +35,7 @@ def terrain_difficulty(
     envs = event.envs
     if step is None:
         step = 1.0 / (event.terrain_levels - 1) if event.terrain_levels else 0.1
-    ids = ids_of(env, env_ids)
+    ids = event.ids(env_ids)
     if env.common_step_counter > 0 and ids:
         index = index_of(env_ids, ids, env.scene.env_origins.device)
         walked = torch.norm(env.scene[asset_name].data.root_link_pos_w[index, :2] - env.scene.env_origins[index, :2], dim=1)

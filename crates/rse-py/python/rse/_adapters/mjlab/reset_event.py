@@ -5,6 +5,7 @@ its origin into the scene."""
 
 from __future__ import annotations
 
+import weakref
 from typing import Any, Optional
 
 from rse._adapters.fields import geom_id
@@ -99,6 +100,7 @@ class EnvTerrainsEvent:
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
         self._halves: dict[Any, Any] = {}
+        self._read: Optional[tuple[Any, tuple[int, Optional[int]], list[int]]] = None
         self.near_robot = self._near_robot(env)
         """The terrain's bounds around each robot, renewed every step
         (``bound_near_robots``), or None where the scene's geoms that may
@@ -196,9 +198,30 @@ class EnvTerrainsEvent:
         self._ray_meshes.update(self.envs, ids)
 
     def __call__(self, env: Any, env_ids: Any, **params: Any) -> None:
-        ids = ids_of(env, env_ids)
+        ids = self.ids(env_ids)
         self.envs.reset(ids)
         self._copy_out(ids, index_of(env_ids, ids, env.scene.env_origins.device))
+
+    def ids(self, env_ids: Any) -> list[int]:
+        """mjlab's ``env_ids`` as a list (``ids_of``), read once a reset:
+        mjlab hands the curriculum term and this event the same tensor in
+        a step's reset, and on a GPU each read waits for the device. Kept
+        while that very tensor is handed over again in the same step
+        (``common_step_counter``) and unchanged (torch's version counter,
+        where it keeps one: an inference tensor, as in training, keeps
+        none)."""
+        import torch
+
+        if not isinstance(env_ids, torch.Tensor):
+            return ids_of(self._env, env_ids)
+        key = (self._env.common_step_counter, None if env_ids.is_inference() else env_ids._version)
+        if self._read is not None:
+            tensor, seen, ids = self._read
+            if tensor() is env_ids and seen == key:
+                return list(ids)
+        ids = ids_of(self._env, env_ids)
+        self._read = (weakref.ref(env_ids), key, ids)
+        return list(ids)
 
     def halves(self, like: Any) -> Any:
         """Half of each env's own terrain's shorter side (a mix may hold
