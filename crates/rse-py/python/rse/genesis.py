@@ -47,6 +47,7 @@ import numpy as np
 from rse._adapters import private
 from rse._adapters.fields import require_layout
 from rse._adapters.ids import env_ids as _env_ids
+from rse._adapters.torch_uploads import to_device
 from rse._rse import EnvTerrains
 
 __all__ = ["heights", "reset", "sync", "terrain_morph"]
@@ -124,7 +125,8 @@ class _MapState:
     write only the reset envs' tiles: the collider's field as a torch
     view of Genesis's own memory (None where Genesis gives none), the
     entity's height-query tensor (rse's own since that sync), the bounds
-    Genesis keeps, and the highest and lowest height of each tile and of
+    Genesis keeps, each tile's corner in the map (on the host and on the
+    device), and the highest and lowest height of each tile and of
     the map outside the tiles (the bounds of a partly written map, exactly
     as ``max``/``min`` over the whole of it)."""
 
@@ -133,6 +135,7 @@ class _MapState:
     table: Any
     bounds: np.ndarray
     corners: np.ndarray
+    on_device: Any
     tile_max: np.ndarray
     tile_min: np.ndarray
     rest: tuple[Any, Any]
@@ -162,6 +165,7 @@ class _MapState:
             table=table,
             bounds=bounds,
             corners=corners,
+            on_device=torch.as_tensor(corners, device=table.device),
             tile_max=np.array([t.max() for t in tiles], dtype=new.dtype),
             tile_min=np.array([t.min() for t in tiles], dtype=new.dtype),
             rest=(rest.max(), rest.min()) if rest.size else (None, None),
@@ -169,23 +173,24 @@ class _MapState:
 
     def write_tiles(self, envs: EnvTerrains, ids: np.ndarray, info: Any) -> None:
         """Writes the tiles of ``ids`` (distinct) from ``envs``' map into
-        the collider's field and the height-query tensor (one upload and
-        one scatter each) and the map's bounds."""
+        the collider's field and the height-query tensor (one upload,
+        which the host does not wait for on a GPU, and one scatter each)
+        and the map's bounds."""
         import genesis as gs
         import torch
 
         rows, cols = envs.field_shape
-        corners = self.corners[ids]
         samples = envs.samples[0]
         block = np.empty((len(ids), cols, rows), dtype=np.float32)
-        for i, (r, c) in enumerate(corners):
+        for i, (r, c) in enumerate(self.corners[ids]):
             block[i] = samples[r : r + rows, c : c + cols].T
         block *= np.float32(envs.hfield_size[2])  # as heights() scales the map
         flat = block.reshape(len(ids), -1)
         self.tile_max[ids], self.tile_min[ids] = flat.max(axis=1), flat.min(axis=1)
-        xs = torch.as_tensor(corners[:, 1, None, None] + np.arange(cols)[None, :, None], device=self.table.device)
-        ys = torch.as_tensor(corners[:, 0, None, None] + np.arange(rows)[None, None, :], device=self.table.device)
-        values = torch.from_numpy(block).to(device=self.table.device, dtype=self.table.dtype)
+        values = to_device(block, self.table)
+        at = self.on_device[to_device(ids, self.on_device)]
+        xs = at[:, 1, None, None] + torch.arange(cols, device=at.device)[None, :, None]
+        ys = at[:, 0, None, None] + torch.arange(rows, device=at.device)[None, None, :]
         self.field[xs, ys] = values
         self.table[xs, ys] = values
         if gs.backend == gs.metal:  # as Genesis's own writes through such views (set_gravity)

@@ -26,6 +26,7 @@ from rse._adapters.mjlab.terrains import (
 )
 from rse._adapters.mjlab.watch_layout import Apart
 from rse._adapters.pool import GEOM, POOL, env_pool
+from rse._adapters.torch_uploads import to_device
 from rse._adapters.warp_fields import Filled, Uploads
 from rse._rse import EnvTerrains, _env_keywords
 
@@ -100,7 +101,7 @@ class EnvTerrainsEvent:
         self.apart = Apart(sim, self.envs, self.name, bool(p.get("apart")))
         self._tops: Any = None
         self._halves: dict[Any, Any] = {}
-        self._read: Optional[tuple[Any, tuple[int, Optional[int]], list[int]]] = None
+        self._read: Optional[tuple[Any, int, list[int]]] = None
         self.near_robot = self._near_robot(env)
         """The terrain's bounds around each robot, renewed every step
         (``bound_near_robots``), or None where the scene's geoms that may
@@ -205,22 +206,20 @@ class EnvTerrainsEvent:
     def ids(self, env_ids: Any) -> list[int]:
         """mjlab's ``env_ids`` as a list (``ids_of``), read once a reset:
         mjlab hands the curriculum term and this event the same tensor in
-        a step's reset, and on a GPU each read waits for the device. Kept
-        while that very tensor is handed over again in the same step
-        (``common_step_counter``) and unchanged (torch's version counter,
-        where it keeps one: an inference tensor, as in training, keeps
-        none)."""
+        a step's reset, changed by neither, and on a GPU each read waits
+        for the device. Kept while that very tensor is handed over again
+        in the same step (``common_step_counter``)."""
         import torch
 
         if not isinstance(env_ids, torch.Tensor):
             return ids_of(self._env, env_ids)
-        key = (self._env.common_step_counter, None if env_ids.is_inference() else env_ids._version)
+        step = self._env.common_step_counter
         if self._read is not None:
             tensor, seen, ids = self._read
-            if tensor() is env_ids and seen == key:
+            if tensor() is env_ids and seen == step:
                 return list(ids)
         ids = ids_of(self._env, env_ids)
-        self._read = (weakref.ref(env_ids), key, ids)
+        self._read = (weakref.ref(env_ids), step, ids)
         return list(ids)
 
     def halves(self, like: Any) -> Any:
@@ -252,18 +251,6 @@ def index_of(env_ids: Any, ids: list[int], device: Any) -> Any:
     if given and env_ids.dtype in (torch.int64, torch.int32):
         return env_ids.long()
     return torch.as_tensor(ids, dtype=torch.long, device=device)
-
-
-def to_device(values: Any, like: Any) -> Any:
-    """Host ``values`` as a tensor of ``like``'s device and dtype: on a
-    GPU through pinned memory, copied without the host waiting for it
-    (torch's pinned allocator keeps the buffer until the copy is done)."""
-    import torch
-
-    host = torch.from_numpy(values).to(like.dtype)
-    if like.device.type == "cpu":
-        return host
-    return host.pin_memory().to(like.device, non_blocking=True)
 
 
 def env_terrains(env: Any, term: str = TERM) -> EnvTerrains:
