@@ -17,7 +17,7 @@ field after ``envs.reset``::
     ...
     scene.build(n_envs=n_envs)
     envs.reset(done_ids)
-    rse.genesis.sync(scene, terrain, envs)   # the collider's field, no rebuild
+    rse.genesis.sync(scene, terrain, envs, done_ids)   # their tiles, no rebuild
     # or both at once, from the boolean mask a Genesis task resets by:
     rse.genesis.reset(scene, terrain, envs, reset_buf)
 
