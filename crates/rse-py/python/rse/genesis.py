@@ -62,7 +62,15 @@ def heights(envs: EnvTerrains) -> np.ndarray:
     ``[x, y]`` (rse's maps are ``[y, x]``), ``(field columns, field
     rows)``."""
     _tiles(envs)
-    return np.ascontiguousarray(envs.samples[0].T * np.float32(envs.hfield_size[2]))
+    return np.ascontiguousarray(_in_metres(envs.samples[0], envs))
+
+
+def _in_metres(samples: np.ndarray, envs: EnvTerrains) -> np.ndarray:
+    """``samples`` of ``envs``' map (``[y, x]``, in [0, 1]) in Genesis's
+    layout and units: ``[x, y]``, float32 metres. The one conversion the
+    whole map and a reset's tiles both go through, so they agree to the
+    bit."""
+    return samples.T * np.float32(envs.hfield_size[2])
 
 
 def terrain_morph(envs: EnvTerrains, **kwargs: Any) -> Any:
@@ -183,8 +191,7 @@ class _MapState:
         samples = envs.samples[0]
         block = np.empty((len(ids), cols, rows), dtype=np.float32)
         for i, (r, c) in enumerate(self.corners[ids]):
-            block[i] = samples[r : r + rows, c : c + cols].T
-        block *= np.float32(envs.hfield_size[2])  # as heights() scales the map
+            block[i] = _in_metres(samples[r : r + rows, c : c + cols], envs)
         flat = block.reshape(len(ids), -1)
         self.tile_max[ids], self.tile_min[ids] = flat.max(axis=1), flat.min(axis=1)
         values = to_device(block, self.table)
