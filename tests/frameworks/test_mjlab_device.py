@@ -433,3 +433,56 @@ def test_the_devices_tops_read_a_ramps_plane_as_the_host_does() -> None:
         np.testing.assert_allclose(device, host, atol=1e-5)
     finally:
         env.close()
+
+
+def test_the_box_around_each_robot_reaches_every_sample_near_it_also_at_a_ramps_top_edge() -> None:
+    """The step event's box around a robot reaches the highest sample of
+    every cell its square touches (one more each side), wherever the robot
+    stands: also where a ramp's top cell rises within it above the next
+    cell, whose first samples alone stand lower (a box that low would let
+    a foot on the ramp's top edge sink into it before it pairs)."""
+    from pathlib import Path
+
+    cfg = load_env_cfg(TASK)
+    cfg.scene.num_envs = 2
+    ramps = rse.Scheme.load(Path(__file__).resolve().parents[2] / "schemes" / "mix_ramps.csv")
+    use_env_terrains(cfg, ramps, seed=1, difficulty=1.0)
+    env = ManagerBasedRlEnv(cfg, device="cpu")
+    try:
+        env.reset()
+        near = event_of(env, "rse_terrain").near_robot
+        assert near is not None
+        envs = env_terrains(env)
+        k, block, root = near.tops.grid.k, near.tops.block, near.square.root
+        ny, nx = envs.terrain(0).elevation.shape
+        samples = envs.samples.reshape(2, ny * k, nx * k)
+        _, _, elevation, _ = envs.hfield_size
+        gid = int(near.gids.numpy()[0])
+        d = env.sim.wp_data
+        d.qvel.zero_()
+        half = near.reach + near.square.slack  # standing still
+        offsets = near.offsets.numpy()
+        rng = np.random.default_rng(0)
+        short = 0
+        for x, y in rng.uniform(0.0, [nx * block, ny * block], size=(1500, 2)):
+            xpos = d.xpos.numpy()
+            xpos[:, root, :2] = offsets + [x, y]
+            d.xpos.assign(xpos)
+            near.update(env.sim)
+            # The cells the square touches, one more each side, on the terrain.
+            cx0, cy0 = (int(np.clip(np.floor((v - half) / block) - 1, 0, n - 1)) for v, n in ((x, nx), (y, ny)))
+            cx1, cy1 = (int(np.clip(np.floor((v + half) / block) + 1, 0, n - 1)) for v, n in ((x, nx), (y, ny)))
+            aabb = env.sim.wp_model.geom_aabb.numpy()[:, gid]
+            for e in range(2):
+                under = samples[e, cy0 * k : (cy1 + 1) * k, cx0 * k : (cx1 + 1) * k]
+                top = max(float(under.max()), 0.0) * elevation
+                assert aabb[e, 0, 2] + aabb[e, 1, 2] == pytest.approx(top, abs=1e-5), (e, x, y)
+                # Where the first samples of the cells, even one more each
+                # side, stand below a sample the square itself covers (a
+                # ramp's top cell, the drop after it): a box that low misses
+                # a contact.
+                inner = samples[e, (cy0 + 1) * k : cy1 * k, (cx0 + 1) * k : cx1 * k]
+                short += under[::k, ::k].max() < inner.max()
+        assert short > 0, "no square ended on a ramp's top cell: the test would not catch first samples alone"
+    finally:
+        env.close()

@@ -16,8 +16,8 @@ from rse._rse import EnvTerrains
 class DeviceTops:
     """Every env's exact tops on the simulation's device, read from the
     pool's fields where they are (the device model's ``hfield_data``, no
-    copy kept): each cell's k×k samples hold its height, so the sample at
-    a cell's first corner is its top. Only the fields' addresses and the
+    copy kept): each cell's k×k samples hold its top, or a ramp's plane
+    over it (``tops_kernel.cell_top``). Only the fields' addresses and the
     grid's shape are made here, once (``starts``, ``grid``: the kernels'
     arguments, also ``near.NearRobotBounds``')."""
 

@@ -110,17 +110,25 @@ class Square:
 def highest_near(data: wp.array(dtype=float), start: wp.int64, g: Grid, s: Square, x: float, y: float, half: float) -> float:
     # The highest sample of the cells a square of half side `half` at
     # (x, y) touches, one more each side (a riser's slope), clamped onto
-    # the terrain; no more than `span` a side. 0 at least.
+    # the terrain; no more than `span` a side. 0 at least. Every sample of
+    # each cell, not its first alone: a ramp's cell rises within it, and
+    # at a ramp's top edge its last sample stands above the next cell.
     block = float(g.block)
     x0 = int(wp.floor((x - half) / block)) - 1
     y0 = int(wp.floor((y - half) / block)) - 1
     x1 = wp.min(int(wp.floor((x + half) / block)) + 1, x0 + s.span - 1)
     y1 = wp.min(int(wp.floor((y + half) / block)) + 1, y0 + s.span - 1)
+    # Clamping each cell onto the terrain keeps a run of cells a run: the
+    # samples of [clamp(x0), clamp(x1)] × [clamp(y0), clamp(y1)].
+    c0 = wp.clamp(x0, 0, g.nx - 1) * g.k
+    c1 = (wp.clamp(x1, 0, g.nx - 1) + 1) * g.k
+    r0 = wp.clamp(y0, 0, g.ny - 1) * g.k
+    r1 = (wp.clamp(y1, 0, g.ny - 1) + 1) * g.k
     top = float(0.0)
-    for cy in range(y0, y1 + 1):
-        row = start + wp.int64(wp.clamp(cy, 0, g.ny - 1)) * wp.int64(g.k * g.ncol)
-        for cx in range(x0, x1 + 1):
-            top = wp.max(top, data[row + wp.int64(wp.clamp(cx, 0, g.nx - 1) * g.k)])
+    for r in range(r0, r1):
+        row = start + wp.int64(r) * wp.int64(g.ncol)
+        for c in range(c0, c1):
+            top = wp.max(top, data[row + wp.int64(c)])
     return top
 
 
