@@ -246,9 +246,12 @@ def proxies(env, episode_s: float) -> dict[str, float]:
     m = env.sim.wp_model
     geoms = int(m.geom_dataid.shape[1])
     held = int(m.hfield_data.capacity) + int(m.geom_dataid.capacity) + int(m.geom_aabb.capacity) - geoms * (4 + 24)
+    staging = parts.pop("upload staging")
     return {
         "device bytes/env": sum(parts.values()) / env.num_envs,
         "allocated bytes/env": held / env.num_envs,
+        # A fixed few MiB whatever the envs (none on the CPU device).
+        "upload staging bytes": float(staging),
         "reset generate us/env": 1e6 * generate,
         "reset upload us/env": 1e6 * upload,
         # The samples, each field's start (4 bytes), its box (24) and the
@@ -461,14 +464,22 @@ def main() -> None:
     rays, exact = scan_cost(envs[True], 20)
     print(f"height scan per step: rays (read) {1e3 * rays:.3f} ms, rse exact {1e3 * exact:.3f} ms", flush=True)
     proxy = proxies(envs[True], args.episode_s[-1])
-    from rse._adapters.mjlab.scene_pool import pool_memory
+    from rse._adapters.mjlab.scene_pool import pool_memory, staging_bytes
 
     host, on_device = pool_memory(probe(), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
+    staging = staging_bytes(probe(), args.num_envs)
     print(
         f"terrain on the device per env: {proxy['device bytes/env'] / 1024:.1f} KiB counted from the arrays, "
         f"{proxy['allocated bytes/env'] / 1024:.1f} KiB allocated to them, "
-        f"{on_device / args.num_envs / 1024:.1f} KiB estimated ([INFO] line), "
+        f"{(on_device - staging) / args.num_envs / 1024:.1f} KiB estimated ([INFO] line, less the upload buffers), "
         + (f"{(held[True] - held[False]) / args.num_envs / 1024:.1f} KiB by Warp's allocator (rse's env less mjlab's)" if held[True] else "no allocator on the CPU")
+    )
+    print(
+        f"a reset's upload buffers on the device: {proxy['upload staging bytes'] / 2**20:.2f} MiB counted, "
+        f"{staging / 2**20:.2f} MiB estimated on a GPU (none on the CPU device); "
+        f"terrains in all at these envs: {(proxy['device bytes/env'] * args.num_envs + proxy['upload staging bytes']) / 2**30:.3f} GiB, "
+        f"estimated at 4096 envs on a GPU: {pool_memory(probe(), 4096, 'cuda', geoms=envs[True].sim.mj_model.ngeom)[1] / 2**30:.3f} GiB",
+        flush=True,
     )
     print(
         f"a reset, per env: generation {proxy['reset generate us/env']:.0f} us, upload {proxy['reset upload us/env']:.0f} us "

@@ -128,32 +128,64 @@ def test_the_gpus_one_upload_writes_what_the_cpus_view_writes() -> None:
 
 def test_a_resets_blocks_go_into_two_arrays_the_same_either_way() -> None:
     """``Uploads`` (mjlab's reset: samples into ``hfield_data``, boxes
-    into ``geom_aabb``) writes each block's rows (picked, or in order) at
-    their starts in its own target, and nothing else: the GPU's way (one
-    upload of the rows and their places, one kernel), forced on the CPU
-    device, writes what the CPU's numpy views write, over calls that grow
-    its buffers and reuse them."""
-    from rse._adapters.warp_fields import Uploads
+    into ``geom_aabb``) writes each block's rows (picked, in order, or
+    filling themselves) at their starts in its own target, and nothing
+    else: the GPU's way (one upload of the rows and their places, one
+    kernel a send), forced on the CPU device, writes what the CPU's numpy
+    views write, over calls that grow its buffers and reuse them, and
+    with buffers too small for a call (several sends; a row longer than
+    them alone), which never grow past their limit."""
+    from rse._adapters.warp_fields import Filled, Uploads
 
     rng = np.random.default_rng(4)
     pool = rng.random((5, 7), dtype=np.float32)
+
+    def fill(ids: list[int]) -> Filled:
+        def rows(data: np.ndarray, at: np.ndarray, part: slice) -> None:
+            for e, start in zip(ids[part], at):
+                data[start : start + 7] = pool[e]
+
+        return Filled(7, rows)
+
     calls = [
         [(0, [40, 2], pool, [3, 0]), (1, [3], rng.random((1, 6), dtype=np.float32), None), (0, [60], rng.random((1, 25), dtype=np.float32), None)],
         [(1, [20], rng.random((1, 6), dtype=np.float32), None), (0, [], pool, [])],
         [(0, [100], rng.random((1, 90), dtype=np.float32), None), (1, [0, 30], rng.random((2, 3), dtype=np.float32), None), (0, [10, 20, 30], pool, [4, 4, 1])],
+        [(0, [150, 160, 170, 180], fill([2, 0, 4, 4]), None), (1, [8, 14], rng.random((2, 6), dtype=np.float32), None)],
     ]
     written = []
-    for kernel in (False, True):
+    for kernel, limit in ((False, Uploads.LIMIT), (True, Uploads.LIMIT), (True, 30), (True, 7), (True, 1)):
         targets = [wp.array(np.full(200, -1.0, dtype=np.float32), device="cpu"), wp.array(np.full(40, -2.0, dtype=np.float32), device="cpu")]
-        uploads = Uploads(kernel=kernel)
+        uploads = Uploads(kernel=kernel, limit=limit)
         for blocks in calls:
             uploads.write(targets, blocks)
+            # Values (the longest row alone may pass the limit) and their
+            # places (a value a run at least, four int32 a run).
+            assert uploads.device_bytes() <= 4 * max(limit, 90) + 16 * limit, (limit, uploads.device_bytes())
         written.append([t.numpy().copy() for t in targets])
     expected = [np.full(200, -1.0, dtype=np.float32), np.full(40, -2.0, dtype=np.float32)]
     for blocks in calls:
         for t, starts, rows, picks in blocks:
             for i, start in enumerate(starts):
-                row = rows[i if picks is None else picks[i]]
+                row = pool[[2, 0, 4, 4][i]] if isinstance(rows, Filled) else rows[i if picks is None else picks[i]]
                 expected[t][start : start + len(row)] = row
     for got in written:
         assert all(np.array_equal(a, b) for a, b in zip(got, expected))
+
+
+def test_the_upload_buffers_hold_what_staging_says_a_first_write_leaves() -> None:
+    """``staging`` (the estimate of a reset's upload buffers before a
+    scene is built) gives the values and runs ``Uploads`` holds buffers
+    for after its first write, under its limit or over it."""
+    from rse._adapters.warp_fields import Uploads, staging
+
+    rng = np.random.default_rng(5)
+    for limit, n in ((Uploads.LIMIT, 4), (100, 9), (25, 3), (10, 2)):
+        rows = [rng.random((n, 20), dtype=np.float32), rng.random((n, 5), dtype=np.float32), rng.random((2 * n, 6), dtype=np.float32)]
+        blocks = [(0, 20 * np.arange(n), rows[0], None), (0, 500 + 5 * np.arange(n), rows[1], None), (1, 6 * np.arange(2 * n), rows[2], None)]
+        targets = [wp.zeros(600, dtype=wp.float32, device="cpu"), wp.zeros(200, dtype=wp.float32, device="cpu")]
+        uploads = Uploads(kernel=True, limit=limit)
+        uploads.write(targets, blocks)
+        values, runs = staging([(20, n), (5, n), (6, 2 * n)], limit)
+        assert uploads.device_bytes() == 4 * values + 16 * runs, (limit, n)
+        assert values <= max(limit, 20)

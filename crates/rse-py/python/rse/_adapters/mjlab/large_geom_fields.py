@@ -41,4 +41,4 @@ class CoarsePool:
         starts = self.adr[ids]
         envs._copy_fields(ids, mjm.hfield_data, starts, coarse=True)
         size = int(np.prod(contacts.slot_cells(envs)))
-        return [(target, starts, Filled(size, lambda data, at: envs._copy_fields(ids, data, at, coarse=True)), None)]
+        return [(target, starts, Filled(size, lambda data, at, part: envs._copy_fields(ids[part], data, at, coarse=True)), None)]

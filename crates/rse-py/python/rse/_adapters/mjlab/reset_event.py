@@ -143,9 +143,12 @@ class EnvTerrainsEvent:
 
     def device_bytes(self) -> dict[str, int]:
         """What rse's terrains hold on the simulation's device, bytes, by
-        part, counted from the arrays (``pool.device_bytes``)."""
+        part, counted from the arrays (``pool.device_bytes``), and the
+        buffers a reset's rows go up through (``Uploads``; none on the CPU
+        device)."""
         sim = self._env.sim
-        return device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
+        parts = device_bytes(sim.mj_model, sim.wp_model, self.envs, self.name, cameras=self._ray_meshes is not None)
+        return {**parts, "upload staging": self._uploads.device_bytes()}
 
     def _copy_out(self, ids: list[int], index: Any = None) -> None:
         """Copies the terrains of ``ids`` into the simulation's model (their
@@ -160,7 +163,7 @@ class EnvTerrainsEvent:
         m = sim.wp_model
         starts = self._adr[ids]
         self.envs._copy_fields(ids, sim.mj_model.hfield_data, starts)
-        exact = Filled(self._size, lambda data, at: self.envs._copy_fields(ids, data, at))
+        exact = Filled(self._size, lambda data, at, part: self.envs._copy_fields(ids[part], data, at))
         blocks = [(0, starts, exact, None), *self._coarse.blocks(sim.mj_model, self.envs, ids, 0), *self._bounds.blocks(self.envs, ids, 1)]
         self._uploads.write([m.hfield_data, terrain_bounds.flat_boxes(m)], blocks)
         self._refresh_rays(ids)

@@ -14,6 +14,7 @@ from rse._adapters.mjlab.ray_sensors import RAY_BYTES_PER_SAMPLE
 from rse._adapters.mjlab.terrains import probe_envs
 from rse._adapters.pool import GEOM, POOL, add_env_geom
 from rse._adapters.tiles import SchemeLike
+from rse._adapters.warp_fields import staging
 from rse._rse import EnvTerrains
 
 BODY = "terrain"
@@ -119,8 +120,9 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     each world's routing and bounds (its rows of ``geom_dataid`` and
     ``geom_aabb``, 28 bytes for each of the scene's ``geoms``, which mjlab
     expands per world for rse), and with camera sensors (``cameras``) their
-    meshes (``RAY_BYTES_PER_SAMPLE``). ``device_bytes`` counts the same
-    from the arrays."""
+    meshes (``RAY_BYTES_PER_SAMPLE``); on a GPU also the buffers a reset's
+    rows go up through (``staging_bytes``, a few MiB whatever the envs).
+    ``device_bytes`` counts the same from the arrays."""
     nrow, ncol = probe.field_shape
     samples = nrow * ncol
     cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
@@ -128,7 +130,22 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     on_device = num_envs * (4 * (samples + cells) + 28 * geoms + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
     if str(device).startswith("cpu"):
         return host + on_device, 0
-    return host, on_device
+    return host, on_device + staging_bytes(probe, num_envs)
+
+
+def staging_bytes(probe: EnvTerrains, num_envs: int) -> int:
+    """The device's buffers of a reset's upload (``Uploads``: its values
+    and their places, bytes) once the scene's first write, every env's
+    fields and boxes, has sized them: twice one send, up to
+    ``Uploads.LIMIT`` values. As many bytes on the host, pinned; none on
+    the CPU device, where the rows go straight into the model."""
+    nrow, ncol = probe.field_shape
+    cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
+    # Each env's exact samples, its coarse ones, and a box (6 floats) for
+    # each of its terrain geoms (the exact field's and the coarse one's).
+    blocks = [(nrow * ncol, num_envs), (cells, num_envs), (6, num_envs * (2 if cells else 1))]
+    values, runs = staging(blocks)
+    return 4 * values + 4 * 4 * runs  # float32 values, four int32 a run
 
 
 def device_bytes(mjm: Any, m: Any, envs: EnvTerrains, name: str = POOL, *, cameras: bool = False) -> dict[str, int]:
