@@ -121,8 +121,9 @@ class Uploads:
 
     LIMIT = 1 << 20
     """Values (float32) the buffers hold at most: 4 MiB on the device and 4
-    MiB pinned, 32 of the default stepfield's envs a send (a step's resets
-    at 4096 envs and 1 s episodes, 82 envs, go up in three)."""
+    MiB pinned, about 32 of the default stepfield's envs a send (a step's
+    resets at 4096 envs and 1 s episodes, 82 envs, go up in three). Kept
+    small so that the terrains at 4096 envs stay within 0.5 GiB."""
 
     def __init__(self, *, kernel: Optional[bool] = None, limit: int = LIMIT) -> None:
         self.kernel = kernel
