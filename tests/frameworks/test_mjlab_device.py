@@ -25,7 +25,7 @@ from rse._adapters.mjlab.reset_event import event_of
 from rse._adapters.mjlab.scene_pool import pool_memory, staging_bytes
 from rse._adapters.mjlab.step_terms import bound_near_robots
 from rse._adapters.mjlab.terrains import probe_envs
-from rse._adapters.warp_fields import Uploads
+from rse._adapters.uploads import Uploads
 from rse.mjlab import env_terrains, exact_height_scan, out_of_slot, use_env_terrains
 from rse.mjlab_tasks import STEPFIELD
 

@@ -135,7 +135,7 @@ def test_a_resets_blocks_go_into_two_arrays_the_same_either_way() -> None:
     views write, over calls that grow its buffers and reuse them, and
     with buffers too small for a call (several sends; a row longer than
     them alone), which never grow past their limit."""
-    from rse._adapters.warp_fields import Filled, Uploads
+    from rse._adapters.uploads import Filled, Uploads
 
     rng = np.random.default_rng(4)
     pool = rng.random((5, 7), dtype=np.float32)
@@ -177,7 +177,7 @@ def test_the_upload_buffers_hold_what_staging_says_a_first_write_leaves() -> Non
     """``staging`` (the estimate of a reset's upload buffers before a
     scene is built) gives the values and runs ``Uploads`` holds buffers
     for after its first write, under its limit or over it."""
-    from rse._adapters.warp_fields import Uploads, staging
+    from rse._adapters.uploads import Uploads, staging
 
     rng = np.random.default_rng(5)
     for limit, n in ((Uploads.LIMIT, 4), (100, 9), (25, 3), (10, 2)):

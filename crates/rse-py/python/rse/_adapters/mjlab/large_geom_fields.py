@@ -11,7 +11,8 @@ import numpy as np
 
 from rse._adapters import contacts
 from rse._adapters.pool import GEOM
-from rse._adapters.warp_fields import Block, Filled, route_per_world
+from rse._adapters.uploads import Block, Filled
+from rse._adapters.warp_fields import route_per_world
 from rse._rse import EnvTerrains
 
 

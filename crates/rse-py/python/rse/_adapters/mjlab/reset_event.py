@@ -27,7 +27,7 @@ from rse._adapters.mjlab.terrains import (
 from rse._adapters.mjlab.watch_layout import Apart
 from rse._adapters.pool import GEOM, POOL, env_pool
 from rse._adapters.torch_uploads import to_device
-from rse._adapters.warp_fields import Filled, Uploads
+from rse._adapters.uploads import Filled, Uploads
 from rse._rse import EnvTerrains, _env_keywords
 
 TERM = "rse_terrain"

@@ -14,7 +14,7 @@ from rse._adapters.mjlab.ray_sensors import RAY_BYTES_PER_SAMPLE
 from rse._adapters.mjlab.terrains import probe_envs
 from rse._adapters.pool import GEOM, POOL, add_env_geom
 from rse._adapters.tiles import SchemeLike
-from rse._adapters.warp_fields import staging
+from rse._adapters.uploads import staging
 from rse._rse import EnvTerrains
 
 BODY = "terrain"

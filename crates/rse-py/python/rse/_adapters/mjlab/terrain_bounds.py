@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from rse._adapters.warp_fields import Block
+from rse._adapters.uploads import Block
 from rse._rse import EnvTerrains
 
 FIELD = "geom_aabb"
