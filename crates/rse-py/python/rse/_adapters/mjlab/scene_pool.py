@@ -112,6 +112,14 @@ def add_pool(spec: Any, scheme: SchemeLike, num_envs: int, *, oversample: Option
     contacts.route_geoms(small, large, exact, coarse, ground)
 
 
+def field_sizes(probe: EnvTerrains) -> tuple[int, int]:
+    """The samples of an env's field of ``probe``'s shape and of its
+    coarse field (0 without one: an oversample of 1)."""
+    nrow, ncol = probe.field_shape
+    cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
+    return nrow * ncol, cells
+
+
 def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms: int = 0, cameras: bool = False) -> tuple[int, int]:
     """What ``num_envs`` envs of ``probe``'s shape cost in an mjlab scene,
     bytes, in host memory and on ``device`` (0 for "cpu", where it is all
@@ -123,9 +131,7 @@ def pool_memory(probe: EnvTerrains, num_envs: int, device: str = "cpu", *, geoms
     meshes (``RAY_BYTES_PER_SAMPLE``); on a GPU also the buffers a reset's
     rows go up through (``staging_bytes``, a few MiB whatever the envs).
     ``device_bytes`` counts the same from the arrays."""
-    nrow, ncol = probe.field_shape
-    samples = nrow * ncol
-    cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
+    samples, cells = field_sizes(probe)
     host = num_envs * 4 * (2 * samples + cells)
     on_device = num_envs * (4 * (samples + cells) + 28 * geoms + (RAY_BYTES_PER_SAMPLE * samples if cameras else 0))
     if str(device).startswith("cpu"):
@@ -139,11 +145,10 @@ def staging_bytes(probe: EnvTerrains, num_envs: int) -> int:
     fields and boxes, has sized them: twice one send, up to
     ``Uploads.LIMIT`` values. As many bytes on the host, pinned; none on
     the CPU device, where the rows go straight into the model."""
-    nrow, ncol = probe.field_shape
-    cells = int(np.prod(contacts.slot_cells(probe))) if contacts.oversample_of(probe) > 1 else 0
+    samples, cells = field_sizes(probe)
     # Each env's exact samples, its coarse ones, and a box (6 floats) for
     # each of its terrain geoms (the exact field's and the coarse one's).
-    blocks = [(nrow * ncol, num_envs), (cells, num_envs), (6, num_envs * (2 if cells else 1))]
+    blocks = [(samples, num_envs), (cells, num_envs), (6, num_envs * (2 if cells else 1))]
     values, runs = staging(blocks)
     return 4 * values + 4 * 4 * runs  # float32 values, four int32 a run
 
