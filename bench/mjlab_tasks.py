@@ -466,8 +466,9 @@ def main() -> None:
     proxy = proxies(envs[True], args.episode_s[-1])
     from rse._adapters.mjlab.scene_pool import pool_memory, staging_bytes
 
-    host, on_device = pool_memory(probe(), args.num_envs, "cuda", geoms=envs[True].sim.mj_model.ngeom)
-    staging = staging_bytes(probe(), args.num_envs)
+    probed, geoms = probe(), envs[True].sim.mj_model.ngeom
+    host, on_device = pool_memory(probed, args.num_envs, "cuda", geoms=geoms)
+    staging = staging_bytes(probed, args.num_envs)
     print(
         f"terrain on the device per env: {proxy['device bytes/env'] / 1024:.1f} KiB counted from the arrays, "
         f"{proxy['allocated bytes/env'] / 1024:.1f} KiB allocated to them, "
@@ -478,7 +479,7 @@ def main() -> None:
         f"a reset's upload buffers on the device: {proxy['upload staging bytes'] / 2**20:.2f} MiB counted, "
         f"{staging / 2**20:.2f} MiB estimated on a GPU (none on the CPU device); "
         f"terrains in all at these envs: {(proxy['device bytes/env'] * args.num_envs + proxy['upload staging bytes']) / 2**30:.3f} GiB, "
-        f"estimated at 4096 envs on a GPU: {pool_memory(probe(), 4096, 'cuda', geoms=envs[True].sim.mj_model.ngeom)[1] / 2**30:.3f} GiB",
+        f"estimated at 4096 envs on a GPU: {pool_memory(probed, 4096, 'cuda', geoms=geoms)[1] / 2**30:.3f} GiB",
         flush=True,
     )
     print(

@@ -151,12 +151,12 @@ class Uploads:
         import warp as wp
 
         if self._host is None or self._host.shape[0] < values or self._values.device != device:
-            size = max(values, min(2 * values, self.limit))
+            size = grown(values, self.limit)
             self._release()
             self._host = wp.empty(size, dtype=wp.float32, device="cpu", pinned=device.is_cuda)
             self._values = wp.empty(size, dtype=wp.float32, device=device)
         if self._places_host is None or self._places_host.shape[0] < 4 * runs or self._places.device != device:
-            size = 4 * max(runs, min(2 * runs, self.limit))
+            size = 4 * grown(runs, self.limit)
             self._release()
             self._places_host = wp.empty(size, dtype=wp.int32, device="cpu", pinned=device.is_cuda)
             self._places = wp.empty(size, dtype=wp.int32, device=device)
@@ -199,6 +199,12 @@ def cut(blocks: list[tuple[int, int]], limit: int) -> Iterator[list[tuple[int, s
         yield send
 
 
+def grown(asked: int, limit: int) -> int:
+    """What ``Uploads`` grows a buffer to when ``asked`` does not fit it:
+    twice that, up to ``limit`` (and never less than asked)."""
+    return max(asked, min(2 * asked, limit))
+
+
 def staging(blocks: list[tuple[int, int]], limit: int = 0) -> tuple[int, int]:
     """The values and runs ``Uploads`` (``limit``: its default) holds
     buffers for after writing blocks of ``(row size, rows)``, from none:
@@ -209,9 +215,9 @@ def staging(blocks: list[tuple[int, int]], limit: int = 0) -> tuple[int, int]:
         v = sum((part.stop - part.start) * blocks[b][0] for b, part in send)
         r = sum(part.stop - part.start for _, part in send)
         if v > values:
-            values = max(v, min(2 * v, limit))
+            values = grown(v, limit)
         if r > runs:
-            runs = max(r, min(2 * r, limit))
+            runs = grown(r, limit)
     return values, runs
 
 
